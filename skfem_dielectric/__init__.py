@@ -1,3 +1,10 @@
 """scikit-fem finite elements for charge-controlled soft dielectric plates."""
 
 __all__: list[str] = []
+
+# --- FE core (helper C): generic Newton / ramp machinery and linear solvers ---
+from .linear import LinearSolver, PardisoSolver, SuperLUSolver, get_linear_solver  # noqa: E402
+from .newton import NewtonResult, RampResult, StepResult, newton, ramp  # noqa: E402
+
+__all__ += ["LinearSolver", "SuperLUSolver", "PardisoSolver", "get_linear_solver",
+            "NewtonResult", "StepResult", "RampResult", "newton", "ramp"]

@@ -1,0 +1,197 @@
+"""Sparse linear solvers for the Newton iterations.
+
+A linear solver is any object with a method ``solve(K, b) -> x`` for a square sparse matrix
+``K`` (CSR, symmetric, possibly indefinite: the mixed and coupled tangents are saddle-point
+matrices) and a dense right-hand side ``b``.  Solvers may keep state between calls (for
+instance the symbolic factorisation of a fixed sparsity pattern) and expose the
+*inertia* of the last factorised matrix, which the stability check uses.
+
+Two implementations:
+
+``SuperLUSolver``
+    scipy's SuperLU (``scipy.sparse.linalg.splu``) with a fill-reducing column ordering
+    (``permc_spec``, default ``"MMD_AT_PLUS_A"`` which suits the structurally symmetric
+    pattern).  No extra dependency.
+``PardisoSolver``
+    MKL PARDISO through ``pypardiso`` (the ``fast`` extra), used as a real symmetric
+    indefinite solver (``mtype=-2``, upper triangle only) with the symbolic analysis done
+    once per sparsity pattern and reused for all later numerical factorisations.  PARDISO
+    reports the matrix inertia, used by the stability verdict.
+
+Use :func:`get_linear_solver` to obtain one by name.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import scipy.sparse as sp
+import scipy.sparse.linalg as spla
+
+__all__ = ["LinearSolver", "SuperLUSolver", "PardisoSolver", "get_linear_solver",
+           "pardiso_available"]
+
+
+class LinearSolver:
+    """Interface of a sparse linear solver (documentation base class).
+
+    Subclasses implement :meth:`solve`.  ``inertia`` is ``None`` or the tuple
+    ``(n_positive, n_negative, n_zero)`` of the last factorised matrix.
+    """
+
+    name = "base"
+    inertia: tuple[int, int, int] | None = None
+
+    def solve(self, K: sp.spmatrix, b: np.ndarray) -> np.ndarray:  # pragma: no cover
+        """Return ``x`` with ``K x = b``."""
+        raise NotImplementedError
+
+
+class SuperLUSolver(LinearSolver):
+    """scipy SuperLU direct solver.
+
+    Parameters
+    ----------
+    permc_spec
+        Column ordering passed to :func:`scipy.sparse.linalg.splu`; ``"MMD_AT_PLUS_A"``
+        (minimum degree on the symmetric pattern, fastest on our saddle-point tangents) or
+        ``"COLAMD"``, ``"MMD_ATA"``, ``"NATURAL"``.
+    diag_pivot_thresh
+        Threshold for partial pivoting; the default 0.1 prefers diagonal pivots, which keeps
+        the fill of the symmetric ordering while remaining stable for saddle-point matrices.
+
+    Notes
+    -----
+    SuperLU does not report the inertia; ``inertia`` stays ``None``.
+    """
+
+    name = "superlu"
+
+    def __init__(self, permc_spec: str = "MMD_AT_PLUS_A", diag_pivot_thresh: float = 0.1):
+        allowed = ("MMD_AT_PLUS_A", "COLAMD", "MMD_ATA", "NATURAL")
+        if permc_spec not in allowed:
+            raise ValueError(f"permc_spec must be one of {allowed}, got {permc_spec!r}")
+        self.permc_spec = permc_spec
+        self.diag_pivot_thresh = float(diag_pivot_thresh)
+        self.inertia = None
+
+    def solve(self, K: sp.spmatrix, b: np.ndarray) -> np.ndarray:
+        """Factorise ``K`` (CSC copy) and solve ``K x = b``."""
+        lu = spla.splu(sp.csc_matrix(K), permc_spec=self.permc_spec,
+                       diag_pivot_thresh=self.diag_pivot_thresh,
+                       options={"SymmetricMode": True})
+        return lu.solve(np.asarray(b, dtype=float))
+
+
+def pardiso_available() -> bool:
+    """True if ``pypardiso`` (MKL PARDISO) can be imported."""
+    try:
+        import pypardiso  # noqa: F401
+    except Exception:  # pragma: no cover - depends on the environment
+        return False
+    return True
+
+
+class PardisoSolver(LinearSolver):
+    """MKL PARDISO (via ``pypardiso``), real symmetric indefinite, analysis reused.
+
+    The symbolic analysis (ordering, phase 11) is done the first time a sparsity pattern is
+    seen and reused while ``K.indptr``/``K.indices`` stay the same; each call then only
+    runs the numerical factorisation (phase 22) and the solve (phase 33).  The matrix must be
+    symmetric; only its upper triangle is passed to PARDISO.
+
+    Parameters
+    ----------
+    refine
+        Maximum number of iterative-refinement steps (PARDISO ``iparm(8)``); refinement
+        recovers the accuracy lost by pivot perturbation on saddle-point matrices.
+
+    Notes
+    -----
+    After each factorisation ``inertia = (n_positive, n_negative, n_zero)`` is read from
+    PARDISO ``iparm(22)``, ``iparm(23)`` (Sylvester inertia of the factorised matrix).  The
+    results may differ in the last bits between runs because MKL is multi-threaded.
+    """
+
+    name = "pardiso"
+
+    def __init__(self, refine: int = 2):
+        from pypardiso import PyPardisoSolver  # lazy: optional dependency
+
+        self._ps = PyPardisoSolver(mtype=-2)
+        p = self._ps
+        p.set_iparm(1, 1)    # use the iparm values below
+        p.set_iparm(2, 2)    # nested dissection ordering (METIS)
+        p.set_iparm(8, int(refine))
+        p.set_iparm(10, 8)   # pivot perturbation 1e-8
+        p.set_iparm(11, 1)   # symmetric scaling
+        p.set_iparm(13, 1)   # symmetric weighted matching (recommended for saddle points)
+        p.set_iparm(21, 1)   # Bunch-Kaufman pivoting
+        self._pattern: tuple[np.ndarray, np.ndarray] | None = None
+        self._upper: sp.csr_matrix | None = None
+        self.inertia = None
+
+    def _call(self, phase: int, A: sp.csr_matrix, b: np.ndarray) -> np.ndarray:
+        self._ps.set_phase(phase)
+        return self._ps._call_pardiso(A, b)
+
+    def solve(self, K: sp.spmatrix, b: np.ndarray) -> np.ndarray:
+        """Factorise ``K`` (analysis reused for an unchanged pattern) and solve ``K x = b``."""
+        U = sp.triu(sp.csr_matrix(K), format="csr")
+        U.sort_indices()
+        if U.dtype != np.float64:
+            U = U.astype(np.float64)
+        b = np.asfortranarray(np.asarray(b, dtype=np.float64))
+        self._ps._check_A(U)
+        same = (self._pattern is not None and self._pattern[0].shape == U.indptr.shape
+                and self._pattern[1].shape == U.indices.shape
+                and np.array_equal(self._pattern[0], U.indptr)
+                and np.array_equal(self._pattern[1], U.indices))
+        if not same:
+            if self._pattern is not None:
+                self._call(-1, U, b)  # release the old factorisation
+            self._call(11, U, b)
+            self._pattern = (U.indptr.copy(), U.indices.copy())
+        self._call(22, U, b)
+        n = K.shape[0]
+        npos, nneg = int(self._ps.iparm[21]), int(self._ps.iparm[22])
+        self.inertia = (npos, nneg, n - npos - nneg)
+        x = self._call(33, U, b)
+        return np.ascontiguousarray(x)
+
+    def __del__(self):  # pragma: no cover - cleanup
+        try:
+            if self._pattern is not None:
+                self._ps.set_phase(-1)
+                self._ps._call_pardiso(sp.identity(1, format="csr"), np.zeros(1))
+        except Exception:
+            pass
+
+
+def get_linear_solver(name: str | LinearSolver = "auto", **options) -> LinearSolver:
+    """Return a linear solver by name.
+
+    Parameters
+    ----------
+    name
+        ``"superlu"`` (scipy, always available), ``"pardiso"`` (needs ``pypardiso``) or
+        ``"auto"`` (PARDISO if importable, else SuperLU).  A :class:`LinearSolver`
+        instance is returned unchanged.
+    **options
+        Passed to the solver's constructor.
+
+    Returns
+    -------
+    LinearSolver
+    """
+    if isinstance(name, LinearSolver):
+        return name
+    if name == "auto":
+        name = "pardiso" if pardiso_available() else "superlu"
+    if name == "superlu":
+        return SuperLUSolver(**options)
+    if name == "pardiso":
+        if not pardiso_available():
+            raise ValueError("linear solver 'pardiso' needs pypardiso (pip install "
+                             "'skfem-dielectric[fast]')")
+        return PardisoSolver(**options)
+    raise ValueError(f"linear solver must be 'auto', 'superlu' or 'pardiso', got {name!r}")

@@ -1,0 +1,93 @@
+"""Generic Newton / ramp machinery on small problems with closed-form solutions."""
+
+import warnings
+
+import numpy as np
+import pytest
+import scipy.sparse as sp
+
+from skfem_dielectric.linear import get_linear_solver, pardiso_available
+from skfem_dielectric.newton import newton, ramp
+
+
+class Cubic:
+    """r_i(x) = x_i^3 + x_i - t c_i  (decoupled cubics, root by Cardano)."""
+
+    c = np.array([1.0, 2.0, 5.0])
+
+    def initial_state(self):
+        return np.zeros(3)
+
+    def assemble(self, x, load):
+        return sp.diags(3 * x**2 + 1).tocsr(), x**3 + x - load * self.c
+
+    def residual_scale(self, load):
+        return 1.0
+
+    def postprocess(self, x, load):
+        return {"x2": x[2]}
+
+
+def cardano(q):
+    # real root of x^3 + x - q = 0
+    d = np.sqrt(q**2 / 4 + 1 / 27)
+    return np.cbrt(q / 2 + d) + np.cbrt(q / 2 - d)
+
+
+def test_newton_quadratic_convergence_to_cardano_root():
+    prob = Cubic()
+    res = newton(lambda x: prob.assemble(x, 2.0), np.full(3, 0.5), atol=1e-14, rtol=0)
+    assert res.converged
+    # Root to round-off: Newton stops at ||r|| <= 1e-14, |dx| ~ |r| / (3x^2+1).
+    np.testing.assert_allclose(res.x, cardano(2.0 * prob.c), rtol=1e-13)
+    r = np.array(res.residual_norms)
+    # quadratic convergence: r_{k+1} <= C r_k^2 once r_k < 1 (C ~ 3x/(3x^2+1)^2 < 1 here)
+    late = r[:-1] < 0.1
+    assert np.all(r[1:][late] <= 2.0 * r[:-1][late] ** 2)
+
+
+@pytest.mark.parametrize("solver", ["superlu"] + (["pardiso"] if pardiso_available() else []))
+def test_ramp_resume_is_bitwise_identical(solver):
+    prob = Cubic()
+    loads = [1.0, 4.0, 9.0, 20.0]
+    full = ramp(prob, loads, linear_solver=solver, atol=1e-12, rtol=0)
+    assert full.converged
+    np.testing.assert_allclose(full.column("x2"), cardano(5.0 * np.array(loads)), rtol=1e-11)
+    part = ramp(prob, loads[2:], x0=full.steps[1].x, start=full.steps[1].load,
+                linear_solver=solver, atol=1e-12, rtol=0)
+    if solver == "superlu":  # deterministic; PARDISO (threads) may differ in the last bit
+        assert np.array_equal(part.steps[-1].x, full.steps[-1].x)
+    np.testing.assert_allclose(part.steps[-1].x, full.steps[-1].x, rtol=1e-14)
+
+
+class NoRootBeyondOne:
+    """r(x) = x^2 + (t - 1): real roots only while t <= 1; ramp must stop at t = 1."""
+
+    def initial_state(self):
+        return np.array([2.0])
+
+    def assemble(self, x, load):
+        return sp.csr_matrix([[2 * x[0]]]), np.array([x[0] ** 2 + load - 1.0])
+
+    def residual_scale(self, load):
+        return 1.0
+
+
+def test_ramp_failure_keeps_converged_steps_and_warns():
+    seen = []
+    with pytest.warns(RuntimeWarning, match="not reached"):
+        out = ramp(NoRootBeyondOne(), [0.5, 0.9, 1.5, 2.0], on_step=seen.append,
+                   max_cutbacks=4, atol=1e-12, rtol=0)
+    assert not out.converged
+    assert [st.load for st in out.steps] == [0.5, 0.9] and len(seen) == 2
+    # root sqrt(1 - t) of the converged steps
+    np.testing.assert_allclose([st.x[0] for st in out.steps], np.sqrt([0.5, 0.1]), rtol=1e-10)
+    # the failed sub-step lies beyond the last root (t = 1) but within 4 halvings of 0.9
+    assert 1.0 < out.failed_at <= 0.9 + 0.6 / 2**0 and out.reason
+
+
+def test_bad_inputs():
+    with pytest.raises(ValueError, match="linear solver"):
+        get_linear_solver("mumps")
+    with pytest.raises(ValueError, match="finite"):
+        ramp(Cubic(), [1.0, np.nan])
