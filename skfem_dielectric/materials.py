@@ -1,0 +1,294 @@
+"""Ideal-dielectric material laws evaluated pointwise (vectorised over quadrature points).
+
+The total energy density (per reference volume) of the mixed, fully coupled formulation is
+
+.. math::
+
+    \\psi(F, p, G) = W(I_1) + p (J - 1) - \\frac{p^2}{2\\kappa}
+                   - \\frac{\\varepsilon}{2} J\\, G \\cdot C^{-1} G,
+    \\qquad G = \\mathrm{Grad}\\,\\phi = -E_L,
+
+i.e. the paper's Eq. (modelE) ``Omega = W(I1) - eps/2 E_L.(C^-1 E_L)`` with the factor ``J``
+that makes ``D = eps E`` hold exactly also where the discrete ``J`` differs from one (for
+``J = 1`` it is Eq. (modelE) itself).  ``kappa = inf`` (default) is the exactly
+incompressible mixed form.  The *penalty* form drops ``p`` and uses
+``W + kappa (J - 1)^2 / 2`` instead (the paper's COMSOL choice, Sec. 6); its error is
+``O(mu/kappa)``.  ``I1 = tr C`` is the full (not isochoric) invariant, as in the paper.
+
+Derived quantities (``Finv = F^-1``, ``a = F^-T G = -E``, ``b = C^-1 G``):
+
+* first Piola stress ``dpsi/dF = 2 W1 F + p J F^-T + eps J a (x) b - eps/2 J |a|^2 F^-T``
+  (its push-forward ``J^-1 P F^T`` is ``2 W1 b_L + p I`` plus the Maxwell stress
+  ``eps (E (x) E - |E|^2/2 I)``); the physical pressure is ``-p``;
+* Lagrangian electric displacement ``D_L = dpsi/dG = -eps J C^-1 G`` (``= eps J C^-1 E_L``,
+  so ``D = J^-1 F D_L = eps E``);
+* the consistent second derivatives ``A_FF``, ``A_FG``, ``A_GG``, ``A_Fp``, ``A_pp``.
+
+All arrays carry the tensor indices first and any number of trailing point axes, e.g.
+``F`` of shape ``(3, 3, nel, nqp)``.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Callable
+
+import numpy as np
+
+__all__ = ["NeoHookeanDielectric", "GentDielectric", "IdealDielectric", "PointResponse",
+           "ideal_dielectric_response"]
+
+
+def _check_positive(name: str, value: float) -> float:
+    v = float(value)
+    if not (math.isfinite(v) and v > 0):
+        raise ValueError(f"{name} must be a finite number > 0, got {value!r}")
+    return v
+
+
+@dataclass(frozen=True)
+class NeoHookeanDielectric:
+    """Neo-Hookean ideal dielectric, ``W = mu/2 (I1 - 3)``, Eq. (gent)_1.
+
+    Parameters
+    ----------
+    mu
+        Shear modulus (> 0).
+    eps
+        Permittivity (> 0).
+    """
+
+    mu: float = 1.0
+    eps: float = 1.0
+
+    def __post_init__(self):
+        _check_positive("mu", self.mu)
+        _check_positive("eps", self.eps)
+
+    def energy_derivatives(self, I1: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """``(W, dW/dI1, d2W/dI1^2)`` at ``I1``."""
+        I1 = np.asarray(I1, dtype=float)
+        return 0.5 * self.mu * (I1 - 3.0), np.full_like(I1, 0.5 * self.mu), np.zeros_like(I1)
+
+
+@dataclass(frozen=True)
+class GentDielectric:
+    """Gent ideal dielectric, ``W = -mu Jm/2 ln(1 - (I1 - 3)/Jm)``, Eq. (gent)_2.
+
+    Parameters
+    ----------
+    mu, eps
+        Shear modulus and permittivity (> 0).
+    Jm
+        Stiffening parameter (> 0; the paper uses 97.2).
+
+    Notes
+    -----
+    Beyond the locking limit ``I1 >= 3 + Jm`` the energy is undefined: the derivatives are
+    ``nan`` there, which makes a Newton iteration fail (and the ramp cut back) instead of
+    producing a wrong state.
+    """
+
+    mu: float = 1.0
+    eps: float = 1.0
+    Jm: float = 97.2
+
+    def __post_init__(self):
+        _check_positive("mu", self.mu)
+        _check_positive("eps", self.eps)
+        _check_positive("Jm", self.Jm)
+
+    def energy_derivatives(self, I1: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """``(W, dW/dI1, d2W/dI1^2)`` at ``I1`` (``nan`` beyond the locking limit)."""
+        I1 = np.asarray(I1, dtype=float)
+        g = 1.0 - (I1 - 3.0) / self.Jm
+        g = np.where(g > 0, g, np.nan)
+        W = -0.5 * self.mu * self.Jm * np.log(g)
+        W1 = 0.5 * self.mu / g
+        W11 = 0.5 * self.mu / (self.Jm * g * g)
+        return W, W1, W11
+
+
+@dataclass(frozen=True)
+class IdealDielectric:
+    """Ideal dielectric with a user strain energy ``W(I1)``.
+
+    Parameters
+    ----------
+    W, dW, d2W
+        Vectorised callables ``W(I1)``, ``W'(I1)``, ``W''(I1)`` (``W`` in the same stress
+        units as ``mu``).
+    mu
+        Shear modulus in the reference state (``mu = 2 W'(3)``), used only for scaling.
+    eps
+        Permittivity (> 0).
+    """
+
+    W: Callable[[np.ndarray], np.ndarray]
+    dW: Callable[[np.ndarray], np.ndarray]
+    d2W: Callable[[np.ndarray], np.ndarray]
+    mu: float = 1.0
+    eps: float = 1.0
+
+    def __post_init__(self):
+        _check_positive("mu", self.mu)
+        _check_positive("eps", self.eps)
+        for name in ("W", "dW", "d2W"):
+            if not callable(getattr(self, name)):
+                raise ValueError(f"{name} must be callable, got {getattr(self, name)!r}")
+
+    def energy_derivatives(self, I1: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """``(W, dW/dI1, d2W/dI1^2)`` at ``I1``."""
+        I1 = np.asarray(I1, dtype=float)
+        return (np.broadcast_to(self.W(I1), I1.shape).astype(float),
+                np.broadcast_to(self.dW(I1), I1.shape).astype(float),
+                np.broadcast_to(self.d2W(I1), I1.shape).astype(float))
+
+
+@dataclass
+class PointResponse:
+    """Energy density and its derivatives at points (tensor indices first).
+
+    Attributes
+    ----------
+    psi
+        Total energy density.
+    P
+        ``dpsi/dF`` (first Piola stress incl. pressure and electric part), ``(3, 3, ...)``.
+    dpsi_dp
+        ``J - 1 - p/kappa`` (mixed form; zero array for the penalty form).
+    D_L
+        ``dpsi/dG``, the Lagrangian electric displacement, ``(3, ...)``.
+    A_FF, A_FG, A_GG, A_Fp
+        Second derivatives ``d2psi/dF_aK dF_bL`` ``(3,3,3,3,...)``,
+        ``d2psi/dF_aK dG_L`` ``(3,3,3,...)``, ``d2psi/dG_K dG_L`` ``(3,3,...)`` and
+        ``d2psi/dF_aK dp = J Finv_Ka`` ``(3,3,...)``.
+    A_pp
+        ``-1/kappa`` (scalar).
+    J
+        ``det F``.
+    """
+
+    psi: np.ndarray
+    P: np.ndarray
+    dpsi_dp: np.ndarray
+    D_L: np.ndarray
+    A_FF: np.ndarray
+    A_FG: np.ndarray
+    A_GG: np.ndarray
+    A_Fp: np.ndarray
+    A_pp: float
+    J: np.ndarray
+
+
+def _det_inv(F: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Determinant and inverse of 3x3 matrices stored as ``F[a, K, ...]``."""
+    a, b, c = F[0, 0], F[0, 1], F[0, 2]
+    d, e, f = F[1, 0], F[1, 1], F[1, 2]
+    g, h, i = F[2, 0], F[2, 1], F[2, 2]
+    c00, c01, c02 = e * i - f * h, c * h - b * i, b * f - c * e
+    c10, c11, c12 = f * g - d * i, a * i - c * g, c * d - a * f
+    c20, c21, c22 = d * h - e * g, b * g - a * h, a * e - b * d
+    J = a * c00 + b * c10 + c * c20
+    inv = np.array([[c00, c01, c02], [c10, c11, c12], [c20, c21, c22]]) / J
+    return J, inv
+
+
+def ideal_dielectric_response(material, F: np.ndarray, G: np.ndarray,
+                              p: np.ndarray | None = None, kappa: float = math.inf,
+                              formulation: str = "mixed",
+                              need_tangent: bool = True) -> PointResponse:
+    """Energy density, first derivatives and consistent tangent of the ideal dielectric.
+
+    Parameters
+    ----------
+    material
+        :class:`NeoHookeanDielectric`, :class:`GentDielectric` or :class:`IdealDielectric`.
+    F
+        Deformation gradient ``(3, 3, ...)``.
+    G
+        Referential potential gradient ``Grad phi = -E_L``, ``(3, ...)``.
+    p
+        Pressure-like multiplier (mixed form), shape ``(...)``; ignored for the penalty.
+    kappa
+        Bulk modulus; ``inf`` = exactly incompressible (mixed only).
+    formulation
+        ``"mixed"`` (``p (J-1) - p^2/(2 kappa)``) or ``"penalty"`` (``kappa (J-1)^2 / 2``).
+    need_tangent
+        If False only ``psi``, ``P``, ``dpsi_dp`` and ``D_L`` are computed (the tangent
+        fields are empty arrays).
+
+    Returns
+    -------
+    PointResponse
+
+    Notes
+    -----
+    Eq. (modelE) with ``I5 = E_L.(C^-1 E_L)``, multiplied by ``J`` (see the module
+    docstring); the stresses are verified against finite differences of ``psi`` and the
+    tangent against finite differences of the stresses in ``tests/test_fe_materials.py``.
+    """
+    if formulation not in ("mixed", "penalty"):
+        raise ValueError(f"formulation must be 'mixed' or 'penalty', got {formulation!r}")
+    kappa = float(kappa)
+    if not kappa > 0:
+        raise ValueError(f"kappa must be > 0, got {kappa}")
+    if formulation == "penalty" and not math.isfinite(kappa):
+        raise ValueError("kappa must be finite for the penalty formulation, got inf")
+    eps = material.eps
+    J, Finv = _det_inv(F)
+    I1 = np.einsum("aK...,aK...->...", F, F)
+    W, W1, W11 = material.energy_derivatives(I1)
+    a = np.einsum("Mc...,M...->c...", Finv, G)          # F^-T G
+    bvec = np.einsum("Kc...,c...->K...", Finv, a)        # C^-1 G
+    aa = np.einsum("c...,c...->...", a, a)
+    FinvT = np.swapaxes(Finv, 0, 1)                      # FinvT[a, K] = Finv[K, a]
+    if formulation == "mixed":
+        if p is None:
+            p = np.zeros_like(J)
+        pe = p
+        vol = p * (J - 1.0) - (0.5 * p * p / kappa if math.isfinite(kappa) else 0.0)
+        dpsi_dp = J - 1.0 - (p / kappa if math.isfinite(kappa) else 0.0)
+        A_pp = -1.0 / kappa if math.isfinite(kappa) else 0.0
+    else:
+        pe = kappa * (J - 1.0)
+        vol = 0.5 * kappa * (J - 1.0) ** 2
+        dpsi_dp = np.zeros_like(J)
+        A_pp = 0.0
+    psi = W + vol - 0.5 * eps * J * aa
+    P = (2.0 * W1 * F + (pe * J - 0.5 * eps * J * aa) * FinvT
+         + eps * J * np.einsum("a...,K...->aK...", a, bvec))
+    D_L = -eps * J * bvec
+    if not need_tangent:
+        e = np.empty(0)
+        return PointResponse(psi, P, dpsi_dp, D_L, e, e, e, e, A_pp, J)
+
+    eye = np.eye(3)
+    Cinv = np.einsum("Kc...,Lc...->KL...", Finv, Finv)
+    shape = J.shape
+    # elastic part: 2 W1 d_ab d_KL + 4 W11 F_aK F_bL
+    A = 4.0 * W11 * np.einsum("aK...,bL...->aKbL...", F, F)
+    A += 2.0 * W1 * np.einsum("ab,KL->aKbL", eye, eye).reshape((3, 3, 3, 3) + (1,) * len(shape))
+    # pressure part (p_eff J): d(J Finv_Ka)/dF_bL = J (Finv_Ka Finv_Lb - Finv_La Finv_Kb)
+    FiFi = np.einsum("aK...,bL...->aKbL...", FinvT, FinvT)        # Finv_Ka Finv_Lb
+    FiFi_x = np.einsum("aL...,bK...->aKbL...", FinvT, FinvT)      # Finv_La Finv_Kb
+    coef = pe * J - 0.5 * eps * J * aa
+    A += coef * (FiFi - FiFi_x)
+    if formulation == "penalty":
+        A += kappa * J * J * FiFi
+    # electric part (the J- and Finv-derivatives of -eps/2 J |a|^2 Finv_Ka are in `coef`)
+    ab = np.einsum("b...,L...->bL...", a, bvec)                    # a_b b_L
+    A += eps * J * np.einsum("aK...,bL...->aKbL...", FinvT, ab)    # -eps/2 J (-2 a_b b_L) Finv_Ka
+    # eps J a_a b_K: derivative of J, a_a and b_K
+    A += eps * J * np.einsum("aK...,bL...->aKbL...", np.einsum("a...,K...->aK...", a, bvec),
+                             FinvT)                                # J Finv_Lb a_a b_K
+    A -= eps * J * np.einsum("b...,La...,K...->aKbL...", a, Finv, bvec)   # -a_b Finv_La b_K
+    A -= eps * J * np.einsum("a...,Kb...,L...->aKbL...", a, Finv, bvec)   # -a_a Finv_Kb b_L
+    A -= eps * J * np.einsum("a...,b...,KL...->aKbL...", a, a, Cinv)      # -a_a a_b Cinv_KL
+    A_FG = eps * J * (np.einsum("La...,K...->aKL...", Finv, bvec)
+                      + np.einsum("a...,KL...->aKL...", a, Cinv)
+                      - np.einsum("L...,Ka...->aKL...", bvec, Finv))
+    A_GG = -eps * J * Cinv
+    A_Fp = J * FinvT if formulation == "mixed" else np.zeros_like(FinvT)
+    return PointResponse(psi, P, dpsi_dp, D_L, A, A_FG, A_GG, A_Fp, A_pp, J)
