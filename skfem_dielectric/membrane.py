@@ -49,10 +49,7 @@ def _invT2(F: np.ndarray, J: np.ndarray) -> np.ndarray:
 
 def membrane_kernel(
     F: np.ndarray,
-    W,
-    dW,
-    d2W,
-    eps: float,
+    material,
     D_L: float = 0.0,
     E_L: float | None = None,
     H: float = 1.0,
@@ -63,11 +60,8 @@ def membrane_kernel(
     ----------
     F : ndarray, shape (2, 2, ...)
         In-plane deformation gradient ``dx_a/dX_b`` (components x1, x3).
-    W, dW, d2W : callable
-        Strain energy ``W(I1)`` (dimensional, per reference volume) and its
-        first two derivatives with respect to ``I1``.
-    eps : float
-        Permittivity.
+    material : NeoHookeanDielectric, GentDielectric or IdealDielectric
+        Gives ``W(I1)`` and its derivatives (``energy_derivatives``) and ``eps``.
     D_L : float or ndarray
         Lagrangian electric displacement through the thickness (the surface
         charge per reference area, charge control). Ignored when ``E_L`` is
@@ -96,6 +90,7 @@ def membrane_kernel(
     Equi-biaxial: ``s = lam - lam^-5 - lam^-5 D0^2``, Eq. (loading_gent).
     """
     F = np.asarray(F, dtype=float)
+    eps = material.eps
     J = _det2(F)
     G = _invT2(F, J)
     m, m1, m2 = J**-2, -2.0 * J**-3, 6.0 * J**-4
@@ -106,7 +101,7 @@ def membrane_kernel(
         b = eps * np.asarray(E_L, dtype=float) ** 2 / 2.0
         g, g1, g2 = -b * J**2, -2.0 * b * J, -2.0 * b * np.ones_like(J)
     I1 = np.einsum("ij...,ij...->...", F, F) + m
-    w, w1, w2 = W(I1), dW(I1), d2W(I1)
+    w, w1, w2 = material.energy_derivatives(I1)
     dI1 = 2.0 * F + m1 * J * G
     psi = H * (w + g)
     P = H * (w1 * dI1 + g1 * J * G)
@@ -122,3 +117,219 @@ def membrane_kernel(
         + g1 * J * (GG - GGx)
     )
     return psi, P, A
+
+
+# --------------------------------------------------------------------------
+# finite elements
+# --------------------------------------------------------------------------
+
+_LOADINGS = ("equibiaxial", "uniaxial", "clamped")
+_CONTROLS = ("charge", "voltage")
+
+
+def _check_pos(name: str, value) -> float:
+    v = float(value)
+    if not (np.isfinite(v) and v > 0):
+        raise ValueError(f"{name} must be a finite number > 0, got {value!r}")
+    return v
+
+
+def _check_int(name: str, value) -> int:
+    if int(value) != value or int(value) < 1:
+        raise ValueError(f"{name} must be a positive integer, got {value!r}")
+    return int(value)
+
+
+class MembranePlate:
+    """Quarter of a rectangular dielectric membrane, a :class:`RampProblem`.
+
+    The mid-surface ``[0, L1/2] x [0, L3/2]`` (x1 along the load, x3 across;
+    ``X1 = 0`` and ``X3 = 0`` are the symmetry lines through the plate centre)
+    is meshed with ``n1 x n3`` biquadratic quadrilaterals (Q2, 3x3 Gauss points).
+    The load is the pair ``(s, D0)``: ``s`` the dimensionless nominal stress
+    (force per reference cross-section ``H x width`` over ``mu``) and ``D0 =
+    D_L/sqrt(mu eps)`` (charge control) or ``E0 = E_L sqrt(eps/mu)`` (voltage
+    control).
+
+    Parameters
+    ----------
+    material : NeoHookeanDielectric, GentDielectric or IdealDielectric
+        Ideal-dielectric material (``mu``, ``eps``, ``W(I1)``).
+    L1, L3, H : float
+        Reference length (x1), width (x3) and thickness of the whole plate.
+    n1, n3 : int
+        Elements along x1 and x3 on the quarter.
+    loading : {"equibiaxial", "uniaxial", "clamped"}
+        ``"equibiaxial"``: dead traction ``s`` on the edges ``X1 = L1/2`` and
+        ``X3 = L3/2``; ``"uniaxial"``: dead traction ``s`` on ``X1 = L1/2``,
+        free edge ``X3 = L3/2``; ``"clamped"``: the Keplinger experiment, the
+        edge ``X1 = L1/2`` is glued to a rigid clamp (``u3 = 0`` and one shared
+        ``u1``) carrying the weight, i.e. the resultant force ``s mu H L3``
+        (full plate), the edge ``X3 = L3/2`` free.
+    control : {"charge", "voltage"}
+        Which electric quantity the load's second component prescribes.
+
+    Notes
+    -----
+    Energy per reference area: see :func:`membrane_kernel`. For the clamped
+    plate, by symmetry about ``X1 = 0`` the upper (fixed) and lower (moving)
+    clamps of the experiment have the same relative motion as the two clamps
+    ``X1 = +-L1/2`` of this model.
+    """
+
+    def __init__(self, material, L1: float = 100.0, L3: float = 50.0, H: float = 1.0,
+                 n1: int = 40, n3: int = 20, loading: str = "clamped",
+                 control: str = "charge"):
+        import scipy.sparse as sp
+        import skfem as fe
+
+        from .mesh2d import BatchedVectorForm, point_gradients
+
+        if loading not in _LOADINGS:
+            raise ValueError(f"loading must be one of {_LOADINGS}, got {loading!r}")
+        if control not in _CONTROLS:
+            raise ValueError(f"control must be one of {_CONTROLS}, got {control!r}")
+        self.material = material
+        self.L1, self.L3, self.H = (_check_pos("L1", L1), _check_pos("L3", L3),
+                                    _check_pos("H", H))
+        self.n1, self.n3 = _check_int("n1", n1), _check_int("n3", n3)
+        self.loading, self.control = loading, control
+        a1, a3 = self.L1 / 2, self.L3 / 2
+        mesh = fe.MeshQuad.init_tensor(np.linspace(0, a1, self.n1 + 1),
+                                       np.linspace(0, a3, self.n3 + 1))
+        tol = 1e-9 * max(a1, a3)
+        mesh = mesh.with_boundaries({
+            "sym1": lambda x: np.abs(x[0]) < tol,
+            "sym3": lambda x: np.abs(x[1]) < tol,
+            "end": lambda x: np.abs(x[0] - a1) < tol,
+            "side": lambda x: np.abs(x[1] - a3) < tol,
+        })
+        self.mesh = mesh
+        elem = fe.ElementVector(fe.ElementQuad2())
+        self.basis = fe.Basis(mesh, elem, intorder=4)
+        self.form = BatchedVectorForm(self.basis)
+        n = self.basis.N
+        dofs = {k: self.basis.get_dofs(k) for k in ("sym1", "sym3", "end", "side")}
+        fixed = [dofs["sym1"].nodal["u^1"], dofs["sym1"].facet["u^1"],
+                 dofs["sym3"].nodal["u^2"], dofs["sym3"].facet["u^2"]]
+        tied = np.empty(0, dtype=int)
+        if loading == "clamped":
+            fixed += [dofs["end"].nodal["u^2"], dofs["end"].facet["u^2"]]
+            tied = np.unique(np.concatenate([dofs["end"].nodal["u^1"],
+                                             dofs["end"].facet["u^1"]]))
+        fixed = np.unique(np.concatenate(fixed))
+        free = np.setdiff1d(np.arange(n), np.concatenate([fixed, tied]))
+        # full = T @ reduced: free dofs one-to-one, tied dofs share the last column
+        nred = free.size + (1 if tied.size else 0)
+        rows = np.concatenate([free, tied])
+        cols = np.concatenate([np.arange(free.size), np.full(tied.size, nred - 1)])
+        self.T = sp.csr_matrix((np.ones(rows.size), (rows, cols)), shape=(n, nred))
+        self.TT = self.T.T.tocsr()
+        self.tied_index = nred - 1 if tied.size else None
+        # external load for s = 1 (force per reference length mu H on the loaded edges)
+        mu = material.mu
+        f = np.zeros(n)
+        if loading == "clamped":
+            fred = np.zeros(nred)
+            fred[-1] = mu * self.H * a3  # resultant on the quarter: mu s H L3/2
+        else:
+            for name, comp in (("end", 0), ("side", 1))[: 2 if loading == "equibiaxial" else 1]:
+                fb = fe.FacetBasis(mesh, elem, facets=mesh.boundaries[name], intorder=4)
+                e = np.zeros(2)
+                e[comp] = mu * self.H
+
+                @fe.LinearForm
+                def trac(v, w, e=e):
+                    return e[0] * v[0] + e[1] * v[1]
+
+                f += trac.assemble(fb)
+            fred = self.TT @ f
+        self.f_unit = fred
+        # probes: centre line X3 = 0 and the line next to the clamp X1 = 0.95 L1/2
+        self.x_line = np.linspace(0.0, a1, 4 * self.n1 + 1)
+        self.x_clamp = np.linspace(0.0, a3, 4 * self.n3 + 1)
+        pts_c = np.vstack([self.x_line, np.zeros_like(self.x_line)])
+        pts_k = np.vstack([np.full_like(self.x_clamp, 0.95 * a1), self.x_clamp])
+        self._probe_line = point_gradients(self.basis, pts_c)
+        self._probe_clamp = point_gradients(self.basis, pts_k)
+
+    # -- RampProblem ---------------------------------------------------------
+    @property
+    def ndofs(self) -> int:
+        """Number of reduced unknowns."""
+        return self.T.shape[1]
+
+    def initial_state(self) -> np.ndarray:
+        """Zero displacement."""
+        return np.zeros(self.ndofs)
+
+    def full(self, x: np.ndarray) -> np.ndarray:
+        """Full displacement vector (scikit-fem dof order) from reduced unknowns."""
+        return self.T @ x
+
+    def _electric(self, load):
+        s, e0 = np.asarray(load, dtype=float).reshape(2)
+        mu, eps = self.material.mu, self.material.eps
+        if self.control == "charge":
+            return s, dict(D_L=e0 * np.sqrt(mu * eps))
+        return s, dict(E_L=e0 * np.sqrt(mu / eps))
+
+    def assemble(self, x: np.ndarray, load) -> tuple:
+        """Reduced tangent and residual ``T^T (f_int(u) - s f_ext)``."""
+        s, el = self._electric(load)
+        u = self.T @ x
+        F = self.form.grad(u) + np.eye(2)[:, :, None, None]
+        _, P, A = membrane_kernel(F, self.material, H=self.H, **el)
+        K, r = self.form.assemble(P, A)
+        return self.TT @ K @ self.T, self.TT @ r - s * self.f_unit
+
+    def residual(self, x: np.ndarray, load) -> np.ndarray:
+        """Reduced residual only (line search)."""
+        s, el = self._electric(load)
+        u = self.T @ x
+        F = self.form.grad(u) + np.eye(2)[:, :, None, None]
+        _, P, _ = membrane_kernel(F, self.material, H=self.H, **el)
+        return self.TT @ self.form.assemble_vector(P) - s * self.f_unit
+
+    def residual_scale(self, load) -> float:
+        """Scale of the residual: ``mu H L1`` (a force)."""
+        return self.material.mu * self.H * self.L1
+
+    def _probe(self, u, probe, el):
+        G, dofs = probe
+        F = np.einsum("pn,pijn->ijn", u[dofs], G) + np.eye(2)[:, :, None]
+        _, P, _ = membrane_kernel(F, self.material, H=self.H, **el)
+        J = _det2(F)
+        Finv = np.swapaxes(_invT2(F, J), 0, 1)
+        S = np.einsum("iK...,Kj...->ij...", Finv, P / self.H)  # 2nd Piola = F^-1 P
+        return F, S
+
+    def postprocess(self, x: np.ndarray, load) -> dict:
+        """Stretches at the plate centre and ``P33`` along the lines.
+
+        Returns ``lam1``, ``lam3``, ``lam2`` at the centre, ``lam1_mean``
+        (clamp-to-clamp, clamped loading only, else ``nan``), ``min_P33`` (the
+        minimum of the second Piola ``P33/mu`` along the centre line ``X3 = 0``)
+        and ``x_min_P33`` (its ``X1``), and ``min_P33_clamp``/``x3_min_P33_clamp``
+        along ``X1 = 0.95 L1/2`` next to the clamp.
+        """
+        _, el = self._electric(load)
+        u = self.T @ x
+        mu = self.material.mu
+        F, S = self._probe(u, self._probe_line, el)
+        Fk, Sk = self._probe(u, self._probe_clamp, el)
+        P33 = S[1, 1] / mu
+        P33k = Sk[1, 1] / mu
+        i, k = int(np.argmin(P33)), int(np.argmin(P33k))
+        out = {
+            "lam1": float(F[0, 0, 0]),
+            "lam3": float(F[1, 1, 0]),
+            "lam2": float(1.0 / _det2(F)[0]),
+            "lam1_mean": (float(1.0 + x[self.tied_index] / (self.L1 / 2))
+                          if self.tied_index is not None else float("nan")),
+            "min_P33": float(P33[i]),
+            "x_min_P33": float(self.x_line[i]),
+            "min_P33_clamp": float(P33k[k]),
+            "x3_min_P33_clamp": float(self.x_clamp[k]),
+        }
+        return out
