@@ -1,0 +1,500 @@
+"""The paper's figures: analytic curves from :mod:`analytic` with the FE dots on top.
+
+Every plotting function takes ``ax=None`` (or ``axes=None`` for two panels),
+imports pyplot lazily, draws and returns the axes; nothing here shows or
+saves a figure except :func:`save_figure`, which writes into a given folder.
+FE data are the tidy tables of :func:`validation.sweep.read_table` (``None``
+draws the analytic curves alone).
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+
+from .cases import ALPHAS, keplinger_s
+
+__all__ = [
+    "plot_equibiaxial_loading",
+    "plot_equibiaxial_wrinkling",
+    "plot_uniaxial_loading",
+    "plot_uniaxial_wrinkling",
+    "plot_stretch_maps",
+    "plot_p33_profiles",
+    "uniaxial_thick_limit_curve",
+    "uniaxial_voltage_locus",
+    "case_figure",
+    "save_figure",
+]
+
+_VARIANT_MARKER = {"coupled": dict(marker="o", mfc="none", ms=6, mew=1.2),
+                   "maxwell": dict(marker="s", mfc="none", ms=4, mew=1.0)}
+_VARIANT_LABEL = {"coupled": "FE, fully coupled", "maxwell": "FE, Maxwell traction"}
+
+
+def _new_axes(ax, n=1, figsize=None):
+    import matplotlib.pyplot as plt
+
+    if ax is not None:
+        return ax
+    fig, axes = plt.subplots(1, n, figsize=figsize or (5.0 * n, 4.0), layout="constrained")
+    return axes
+
+
+def _model(name):
+    from .sweep import analytic_model
+
+    return analytic_model(name)
+
+
+def _colors(n):
+    import matplotlib.pyplot as plt
+
+    cmap = plt.get_cmap("viridis")
+    return [cmap(x) for x in np.linspace(0.0, 0.85, n)]
+
+
+def _fe_rows(fe, **match):
+    """Boolean mask of FE rows matching the given column values (converged rows only)."""
+    if fe is None or not len(fe.get("run", [])):
+        return None
+    mask = np.array([bool(c) for c in fe["converged"]])
+    for k, v in match.items():
+        col = fe[k]
+        mask &= np.isclose(col, v) if col.dtype.kind == "f" else (col == v)
+    return mask
+
+
+def _fe_dots(ax, fe, x, y, mask, variant, color, label=None):
+    if mask is None or not mask.any():
+        return
+    ax.plot(x[mask], y[mask], ls="none", color=color, label=label, **_VARIANT_MARKER[variant])
+
+
+def _variant_legend(ax, fe):
+    """Legend entries for the FE marker styles actually drawn."""
+    from matplotlib.lines import Line2D
+
+    if fe is None or not len(fe.get("run", [])):
+        return []
+    return [Line2D([], [], ls="none", color="k", label=_VARIANT_LABEL[v], **_VARIANT_MARKER[v])
+            for v in _VARIANT_MARKER if v in set(fe["variant"])]
+
+
+# --------------------------------------------------------------------------- equi-biaxial
+def plot_equibiaxial_loading(model="neo-Hookean", s_values=(0, 1, 2, 3), quantity="D0",
+                             fe=None, ax=None, lam=None, locus=True):
+    """Equi-biaxial loading curves ``D0(lam)`` or ``E0(lam)`` at fixed ``s``.
+
+    Paper Figs. nh-d-e and gent-d-e: Eq. (loading_gent) and ``E0 = lam^-4 D0``,
+    with the dashed voltage-control limit locus ``det H* = 0`` (through the
+    maxima of ``E0``; for neo-Hookean ``D0 = sqrt((lam^6 + 5)/3)``).
+
+    Parameters
+    ----------
+    model : {"neo-Hookean", "Gent"}
+    s_values : sequence of float
+    quantity : {"D0", "E0"}
+    fe : dict, optional
+        FE table; dots at ``(lam1_fe, D0)`` or ``(lam1_fe, D0/lam1_fe^4)``.
+    ax : matplotlib Axes, optional
+    lam : array_like, optional
+        Stretch grid (default ``1 .. 3.5``).
+    locus : bool
+        Draw the voltage-control limit locus.
+
+    Returns
+    -------
+    matplotlib Axes
+    """
+    import analytic as an
+
+    if quantity not in ("D0", "E0"):
+        raise ValueError(f"quantity must be 'D0' or 'E0', got {quantity!r}")
+    ax = _new_axes(ax)
+    m = _model(model)
+    lam = np.linspace(1.0, 3.5, 1200) if lam is None else np.asarray(lam, dtype=float)
+    y = (lambda l, D0: D0) if quantity == "D0" else (lambda l, D0: D0 / l**4)
+    for s, c in zip(s_values, _colors(len(s_values))):
+        D0 = an.equibiaxial_D0(lam, s, m)
+        ax.plot(lam, y(lam, D0), color=c, label=f"$s = {s:g}$")
+        mask = _fe_rows(fe, s=s, model=model)
+        if mask is not None:
+            for v in _VARIANT_MARKER:
+                vm = mask & (fe["variant"] == v)
+                _fe_dots(ax, fe, fe["lam1_fe"], y(fe["lam1_fe"], fe["D0"]), vm, v, c)
+    if locus:
+        D0l = an.voltage_limit_D0(lam, m)
+        ax.plot(lam, y(lam, D0l), "k--", lw=1.2, label=r"$\det\mathcal{H}^* = 0$ (voltage limit)")
+        smax = np.asarray(s_values, dtype=float)
+        lm, E0m = an.max_E0(smax, m, loading="equibiaxial")
+        lm, E0m = np.atleast_1d(lm), np.atleast_1d(E0m)
+        ok = np.isfinite(lm)
+        ym = lm**4 * E0m if quantity == "D0" else E0m
+        ax.plot(lm[ok], ym[ok], "k^", ms=5, label=r"max $E_0$ at fixed $s$")
+    ax.set_xlabel(r"$\lambda$")
+    ax.set_ylabel(r"$D_0$" if quantity == "D0" else r"$E_0$")
+    ax.set_xlim(lam.min(), lam.max())
+    ax.set_ylim(0, 8.0 if quantity == "D0" else 0.8)
+    handles, _ = ax.get_legend_handles_labels()
+    ax.legend(handles=handles + _variant_legend(ax, fe), fontsize=8, loc="upper left")
+    ax.set_title(f"{model}, equi-biaxial: {quantity} vs stretch", fontsize=10)
+    return ax
+
+
+def plot_equibiaxial_wrinkling(model="neo-Hookean", s_values=(0, 0.8, 1.5, 2.5, 4.5), fe=None,
+                               ax=None, D0max=8.0):
+    """Loading curves with the thin/thick-plate wrinkling limits (paper Fig. gent-equi-biaxial).
+
+    The grey zone lies between the thick-plate limit (dashed, Eq. ideal-shortwave
+    for neo-Hookean, Eq. short-wave in general) and the thin-plate limit
+    (Eq. antisym_thin, which is the ``s = 0`` loading curve).
+
+    Returns
+    -------
+    matplotlib Axes
+    """
+    import analytic as an
+
+    ax = _new_axes(ax)
+    m = _model(model)
+    lam = np.linspace(0.5, 5.0, 2000)
+    thick = np.asarray(an.thick_limit_D0(lam, m), dtype=float)
+    thin = np.asarray(an.thin_limit_D0(lam, m), dtype=float)
+    # polygon: thick curve up to D0max, back down the thin curve, closed on the lam axis
+    ok_k = np.isfinite(thick) & (thick <= D0max)
+    ok_n = np.isfinite(thin) & (thin <= D0max)
+    if ok_k.any() and ok_n.any():
+        xs = np.concatenate([lam[ok_k], lam[ok_n][::-1]])
+        ys = np.concatenate([thick[ok_k], thin[ok_n][::-1]])
+        ax.fill(xs, ys, color="0.85", zorder=0, label="wrinkling zone")
+    ax.plot(lam, thick, "--", color="tab:blue", label="thick-plate limit")
+    ax.plot(lam, thin, ":", color="k", lw=1.5, label="thin-plate limit")
+    for s, c in zip(s_values, _colors(len(s_values))):
+        ax.plot(lam, an.equibiaxial_D0(lam, s, m), color=c, label=f"$s = {s:g}$")
+        mask = _fe_rows(fe, s=s, model=model)
+        if mask is not None:
+            for v in _VARIANT_MARKER:
+                _fe_dots(ax, fe, fe["lam1_fe"], fe["D0"], mask & (fe["variant"] == v), v, c)
+    ax.set_xlim(0.5, 5.0)
+    ax.set_ylim(0, D0max)
+    ax.set_xlabel(r"$\lambda$")
+    ax.set_ylabel(r"$D_0$")
+    handles, _ = ax.get_legend_handles_labels()
+    ax.legend(handles=handles + _variant_legend(ax, fe), fontsize=8, loc="lower right")
+    ax.set_title(f"{model}, equi-biaxial: wrinkling limits", fontsize=10)
+    return ax
+
+
+# --------------------------------------------------------------------------- uni-axial
+def uniaxial_voltage_locus(model="neo-Hookean", s=None):
+    """Points ``(lam1, D0, E0)`` of the uni-axial ``det H* = 0`` locus.
+
+    Traced through the maxima of ``E0`` along the fixed-``s`` loading curves,
+    :func:`analytic.max_E0` with ``loading="uniaxial"`` (paper Fig. figde).
+    """
+    import analytic as an
+
+    m = _model(model)
+    s = np.linspace(0.0, 6.0, 301) if s is None else np.asarray(s, dtype=float)
+    lam1, E0 = (np.atleast_1d(np.asarray(a, dtype=float))
+                for a in an.max_E0(s, m, loading="uniaxial"))
+    D0 = np.asarray(an.uniaxial_D0(lam1, s, m), dtype=float)
+    ok = np.isfinite(lam1)
+    return lam1[ok], D0[ok], E0[ok]
+
+
+def plot_uniaxial_loading(model="neo-Hookean", s_values=(0, 1, 2, 3, 4), quantity="D0",
+                          fe=None, ax=None, locus=True):
+    """Uni-axial dead-load curves ``D0(lam1)`` or ``E0(lam1)`` (paper Fig. figde, Eq. DEuniax).
+
+    Returns
+    -------
+    matplotlib Axes
+    """
+    import analytic as an
+
+    if quantity not in ("D0", "E0"):
+        raise ValueError(f"quantity must be 'D0' or 'E0', got {quantity!r}")
+    ax = _new_axes(ax)
+    m = _model(model)
+    lam1 = np.linspace(0.5, 6.0, 2000)
+    f = an.uniaxial_D0 if quantity == "D0" else an.uniaxial_E0
+    for s, c in zip(s_values, _colors(len(s_values))):
+        ax.plot(lam1, f(lam1, s, m), color=c, label=f"$s = {s:g}$")
+        mask = _fe_rows(fe, s=s, model=model)
+        if mask is not None:
+            yv = fe["D0"] if quantity == "D0" else np.full_like(fe["D0"], np.nan)
+            for v in _VARIANT_MARKER:
+                _fe_dots(ax, fe, fe["lam1_fe"], yv, mask & (fe["variant"] == v), v, c)
+    if locus:
+        l1, D0, E0 = uniaxial_voltage_locus(model)
+        ax.plot(l1, D0 if quantity == "D0" else E0, "k--", lw=1.2,
+                label=r"$\det\mathcal{H}^* = 0$")
+    ax.set_xlabel(r"$\lambda_1$")
+    ax.set_ylabel(r"$D_0$" if quantity == "D0" else r"$E_0$")
+    ax.set_xlim(0.5, 6.0)
+    ax.set_ylim(0, 8.0 if quantity == "D0" else 0.8)
+    ax.legend(fontsize=8, loc="upper left" if quantity == "D0" else "upper right")
+    ax.set_title(f"{model}, uni-axial dead load: {quantity} vs $\\lambda_1$", fontsize=10)
+    return ax
+
+
+def uniaxial_thick_limit_curve(lam1, model="neo-Hookean", direction="parallel"):
+    """``D0`` of the thick-plate limit on the uni-axial path, per ``lam1``.
+
+    Solves Eq. (thick-uni-axial) together with Eq. (uni-axial-loading)_2,
+    ``D0^2 = lam1^2 lam3^4 - 1``, for ``lam3`` by vectorised bisection of
+    ``thick_limit_D0_uniaxial(lam1, lam3) - sqrt(lam1^2 lam3^4 - 1)`` (paper
+    Fig. uni-axial-ideal); ``nan`` where no root is bracketed.
+    """
+    import analytic as an
+
+    m = _model(model)
+    lam1 = np.asarray(lam1, dtype=float)
+    lo = lam1 ** -0.5 * (1 + 1e-12)       # D0 = 0 on the path
+    hi = lo * 20.0
+
+    def g(l3):
+        th = np.asarray(an.thick_limit_D0_uniaxial(lam1, l3, m, direction=direction), dtype=float)
+        path = np.sqrt(np.maximum(lam1**2 * l3**4 - 1.0, 0.0))
+        return th - path
+
+    glo, ghi = g(lo), g(hi)
+    ok = np.isfinite(glo) & np.isfinite(ghi) & (np.sign(glo) != np.sign(ghi))
+    a, b, ga = lo.copy(), hi.copy(), glo.copy()
+    for _ in range(80):
+        mid = 0.5 * (a + b)
+        gm = g(mid)
+        left = np.isfinite(gm) & (np.sign(gm) == np.sign(ga))
+        a = np.where(left, mid, a)
+        ga = np.where(left, gm, ga)
+        b = np.where(left, b, mid)
+    l3 = 0.5 * (a + b)
+    D0 = np.sqrt(np.maximum(lam1**2 * l3**4 - 1.0, 0.0))
+    return np.where(ok, D0, np.nan)
+
+
+def plot_uniaxial_wrinkling(fe=None, alphas=ALPHAS, ax=None, D0max=7.0):
+    """The Keplinger plate (paper Fig. uni-axial-ideal).
+
+    Neo-Hookean loading curves Eq. (DEuniax) for ``s = alpha m g/(mu A)``, the
+    thick-plate limit (dashed blue, Eq. thick-uni-axial), the thin-plate limit
+    (dashed black, Eq. thin-uni-axial, the ``s = 0`` curve), the wrinkling zone
+    between them, the FE dots of the clamped plate and a red cross where each
+    FE run breaks down (``P33`` near the clamps compressive, or no convergence).
+
+    Returns
+    -------
+    matplotlib Axes
+    """
+    import analytic as an
+
+    ax = _new_axes(ax, figsize=(6.5, 4.8))
+    m = _model("neo-Hookean")
+    lam1 = np.linspace(0.4, 6.0, 1500)
+    thin = np.asarray(an.uniaxial_D0(lam1, 0.0, m), dtype=float)
+    thick = uniaxial_thick_limit_curve(lam1)
+    ok_k = np.isfinite(thick) & (thick <= D0max)
+    ok_n = np.isfinite(thin) & (thin <= D0max)
+    if ok_k.any() and ok_n.any():
+        xs = np.concatenate([lam1[ok_k], lam1[ok_n][::-1]])
+        ys = np.concatenate([thick[ok_k], thin[ok_n][::-1]])
+        ax.fill(xs, ys, color="0.85", zorder=0, label="wrinkling zone")
+    ax.plot(lam1, thick, "--", color="tab:blue", label="thick-plate limit")
+    ax.plot(lam1, thin, "--", color="k", label="thin-plate limit ($s = 0$)")
+    first_cross = True
+    for a, c in zip(alphas, _colors(len(alphas))):
+        s = keplinger_s(a)
+        ax.plot(lam1, an.uniaxial_D0(lam1, s, m), color=c,
+                label=rf"$\alpha = {a:g}$, $s = {s:.3g}$")
+        if fe is None or not len(fe.get("run", [])):
+            continue
+        for v in _VARIANT_MARKER:
+            sel = np.isclose(fe["alpha"], a) & (fe["variant"] == v)
+            if not sel.any():
+                continue
+            conv = np.array([bool(x) for x in fe["converged"][sel]])
+            brk = np.array([bool(x) for x in fe["breakdown"][sel]])
+            lam_fe, D0_fe = fe["lam1_fe"][sel], fe["D0"][sel]
+            ax.plot(lam_fe[conv], D0_fe[conv], ls="none", color=c, **_VARIANT_MARKER[v])
+            if brk.any() or not conv.all():
+                # the first compressive step, else the last converged one before the failure
+                i = int(np.argmax(brk)) if brk.any() else max(int(np.argmin(conv)) - 1, 0)
+                x = lam_fe[i] if np.isfinite(lam_fe[i]) else fe["lam1_analytic"][sel][i]
+                ax.plot(x, D0_fe[i], "x", color="red", ms=10, mew=2.2,
+                        label="FE breakdown" if first_cross else None, zorder=5)
+                first_cross = False
+    ax.set_xlim(0.4, 6.0)
+    ax.set_ylim(0, D0max)
+    ax.set_xlabel(r"$\lambda_1$")
+    ax.set_ylabel(r"$D_0$")
+    handles, _ = ax.get_legend_handles_labels()
+    ax.legend(handles=handles + _variant_legend(ax, fe), fontsize=7, loc="lower right")
+    ax.set_title("Keplinger plate, uni-axial dead load (neo-Hookean)", fontsize=10)
+    return ax
+
+
+# --------------------------------------------------------------------------- FE fields
+def _mirror(x1, x3, v, length, width):
+    """Quarter-model points mirrored to the full plate when they cover one quarter."""
+    x1, x3, v = (np.asarray(a, dtype=float) for a in (x1, x3, v))
+    if x1.min() >= -1e-12 * length and x1.max() <= 0.5 * length * (1 + 1e-9):
+        x1, x3, v = np.r_[x1, -x1], np.r_[x3, x3], np.r_[v, v]
+    if x3.min() >= -1e-12 * width and x3.max() <= 0.5 * width * (1 + 1e-9):
+        x1, x3, v = np.r_[x1, x1], np.r_[x3, -x3], np.r_[v, v]
+    return x1, x3, v
+
+
+def plot_stretch_maps(fields, axes=None):
+    """Maps of ``lam1`` and ``lam3`` over the weighted plate before charging (Fig. lambda1-3).
+
+    Parameters
+    ----------
+    fields : dict
+        Table with columns ``x1, x3`` (reference position in the mid-plane,
+        metres, origin at the plate centre) and ``lam1, lam3`` at ``D0 = 0``.
+    axes : pair of Axes, optional
+
+    Returns
+    -------
+    pair of matplotlib Axes
+    """
+    import matplotlib.pyplot as plt
+    import matplotlib.tri as mtri
+
+    axes = _new_axes(axes, n=2, figsize=(8.0, 5.0))
+    sel = fields["step"] == fields["step"].min()
+    L, W = 0.1, 0.05
+    for ax, name, label in zip(axes, ("lam1", "lam3"),
+                               (r"$\lambda_1$ (load direction)", r"$\lambda_3$ (width)")):
+        x1, x3, v = _mirror(fields["x1"][sel], fields["x3"][sel], fields[name][sel], L, W)
+        pts, idx = np.unique(np.c_[np.round(x1, 12), np.round(x3, 12)], axis=0, return_index=True)
+        tri = mtri.Triangulation(100 * x3[idx], 100 * x1[idx])   # cm, x1 vertical like the paper
+        pc = ax.tricontourf(tri, v[idx], levels=20, cmap="viridis")
+        plt.colorbar(pc, ax=ax, label=label)
+        ax.set_aspect("equal")
+        ax.set_xlabel(r"$x_3$ (cm)")
+        ax.set_ylabel(r"$x_1$ (cm)")
+        ax.set_title(f"{label}, $D_0 = 0$", fontsize=10)
+    return axes
+
+
+def plot_p33_profiles(fields, fe=None, ax=None, variant="coupled"):
+    """``P33/mu`` along the centre line in ``x1`` for increasing ``D0`` (Fig. zs22).
+
+    Parameters
+    ----------
+    fields : dict
+        Table with columns ``run, step, D0, x1`` (metres) and ``P33`` (over mu).
+    fe : dict, optional
+        The case's step table, to label the breakdown step.
+    variant : str
+        Which coupling variant to draw (runs whose key contains it).
+
+    Returns
+    -------
+    matplotlib Axes
+    """
+    import matplotlib.pyplot as plt
+
+    ax = _new_axes(ax, figsize=(6.5, 4.5))
+    runs = [r for r in dict.fromkeys(fields["run"]) if f"-{variant}-" in r]
+    if not runs:
+        raise ValueError(f"variant {variant!r} has no profiles in the table")
+    sel_run = fields["run"] == runs[0]
+    steps = np.unique(fields["step"][sel_run])
+    cmap = plt.get_cmap("coolwarm")
+    D0s = np.array([fields["D0"][sel_run & (fields["step"] == k)][0] for k in steps])
+    norm = plt.Normalize(D0s.min(), max(D0s.max(), 1e-12))
+    brk_step = None
+    if fe is not None and len(fe.get("run", [])):
+        sel = (fe["run"] == runs[0]) & np.array([bool(b) for b in fe["breakdown"]])
+        if sel.any():
+            brk_step = int(fe["step"][sel][0])
+    for k, D0 in zip(steps, D0s):
+        sel = sel_run & (fields["step"] == k)
+        order = np.argsort(fields["x1"][sel])
+        x = 100 * fields["x1"][sel][order]
+        y = fields["P33"][sel][order]
+        lw, ls = (2.2, "-") if k == brk_step else (1.2, "-")
+        ax.plot(x, y, ls, lw=lw, color=cmap(norm(D0)),
+                label=f"$D_0 = {D0:.3g}$" + (" (breakdown)" if k == brk_step else ""))
+    ax.axhline(0.0, color="k", lw=0.8)
+    ax.set_xlabel(r"$x_1$ along the centre line (cm)")
+    ax.set_ylabel(r"$P_{33}/\mu$")
+    ax.legend(fontsize=7, ncol=2)
+    ax.set_title(f"Keplinger plate, $\\alpha = 1$: lateral stress, {_VARIANT_LABEL[variant]}",
+                 fontsize=10)
+    return ax
+
+
+# --------------------------------------------------------------------------- per case
+def case_figure(name: str, fe=None, fields=None):
+    """The figure of case ``name`` (analytic curves, plus FE data if given).
+
+    Returns
+    -------
+    matplotlib Figure
+    """
+    import matplotlib.pyplot as plt
+
+    if name in ("nh-d-e", "gent-d-e"):
+        model, s_values = ("neo-Hookean", (0, 1, 2, 3)) if name == "nh-d-e" \
+            else ("Gent", (0, 1, 2.3, 3))
+        fig, axes = plt.subplots(1, 2, figsize=(10, 4.2), layout="constrained")
+        plot_equibiaxial_loading(model, s_values, "D0", fe=fe, ax=axes[0])
+        plot_equibiaxial_loading(model, s_values, "E0", fe=fe, ax=axes[1])
+        _tag(axes)
+        return fig
+    if name == "gent-equi-biaxial":
+        fig, axes = plt.subplots(1, 2, figsize=(11, 4.5), layout="constrained")
+        for ax, model in zip(axes, ("neo-Hookean", "Gent")):
+            plot_equibiaxial_wrinkling(model, fe=fe, ax=ax)
+        _tag(axes)
+        return fig
+    if name == "figde":
+        fig, axes = plt.subplots(1, 2, figsize=(10, 4.2), layout="constrained")
+        plot_uniaxial_loading("neo-Hookean", (0, 1, 2, 3, 4), "D0", fe=fe, ax=axes[0])
+        plot_uniaxial_loading("neo-Hookean", (0, 1, 2, 3), "E0", fe=fe, ax=axes[1])
+        _tag(axes)
+        return fig
+    if name == "uni-axial-ideal":
+        fig, ax = plt.subplots(figsize=(7, 5), layout="constrained")
+        plot_uniaxial_wrinkling(fe=fe, ax=ax)
+        return fig
+    if name == "lambda1-3":
+        if fields is None:
+            raise ValueError("case 'lambda1-3' needs FE fields (run validate)")
+        fig, axes = plt.subplots(1, 2, figsize=(8, 5.5), layout="constrained")
+        plot_stretch_maps(fields, axes=axes)
+        _tag(axes)
+        return fig
+    if name == "zs22":
+        if fields is None:
+            raise ValueError("case 'zs22' needs FE fields (run validate)")
+        variants = [v for v in _VARIANT_MARKER if any(f"-{v}-" in r for r in set(fields["run"]))]
+        fig, axes = plt.subplots(1, len(variants), figsize=(6.5 * len(variants), 4.5),
+                                 layout="constrained", squeeze=False)
+        for ax, v in zip(axes[0], variants):
+            plot_p33_profiles(fields, fe=fe, ax=ax, variant=v)
+        return fig
+    raise ValueError(f"no figure for case {name!r}")
+
+
+def _tag(axes):
+    for ax, t in zip(axes, "ab"):
+        ax.text(0.98, 0.02, f"({t})", transform=ax.transAxes, ha="right", va="bottom")
+
+
+def save_figure(fig, folder, stem: str) -> list[Path]:
+    """Write ``fig`` as ``folder/stem.png`` and ``.pdf`` (no timestamps) and close it."""
+    import matplotlib.pyplot as plt
+
+    folder = Path(folder)
+    paths = [folder / f"{stem}.png", folder / f"{stem}.pdf"]
+    fig.savefig(paths[0], dpi=130, metadata={"Software": None})
+    fig.savefig(paths[1], metadata={"CreationDate": None, "Creator": None, "Producer": None})
+    plt.close(fig)
+    return paths

@@ -1,0 +1,73 @@
+"""``summary.json`` and a short human-readable ``report.md`` of a validation run."""
+
+from __future__ import annotations
+
+import json
+from dataclasses import asdict
+from pathlib import Path
+
+from .cases import get_case
+
+__all__ = ["summary_dict", "write_summary", "write_report"]
+
+
+def summary_dict(results, *, quick: bool) -> dict:
+    """Per case: max relative FE-analytic error of ``lam1``, breakdown ``D0`` per run, runtime.
+
+    Parameters
+    ----------
+    results : sequence of CaseResult
+    quick : bool
+        Whether these were ``--quick`` runs.
+
+    Returns
+    -------
+    dict
+        JSON-serialisable; ``breakdown_D0`` maps each run (for the uni-axial
+        cases, one per ``alpha`` and variant) to the first ``D0`` where ``P33``
+        near the clamps turned compressive, or ``None``.
+    """
+    cases = {}
+    for r in results:
+        d = asdict(r)
+        d["title"] = get_case(r.name).title
+        cases[r.name] = d
+    return {"quick": bool(quick),
+            "error_measure": "max over converged steps of |lam1_fe - lam1_analytic| / lam1_analytic",
+            "cases": cases}
+
+
+def write_summary(results, folder, *, quick: bool) -> Path:
+    """Write ``folder/summary.json``."""
+    path = Path(folder) / "summary.json"
+    path.write_text(json.dumps(summary_dict(results, quick=quick), indent=2, sort_keys=True) + "\n")
+    return path
+
+
+def _g(x, fmt=".2e"):
+    return "-" if x is None else format(x, fmt)
+
+
+def write_report(results, folder, *, quick: bool) -> Path:
+    """Write ``folder/report.md``: one table row per case and the breakdown points."""
+    lines = [f"# skfem-dielectric validation ({'quick' if quick else 'full'} run)", "",
+             "| case | paper figure | FE runs | FE steps | max rel. error lam1 | runtime (s) |",
+             "| --- | --- | --- | --- | --- | --- |"]
+    for r in results:
+        lines.append(f"| {r.name} | {r.figure} | {r.n_runs} | {r.n_steps} | "
+                     f"{_g(r.max_rel_error)} | {r.runtime_s:.1f} |")
+    brk = [(r.name, k, v) for r in results for k, v in r.breakdown_D0.items()
+           if k.startswith("uniaxial")]
+    if brk:
+        lines += ["", "Breakdown (first step with P33/mu < -1e-4 near the clamps):", ""]
+        lines += [f"- {name} / {k}: " + ("none up to the last D0" if v is None else f"D0 = {v:g}")
+                  for name, k, v in brk]
+    fails = [(r.name, k, v) for r in results for k, v in r.reasons.items()]
+    if fails:
+        lines += ["", "Runs that stopped (solver):", ""]
+        lines += [f"- {name} / {k}: {v}" for name, k, v in fails]
+    lines += ["", "Files: `<case>.csv` (one row per FE step), `<case>.png|pdf`, "
+              "`summary.json`; `.state/` holds resume states."]
+    path = Path(folder) / "report.md"
+    path.write_text("\n".join(lines) + "\n")
+    return path
