@@ -30,6 +30,10 @@ import numpy as np
 
 __all__ = [
     "membrane_kernel",
+    "MembranePlate",
+    "membrane_ramp",
+    "membrane_keplinger",
+    "keplinger_s",
 ]
 
 
@@ -333,3 +337,100 @@ class MembranePlate:
             "x3_min_P33_clamp": float(self.x_clamp[k]),
         }
         return out
+
+
+def _ramp_targets(s, D0) -> list:
+    s = float(s)
+    if not np.isfinite(s):
+        raise ValueError(f"s must be finite, got {s}")
+    D0 = np.atleast_1d(np.asarray(D0, dtype=float))
+    if D0.ndim != 1 or D0.size == 0 or not np.all(np.isfinite(D0)):
+        raise ValueError(f"D0 must be a non-empty 1-D array of finite values, got {D0}")
+    return [np.array([s, d]) for d in D0]
+
+
+def membrane_ramp(problem: MembranePlate, s: float, D0, **ramp_options):
+    """Pre-load ``s`` then charge (or voltage) ramp ``D0`` on a membrane problem.
+
+    Parameters
+    ----------
+    problem : MembranePlate
+        The discretised membrane.
+    s : float
+        Dimensionless dead load (nominal stress over ``mu``).
+    D0 : array_like
+        Target values of ``D0`` (charge control) or ``E0`` (voltage control); the
+        ramp goes from the unloaded state to ``(s, D0[0])`` (the pre-load when
+        ``D0[0] = 0``), then through the others in order.
+    **ramp_options
+        Passed to :func:`skfem_dielectric.newton.ramp` (``linear_solver``,
+        ``on_step``, ``x0``/``start`` to resume, tolerances, ...).
+
+    Returns
+    -------
+    RampResult
+        One :class:`StepResult` per target with the quantities of
+        :meth:`MembranePlate.postprocess` (``lam1``, ``lam3``, ``min_P33``, ...).
+    """
+    from .newton import ramp
+
+    return ramp(problem, _ramp_targets(s, D0), **ramp_options)
+
+
+def keplinger_s(alpha: float = 1.0, m: float = 0.150, g: float = 9.81,
+                mu: float = 9833.07, A: float = 50e-6) -> float:
+    """Dimensionless dead load of the Keplinger et al. plate, ``s = alpha m g/(mu A)``.
+
+    Parameters
+    ----------
+    alpha : float
+        Weight factor (the paper uses 0.05, 0.3, 0.7, 1.0, 1.5).
+    m, g, mu, A : float
+        Mass (kg), gravity (m/s^2, 9.81 here), shear modulus (Pa) and reference
+        cross-section (m^2), paper Sec. 6 / Fig. uni-axial-ideal.
+
+    Returns
+    -------
+    float
+        ``s`` (2.993 for ``alpha = 1``).
+    """
+    for name, v in (("alpha", alpha), ("m", m), ("g", g), ("mu", mu), ("A", A)):
+        _check_pos(name, v)
+    return alpha * m * g / (mu * A)
+
+
+def membrane_keplinger(alpha: float = 1.0, D0=np.arange(0.0, 6.01, 0.5), material=None,
+                       n1: int = 40, n3: int = 20, L1: float = 100.0, L3: float = 50.0,
+                       H: float = 1.0, g: float = 9.81, **ramp_options):
+    """Membrane model of the clamped uni-axial Keplinger plate under charge control.
+
+    Parameters
+    ----------
+    alpha : float
+        Weight factor, ``s = alpha m g/(mu A)`` with ``m = 150 g``,
+        ``mu = 9833.07 Pa``, ``A = 50 mm^2`` (:func:`keplinger_s`).
+    D0 : array_like
+        Charge targets after the pre-load (start with 0 to record it).
+    material : optional
+        Dielectric (default neo-Hookean, ``mu = eps = 1``: the results are
+        dimensionless).
+    n1, n3 : int
+        Q2 elements along the half-length and half-width.
+    L1, L3, H : float
+        Plate size (default 100 x 50 x 1, mm).
+    g : float
+        Gravity used in ``s``.
+    **ramp_options
+        Passed to :func:`skfem_dielectric.newton.ramp`.
+
+    Returns
+    -------
+    RampResult
+        Per step ``lam1`` (centre), ``lam3``, ``min_P33`` along the centre line,
+        ``min_P33_clamp`` next to the clamp, ``lam1_mean``.
+    """
+    from .materials import NeoHookeanDielectric
+
+    material = NeoHookeanDielectric(1.0, 1.0) if material is None else material
+    pb = MembranePlate(material, L1=L1, L3=L3, H=H, n1=n1, n3=n3, loading="clamped")
+    return membrane_ramp(pb, keplinger_s(alpha, g=g), D0, **ramp_options)

@@ -1,0 +1,41 @@
+"""Benchmark: membrane model of the Keplinger plate, charge ramp D0 = 0 -> 6.
+
+Quarter plate, 40 x 20 biquadratic elements, alpha = 1 (s = 2.993), neo-Hookean.
+Prints DOFs, Newton iterations per step, assembly and solve seconds, wall time.
+Target: at most 5 s wall (issue 5).
+
+Run: ``python benchmarks/bench_fe_membrane.py [superlu|pardiso|auto]  (default superlu)``
+"""
+
+import sys
+import time
+
+import numpy as np
+
+from skfem_dielectric.materials import NeoHookeanDielectric
+from skfem_dielectric.membrane import MembranePlate, keplinger_s, membrane_ramp
+
+
+def main(solver: str = "superlu") -> None:
+    t0 = time.perf_counter()
+    pb = MembranePlate(NeoHookeanDielectric(1.0, 1.0), n1=40, n3=20, loading="clamped")
+    t_setup = time.perf_counter() - t0
+    s = keplinger_s(1.0)
+    D0 = np.arange(0.0, 6.01, 1.0)
+    res = membrane_ramp(pb, s, D0, linear_solver=solver)
+    wall = time.perf_counter() - t0
+    print(f"membrane Keplinger plate, solver={solver}, s={s:.4f}, 40 x 20 Q2 quarter")
+    print(f"DOFs (reduced): {pb.ndofs}, setup {t_setup:.2f} s")
+    print(f"{'D0':>5} {'lam1':>9} {'min_P33':>9} {'iters':>5} {'asm s':>7} {'solve s':>7}")
+    for st in res.steps:
+        print(f"{st.load[1]:5.2f} {st['lam1']:9.5f} {st['min_P33']:9.4f} {st.iterations:5d} "
+              f"{st.assembly_seconds:7.3f} {st.solve_seconds:7.3f}")
+    it = sum(st.iterations for st in res.steps)
+    asm = sum(st.assembly_seconds for st in res.steps)
+    sol = sum(st.solve_seconds for st in res.steps)
+    print(f"total: {it} Newton iterations, assembly {asm:.2f} s, solve {sol:.2f} s, "
+          f"wall {wall:.2f} s (target <= 5 s), converged={res.converged}")
+
+
+if __name__ == "__main__":
+    main(*sys.argv[1:])
