@@ -34,8 +34,8 @@ KEPLINGER = {"length": 0.100, "width": 0.050, "thickness": 0.001, "mu": 9833.07,
 ALPHAS = (0.05, 0.3, 0.7, 1.0, 1.5)
 
 MODELS = ("neo-Hookean", "Gent")
-VARIANTS = ("coupled", "maxwell")
-GEOMETRIES = ("equibiaxial", "uniaxial")
+VARIANTS = ("coupled", "maxwell", "membrane")
+GEOMETRIES = ("equibiaxial", "uniaxial", "uniaxial-free")
 
 
 def keplinger_s(alpha):
@@ -70,13 +70,15 @@ class RunSpec:
 
     Parameters
     ----------
-    geometry : {"equibiaxial", "uniaxial"}
-        Homogeneous equi-biaxial dead-load plate, or the clamped Keplinger
-        plate carrying a weight.
+    geometry : {"equibiaxial", "uniaxial", "uniaxial-free"}
+        Homogeneous equi-biaxial dead-load plate, the clamped Keplinger
+        plate carrying a weight, or a homogeneous uni-axial dead load (free
+        lateral edges, no clamps).
     model : {"neo-Hookean", "Gent"}
         Strain energy (Gent with ``Jm = 97.2``).
-    variant : {"coupled", "maxwell"}
-        Fully coupled ``u-p-phi`` solver or the Maxwell-traction variant.
+    variant : {"coupled", "maxwell", "membrane"}
+        3D fully coupled ``u-p-phi`` solver, 3D Maxwell-traction variant, or
+        the 2D membrane model (in-plane, exact incompressibility).
     s : float
         Dimensionless dead load (equi-biaxial traction, or weight/(mu A)).
     D0 : tuple of float
@@ -164,16 +166,19 @@ def _steps(D0max: float, n: int) -> tuple:
     return tuple(float(d) for d in np.linspace(0.0, D0max, n + 1))
 
 
-def _equibiaxial(models, s_values, D0max, n, variants=VARIANTS, mesh=(("n1", 1), ("n2", 1), ("n3", 1))):
-    return tuple(RunSpec("equibiaxial", m, v, float(s), _steps(D0max, n), mesh=mesh)
-                 for m in models for v in variants for s in s_values)
-
-
-QUICK_PLATE = (("n1", 10), ("n2", 1), ("n3", 5))
+#: FE variants drawn on every case that has FE dots.
+FE_VARIANTS = ("membrane",)
+HOMOGENEOUS_MESH = (("n1", 1), ("n2", 1), ("n3", 1))
+QUICK_PLATE = (("n1", 20), ("n2", 1), ("n3", 10))
 FULL_PLATE = (("n1", 40), ("n2", 2), ("n3", 20))
 
 
-def _uniaxial(alphas, D0max, n, mesh, variants=VARIANTS, record_fields=False):
+def _homogeneous(geometry, models, s_values, D0max, n, variants=FE_VARIANTS):
+    return tuple(RunSpec(geometry, m, v, float(s), _steps(D0max, n), mesh=HOMOGENEOUS_MESH)
+                 for m in models for v in variants for s in s_values)
+
+
+def _keplinger(alphas, D0max, n, mesh, variants=FE_VARIANTS, record_fields=False):
     return tuple(RunSpec("uniaxial", "neo-Hookean", v, keplinger_s(a), _steps(D0max, n), alpha=a,
                          mesh=mesh, record_fields=record_fields)
                  for v in variants for a in alphas)
@@ -183,36 +188,38 @@ CASES: dict[str, Case] = {c.name: c for c in (
     Case("nh-d-e", "nh-d-e",
          "neo-Hookean equi-biaxial D0-lam and E0-lam curves, s = 0,1,2,3, voltage-control limit",
          "equibiaxial",
-         quick=_equibiaxial(["neo-Hookean"], (0, 1, 2, 3), 6.0, 6),
-         full=_equibiaxial(["neo-Hookean"], (0, 1, 2, 3), 6.0, 24)),
+         quick=_homogeneous("equibiaxial", ["neo-Hookean"], (0, 1, 2, 3), 6.0, 6),
+         full=_homogeneous("equibiaxial", ["neo-Hookean"], (0, 1, 2, 3), 6.0, 24)),
     Case("gent-d-e", "gent-d-e",
          "Gent equi-biaxial D0-lam and E0-lam curves, s = 0,1,2.3,3, voltage-control limit",
          "equibiaxial",
-         quick=_equibiaxial(["Gent"], (0, 1, 2.3, 3), 6.0, 6),
-         full=_equibiaxial(["Gent"], (0, 1, 2.3, 3), 6.0, 24)),
+         quick=_homogeneous("equibiaxial", ["Gent"], (0, 1, 2.3, 3), 6.0, 6),
+         full=_homogeneous("equibiaxial", ["Gent"], (0, 1, 2.3, 3), 6.0, 24)),
     Case("gent-equi-biaxial", "gent-equi-biaxial",
          "equi-biaxial loading curves s = 0..4.5 with thin/thick wrinkling limits",
          "equibiaxial",
-         quick=_equibiaxial(MODELS, (0.8, 1.5, 2.5, 4.5), 8.0, 4),
-         full=_equibiaxial(MODELS, (0.8, 1.5, 2.5, 4.5), 8.0, 16)),
+         quick=_homogeneous("equibiaxial", MODELS, (0.8, 1.5, 2.5, 4.5), 8.0, 4),
+         full=_homogeneous("equibiaxial", MODELS, (0.8, 1.5, 2.5, 4.5), 8.0, 16)),
     Case("figde", "figde",
          "neo-Hookean uni-axial D0-lam1 and E0-lam1 curves with the det H* = 0 locus",
-         "uniaxial"),
+         "uniaxial",
+         quick=_homogeneous("uniaxial-free", ["neo-Hookean"], (0, 1, 2, 3, 4), 6.0, 6),
+         full=_homogeneous("uniaxial-free", ["neo-Hookean"], (0, 1, 2, 3, 4), 6.0, 24)),
     Case("uni-axial-ideal", "uni-axial-ideal",
          "Keplinger plate: uni-axial loading curves, wrinkling limits, FE dots, breakdown",
          "uniaxial",
-         quick=_uniaxial(ALPHAS, 6.0, 12, QUICK_PLATE),
-         full=_uniaxial(ALPHAS, 6.0, 24, FULL_PLATE)),
+         quick=_keplinger(ALPHAS, 6.0, 12, QUICK_PLATE),
+         full=_keplinger(ALPHAS, 6.0, 24, FULL_PLATE)),
     Case("lambda1-3", "fig:lambda1-3",
          "stretch maps lam1, lam3 of the weighted Keplinger plate before charging",
          "uniaxial",
-         quick=_uniaxial((1.0,), 0.0, 0, QUICK_PLATE, variants=("coupled",), record_fields=True),
-         full=_uniaxial((1.0,), 0.0, 0, FULL_PLATE, variants=("coupled",), record_fields=True)),
+         quick=_keplinger((1.0,), 0.0, 0, QUICK_PLATE, record_fields=True),
+         full=_keplinger((1.0,), 0.0, 0, FULL_PLATE, record_fields=True)),
     Case("zs22", "fig:zs22",
          "P33/mu along the centre line for increasing D0 up to the breakdown (alpha = 1)",
          "uniaxial",
-         quick=_uniaxial((1.0,), 6.0, 12, QUICK_PLATE, record_fields=True),
-         full=_uniaxial((1.0,), 6.0, 24, FULL_PLATE, record_fields=True)),
+         quick=_keplinger((1.0,), 6.0, 12, QUICK_PLATE, record_fields=True),
+         full=_keplinger((1.0,), 6.0, 24, FULL_PLATE, record_fields=True)),
 )}
 
 

@@ -29,8 +29,10 @@ __all__ = [
 ]
 
 _VARIANT_MARKER = {"coupled": dict(marker="o", mfc="none", ms=6, mew=1.2),
-                   "maxwell": dict(marker="s", mfc="none", ms=4, mew=1.0)}
-_VARIANT_LABEL = {"coupled": "FE, fully coupled", "maxwell": "FE, Maxwell traction"}
+                   "maxwell": dict(marker="s", mfc="none", ms=4, mew=1.0),
+                   "membrane": dict(marker="^", mfc="none", ms=5, mew=1.0)}
+_VARIANT_LABEL = {"coupled": "FE 3D, fully coupled", "maxwell": "FE 3D, Maxwell traction",
+                  "membrane": "FE 2D membrane"}
 
 
 def _new_axes(ax, n=1, figsize=None):
@@ -365,7 +367,7 @@ def plot_stretch_maps(fields, axes=None):
     import matplotlib.tri as mtri
 
     axes = _new_axes(axes, n=2, figsize=(8.0, 5.0))
-    sel = fields["step"] == fields["step"].min()
+    sel = (fields["step"] == fields["step"].min()) & (fields["kind"] == 1)
     L, W = 0.1, 0.05
     for ax, name, label in zip(axes, ("lam1", "lam3"),
                                (r"$\lambda_1$ (load direction)", r"$\lambda_3$ (width)")):
@@ -403,7 +405,7 @@ def plot_p33_profiles(fields, fe=None, ax=None, variant="coupled"):
     runs = [r for r in dict.fromkeys(fields["run"]) if f"-{variant}-" in r]
     if not runs:
         raise ValueError(f"variant {variant!r} has no profiles in the table")
-    sel_run = fields["run"] == runs[0]
+    sel_run = (fields["run"] == runs[0]) & (fields["kind"] == 0)
     steps = np.unique(fields["step"][sel_run])
     cmap = plt.get_cmap("coolwarm")
     D0s = np.array([fields["D0"][sel_run & (fields["step"] == k)][0] for k in steps])

@@ -59,7 +59,7 @@ def write_report(results, folder, *, quick: bool) -> Path:
     brk = [(r.name, k, v) for r in results for k, v in r.breakdown_D0.items()
            if k.startswith("uniaxial")]
     if brk:
-        lines += ["", "Breakdown (first step with P33/mu < -1e-4 near the clamps):", ""]
+        lines += ["", "Breakdown (first step with min P33/mu < -0.01 along the centre line):", ""]
         lines += [f"- {name} / {k}: " + ("none up to the last D0" if v is None else f"D0 = {v:g}")
                   for name, k, v in brk]
     fails = [(r.name, k, v) for r in results for k, v in r.reasons.items()]

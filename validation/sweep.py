@@ -52,10 +52,12 @@ __all__ = [
     "make_figure",
 ]
 
-#: ``P33/mu`` below ``-BREAKDOWN_TOL`` near the clamps counts as compressive
-#: (the paper's breakdown); the tolerance keeps round-off at ``P33 = 0`` (the
-#: homogeneous value in the central zone) from triggering it.
-BREAKDOWN_TOL = 1e-4
+#: The paper's breakdown: ``min P33/mu`` along the centre line (which runs into
+#: the clamps) below ``-BREAKDOWN_TOL``. In the central zone ``P33`` is close
+#: to its homogeneous value 0; on coarse meshes it scatters by a few 1e-3
+#: around it, while at the breakdown it drops by about 0.2 within one
+#: ``D0`` step of 0.5, so ``1e-2`` separates the two.
+BREAKDOWN_TOL = 1e-2
 
 _FMT = ".12g"   # 12 significant digits in the CSV
 
@@ -135,6 +137,7 @@ def _fmt(x) -> str:
 
 
 def _analytic(spec: RunSpec, D0: float) -> tuple[float, float]:
+    """``(lam1, lam3)`` of the homogeneous theory: Eq. (loading_gent) or Eq. (DEuniax)."""
     import analytic as an
 
     model = analytic_model(spec.model)
@@ -149,8 +152,7 @@ def _analytic(spec: RunSpec, D0: float) -> tuple[float, float]:
 def _breakdown(spec: RunSpec, rec: StepRecord) -> bool:
     if spec.geometry != "uniaxial":
         return False
-    p = rec.min_P33_clamp if np.isfinite(rec.min_P33_clamp) else rec.min_P33
-    return bool(np.isfinite(p) and p < -BREAKDOWN_TOL)
+    return bool(np.isfinite(rec.min_P33) and rec.min_P33 < -BREAKDOWN_TOL)
 
 
 def _row(case: Case, spec: RunSpec, index: int, rec: StepRecord | None, converged: bool,
