@@ -82,6 +82,19 @@ class _Membrane:
                 "lam1": F[0, 0], "lam3": F[1, 1], "P33": np.full(pts.shape[1], np.nan)}
 
 
+    def export_mesh(self, x, load):
+        """``(points (n, 3), cells, point_data)`` of the deformed membrane for meshio."""
+        pb = self.problem
+        u = pb.T @ x
+        ud = u[pb.basis.nodal_dofs]                       # (2, nverts): u1, u3
+        p = pb.mesh.p
+        pts = np.c_[p[0], np.zeros(p.shape[1]), p[1]]     # (x1, x2 = 0, x3)
+        disp = np.c_[ud[0], np.zeros(p.shape[1]), ud[1]]
+        maps = self.maps(x, load)
+        cells = [("quad", pb.mesh.t[:4].T.copy())]
+        return pts, cells, {"displacement": disp, "lam1": maps["lam1"], "lam3": maps["lam3"]}
+
+
 def build_problem(spec):
     """The FE problem wrapper of ``spec`` (``.problem`` is a ``RampProblem``)."""
     if spec.variant == "membrane":
@@ -89,7 +102,7 @@ def build_problem(spec):
     raise ValueError(f"variant {spec.variant!r} has no FE driver yet")
 
 
-def run_fe(spec, start, state, on_step):
+def run_fe(spec, start, state, on_step, linear_solver="superlu"):
     """Run the FE ramp of ``spec`` from target ``start`` (runner protocol of :mod:`.sweep`).
 
     Parameters
@@ -101,6 +114,9 @@ def run_fe(spec, start, state, on_step):
     state : dict or None
     on_step : callable
         ``on_step(index, record, state) -> stop``.
+    linear_solver : str
+        Passed to the ramp; SuperLU (deterministic) by default, so that a
+        resumed ramp repeats the uninterrupted one bit for bit.
 
     Returns
     -------
@@ -132,18 +148,146 @@ def run_fe(spec, start, state, on_step):
 
         with warnings.catch_warnings():
             warnings.simplefilter("ignore", RuntimeWarning)   # the failure is recorded
-            res = ramp(wrap.problem, targets[start:], x0=x0, start=start_load, on_step=cb)
+            res = ramp(wrap.problem, targets[start:], x0=x0, start=start_load, on_step=cb,
+                       linear_solver=linear_solver)
     except _Stop:
         return RunOutcome(True)
     failed = None if res.failed_at is None else float(np.asarray(res.failed_at).ravel()[-1])
     return RunOutcome(bool(res.converged), res.reason, failed)
 
 
-def simulate(**kwargs):
-    """Run one FE ramp and export it (``skfem-dielectric simulate``)."""
-    raise RuntimeError("the 3D FE drivers of skfem_dielectric are not available yet")
+def simulate(*, geometry="uniaxial", model="neo-Hookean", variant="coupled", s=None,
+             alpha=None, D0_max=4.0, steps=8, mesh=None, fmt="vtu", out="."):
+    """Run one FE ramp and export every converged step (``skfem-dielectric simulate``).
+
+    Parameters
+    ----------
+    geometry : {"equibiaxial", "uniaxial", "uniaxial-free"}
+    model : {"neo-Hookean", "Gent"}
+    variant : {"coupled", "maxwell", "membrane"}
+    s : float, optional
+        Dead load; for ``"uniaxial"`` it is set from ``alpha`` (default 1).
+    alpha : float, optional
+        Weight fraction of the Keplinger plate.
+    D0_max : float
+        Last charge target.
+    steps : int
+        Number of charge steps after the pre-load.
+    mesh : (n1, n2, n3), optional
+        Element counts (default coarse).
+    fmt : {"vtu", "xdmf"}
+        One ``.vtu`` per step, or one XDMF time series.
+    out : path-like
+        Output folder (created).
+
+    Returns
+    -------
+    list of Path
+        The written files: the fields and ``steps.csv``.
+    """
+    import csv
+    from pathlib import Path
+
+    import meshio
+
+    from .cases import RunSpec, keplinger_s
+
+    if steps < 1:
+        raise ValueError(f"steps must be >= 1, got {steps}")
+    if not np.isfinite(D0_max) or D0_max <= 0:
+        raise ValueError(f"D0_max must be > 0, got {D0_max}")
+    if fmt not in ("vtu", "xdmf"):
+        raise ValueError(f"fmt must be 'vtu' or 'xdmf', got {fmt!r}")
+    if geometry == "uniaxial":
+        alpha = 1.0 if alpha is None else alpha
+        s = keplinger_s(alpha)
+    else:
+        s = 1.0 if s is None else s
+    n = (20, 1, 10) if mesh is None else tuple(mesh)
+    spec = RunSpec(geometry, model, variant, float(s), tuple(np.linspace(0, D0_max, steps + 1)),
+                   alpha=alpha, mesh=(("n1", n[0]), ("n2", n[1]), ("n3", n[2])),
+                   stop_at_breakdown=False)
+    out = Path(out)
+    out.mkdir(parents=True, exist_ok=True)
+    wrap = build_problem(spec)
+    frames, rows = [], []
+
+    def on_step(i, rec, st):
+        frames.append(wrap.export_mesh(st["x"], st["load"]))
+        rows.append([i, spec.D0[i], rec.lam1, rec.lam3, rec.min_P33, rec.min_P33_clamp,
+                     rec.iterations])
+        return False
+
+    outcome = run_fe(spec, 0, None, on_step)
+    written = []
+    stem = f"{spec.key}"
+    if fmt == "vtu":
+        for i, (pts, cells, pdata) in enumerate(frames):
+            path = out / f"{stem}_{i:03d}.vtu"
+            meshio.write(path, meshio.Mesh(pts, cells, point_data=pdata))
+            written.append(path)
+    elif frames:
+        path = out / f"{stem}.xdmf"
+        pts, cells, _ = frames[0]
+        with meshio.xdmf.TimeSeriesWriter(path, data_format="XML") as w:   # no h5py needed
+            w.write_points_cells(pts, cells)
+            for i, (_, _, pdata) in enumerate(frames):
+                w.write_data(spec.D0[i], point_data=pdata)
+        written.append(path)
+    table = out / f"{stem}_steps.csv"
+    with open(table, "w", newline="") as fh:
+        w = csv.writer(fh, lineterminator="\n")
+        w.writerow(["step", "D0", "lam1", "lam3", "min_P33", "min_P33_clamp", "iterations"])
+        w.writerows(rows)
+        if not outcome.converged:
+            w.writerow([len(rows), "", "", "", "", "", f"stopped: {outcome.reason}"])
+    return written + [table]
 
 
-def bench(**kwargs):
-    """Time one Keplinger ramp (``skfem-dielectric bench``)."""
-    raise RuntimeError("the 3D FE drivers of skfem_dielectric are not available yet")
+def bench(*, mesh=(20, 1, 10), alpha=1.0, D0_max=6.0, steps=6, variant="coupled",
+          solver="auto"):
+    """Time one Keplinger ramp; returns the lines of a small table (``skfem-dielectric bench``).
+
+    Parameters
+    ----------
+    mesh : (n1, n2, n3)
+    alpha : float
+    D0_max : float
+    steps : int
+    variant : {"coupled", "maxwell", "membrane"}
+    solver : str
+        Linear solver name passed to the ramp.
+
+    Returns
+    -------
+    list of str
+    """
+    import time
+
+    from .cases import RunSpec, keplinger_s
+
+    if steps < 1:
+        raise ValueError(f"steps must be >= 1, got {steps}")
+    spec = RunSpec("uniaxial", "neo-Hookean", variant, keplinger_s(alpha),
+                   tuple(np.linspace(0, D0_max, steps + 1)), alpha=alpha,
+                   mesh=(("n1", mesh[0]), ("n2", mesh[1]), ("n3", mesh[2])),
+                   stop_at_breakdown=False)
+    t_build = time.perf_counter()
+    wrap = build_problem(spec)
+    t_build = time.perf_counter() - t_build
+    lines = [f"Keplinger plate, alpha = {alpha:g} (s = {spec.s:.4g}), variant {variant}, "
+             f"mesh {tuple(mesh)}, {wrap.problem.ndofs} unknowns, set-up {t_build:.2f} s",
+             f"{'step':>4} {'D0':>6} {'lam1':>9} {'min_P33':>9} {'iters':>5} {'seconds':>8}"]
+    t = [time.perf_counter()]
+
+    def on_step(i, rec, st):
+        now = time.perf_counter()
+        lines.append(f"{i:4d} {rec.D0:6.2f} {rec.lam1:9.5f} {rec.min_P33:9.4f} "
+                     f"{rec.iterations:5d} {now - t[-1]:8.2f}")
+        t.append(now)
+        return False
+
+    outcome = run_fe(spec, 0, None, on_step, linear_solver=solver)
+    lines.append(f"total {t[-1] - t[0]:.2f} s" + ("" if outcome.converged
+                                                 else f"; stopped: {outcome.reason}"))
+    return lines
