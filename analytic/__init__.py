@@ -7,5 +7,48 @@ Hessian criteria and Stroh-formalism wrinkling. Everything is dimensionless
 """
 
 from .models import Gent, Model, NeoHookean, UserModel, as_model
+from .stroh import electroelastic_moduli, stroh_coefficients, stroh_exponents, stroh_matrix
+from .wrinkling import (
+    WrinklingMap,
+    critical_D0,
+    critical_D0_biaxial,
+    critical_point_on_path,
+    dispersion_function,
+    surface_impedance,
+    surface_instability_stretch,
+    thick_limit_D0,
+    thick_limit_D0_numeric,
+    thick_limit_D0_uniaxial,
+    thin_limit_D0,
+    thin_limit_D0_uniaxial,
+    thin_plate_factors,
+    wrinkling_map,
+)
+from .homogeneous import (
+    biaxial_E0,
+    biaxial_stress,
+    biaxial_stretches,
+    equibiaxial_D0,
+    equibiaxial_E0,
+    equibiaxial_lam,
+    equibiaxial_s,
+    equibiaxial_s_E0,
+    uniaxial_D0,
+    uniaxial_E0,
+    uniaxial_lam1,
+    uniaxial_lam3,
+)
 
 __all__ = ["Model", "NeoHookean", "Gent", "UserModel", "as_model"]
+__all__ += [  # homogeneous loading (helper A)
+    "biaxial_E0", "biaxial_stress", "biaxial_stretches",
+    "equibiaxial_D0", "equibiaxial_E0", "equibiaxial_lam", "equibiaxial_s", "equibiaxial_s_E0",
+    "uniaxial_D0", "uniaxial_E0", "uniaxial_lam1", "uniaxial_lam3",
+]
+__all__ += [  # Stroh formalism and wrinkling (helper B)
+    "electroelastic_moduli", "stroh_coefficients", "stroh_exponents", "stroh_matrix",
+    "WrinklingMap", "critical_D0", "critical_D0_biaxial", "critical_point_on_path",
+    "dispersion_function", "surface_impedance", "surface_instability_stretch",
+    "thick_limit_D0", "thick_limit_D0_numeric", "thick_limit_D0_uniaxial",
+    "thin_limit_D0", "thin_limit_D0_uniaxial", "thin_plate_factors", "wrinkling_map",
+]

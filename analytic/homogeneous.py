@@ -1,0 +1,832 @@
+"""Homogeneous loading curves of an ideal dielectric plate (paper Sections 2 and 5).
+
+The plate is stretched by ``lam1`` (x1), ``lam3`` (x3) and thinned to
+``lam2 = 1/(lam1 lam3)``; the faces carry the dimensionless Lagrangian charge
+``D0`` (charge control) or field ``E0`` (voltage control), with
+``D0 = lam1^2 lam3^2 E0`` for an ideal dielectric. Everything is dimensionless
+(``mu = eps = 1``); ``s`` is a nominal traction divided by ``mu``.
+
+With ``I1 = lam1^2 + lam3^2 + lam1^-2 lam3^-2`` and the total energy
+``omega*(lam1, lam3, D0) = W(I1) + lam1^-2 lam3^-2 D0^2 / 2`` the nominal
+stresses are, Eq. (t1t3),
+
+``t1 = 2W'(I1) (lam1 - lam1^-3 lam3^-2) - lam1^-3 lam3^-2 D0^2``,
+``t3 = 2W'(I1) (lam3 - lam1^-2 lam3^-3) - lam1^-2 lam3^-3 D0^2``.
+
+Equi-biaxial (``lam1 = lam3 = lam``, ``t1 = t3 = s``), Eq. (loading_gent) for any
+``W``: ``D0^2 = 2W'(I1) (lam^6 - 1) - lam^5 s``.
+
+Uni-axial dead load (``t1 = s``, ``t3 = 0``): eliminating ``D0`` from ``t3 = 0``
+gives ``D0^2 = 2W'(I1) (lam1^2 lam3^4 - 1)`` and then ``s = 2W'(I1) (lam1 -
+lam3^2/lam1)``; for neo-Hookean (``2W' = 1``) these are Eqs.
+(uni-axial-loading) and (DEuniax).
+
+Branch conventions (all functions): ``D0 >= 0`` is returned; where the loading
+curve has no real state (``D0^2 < 0``, or ``lam3^2 <= 0`` in the uni-axial case)
+the result is ``nan``. Inputs that are invalid (``lam <= 0``, NaN, stretches
+beyond the locking limit of a Gent model, incompatible shapes) raise
+``ValueError``.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ._checks import as_array, broadcast, check_positive
+from .models import Model, NeoHookean, as_model
+
+__all__ = [
+    "biaxial_stress",
+    "biaxial_E0",
+    "biaxial_stretches",
+    "equibiaxial_D0",
+    "equibiaxial_E0",
+    "equibiaxial_lam",
+    "equibiaxial_s",
+    "equibiaxial_s_E0",
+    "uniaxial_D0",
+    "uniaxial_E0",
+    "uniaxial_lam3",
+    "uniaxial_lam1",
+]
+
+_EPS = np.finfo(float).eps
+
+
+# ----------------------------------------------------------------------------
+# private helpers
+# ----------------------------------------------------------------------------
+def _first(value, mask):
+    """A representative offending entry of ``value`` for error messages."""
+    v = np.broadcast_to(np.asarray(value), np.shape(mask))
+    return v[mask].flat[0] if np.ndim(mask) else v.item()
+
+
+def _derivs(model: Model, I1: np.ndarray, name: str, value):
+    """``(W', W'')`` at ``I1``; ``ValueError`` naming ``name`` beyond the model limit."""
+    I1max = model.I1_max()
+    bad = ~(I1 < I1max)
+    if np.any(bad):
+        raise ValueError(
+            f"{name} = {_first(value, bad)!r} gives I1 = {_first(I1, bad)!r}, beyond the "
+            f"{model.name} limit I1 < {I1max}"
+        )
+    return np.asarray(model.dW(I1), dtype=float), np.asarray(model.d2W(I1), dtype=float)
+
+
+def _out(x: np.ndarray):
+    """Return a Python-friendly result: 0-d arrays become numpy floats."""
+    return x[()] if isinstance(x, np.ndarray) and x.ndim == 0 else x
+
+
+def _rtsafe(fun, a, b, x0=None, *, rtol=4 * _EPS, maxiter=200):
+    """Vectorised safeguarded Newton (bisection fallback) on brackets.
+
+    ``fun(x, idx) -> (f, df)`` evaluates the function and its derivative at the
+    points ``x`` belonging to the problems ``idx`` (integer indices). On entry
+    ``f(a) <= 0 <= f(b)`` must hold for every problem (``a`` may exceed ``b``).
+    Only unconverged problems are evaluated in each sweep; there is no loop over
+    points. ``x0`` is an optional first guess (used where it lies inside the bracket).
+    """
+    a = np.array(a, dtype=float).ravel()
+    b = np.array(b, dtype=float).ravel()
+    n = a.size
+    out = np.full(n, np.nan)
+    active = np.arange(n)
+    x = 0.5 * (a + b)
+    if x0 is not None:
+        x0 = np.broadcast_to(np.asarray(x0, dtype=float).ravel(), x.shape)
+        inside = np.isfinite(x0) & ((x0 - a) * (x0 - b) < 0)
+        x = np.where(inside, x0, x)
+    dxold = np.abs(b - a)
+    for _ in range(maxiter):
+        if active.size == 0:
+            break
+        f, df = fun(x, active)
+        neg = f < 0
+        a = np.where(neg, x, a)
+        b = np.where(neg, b, x)
+        with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+            xn = x - f / df
+        shrink = np.abs(2 * f) <= np.abs(dxold * df)
+        ok = np.isfinite(xn) & ((xn - a) * (xn - b) < 0) & shrink
+        # a Newton step below one ulp lands on the bracket end: that is convergence
+        tiny = np.isfinite(xn) & ((xn - a) * (xn - b) <= 0) & shrink
+        xb = 0.5 * (a + b)
+        xn = np.where(ok | tiny, xn, xb)
+        dx = np.abs(xn - x)
+        dxold = dx
+        # a Newton step of relative size 1e-9 leaves an error of order 1e-18 (quadratic
+        # convergence); bisection steps stop when the bracket is a few ulps wide
+        conv = (f == 0) | ((ok | tiny) & (dx <= 1e-9 * np.abs(x))) | (dx <= rtol * np.abs(x))
+        conv |= np.abs(b - a) <= rtol * np.abs(x)
+        xf = np.where(f == 0, x, xn)
+        out[active[conv]] = xf[conv]
+        keep = ~conv
+        active, x, a, b, dxold = active[keep], xn[keep], a[keep], b[keep], dxold[keep]
+    out[active] = x  # bracket has shrunk for maxiter sweeps: accept
+    return out
+
+
+def _expand(fun_sign, start, limit, want, maxsteps=80):
+    """Vectorised search from ``start`` toward ``limit`` for a point where
+    ``fun_sign(x, idx)`` has the sign ``want`` (+1 or -1). Returns nan where none."""
+    start = np.asarray(start, dtype=float)
+    limit = np.broadcast_to(np.asarray(limit, dtype=float), start.shape)
+    found = np.full(start.shape, np.nan)
+    active = np.arange(start.size)
+    for k in range(1, maxsteps + 1):
+        if active.size == 0:
+            break
+        lim, st = limit[active], start[active]
+        fin = np.isfinite(lim)
+        x = st * 2.0**k
+        x[fin] = lim[fin] + (st[fin] - lim[fin]) * 2.0 ** (-k)
+        f = fun_sign(x, active)
+        hit = np.sign(f) == want
+        found[active[hit]] = x[hit]
+        active = active[~hit]
+    return found
+
+
+def _I1(lam1, lam3):
+    return lam1 * lam1 + lam3 * lam3 + 1.0 / (lam1 * lam3) ** 2
+
+
+def _equibiaxial_limits(model: Model) -> tuple[float, float]:
+    """Stretches ``(lam_lo, lam_hi)`` where ``I1 = 2 lam^2 + lam^-4`` reaches the model limit."""
+    I1max = model.I1_max()
+    if not np.isfinite(I1max):
+        return 0.0, np.inf
+    # 2 y^3 - I1max y^2 + 1 = 0 with y = lam^2: one root in (0, 1), one above 1
+    r = np.roots([2.0, -I1max, 0.0, 1.0])
+    r = np.sort(r[np.isreal(r)].real)
+    r = r[r > 0]
+    return float(np.sqrt(r[0])), float(np.sqrt(r[-1]))
+
+
+def _uniaxial_xlock(lam1, I1max):
+    """Largest ``x = lam3^2`` with ``lam1^2 + x + 1/(lam1^2 x) <= I1max`` (``inf`` if none)."""
+    if not np.isfinite(I1max):
+        return np.full(np.shape(lam1), np.inf)
+    c = I1max - lam1**2
+    disc = c**2 - 4.0 / lam1**2
+    with np.errstate(invalid="ignore"):
+        return np.where(disc >= 0, 0.5 * (c + np.sqrt(np.maximum(disc, 0.0))), np.nan)
+
+
+# ----------------------------------------------------------------------------
+# general biaxial state
+# ----------------------------------------------------------------------------
+def biaxial_stress(lam1, lam3, D0, model=None):
+    """Nominal stresses ``(t1, t3)/mu`` of the homogeneous biaxial state.
+
+    Parameters
+    ----------
+    lam1, lam3 : array_like
+        In-plane stretches (> 0).
+    D0 : array_like
+        Dimensionless Lagrangian charge ``D_L/sqrt(mu eps)``.
+    model : Model, optional
+        Strain-energy model (default :class:`NeoHookean`).
+
+    Returns
+    -------
+    t1, t3 : ndarray
+        ``d omega*/d lam1`` and ``d omega*/d lam3``.
+
+    Notes
+    -----
+    Eq. (t1t3) with ``omega* = W(I1) + lam1^-2 lam3^-2 D0^2/2`` (ideal
+    dielectric, Eq. modelD, in the dimensionless form of Sec. 2):
+    ``t1 = 2W'(lam1 - lam1^-3 lam3^-2) - lam1^-3 lam3^-2 D0^2`` and likewise
+    for ``t3``.
+
+    Examples
+    --------
+    >>> from analytic import biaxial_stress
+    >>> [round(float(t), 12) for t in biaxial_stress(2.0, 1.0, 0.0)]
+    [1.875, 0.75]
+    """
+    model = as_model(model)
+    lam1 = check_positive("lam1", lam1)
+    lam3 = check_positive("lam3", lam3)
+    D0 = as_array("D0", D0)
+    lam1, lam3, D0 = broadcast(lam1=lam1, lam3=lam3, D0=D0)
+    dW, _ = _derivs(model, _I1(lam1, lam3), "lam1", lam1)
+    e = lam1**-2 * lam3**-2
+    t1 = 2 * dW * (lam1 - e / lam1) - e / lam1 * D0**2
+    t3 = 2 * dW * (lam3 - e / lam3) - e / lam3 * D0**2
+    return _out(t1), _out(t3)
+
+
+def biaxial_E0(lam1, lam3, D0):
+    """Lagrangian field ``E0 = d omega*/d D0 = lam1^-2 lam3^-2 D0`` (Eq. DLEL).
+
+    Examples
+    --------
+    >>> from analytic import biaxial_E0
+    >>> float(biaxial_E0(2.0, 0.5, 3.0))
+    3.0
+    """
+    lam1 = check_positive("lam1", lam1)
+    lam3 = check_positive("lam3", lam3)
+    D0 = as_array("D0", D0)
+    lam1, lam3, D0 = broadcast(lam1=lam1, lam3=lam3, D0=D0)
+    return _out(D0 / (lam1**2 * lam3**2))
+
+
+def biaxial_stretches(s1, s3, D0, model=None, *, maxiter: int = 100):
+    """Stretches ``(lam1, lam3)`` of the plate under dead loads ``s1, s3`` and charge ``D0``.
+
+    Parameters
+    ----------
+    s1, s3 : array_like
+        Nominal tractions ``t1/mu``, ``t3/mu`` on the lateral faces.
+    D0 : array_like
+        Dimensionless charge (only ``D0^2`` matters).
+    model : Model, optional
+        Strain-energy model (default :class:`NeoHookean`).
+    maxiter : int
+        Newton iterations allowed.
+
+    Returns
+    -------
+    lam1, lam3 : ndarray
+        The equilibrium stretches; ``nan`` where none was found (no minimiser,
+        e.g. a user model that softens too much).
+
+    Notes
+    -----
+    Under charge control the equilibrium minimises ``psi* = omega*(lam1, lam3,
+    D0) - s1 lam1 - s3 lam3`` at fixed ``D0`` (Sec. 3.1, ``psi*`` without the
+    ``D0 E0`` term). For ``W' > 0`` and ``W'' >= 0`` (neo-Hookean, Gent)
+    ``omega*`` is strictly convex in ``(lam1, lam3)`` because ``I1`` and
+    ``lam1^-2 lam3^-2`` are, so the equilibrium is unique and charge-controlled
+    actuation is stable (Sec. 5). It is found by Newton's method with a
+    backtracking line search on ``|grad psi*|^2``, vectorised over all points.
+
+    Examples
+    --------
+    Uni-axial neo-Hookean dead load ``s = 1`` at ``D0 = 2``, against
+    Eq. (DEuniax), ``lam1^2 (lam1 - s) = sqrt(1 + D0^2)``:
+
+    >>> from analytic import biaxial_stretches
+    >>> l1, l3 = biaxial_stretches(1.0, 0.0, 2.0)
+    >>> round(float(l1**2 * (l1 - 1.0)), 12), round(float(l3**2 - l1 * (l1 - 1.0)), 12)
+    (2.2360679775, 0.0)
+    """
+    model = as_model(model)
+    s1 = as_array("s1", s1)
+    s3 = as_array("s3", s3)
+    D0 = as_array("D0", D0)
+    for name, v in (("s1", s1), ("s3", s3), ("D0", D0)):
+        if np.any(~np.isfinite(v)):
+            raise ValueError(f"{name} must be finite, got {v!r}")
+    s1, s3, D0 = broadcast(s1=s1, s3=s3, D0=D0)
+    shape = s1.shape
+    s1, s3, q = s1.ravel(), s3.ravel(), D0.ravel() ** 2
+    I1max = model.I1_max()
+
+    def residual(a, b, i):
+        """Gradient of psi*, its Jacobian and a magnitude scale for the tolerance."""
+        qa, ra, rb = q[i], 1.0 / a, 1.0 / b
+        ea = (ra * rb) ** 2
+        ea_a, ea_b = ea * ra, ea * rb
+        I1 = a * a + b * b + ea
+        dW, d2W = model.dW(I1), model.d2W(I1)
+        Ia, Ib = 2 * (a - ea_a), 2 * (b - ea_b)
+        g1 = dW * Ia - ea_a * qa - s1[i]
+        g3 = dW * Ib - ea_b * qa - s3[i]
+        K11 = d2W * Ia * Ia + dW * (2 + 6 * ea_a * ra) + 3 * qa * ea_a * ra
+        K33 = d2W * Ib * Ib + dW * (2 + 6 * ea_b * rb) + 3 * qa * ea_b * rb
+        K13 = d2W * Ia * Ib + (4 * dW + 2 * qa) * ea_a * rb
+        scale = 2 * dW * (a + b + ea_a + ea_b) + qa * (ea_a + ea_b) + np.abs(s1[i]) + np.abs(s3[i])
+        return g1, g3, K11, K13, K33, scale
+
+    # start from the neo-Hookean equi-biaxial free-charge state, always admissible
+    x0 = (1.0 + q) ** (1.0 / 6.0)
+    if np.isfinite(I1max):
+        lo, hi = _equibiaxial_limits(model)
+        x0 = np.minimum(x0, 1.0 + 0.5 * (hi - 1.0))
+    a, b = x0.copy(), x0.copy()
+    n = a.size
+    la, lb = np.full(n, np.nan), np.full(n, np.nan)
+    active = np.arange(n)
+    res = residual(a, b, active)
+    for _ in range(maxiter):
+        if active.size == 0:
+            break
+        g1, g3, K11, K13, K33, scale = res
+        gg = g1**2 + g3**2
+        conv = np.sqrt(gg) <= 1e-14 * scale
+        la[active[conv]], lb[active[conv]] = a[conv], b[conv]
+        keep = ~conv
+        active, a, b = active[keep], a[keep], b[keep]
+        g1, g3, K11, K13, K33, gg, scale = (v[keep] for v in (g1, g3, K11, K13, K33, gg, scale))
+        if active.size == 0:
+            break
+        # Newton step; the merit |grad psi*|^2 decreases along it for any regular Jacobian
+        det = K11 * K33 - K13**2
+        with np.errstate(divide="ignore", invalid="ignore"):
+            pa = -(K33 * g1 - K13 * g3) / det
+            pb = -(-K13 * g1 + K11 * g3) / det
+        t = np.ones(active.size)
+        ok = np.zeros(active.size, dtype=bool)
+        new = [np.full(active.size, np.nan) for _k in range(6)]
+        todo = np.arange(active.size)
+        for _ls in range(40):
+            an, bn = a[todo] + t[todo] * pa[todo], b[todo] + t[todo] * pb[todo]
+            feas = np.isfinite(an) & np.isfinite(bn) & (an > 0) & (bn > 0)
+            with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+                feas &= _I1(np.where(feas, an, 1.0), np.where(feas, bn, 1.0)) < I1max
+            good = np.zeros(todo.size, dtype=bool)
+            if np.any(feas):
+                jf = todo[feas]
+                r = residual(an[feas], bn[feas], active[jf])
+                acc = r[0] ** 2 + r[1] ** 2 <= (1.0 - 1e-4 * t[jf]) * gg[jf]
+                for k in range(6):
+                    new[k][jf[acc]] = r[k][acc]
+                good[np.flatnonzero(feas)[acc]] = True
+            ok[todo[good]] = True
+            todo = todo[~good]
+            if todo.size == 0:
+                break
+            t[todo] *= 0.5
+        # a failed line search means the point sits at its rounding floor (accept it if
+        # the gradient is small) or there is no minimiser (leave nan)
+        stuck = ~ok
+        floor = stuck & (np.sqrt(gg) <= 1e-10 * scale)
+        la[active[floor]], lb[active[floor]] = a[floor], b[floor]
+        a, b = a + t * pa, b + t * pb
+        active, a, b = active[ok], a[ok], b[ok]
+        res = tuple(v[ok] for v in new)
+    return _out(la.reshape(shape)), _out(lb.reshape(shape))
+
+
+# ----------------------------------------------------------------------------
+# equi-biaxial loading
+# ----------------------------------------------------------------------------
+def equibiaxial_s(lam, D0, model=None):
+    """Equi-biaxial dead load ``s`` that holds stretch ``lam`` at charge ``D0``.
+
+    Parameters
+    ----------
+    lam : array_like
+        Equi-biaxial stretch (> 0).
+    D0 : array_like
+        Dimensionless charge.
+    model : Model, optional
+        Strain-energy model (default :class:`NeoHookean`).
+
+    Returns
+    -------
+    s : ndarray
+        ``(1/2) d omega*-hat/d lam = 2W'(I1)(lam - lam^-5) - lam^-5 D0^2``.
+
+    Notes
+    -----
+    Eq. (s_general); neo-Hookean: ``s = lam - lam^-5 - lam^-5 D0^2`` (Sec. 3.1).
+
+    Examples
+    --------
+    >>> from analytic import equibiaxial_s
+    >>> float(equibiaxial_s(1.0, 0.0))
+    0.0
+    """
+    model = as_model(model)
+    lam = check_positive("lam", lam)
+    D0 = as_array("D0", D0)
+    lam, D0 = broadcast(lam=lam, D0=D0)
+    dW, _ = _derivs(model, 2 * lam**2 + lam**-4, "lam", lam)
+    return _out(2 * dW * (lam - lam**-5) - lam**-5 * D0**2)
+
+
+def equibiaxial_s_E0(lam, E0, model=None):
+    """Equi-biaxial dead load ``s`` that holds stretch ``lam`` at field ``E0``.
+
+    Returns ``(1/2) d omega-hat/d lam = 2W'(I1)(lam - lam^-5) - lam^3 E0^2``,
+    Eq. (s_general) in the voltage-control form; neo-Hookean:
+    ``s = lam - lam^-5 - lam^3 E0^2`` (Sec. 3.1).
+
+    Examples
+    --------
+    >>> from analytic import equibiaxial_s, equibiaxial_s_E0
+    >>> bool(abs(equibiaxial_s_E0(1.5, 0.3) - equibiaxial_s(1.5, 0.3 * 1.5**4)) < 1e-14)
+    True
+    """
+    model = as_model(model)
+    lam = check_positive("lam", lam)
+    E0 = as_array("E0", E0)
+    lam, E0 = broadcast(lam=lam, E0=E0)
+    dW, _ = _derivs(model, 2 * lam**2 + lam**-4, "lam", lam)
+    return _out(2 * dW * (lam - lam**-5) - lam**3 * E0**2)
+
+
+def equibiaxial_D0(lam, s=0.0, model=None):
+    """Charge ``D0`` on the equi-biaxial loading curve of dead load ``s``.
+
+    Parameters
+    ----------
+    lam : array_like
+        Equi-biaxial stretch (> 0).
+    s : array_like
+        Dimensionless equi-biaxial nominal traction ``t/mu`` (broadcast with ``lam``).
+    model : Model, optional
+        Strain-energy model (default :class:`NeoHookean`).
+
+    Returns
+    -------
+    D0 : ndarray
+        ``sqrt(2W'(I1)(lam^6 - 1) - lam^5 s)`` with ``I1 = 2 lam^2 + lam^-4``;
+        ``nan`` where the radicand is negative (no real state: the stretch is
+        below the purely mechanical stretch of the dead load).
+
+    Raises
+    ------
+    ValueError
+        ``lam <= 0`` or NaN, ``s`` NaN or of incompatible shape, or ``I1``
+        beyond the locking limit of the model.
+
+    Notes
+    -----
+    Eq. (loading_gent): neo-Hookean ``D0 = sqrt(lam^6 - 1 - lam^5 s)``, Gent
+    ``D0 = sqrt((lam^6 - 1)/(1 - (2 lam^2 + lam^-4 - 3)/Jm) - lam^5 s)``.
+
+    Examples
+    --------
+    >>> from analytic import equibiaxial_D0, Gent
+    >>> round(float(equibiaxial_D0(2.0 ** (1 / 6))), 12)  # neo-Hookean, s = 0: D0^2 = lam^6 - 1
+    1.0
+    >>> round(float(equibiaxial_D0(2.0, 1.0, Gent(97.2))), 6)
+    5.870395
+    """
+    model = as_model(model)
+    lam = check_positive("lam", lam)
+    s = as_array("s", s)
+    lam, s = broadcast(lam=lam, s=s)
+    if isinstance(model, NeoHookean):
+        D2 = lam**6 - 1.0 - lam**5 * s
+    else:
+        dW, _ = _derivs(model, 2 * lam**2 + lam**-4, "lam", lam)
+        D2 = 2 * dW * (lam**6 - 1.0) - lam**5 * s
+    with np.errstate(invalid="ignore"):
+        return _out(np.where(D2 >= 0, np.sqrt(np.abs(D2)), np.nan))
+
+
+def equibiaxial_E0(lam, s=0.0, model=None):
+    """Field ``E0 = lam^-4 D0`` on the equi-biaxial loading curve of dead load ``s``.
+
+    Same parameters, branch convention (``nan`` where ``D0`` is not real) and
+    errors as :func:`equibiaxial_D0`.
+
+    Notes
+    -----
+    Eq. (loading_gent) with ``E0 = d omega*-hat/d D0 = lam^-4 D0``, Eq. (s_general).
+
+    Examples
+    --------
+    The neo-Hookean maximum of ``E0`` at ``s = 0`` (Fig. nh-d-e):
+
+    >>> from analytic import equibiaxial_E0
+    >>> round(float(equibiaxial_E0(2 ** (1 / 3))), 12) == round(3**0.5 / 2 ** (4 / 3), 12)
+    True
+    """
+    D0 = equibiaxial_D0(lam, s, model)
+    lam = np.broadcast_to(check_positive("lam", lam), np.shape(D0))
+    return _out(np.asarray(D0) / lam**4)
+
+
+def equibiaxial_lam(D0, s=0.0, model=None):
+    """Charge-controlled equi-biaxial stretch ``lam(D0; s)`` (inverse of :func:`equibiaxial_D0`).
+
+    Parameters
+    ----------
+    D0 : array_like
+        Dimensionless charge (finite; only ``D0^2`` matters).
+    s : array_like
+        Dimensionless equi-biaxial nominal traction.
+    model : Model, optional
+        Strain-energy model (default :class:`NeoHookean`).
+
+    Returns
+    -------
+    lam : ndarray
+        The root of ``s = 2W'(I1)(lam - lam^-5) - lam^-5 D0^2``. ``nan`` only if
+        no root was found (cannot happen for neo-Hookean or Gent).
+
+    Notes
+    -----
+    Inverse of Eq. (loading_gent). The right-hand side is ``(1/2) d omega*-hat
+    /d lam`` and increases with ``lam`` (``omega*-hat_{lam lam} > 0`` for
+    ``W' > 0``, ``W'' >= 0``), from ``-inf`` at ``lam -> 0`` (or the lower Gent
+    lock) to ``+inf``: the root is unique. It is bracketed and refined by a
+    vectorised safeguarded Newton method (neo-Hookean: the single positive root
+    of ``lam^6 - s lam^5 - 1 - D0^2``).
+
+    Examples
+    --------
+    >>> from analytic import equibiaxial_lam, equibiaxial_D0
+    >>> lam = equibiaxial_lam(1.0)
+    >>> round(float(lam**6), 12)
+    2.0
+    >>> round(float(equibiaxial_D0(equibiaxial_lam(3.0, 1.5), 1.5)), 12)
+    3.0
+    """
+    model = as_model(model)
+    D0 = as_array("D0", D0)
+    if np.any(~np.isfinite(D0)):
+        raise ValueError(f"D0 must be finite, got {D0!r}")
+    s = as_array("s", s)
+    if np.any(~np.isfinite(s)):
+        raise ValueError(f"s must be finite, got {s!r}")
+    D0, s = broadcast(D0=D0, s=s)
+    shape = D0.shape
+    q, s = D0.ravel() ** 2, s.ravel()
+    lo_lim, hi_lim = _equibiaxial_limits(model)
+
+    nh = isinstance(model, NeoHookean)
+
+    def h(lam, i):
+        r = 1.0 / lam
+        r4 = (r * r) ** 2
+        r5, r6 = r4 * r, r4 * r * r
+        if nh:  # 2W' = 1, W'' = 0
+            f = lam - r5 * (1.0 + q[i]) - s[i]
+            return f, 1.0 + 5.0 * r6 * (1.0 + q[i])
+        I1 = 2 * lam * lam + r4
+        dW, d2W = model.dW(I1), model.d2W(I1)
+        I1p, I1pp = 4 * (lam - r5), 4 + 20 * r6
+        f = 0.5 * dW * I1p - r5 * q[i] - s[i]
+        df = 0.5 * (d2W * I1p**2 + dW * I1pp) + 5 * r6 * q[i]
+        return f, df
+
+    if nh:  # explicit bracket: h(lo) <= 0 <= h(hi) with c = 1 + D0^2 (see Notes)
+        c6 = (1.0 + q) ** (1.0 / 6.0)
+        lo = ((1.0 + q) / (c6 + np.maximum(-s, 0.0))) ** 0.2
+        hi = c6 + np.maximum(s, 0.0)
+        lam = _rtsafe(h, lo, hi, 0.5 * s + np.sqrt(0.25 * s**2 + c6**2))
+        return _out(lam.reshape(shape))
+    one = np.ones(q.size)
+    f1 = h(one, np.arange(q.size))[0]
+    lo = np.where(f1 <= 0, one, np.nan)
+    hi = np.where(f1 >= 0, one, np.nan)
+    need_lo, need_hi = np.flatnonzero(np.isnan(lo)), np.flatnonzero(np.isnan(hi))
+    lo[need_lo] = _expand(lambda x, i: h(x, need_lo[i])[0], one[need_lo], lo_lim, -1)
+    hi[need_hi] = _expand(lambda x, i: h(x, need_hi[i])[0], one[need_hi], hi_lim, +1)
+    ok = np.flatnonzero(np.isfinite(lo) & np.isfinite(hi))
+    # first guess: exact for neo-Hookean at s = 0, an upper estimate for s > 0
+    u2 = (1.0 + q[ok]) ** (1.0 / 3.0)
+    x0 = 0.5 * s[ok] + np.sqrt(0.25 * s[ok] ** 2 + u2)
+    lam = np.full(q.size, np.nan)
+    lam[ok] = _rtsafe(lambda x, i: h(x, ok[i]), lo[ok], hi[ok], x0)
+    return _out(lam.reshape(shape))
+
+
+# ----------------------------------------------------------------------------
+# uni-axial dead load (t3 = 0)
+# ----------------------------------------------------------------------------
+def _uniaxial_x(lam1, s, model):
+    """``x = lam3^2`` on the uni-axial branch (flat arrays in, flat array out)."""
+    n = lam1.size
+    x = np.full(n, np.nan)
+    if isinstance(model, NeoHookean):
+        with np.errstate(invalid="ignore"):
+            xx = lam1 * (lam1 - s)
+        good = (lam1 > s) & (lam1**2 * xx**2 >= 1.0)
+        x[good] = xx[good]
+        return x
+    I1max = model.I1_max()
+    x_lo = 1.0 / lam1  # D0 = 0
+    _derivs(model, lam1**2 + 2.0 / lam1, "lam1", lam1)  # D0 = 0 state must be admissible
+    x_lock = _uniaxial_xlock(lam1, I1max)
+
+    def g(xv, i):
+        l1 = lam1[i]
+        I1 = l1**2 + xv + 1.0 / (l1**2 * xv)
+        dW, d2W = model.dW(I1), model.d2W(I1)
+        f = 2 * dW * (l1 - xv / l1) - s[i]
+        df = 2 * d2W * (1.0 - 1.0 / (l1**2 * xv**2)) * (l1 - xv / l1) - 2 * dW / l1
+        return f, df
+
+    idx = np.arange(n)
+    f_lo = g(x_lo, idx)[0]
+    pos = s > 0
+    # first guess: the neo-Hookean x = lam1 (lam1 - s), corrected once for W'
+    with np.errstate(invalid="ignore", divide="ignore"):
+        x_nh = lam1 * (lam1 - s)
+        I1g = lam1**2 + x_nh + 1.0 / (lam1**2 * x_nh)
+        okg = (x_nh > 0) & (I1g < I1max)
+        dWg = np.where(okg, model.dW(np.where(okg, I1g, 3.0)), 0.5)
+        x0 = lam1 * (lam1 - s / (2 * dWg))
+    # (a) s > 0 and the lock does not cut in: root in [x_lo, lam1^2], f(lam1^2) = -s < 0
+    A = np.flatnonzero(pos & (lam1**2 > x_lo) & (x_lock > lam1**2) & (f_lo >= 0))
+    if A.size:
+        x[A] = _rtsafe(lambda xv, i: g(xv, A[i]), lam1[A] ** 2, x_lo[A], x0[A])
+    # (b) s <= 0: root at or beyond max(x_lo, lam1^2), where f decreases to -inf;
+    #     f(lam1^2) = -s exactly (avoid evaluating the rounding of lam1 - lam1^2/lam1)
+    start = np.maximum(x_lo, lam1**2)
+    f_st = np.where(lam1**2 >= x_lo, -s, f_lo)
+    B = np.flatnonzero(~pos & (f_st >= 0))
+    zero = B[s[B] == 0]
+    x[zero] = start[zero]
+    B = B[s[B] < 0]
+    if B.size:
+        hi = _expand(lambda xv, i: g(xv, B[i])[0], start[B], x_lock[B], -1)
+        okB = np.isfinite(hi)
+        Bk = B[okB]
+        x[Bk] = _rtsafe(lambda xv, i: g(xv, Bk[i]), hi[okB], start[Bk], x0[Bk])
+    # (c) s > 0 and the Gent lock cuts in before lam1^2: f -> +inf at the lock and may be
+    #     non-monotone; take the first sign change of a scan from x_lo (smallest D0)
+    C = np.flatnonzero(pos & np.isfinite(x_lock) & (x_lock <= lam1**2) & (x_lock > x_lo))
+    if C.size:
+        t = np.concatenate([np.linspace(0.0, 0.97, 98), 1.0 - 0.03 * 2.0 ** -np.arange(1, 40)])
+        xs = x_lo[C, None] + (x_lock[C, None] - x_lo[C, None]) * t[None, :]
+        rows = np.repeat(C, t.size)
+        fs = g(xs.ravel(), rows)[0].reshape(xs.shape)
+        change = (fs[:, :-1] >= 0) & (fs[:, 1:] < 0)
+        has = change.any(axis=1)
+        k = np.argmax(change, axis=1)
+        Ck = C[has]
+        r = np.arange(C.size)[has]
+        x[Ck] = _rtsafe(lambda xv, i: g(xv, Ck[i]), xs[r, k[has] + 1], xs[r, k[has]])
+    return x
+
+
+def _uniaxial_inputs(lam1, s, model):
+    model = as_model(model)
+    lam1 = check_positive("lam1", lam1)
+    s = as_array("s", s)
+    if np.any(~np.isfinite(s)):
+        raise ValueError(f"s must be finite, got {s!r}")
+    lam1, s = broadcast(lam1=lam1, s=s)
+    return lam1, s, model
+
+
+def uniaxial_lam3(lam1, s=0.0, model=None):
+    """Transverse stretch ``lam3`` on the uni-axial dead-load curve (``t3 = 0``, ``t1 = s``).
+
+    Parameters
+    ----------
+    lam1 : array_like
+        Stretch in the load direction (> 0).
+    s : array_like
+        Dimensionless dead load ``t1/mu`` (nominal, per reference cross-section).
+    model : Model, optional
+        Strain-energy model (default :class:`NeoHookean`).
+
+    Returns
+    -------
+    lam3 : ndarray
+        Solution of ``s = 2W'(I1)(lam1 - lam3^2/lam1)`` with
+        ``lam1^2 lam3^4 >= 1`` (so that ``D0`` is real); ``nan`` where none
+        exists (``lam1`` below the purely mechanical stretch of the load).
+
+    Notes
+    -----
+    Eq. (uni-axial-loading)_1 generalised to any ``W``; neo-Hookean closed form
+    ``lam3 = sqrt(lam1 (lam1 - s))``. For other models ``x = lam3^2`` is found by
+    a vectorised safeguarded Newton method on ``[lam1^-1, lam1^2]`` (``s > 0``;
+    the right-hand side decreases from its ``D0 = 0`` value to ``0`` there for
+    Gent). Only within a few per cent of the Gent locking stretch can the
+    right-hand side be non-monotone; there the smallest ``lam3`` (smallest
+    ``D0``) is returned.
+
+    Examples
+    --------
+    >>> from analytic import uniaxial_lam3, Gent
+    >>> round(float(uniaxial_lam3(2.0, 1.0)), 12) == round(2.0**0.5, 12)
+    True
+    >>> round(float(uniaxial_lam3(2.0, 1.0, Gent(97.2))), 6)
+    1.437208
+    """
+    lam1, s, model = _uniaxial_inputs(lam1, s, model)
+    x = _uniaxial_x(lam1.ravel(), s.ravel(), model).reshape(lam1.shape)
+    return _out(np.sqrt(x))
+
+
+def uniaxial_D0(lam1, s=0.0, model=None):
+    """Charge ``D0`` on the uni-axial dead-load curve of load ``s``.
+
+    Parameters
+    ----------
+    lam1 : array_like
+        Stretch in the load direction (> 0).
+    s : array_like
+        Dimensionless dead load ``t1/mu``.
+    model : Model, optional
+        Strain-energy model (default :class:`NeoHookean`).
+
+    Returns
+    -------
+    D0 : ndarray
+        ``sqrt(2W'(I1)(lam1^2 lam3^4 - 1))`` with ``lam3`` from
+        :func:`uniaxial_lam3`; ``nan`` where there is no real state.
+
+    Notes
+    -----
+    Eqs. (uni-axial-loading) and (DEuniax); neo-Hookean
+    ``D0 = sqrt(lam1^4 (lam1 - s)^2 - 1)`` for ``lam1 > s``.
+
+    Examples
+    --------
+    >>> from analytic import uniaxial_D0
+    >>> float(uniaxial_D0(2.0, 1.0))  # sqrt(16 - 1)
+    3.872983346207417
+    """
+    lam1, s, model = _uniaxial_inputs(lam1, s, model)
+    l1, sf = lam1.ravel(), s.ravel()
+    if isinstance(model, NeoHookean):
+        with np.errstate(invalid="ignore"):
+            D2 = l1**4 * (l1 - sf) ** 2 - 1.0
+        D0 = np.where((l1 > sf) & (D2 >= 0), np.sqrt(np.abs(D2)), np.nan)
+    else:
+        x = _uniaxial_x(l1, sf, model)
+        good = np.isfinite(x)
+        D0 = np.full(l1.size, np.nan)
+        xg, lg = x[good], l1[good]
+        dW = model.dW(lg**2 + xg + 1.0 / (lg**2 * xg))
+        D0[good] = np.sqrt(np.maximum(2 * dW * (lg**2 * xg**2 - 1.0), 0.0))
+    return _out(D0.reshape(lam1.shape))
+
+
+def uniaxial_E0(lam1, s=0.0, model=None):
+    """Field ``E0 = lam1^-2 lam3^-2 D0`` on the uni-axial dead-load curve of load ``s``.
+
+    Same parameters and branch convention as :func:`uniaxial_D0`.
+
+    Notes
+    -----
+    Eq. (DEuniax)_2; neo-Hookean ``E0 = lam1^-1 sqrt(1 - lam1^-4 (lam1 - s)^-2)``.
+
+    Examples
+    --------
+    >>> from analytic import uniaxial_E0
+    >>> round(float(uniaxial_E0(2.0, 1.0)), 12) == round(0.5 * (1 - 1 / 16) ** 0.5, 12)
+    True
+    """
+    lam1, s, model = _uniaxial_inputs(lam1, s, model)
+    l1, sf = lam1.ravel(), s.ravel()
+    if isinstance(model, NeoHookean):
+        with np.errstate(invalid="ignore", divide="ignore"):
+            r = 1.0 - l1**-4 * (l1 - sf) ** -2.0
+        E0 = np.where((l1 > sf) & (r >= 0), np.sqrt(np.abs(r)) / l1, np.nan)
+    else:
+        x = _uniaxial_x(l1, sf, model)
+        good = np.isfinite(x)
+        E0 = np.full(l1.size, np.nan)
+        xg, lg = x[good], l1[good]
+        dW = model.dW(lg**2 + xg + 1.0 / (lg**2 * xg))
+        E0[good] = np.sqrt(np.maximum(2 * dW * (lg**2 * xg**2 - 1.0), 0.0)) / (lg**2 * xg)
+    return _out(E0.reshape(lam1.shape))
+
+
+def uniaxial_lam1(D0, s=0.0, model=None):
+    """Charge-controlled stretch ``lam1(D0; s)`` under a uni-axial dead load (inverse of :func:`uniaxial_D0`).
+
+    Parameters
+    ----------
+    D0 : array_like
+        Dimensionless charge (finite; only ``D0^2`` matters).
+    s : array_like
+        Dimensionless dead load ``t1/mu``.
+    model : Model, optional
+        Strain-energy model (default :class:`NeoHookean`).
+
+    Returns
+    -------
+    lam1 : ndarray
+        Stretch in the load direction; ``nan`` where no equilibrium was found.
+
+    Notes
+    -----
+    Inverse of Eq. (DEuniax). Neo-Hookean: the single root ``lam1 > max(s, 0)``
+    of ``lam1^2 (lam1 - s) = sqrt(1 + D0^2)``. Other models: the unique
+    minimiser of ``omega* - s lam1`` with ``t3 = 0`` (:func:`biaxial_stretches`
+    with ``s3 = 0``).
+
+    Examples
+    --------
+    >>> from analytic import uniaxial_lam1, uniaxial_D0
+    >>> round(float(uniaxial_D0(uniaxial_lam1(2.5, 1.0), 1.0)), 12)
+    2.5
+    """
+    model = as_model(model)
+    D0 = as_array("D0", D0)
+    if np.any(~np.isfinite(D0)):
+        raise ValueError(f"D0 must be finite, got {D0!r}")
+    s = as_array("s", s)
+    if np.any(~np.isfinite(s)):
+        raise ValueError(f"s must be finite, got {s!r}")
+    D0, s = broadcast(D0=D0, s=s)
+    if not isinstance(model, NeoHookean):
+        return biaxial_stretches(s, 0.0 * s, D0, model)[0]
+    shape = D0.shape
+    c, sf = np.sqrt(1.0 + D0.ravel() ** 2), s.ravel()
+    lo = np.maximum(sf, 0.0)  # q(lo) = lo^2 (lo - s) - c < 0
+    hi = lo + c ** (1.0 / 3.0) + np.abs(sf)  # q(hi) > 0
+
+    def q(l1, i):
+        return l1**2 * (l1 - sf[i]) - c[i], l1 * (3 * l1 - 2 * sf[i])
+
+    return _out(_rtsafe(q, lo, hi).reshape(shape))
