@@ -129,6 +129,7 @@ def membrane_kernel(
 
 _LOADINGS = ("equibiaxial", "uniaxial", "clamped")
 _CONTROLS = ("charge", "voltage")
+_COUPLINGS = ("full", "maxwell")
 
 
 def _check_pos(name: str, value) -> float:
@@ -172,10 +173,27 @@ class MembranePlate:
         (full plate), the edge ``X3 = L3/2`` free.
     control : {"charge", "voltage"}
         Which electric quantity the load's second component prescribes.
+    coupling : {"full", "maxwell"}
+        ``"full"``: the charge-controlled energy of :func:`membrane_kernel`;
+        ``"maxwell"`` (charge control only): the purely elastic membrane loaded
+        by the Maxwell traction of :mod:`skfem_dielectric.maxwell` on its faces
+        and edges (see Notes).
 
     Notes
     -----
-    Energy per reference area: see :func:`membrane_kernel`. For the clamped
+    Energy per reference area: see :func:`membrane_kernel`.
+
+    Maxwell coupling: with the field ``D = F D_L/J``, ``D_L = -sigma_F e2``,
+    the faces carry the compressive traction ``sigma_F^2 lam2/(2 eps)`` per
+    reference area, whose virtual work ``-sigma_F^2 H lam2 dlam2/(2 eps)`` is
+    that of the energy ``H lam2^2 sigma_F^2/(4 eps)`` (half the fully coupled
+    electric energy); the edges (``X1 = L1/2``, ``X3 = L3/2``; the clamp edge
+    included, its x1-resultant is carried by the clamp) carry the follower
+    traction ``H sigma_F^2 lam2^2/(2 eps) F^-T N`` per reference length, with
+    its linearisation in the (then non-symmetric) tangent. On homogeneous
+    states both couplings coincide; they differ where ``lam2`` varies.
+
+    For the clamped
     plate, by symmetry about ``X1 = 0`` the upper (fixed) and lower (moving)
     clamps of the experiment have the same relative motion as the two clamps
     ``X1 = +-L1/2`` of this model.
@@ -183,7 +201,7 @@ class MembranePlate:
 
     def __init__(self, material, L1: float = 100.0, L3: float = 50.0, H: float = 1.0,
                  n1: int = 40, n3: int = 20, loading: str = "clamped",
-                 control: str = "charge"):
+                 control: str = "charge", coupling: str = "full"):
         import scipy.sparse as sp
         import skfem as fe
 
@@ -193,6 +211,11 @@ class MembranePlate:
             raise ValueError(f"loading must be one of {_LOADINGS}, got {loading!r}")
         if control not in _CONTROLS:
             raise ValueError(f"control must be one of {_CONTROLS}, got {control!r}")
+        if coupling not in _COUPLINGS:
+            raise ValueError(f"coupling must be one of {_COUPLINGS}, got {coupling!r}")
+        if coupling == "maxwell" and control != "charge":
+            raise ValueError(f"coupling 'maxwell' needs control='charge', got {control!r}")
+        self.coupling = coupling
         self.material = material
         self.L1, self.L3, self.H = (_check_pos("L1", L1), _check_pos("L3", L3),
                                     _check_pos("H", H))
@@ -203,24 +226,24 @@ class MembranePlate:
                                        np.linspace(0, a3, self.n3 + 1))
         tol = 1e-9 * max(a1, a3)
         mesh = mesh.with_boundaries({
-            "sym1": lambda x: np.abs(x[0]) < tol,
-            "sym3": lambda x: np.abs(x[1]) < tol,
-            "end": lambda x: np.abs(x[0] - a1) < tol,
-            "side": lambda x: np.abs(x[1] - a3) < tol,
+            "sym_x1": lambda x: np.abs(x[0]) < tol,
+            "sym_x3": lambda x: np.abs(x[1]) < tol,
+            "x1_plus": lambda x: np.abs(x[0] - a1) < tol,
+            "x3_plus": lambda x: np.abs(x[1] - a3) < tol,
         })
         self.mesh = mesh
         elem = fe.ElementVector(fe.ElementQuad2())
         self.basis = fe.Basis(mesh, elem, intorder=4)
         self.form = BatchedVectorForm(self.basis)
         n = self.basis.N
-        dofs = {k: self.basis.get_dofs(k) for k in ("sym1", "sym3", "end", "side")}
-        fixed = [dofs["sym1"].nodal["u^1"], dofs["sym1"].facet["u^1"],
-                 dofs["sym3"].nodal["u^2"], dofs["sym3"].facet["u^2"]]
+        dofs = {k: self.basis.get_dofs(k) for k in ("sym_x1", "sym_x3", "x1_plus", "x3_plus")}
+        fixed = [dofs["sym_x1"].nodal["u^1"], dofs["sym_x1"].facet["u^1"],
+                 dofs["sym_x3"].nodal["u^2"], dofs["sym_x3"].facet["u^2"]]
         tied = np.empty(0, dtype=int)
         if loading == "clamped":
-            fixed += [dofs["end"].nodal["u^2"], dofs["end"].facet["u^2"]]
-            tied = np.unique(np.concatenate([dofs["end"].nodal["u^1"],
-                                             dofs["end"].facet["u^1"]]))
+            fixed += [dofs["x1_plus"].nodal["u^2"], dofs["x1_plus"].facet["u^2"]]
+            tied = np.unique(np.concatenate([dofs["x1_plus"].nodal["u^1"],
+                                             dofs["x1_plus"].facet["u^1"]]))
         fixed = np.unique(np.concatenate(fixed))
         free = np.setdiff1d(np.arange(n), np.concatenate([fixed, tied]))
         # full = T @ reduced: free dofs one-to-one, tied dofs share the last column
@@ -237,7 +260,7 @@ class MembranePlate:
             fred = np.zeros(nred)
             fred[-1] = mu * self.H * a3  # resultant on the quarter: mu s H L3/2
         else:
-            for name, comp in (("end", 0), ("side", 1))[: 2 if loading == "equibiaxial" else 1]:
+            for name, comp in (("x1_plus", 0), ("x3_plus", 1))[: 2 if loading == "equibiaxial" else 1]:
                 fb = fe.FacetBasis(mesh, elem, facets=mesh.boundaries[name], intorder=4)
                 e = np.zeros(2)
                 e[comp] = mu * self.H
@@ -249,6 +272,14 @@ class MembranePlate:
                 f += trac.assemble(fb)
             fred = self.TT @ f
         self.f_unit = fred
+        if coupling == "maxwell":
+            facets = np.concatenate([mesh.boundaries["x1_plus"], mesh.boundaries["x3_plus"]])
+            fbm = fe.FacetBasis(mesh, elem, facets=facets, intorder=4)
+            nb = fbm.Nbfun
+            self._mx = dict(
+                V=np.array([np.asarray(fbm.basis[a][0]) for a in range(nb)]),
+                G=np.array([fbm.basis[a][0].grad for a in range(nb)]),
+                N=fbm.normals, dx=fbm.dx, dofs=fbm.element_dofs)
         # probes: centre line X3 = 0 and the line next to the clamp X1 = 0.95 L1/2
         self.x_line = np.linspace(0.0, a1, 4 * self.n1 + 1)
         self.x_clamp = np.linspace(0.0, a3, 4 * self.n3 + 1)
@@ -278,22 +309,61 @@ class MembranePlate:
             return s, dict(D_L=e0 * np.sqrt(mu * eps))
         return s, dict(E_L=e0 * np.sqrt(mu / eps))
 
+    def _edge_maxwell(self, u, sigma, need_tangent=True):
+        """Follower traction ``c J^-2 F^-T N`` on the edges, ``c = H sigma^2/(2 eps)``."""
+        import scipy.sparse as sp
+
+        m = self._mx
+        F = np.einsum("ae,aijeq->ijeq", u[m["dofs"]], m["G"], optimize=True)
+        F = F + np.eye(2)[:, :, None, None]
+        J = _det2(F)
+        G = _invT2(F, J)
+        g = np.einsum("iM...,M...->i...", G, m["N"])
+        c = self.H * sigma**2 / (2.0 * self.material.eps) * m["dx"]
+        t = c * J**-2 * g
+        r = -np.einsum("ieq,aieq->ae", t, m["V"], optimize=True)
+        r = np.bincount(m["dofs"].ravel(), weights=r.ravel(), minlength=self.basis.N)
+        if not need_tangent:
+            return None, r
+        dt = -c * J**-2 * (2.0 * np.einsum("kl...,i...->ikl...", G, g)
+                           + np.einsum("il...,k...->ikl...", G, g))
+        Ke = -np.einsum("aieq,ikleq,bkleq->abe", m["V"], dt, m["G"], optimize=True)
+        d = m["dofs"]
+        nb, ne = d.shape
+        rows = np.broadcast_to(d[:, None, :], (nb, nb, ne)).ravel()
+        cols = np.broadcast_to(d[None, :, :], (nb, nb, ne)).ravel()
+        K = sp.csr_matrix((Ke.ravel(), (rows, cols)), shape=(self.basis.N,) * 2)
+        return K, r
+
+    def _kernel_options(self, load):
+        s, el = self._electric(load)
+        if self.coupling == "maxwell":
+            # the faces' Maxwell pressure = half the fully coupled electric energy
+            return s, dict(D_L=el["D_L"] / np.sqrt(2.0)), el["D_L"]
+        return s, el, None
+
     def assemble(self, x: np.ndarray, load) -> tuple:
         """Reduced tangent and residual ``T^T (f_int(u) - s f_ext)``."""
-        s, el = self._electric(load)
+        s, el, sigma = self._kernel_options(load)
         u = self.T @ x
         F = self.form.grad(u) + np.eye(2)[:, :, None, None]
         _, P, A = membrane_kernel(F, self.material, H=self.H, **el)
         K, r = self.form.assemble(P, A)
+        if sigma is not None:
+            Km, rm = self._edge_maxwell(u, sigma)
+            K, r = K + Km, r + rm
         return self.TT @ K @ self.T, self.TT @ r - s * self.f_unit
 
     def residual(self, x: np.ndarray, load) -> np.ndarray:
         """Reduced residual only (line search)."""
-        s, el = self._electric(load)
+        s, el, sigma = self._kernel_options(load)
         u = self.T @ x
         F = self.form.grad(u) + np.eye(2)[:, :, None, None]
         _, P, _ = membrane_kernel(F, self.material, H=self.H, **el)
-        return self.TT @ self.form.assemble_vector(P) - s * self.f_unit
+        r = self.form.assemble_vector(P)
+        if sigma is not None:
+            r = r + self._edge_maxwell(u, sigma, need_tangent=False)[1]
+        return self.TT @ r - s * self.f_unit
 
     def residual_scale(self, load) -> float:
         """Scale of the residual: ``mu H L1`` (a force)."""
