@@ -74,6 +74,11 @@ def _fe_dots(ax, fe, x, y, mask, variant, color, label=None):
     ax.plot(x[mask], y[mask], ls="none", color=color, label=label, **_VARIANT_MARKER[variant])
 
 
+def _fe_E0(fe):
+    """FE ``E0 = D0/(lam1 lam3)^2`` of an ideal dielectric from the centre stretches."""
+    return fe["D0"] / (fe["lam1_fe"] * fe["lam3_fe"]) ** 2
+
+
 def _variant_legend(ax, fe):
     """Legend entries for the FE marker styles actually drawn."""
     from matplotlib.lines import Line2D
@@ -84,14 +89,55 @@ def _variant_legend(ax, fe):
             for v in _VARIANT_MARKER if v in set(fe["variant"])]
 
 
+def _refine_start(x, f, n=80):
+    """``(x, f(x))`` with extra points where a curve starts with a vertical tangent.
+
+    Curves such as ``D0 = sqrt(lam^6 - 1)`` rise like a square root from their
+    first real point; on a uniform grid they would seem to start above ``D0 = 0``.
+    Points are added geometrically between the last ``nan`` and the first finite
+    sample.
+    """
+    x = np.asarray(x, dtype=float)
+    y = np.asarray(f(x), dtype=float)
+    ok = np.isfinite(y)
+    if ok.any() and not ok[0]:
+        i = int(np.argmax(ok))
+        lo, hi = x[i - 1], x[i]
+        t = np.geomspace(1e-12, 1.0, n)
+        xs = lo + (hi - lo) * t
+        ys = np.asarray(f(xs), dtype=float)
+        x, y = np.r_[xs, x[i + 1:]], np.r_[ys, y[i + 1:]]
+    return x, y
+
+
+def _equibiaxial_curve(an, s, m, lam_max, n=1500):
+    """``(lam, D0)`` of Eq. (loading_gent), sampled in ``D0`` (smooth from ``D0 = 0``)."""
+    D0max = float(an.equibiaxial_D0(lam_max, s, m))
+    if not np.isfinite(D0max):
+        return np.empty(0), np.empty(0)
+    D0 = D0max * np.linspace(0.0, 1.0, n) ** 2          # dense near D0 = 0, where E0 ~ D0
+    return np.asarray(an.equibiaxial_lam(D0, s, m), dtype=float), D0
+
+
+def _uniaxial_curve(an, s, m, lam1_max, n=1500):
+    """``(lam1, D0, E0)`` of Eq. (DEuniax), sampled in ``D0``."""
+    D0max = float(an.uniaxial_D0(lam1_max, s, m))
+    if not np.isfinite(D0max):
+        return np.empty(0), np.empty(0), np.empty(0)
+    D0 = D0max * np.linspace(0.0, 1.0, n) ** 2          # dense near D0 = 0, where E0 ~ D0
+    lam1 = np.asarray(an.uniaxial_lam1(D0, s, m), dtype=float)
+    return lam1, D0, np.asarray(an.uniaxial_E0(lam1, s, m), dtype=float)
+
+
 # --------------------------------------------------------------------------- equi-biaxial
 def plot_equibiaxial_loading(model="neo-Hookean", s_values=(0, 1, 2, 3), quantity="D0",
-                             fe=None, ax=None, lam=None, locus=True):
+                             fe=None, ax=None, lam_max=5.0, locus=True):
     """Equi-biaxial loading curves ``D0(lam)`` or ``E0(lam)`` at fixed ``s``.
 
     Paper Figs. nh-d-e and gent-d-e: Eq. (loading_gent) and ``E0 = lam^-4 D0``,
     with the dashed voltage-control limit locus ``det H* = 0`` (through the
-    maxima of ``E0``; for neo-Hookean ``D0 = sqrt((lam^6 + 5)/3)``).
+    maxima of ``E0``; for neo-Hookean ``D0 = sqrt((lam^6 + 5)/3)``) and the
+    maxima of ``E0`` from :func:`analytic.max_E0` marked.
 
     Parameters
     ----------
@@ -99,10 +145,11 @@ def plot_equibiaxial_loading(model="neo-Hookean", s_values=(0, 1, 2, 3), quantit
     s_values : sequence of float
     quantity : {"D0", "E0"}
     fe : dict, optional
-        FE table; dots at ``(lam1_fe, D0)`` or ``(lam1_fe, D0/lam1_fe^4)``.
+        FE table; dots at ``(lam1_fe, D0)`` or ``(lam1_fe, E0_fe)`` with
+        ``E0_fe = D0/(lam1_fe lam3_fe)^2``.
     ax : matplotlib Axes, optional
-    lam : array_like, optional
-        Stretch grid (default ``1 .. 3.5``).
+    lam_max : float
+        Right end of the stretch axis (starts at 1).
     locus : bool
         Draw the voltage-control limit locus.
 
@@ -116,32 +163,32 @@ def plot_equibiaxial_loading(model="neo-Hookean", s_values=(0, 1, 2, 3), quantit
         raise ValueError(f"quantity must be 'D0' or 'E0', got {quantity!r}")
     ax = _new_axes(ax)
     m = _model(model)
-    lam = np.linspace(1.0, 3.5, 1200) if lam is None else np.asarray(lam, dtype=float)
-    y = (lambda l, D0: D0) if quantity == "D0" else (lambda l, D0: D0 / l**4)
     for s, c in zip(s_values, _colors(len(s_values))):
-        D0 = an.equibiaxial_D0(lam, s, m)
-        ax.plot(lam, y(lam, D0), color=c, label=f"$s = {s:g}$")
+        lam, D0 = _equibiaxial_curve(an, s, m, lam_max)
+        ax.plot(lam, D0 if quantity == "D0" else D0 / lam**4, color=c, label=f"$s = {s:g}$")
         mask = _fe_rows(fe, s=s, model=model)
         if mask is not None:
+            yfe = fe["D0"] if quantity == "D0" else _fe_E0(fe)
             for v in _VARIANT_MARKER:
-                vm = mask & (fe["variant"] == v)
-                _fe_dots(ax, fe, fe["lam1_fe"], y(fe["lam1_fe"], fe["D0"]), vm, v, c)
+                _fe_dots(ax, fe, fe["lam1_fe"], yfe, mask & (fe["variant"] == v), v, c)
     if locus:
-        D0l = an.voltage_limit_D0(lam, m)
-        ax.plot(lam, y(lam, D0l), "k--", lw=1.2, label=r"$\det\mathcal{H}^* = 0$ (voltage limit)")
-        smax = np.asarray(s_values, dtype=float)
-        lm, E0m = an.max_E0(smax, m, loading="equibiaxial")
-        lm, E0m = np.atleast_1d(lm), np.atleast_1d(E0m)
+        lam = np.linspace(1.0, lam_max, 800)
+        D0l = np.asarray(an.voltage_limit_D0(lam, m), dtype=float)
+        ax.plot(lam, D0l if quantity == "D0" else D0l / lam**4, "k--", lw=1.2,
+                label=r"$\det\mathcal{H}^* = 0$ (voltage control limit)")
+        lm, E0m = (np.atleast_1d(np.asarray(a, dtype=float))
+                   for a in an.max_E0(np.asarray(s_values, dtype=float), m, loading="equibiaxial"))
         ok = np.isfinite(lm)
-        ym = lm**4 * E0m if quantity == "D0" else E0m
-        ax.plot(lm[ok], ym[ok], "k^", ms=5, label=r"max $E_0$ at fixed $s$")
+        ax.plot(lm[ok], (lm**4 * E0m)[ok] if quantity == "D0" else E0m[ok], "k^", ms=5,
+                label=r"max of $E_0$ at fixed $s$")
     ax.set_xlabel(r"$\lambda$")
     ax.set_ylabel(r"$D_0$" if quantity == "D0" else r"$E_0$")
-    ax.set_xlim(lam.min(), lam.max())
+    ax.set_xlim(1.0, lam_max)
     ax.set_ylim(0, 8.0 if quantity == "D0" else 0.8)
     handles, _ = ax.get_legend_handles_labels()
-    ax.legend(handles=handles + _variant_legend(ax, fe), fontsize=8, loc="upper left")
-    ax.set_title(f"{model}, equi-biaxial: {quantity} vs stretch", fontsize=10)
+    ax.legend(handles=handles + _variant_legend(ax, fe), fontsize=8,
+              loc="center right" if quantity == "D0" else "upper right")
+    ax.set_title(f"{model}, equi-biaxial: ${quantity[0]}_0$ vs stretch", fontsize=10)
     return ax
 
 
@@ -151,7 +198,7 @@ def plot_equibiaxial_wrinkling(model="neo-Hookean", s_values=(0, 0.8, 1.5, 2.5, 
 
     The grey zone lies between the thick-plate limit (dashed, Eq. ideal-shortwave
     for neo-Hookean, Eq. short-wave in general) and the thin-plate limit
-    (Eq. antisym_thin, which is the ``s = 0`` loading curve).
+    (Eq. antisym_thin, which coincides with the ``s = 0`` loading curve).
 
     Returns
     -------
@@ -162,30 +209,30 @@ def plot_equibiaxial_wrinkling(model="neo-Hookean", s_values=(0, 0.8, 1.5, 2.5, 
     ax = _new_axes(ax)
     m = _model(model)
     lam = np.linspace(0.5, 5.0, 2000)
-    thick = np.asarray(an.thick_limit_D0(lam, m), dtype=float)
-    thin = np.asarray(an.thin_limit_D0(lam, m), dtype=float)
-    # polygon: thick curve up to D0max, back down the thin curve, closed on the lam axis
+    lk, thick = _refine_start(lam, lambda x: an.thick_limit_D0(x, m))
+    ln, thin = _refine_start(lam, lambda x: an.thin_limit_D0(x, m))
     ok_k = np.isfinite(thick) & (thick <= D0max)
     ok_n = np.isfinite(thin) & (thin <= D0max)
     if ok_k.any() and ok_n.any():
-        xs = np.concatenate([lam[ok_k], lam[ok_n][::-1]])
+        xs = np.concatenate([lk[ok_k], ln[ok_n][::-1]])
         ys = np.concatenate([thick[ok_k], thin[ok_n][::-1]])
         ax.fill(xs, ys, color="0.85", zorder=0, label="wrinkling zone")
-    ax.plot(lam, thick, "--", color="tab:blue", label="thick-plate limit")
-    ax.plot(lam, thin, ":", color="k", lw=1.5, label="thin-plate limit")
+    ax.plot(lk, thick, "--", color="tab:blue", label="thick-plate limit")
     for s, c in zip(s_values, _colors(len(s_values))):
-        ax.plot(lam, an.equibiaxial_D0(lam, s, m), color=c, label=f"$s = {s:g}$")
+        l, D0 = _equibiaxial_curve(an, s, m, 5.0)
+        ax.plot(l, D0, color=c, label=f"$s = {s:g}$")
         mask = _fe_rows(fe, s=s, model=model)
         if mask is not None:
             for v in _VARIANT_MARKER:
                 _fe_dots(ax, fe, fe["lam1_fe"], fe["D0"], mask & (fe["variant"] == v), v, c)
+    ax.plot(ln, thin, ":", color="k", lw=1.5, label="thin-plate limit (= $s = 0$ curve)")
     ax.set_xlim(0.5, 5.0)
     ax.set_ylim(0, D0max)
     ax.set_xlabel(r"$\lambda$")
     ax.set_ylabel(r"$D_0$")
     handles, _ = ax.get_legend_handles_labels()
     ax.legend(handles=handles + _variant_legend(ax, fe), fontsize=8, loc="lower right")
-    ax.set_title(f"{model}, equi-biaxial: wrinkling limits", fontsize=10)
+    ax.set_title(f"{model}, equi-biaxial: loading curves and wrinkling limits", fontsize=10)
     return ax
 
 
@@ -202,14 +249,17 @@ def uniaxial_voltage_locus(model="neo-Hookean", s=None):
     s = np.linspace(0.0, 6.0, 301) if s is None else np.asarray(s, dtype=float)
     lam1, E0 = (np.atleast_1d(np.asarray(a, dtype=float))
                 for a in an.max_E0(s, m, loading="uniaxial"))
-    D0 = np.asarray(an.uniaxial_D0(lam1, s, m), dtype=float)
     ok = np.isfinite(lam1)
-    return lam1[ok], D0[ok], E0[ok]
+    D0 = np.asarray(an.uniaxial_D0(lam1[ok], s[ok], m), dtype=float)
+    return lam1[ok], D0, E0[ok]
 
 
 def plot_uniaxial_loading(model="neo-Hookean", s_values=(0, 1, 2, 3, 4), quantity="D0",
-                          fe=None, ax=None, locus=True):
+                          fe=None, ax=None, lam1_max=6.0, locus=True):
     """Uni-axial dead-load curves ``D0(lam1)`` or ``E0(lam1)`` (paper Fig. figde, Eq. DEuniax).
+
+    The dashed curve is the ``det H* = 0`` locus of :func:`uniaxial_voltage_locus`;
+    FE dots at ``(lam1_fe, D0)`` or ``(lam1_fe, D0/(lam1_fe lam3_fe)^2)``.
 
     Returns
     -------
@@ -221,13 +271,12 @@ def plot_uniaxial_loading(model="neo-Hookean", s_values=(0, 1, 2, 3, 4), quantit
         raise ValueError(f"quantity must be 'D0' or 'E0', got {quantity!r}")
     ax = _new_axes(ax)
     m = _model(model)
-    lam1 = np.linspace(0.5, 6.0, 2000)
-    f = an.uniaxial_D0 if quantity == "D0" else an.uniaxial_E0
     for s, c in zip(s_values, _colors(len(s_values))):
-        ax.plot(lam1, f(lam1, s, m), color=c, label=f"$s = {s:g}$")
+        lam1, D0, E0 = _uniaxial_curve(an, s, m, lam1_max)
+        ax.plot(lam1, D0 if quantity == "D0" else E0, color=c, label=f"$s = {s:g}$")
         mask = _fe_rows(fe, s=s, model=model)
         if mask is not None:
-            yv = fe["D0"] if quantity == "D0" else np.full_like(fe["D0"], np.nan)
+            yv = fe["D0"] if quantity == "D0" else _fe_E0(fe)
             for v in _VARIANT_MARKER:
                 _fe_dots(ax, fe, fe["lam1_fe"], yv, mask & (fe["variant"] == v), v, c)
     if locus:
@@ -236,10 +285,12 @@ def plot_uniaxial_loading(model="neo-Hookean", s_values=(0, 1, 2, 3, 4), quantit
                 label=r"$\det\mathcal{H}^* = 0$")
     ax.set_xlabel(r"$\lambda_1$")
     ax.set_ylabel(r"$D_0$" if quantity == "D0" else r"$E_0$")
-    ax.set_xlim(0.5, 6.0)
+    ax.set_xlim(0.5, lam1_max)
     ax.set_ylim(0, 8.0 if quantity == "D0" else 0.8)
-    ax.legend(fontsize=8, loc="upper left" if quantity == "D0" else "upper right")
-    ax.set_title(f"{model}, uni-axial dead load: {quantity} vs $\\lambda_1$", fontsize=10)
+    handles, _ = ax.get_legend_handles_labels()
+    ax.legend(handles=handles + _variant_legend(ax, fe), fontsize=8,
+              loc="lower right" if quantity == "D0" else "upper right")
+    ax.set_title(f"{model}, uni-axial dead load: ${quantity[0]}_0$ vs $\\lambda_1$", fontsize=10)
     return ax
 
 
@@ -296,21 +347,21 @@ def plot_uniaxial_wrinkling(fe=None, alphas=ALPHAS, ax=None, D0max=7.0):
     ax = _new_axes(ax, figsize=(6.5, 4.8))
     m = _model("neo-Hookean")
     lam1 = np.linspace(0.4, 6.0, 1500)
-    thin = np.asarray(an.uniaxial_D0(lam1, 0.0, m), dtype=float)
-    thick = uniaxial_thick_limit_curve(lam1)
+    ln, thin, _ = _uniaxial_curve(an, 0.0, m, 6.0)          # Eq. (thin-uni-axial) = s = 0
+    lk, thick = _refine_start(lam1, uniaxial_thick_limit_curve)
     ok_k = np.isfinite(thick) & (thick <= D0max)
     ok_n = np.isfinite(thin) & (thin <= D0max)
     if ok_k.any() and ok_n.any():
-        xs = np.concatenate([lam1[ok_k], lam1[ok_n][::-1]])
+        xs = np.concatenate([lk[ok_k], ln[ok_n][::-1]])
         ys = np.concatenate([thick[ok_k], thin[ok_n][::-1]])
         ax.fill(xs, ys, color="0.85", zorder=0, label="wrinkling zone")
-    ax.plot(lam1, thick, "--", color="tab:blue", label="thick-plate limit")
-    ax.plot(lam1, thin, "--", color="k", label="thin-plate limit ($s = 0$)")
+    ax.plot(lk, thick, "--", color="tab:blue", label="thick-plate limit")
+    ax.plot(ln, thin, "--", color="k", label="thin-plate limit ($s = 0$)")
     first_cross = True
     for a, c in zip(alphas, _colors(len(alphas))):
         s = keplinger_s(a)
-        ax.plot(lam1, an.uniaxial_D0(lam1, s, m), color=c,
-                label=rf"$\alpha = {a:g}$, $s = {s:.3g}$")
+        l1, D0c, _ = _uniaxial_curve(an, s, m, 6.0)
+        ax.plot(l1, D0c, color=c, label=rf"$\alpha = {a:g}$, $s = {s:.3g}$")
         if fe is None or not len(fe.get("run", [])):
             continue
         for v in _VARIANT_MARKER:
@@ -332,8 +383,10 @@ def plot_uniaxial_wrinkling(fe=None, alphas=ALPHAS, ax=None, D0max=7.0):
     ax.set_ylim(0, D0max)
     ax.set_xlabel(r"$\lambda_1$")
     ax.set_ylabel(r"$D_0$")
-    handles, _ = ax.get_legend_handles_labels()
-    ax.legend(handles=handles + _variant_legend(ax, fe), fontsize=7, loc="lower right")
+    handles, labels = ax.get_legend_handles_labels()
+    order = sorted(range(len(labels)), key=lambda i: labels[i] == "FE breakdown")
+    ax.legend(handles=[handles[i] for i in order] + _variant_legend(ax, fe), fontsize=7,
+              loc="lower right")
     ax.set_title("Keplinger plate, uni-axial dead load (neo-Hookean)", fontsize=10)
     return ax
 
@@ -417,9 +470,11 @@ def plot_p33_profiles(fields, fe=None, ax=None, variant="coupled"):
             brk_step = int(fe["step"][sel][0])
     for k, D0 in zip(steps, D0s):
         sel = sel_run & (fields["step"] == k)
-        order = np.argsort(fields["x1"][sel])
-        x = 100 * fields["x1"][sel][order]
-        y = fields["P33"][sel][order]
+        x1, y = fields["x1"][sel], fields["P33"][sel]
+        if x1.min() >= 0.0:                       # quarter model: mirror about x1 = 0
+            x1, y = np.r_[-x1, x1], np.r_[y, y]
+        order = np.argsort(x1)
+        x, y = 100 * x1[order], y[order]
         lw, ls = (2.2, "-") if k == brk_step else (1.2, "-")
         ax.plot(x, y, ls, lw=lw, color=cmap(norm(D0)),
                 label=f"$D_0 = {D0:.3g}$" + (" (breakdown)" if k == brk_step else ""))
@@ -487,7 +542,8 @@ def case_figure(name: str, fe=None, fields=None):
 
 def _tag(axes):
     for ax, t in zip(axes, "ab"):
-        ax.text(0.98, 0.02, f"({t})", transform=ax.transAxes, ha="right", va="bottom")
+        ax.text(0.02, 0.98, f"({t})", transform=ax.transAxes, ha="left", va="top",
+                fontweight="bold")
 
 
 def save_figure(fig, folder, stem: str) -> list[Path]:
