@@ -397,7 +397,7 @@ def summarise_case(case: Case, csv_path: Path, n_runs: int) -> CaseResult:
     ok = conv & np.isfinite(err)
     if ok.any():
         res.max_rel_error = float(np.max(err[ok]))
-    for key in dict.fromkeys(t["run"]):
+    for key in map(str, dict.fromkeys(t["run"])):
         sel = t["run"] == key
         e = err[sel & ok]
         res.max_rel_error_by_run[key] = float(e.max()) if e.size else None

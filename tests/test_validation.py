@@ -1,0 +1,270 @@
+"""Validation harness: CSV contract, errors, breakdown, resume, executors, no stray writes.
+
+The FE solver is replaced here by :class:`FakeRunner`, a closed-form "solver" with a
+known, state-dependent error, so the harness's bookkeeping can be checked exactly and
+fast; the real FE runs are in tests/test_cli.py and tests/test_validation_fe.py.
+"""
+
+from __future__ import annotations
+
+import filecmp
+import json
+from concurrent.futures import ThreadPoolExecutor
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from validation import cases as vc
+from validation.sweep import (BREAKDOWN_TOL, RunOutcome, StepRecord, csv_columns, read_table,
+                              run_case, run_cases, validate)
+
+CONTRACT = ["case", "model", "variant", "s", "D0", "lam1_fe", "lam1_analytic", "lam3_fe",
+            "min_P33", "converged", "stable"]
+PERTURB = 1e-7      # the fake solver's error per unit of accumulated D0
+
+
+class Interrupted(Exception):
+    """Stands for Ctrl-C / a killed process in the middle of a sweep."""
+
+
+def exact_lam(geometry: str, s: float, D0: float) -> float:
+    """neo-Hookean closed forms solved with numpy's polynomial roots (independent of analytic).
+
+    Equi-biaxial: lam^6 - s lam^5 - (1 + D0^2) = 0 (Eq. loading_gent);
+    uni-axial: lam1^3 - s lam1^2 - sqrt(1 + D0^2) = 0 (Eq. DEuniax).
+    """
+    if geometry == "equibiaxial":
+        r = np.roots([1, -s, 0, 0, 0, 0, -(1 + D0**2)])
+    else:
+        r = np.roots([1, -s, 0, -np.sqrt(1 + D0**2)])
+    r = r[np.abs(r.imag) < 1e-9].real
+    return float(r[r > 0].max())
+
+
+def p33_clamp(alpha: float, D0: float) -> float:
+    """The fake's lateral stress near the clamps: compressive beyond D0 = 2.5 alpha."""
+    return 0.05 * alpha - 0.02 * D0
+
+
+class FakeRunner:
+    """A runner whose answer depends on the carried state: a lost state changes the CSV."""
+
+    def __init__(self, interrupt_after: int | None = None, fail_at: float | None = None):
+        self.interrupt_after = interrupt_after
+        self.fail_at = fail_at
+        self.calls = 0            # converged targets reported in this process
+
+    def __call__(self, spec, start, state, on_step):
+        acc = 0.0 if state is None else float(state["acc"])
+        if start > 0 and state is None:
+            raise AssertionError("resume without state")
+        for i in range(start, len(spec.D0)):
+            D0 = spec.D0[i]
+            if self.fail_at is not None and D0 >= self.fail_at:
+                return RunOutcome(False, "Newton diverged (fake)", D0)
+            acc += D0
+            lam = exact_lam(spec.geometry, spec.s, D0) * (1 + PERTURB * acc)
+            alpha = spec.alpha or 0.0
+            fields = None
+            if spec.record_fields:
+                x1 = np.linspace(0, 0.05, 5)
+                fields = {"kind": np.zeros(5), "x1": x1, "x3": np.zeros(5), "P33": p33_clamp(alpha, D0) * x1 / 0.05,
+                          "lam1": np.full(5, lam), "lam3": np.full(5, 1 / np.sqrt(lam))}
+            p33 = p33_clamp(alpha, D0) if spec.geometry == "uniaxial" else 0.0
+            rec = StepRecord(D0=D0, lam1=lam, lam3=lam if spec.geometry == "equibiaxial"
+                             else 1 / np.sqrt(lam), min_P33=p33, min_P33_clamp=p33 + 0.1,
+                             stable=True, iterations=3, fields=fields)
+            stop = on_step(i, rec, {"acc": np.array(acc)})
+            self.calls += 1
+            if self.interrupt_after is not None and self.calls >= self.interrupt_after:
+                raise Interrupted
+            if stop:
+                break
+        return RunOutcome(True)
+
+
+def eq_case(n_s=2, n=4, name="nh-d-e"):
+    runs = tuple(vc.RunSpec("equibiaxial", "neo-Hookean", "coupled", s,
+                            tuple(np.linspace(0, 4, n + 1))) for s in (0.8, 2.5)[:n_s])
+    return vc.Case(name, name, "test", "equibiaxial", quick=runs, full=runs)
+
+
+def uni_case(alphas=(0.3, 1.0), fields=False, name="uni-axial-ideal"):
+    runs = tuple(vc.RunSpec("uniaxial", "neo-Hookean", v, vc.keplinger_s(a),
+                            tuple(np.linspace(0, 6, 13)), alpha=a, record_fields=fields)
+                 for v in ("coupled", "maxwell") for a in alphas)
+    return vc.Case(name, name, "test", "uniaxial", quick=runs, full=runs)
+
+
+def test_keplinger_s():
+    # s = alpha m g/(mu A) = 0.15 * 9.81 / (9833.07 * 50e-6), paper Sec. 5 caption
+    assert vc.keplinger_s(1.0) == pytest.approx(0.15 * 9.81 / (9833.07 * 50e-6), rel=1e-15)
+    assert vc.keplinger_s(1.0) == pytest.approx(2.99296, abs=5e-6)
+
+
+def test_csv_contract_and_error(tmp_path):
+    case = eq_case()
+    res = run_case(case, tmp_path, runner=FakeRunner(), progress=False)
+    t = read_table(tmp_path / "nh-d-e.csv")
+    header = (tmp_path / "nh-d-e.csv").read_text().splitlines()[0].split(",")
+    assert set(CONTRACT) <= set(header) and "alpha" not in header
+    assert header == csv_columns(case)
+    assert len(t["D0"]) == 10 and res.n_steps == 10          # one row per FE step
+    # lam1_analytic from analytic.equibiaxial_lam against numpy's polynomial roots;
+    # both are root finders at machine precision, the CSV keeps 12 digits
+    ref = [exact_lam("equibiaxial", s, d) for s, d in zip(t["s"], t["D0"])]
+    np.testing.assert_allclose(t["lam1_analytic"], ref, rtol=1e-11)
+    # the fake's error is PERTURB * (sum of D0 so far): max = 1e-7 * (0+1+2+3+4) = 1e-6;
+    # the error is recomputed from 12-digit CSV values (lam < 3): absolute slack 1e-11
+    assert res.max_rel_error == pytest.approx(PERTURB * 10, abs=1e-11)
+    assert all(t["stable"]) and res.breakdown_D0 == {r.key: None for r in case.quick}
+
+
+def test_breakdown_stops_ramp_and_is_reported(tmp_path):
+    case = uni_case()
+    res = run_case(case, tmp_path, runner=FakeRunner(), progress=False)
+    t = read_table(tmp_path / "uni-axial-ideal.csv")
+    assert "alpha" in t
+    for spec in case.quick:
+        # first D0 on the grid (step 0.5) with 0.05 alpha - 0.02 D0 < -BREAKDOWN_TOL
+        D0 = np.array(spec.D0)
+        expect = D0[np.argmax(0.05 * spec.alpha - 0.02 * D0 < -BREAKDOWN_TOL)]
+        assert res.breakdown_D0[spec.key] == pytest.approx(expect)
+        sel = t["run"] == spec.key
+        assert t["D0"][sel].max() == pytest.approx(expect)     # the ramp ended there
+    # lam1 of the uni-axial dead load: analytic.uniaxial_lam1 vs the cubic's root
+    ref = [exact_lam("uniaxial", s, d) for s, d in zip(t["s"], t["D0"])]
+    np.testing.assert_allclose(t["lam1_analytic"], ref, rtol=1e-11)
+
+
+def test_solver_failure_row(tmp_path):
+    case = eq_case(n_s=1)
+    res = run_case(case, tmp_path, runner=FakeRunner(fail_at=2.5), progress=False)
+    t = read_table(tmp_path / "nh-d-e.csv")
+    conv = [bool(c) for c in t["converged"]]
+    assert conv == [True, True, True, False]                  # D0 = 0, 1, 2 then 3 fails
+    assert np.isnan(t["lam1_fe"][-1]) and t["D0"][-1] == 3.0
+    assert "D0 = 3" in res.reasons[case.quick[0].key]
+    # a rerun does not retry a finished (failed) ramp and leaves the file unchanged
+    before = (tmp_path / "nh-d-e.csv").read_bytes()
+    run_case(case, tmp_path, runner=FakeRunner(fail_at=2.5), progress=False)
+    assert (tmp_path / "nh-d-e.csv").read_bytes() == before
+
+
+@pytest.mark.parametrize("k", [1, 5, 9, 14])
+def test_resume_gives_identical_files(tmp_path, k):
+    case = uni_case(fields=True)
+    full = tmp_path / "full"
+    run_case(case, full, runner=FakeRunner(), progress=False)
+    part = tmp_path / "part"
+    with pytest.raises(Interrupted):
+        run_case(case, part, runner=FakeRunner(interrupt_after=k), progress=False)
+    rows_before = len((part / "uni-axial-ideal.csv").read_text().splitlines()) - 1
+    assert rows_before == k                                    # written step by step
+    again = FakeRunner()
+    res = run_case(case, part, runner=again, progress=False)
+    total = len((full / "uni-axial-ideal.csv").read_text().splitlines()) - 1
+    assert again.calls == total - k and res.resumed_steps == k   # nothing recomputed
+    for name in ("uni-axial-ideal.csv", "uni-axial-ideal_fields.csv"):
+        assert filecmp.cmp(full / name, part / name, shallow=False), name
+
+
+def test_resume_after_crash_between_row_and_state(tmp_path):
+    # a row written but its state not saved (killed in between): the row is recomputed
+    case = eq_case(n_s=1)
+    with pytest.raises(Interrupted):
+        run_case(case, tmp_path / "a", runner=FakeRunner(interrupt_after=3), progress=False)
+    state = tmp_path / "a" / ".state" / "nh-d-e" / f"{case.quick[0].key}.npz"
+    with np.load(state) as z:
+        assert int(z["__step__"]) == 2
+    with open(tmp_path / "a" / "nh-d-e.csv", "a") as fh:
+        fh.write("nh-d-e,garbage,3\n")
+    run_case(case, tmp_path / "a", runner=FakeRunner(), progress=False)
+    run_case(case, tmp_path / "b", runner=FakeRunner(), progress=False)
+    assert filecmp.cmp(tmp_path / "a" / "nh-d-e.csv", tmp_path / "b" / "nh-d-e.csv", shallow=False)
+
+
+def test_force_recomputes(tmp_path):
+    case = eq_case(n_s=1)
+    run_case(case, tmp_path, runner=FakeRunner(), progress=False)
+    again = FakeRunner()
+    run_case(case, tmp_path, runner=again, progress=False)
+    assert again.calls == 0                                    # complete: nothing to do
+    run_case(case, tmp_path, runner=again, force=True, progress=False)
+    assert again.calls == 5
+
+
+def test_executors_give_the_same_files(tmp_path, monkeypatch):
+    monkeypatch.setitem(vc.CASES, "nh-d-e", eq_case())
+    monkeypatch.setitem(vc.CASES, "uni-axial-ideal", uni_case())
+    names = ["nh-d-e", "uni-axial-ideal"]
+    serial = run_cases(names, tmp_path / "serial", runner=FakeRunner(), progress=False)
+    with ThreadPoolExecutor(2) as ex:
+        threaded = run_cases(names, tmp_path / "thread", executor=ex, runner=FakeRunner(),
+                             progress=False)
+    for a, b in zip(serial, threaded):
+        assert a.max_rel_error == b.max_rel_error and a.breakdown_D0 == b.breakdown_D0
+    for n in names:
+        assert filecmp.cmp(tmp_path / "serial" / f"{n}.csv", tmp_path / "thread" / f"{n}.csv",
+                           shallow=False)
+
+
+def test_process_pool(tmp_path, monkeypatch):
+    # jobs=2: a process pool; the registry patch reaches the forked workers
+    monkeypatch.setitem(vc.CASES, "nh-d-e", eq_case())
+    res = run_cases(["nh-d-e"], tmp_path, jobs=2, runner=FakeRunner(), progress=False)
+    assert res[0].max_rel_error == pytest.approx(PERTURB * 10, abs=1e-11)  # 12-digit CSV
+
+
+def test_validate_writes_only_into_out(tmp_path, monkeypatch):
+    import matplotlib
+    import matplotlib.pyplot as plt
+
+    matplotlib.use("Agg")
+    names = ["gent-equi-biaxial", "uni-axial-ideal", "zs22"]
+    monkeypatch.setitem(vc.CASES, names[0], eq_case(name=names[0]))
+    monkeypatch.setitem(vc.CASES, names[1], uni_case())
+    monkeypatch.setitem(vc.CASES, names[2], uni_case(alphas=(1.0,), fields=True, name=names[2]))
+
+    def no_show(*a, **k):
+        raise AssertionError("plt.show() called by library code")
+
+    monkeypatch.setattr(plt, "show", no_show)
+    cwd = tmp_path / "cwd"
+    cwd.mkdir()
+    monkeypatch.chdir(cwd)
+    out = tmp_path / "out"
+    validate(names, out, runner=FakeRunner(), progress=False)
+    assert list(cwd.iterdir()) == []
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["cwd", "out"]
+    files = {p.name for p in out.iterdir()}
+    for n in names:
+        assert {f"{n}.csv", f"{n}.png", f"{n}.pdf"} <= files
+    summary = json.loads((out / "summary.json").read_text())
+    assert summary["cases"][names[0]]["max_rel_error"] == pytest.approx(PERTURB * 10, abs=1e-11)
+    # breakdown of the fake: first D0 on the 0.5 grid with 0.05 - 0.02 D0 < -0.01, i.e. 3.5
+    assert set(summary["cases"]["zs22"]["breakdown_D0"].values()) == {3.5}
+    assert (out / "report.md").read_text().count("\n| ") == 5   # header, rule, 3 cases
+    assert plt.get_fignums() == []                               # figures closed
+
+
+def test_library_never_prints_or_shows():
+    # static check: only the CLI prints; nothing calls plt.show()
+    root = Path(__file__).resolve().parents[1] / "validation"
+    for path in root.glob("*.py"):
+        src = path.read_text()
+        assert ".show(" not in src, path
+        if path.name != "cli.py":
+            assert "print(" not in src, path
+
+
+def test_bad_input():
+    with pytest.raises(ValueError, match="geometry"):
+        vc.RunSpec("shear", "neo-Hookean", "coupled", 1.0, (0.0, 1.0))
+    with pytest.raises(ValueError, match="D0"):
+        vc.RunSpec("equibiaxial", "neo-Hookean", "coupled", 1.0, (0.0, 2.0, 1.0))
+    with pytest.raises(ValueError, match="case must be one of"):
+        vc.get_case("nope")
+    with pytest.raises(ValueError, match="jobs"):
+        run_cases([], ".", jobs=0)
