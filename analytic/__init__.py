@@ -24,6 +24,27 @@ from .wrinkling import (
     thin_plate_factors,
     wrinkling_map,
 )
+from .hessian import (
+    equibiaxial_hessian_omega,
+    equibiaxial_hessian_omega_star,
+    equibiaxial_omega,
+    equibiaxial_omega_star,
+    equibiaxial_stability_verdict,
+    hessian_omega,
+    hessian_omega_star,
+    invariant_I1,
+    leading_minors,
+    max_E0,
+    no_maximum_threshold,
+    omega,
+    omega_star,
+    stability_verdict,
+    uniaxial_voltage_limit_D0,
+    uniaxial_voltage_limit_E0,
+    uniaxial_voltage_limit_lam3,
+    voltage_limit_D0,
+    voltage_limit_E0,
+)
 from .homogeneous import (
     biaxial_E0,
     biaxial_stress,
@@ -44,6 +65,13 @@ __all__ += [  # homogeneous loading (helper A)
     "biaxial_E0", "biaxial_stress", "biaxial_stretches",
     "equibiaxial_D0", "equibiaxial_E0", "equibiaxial_lam", "equibiaxial_s", "equibiaxial_s_E0",
     "uniaxial_D0", "uniaxial_E0", "uniaxial_lam1", "uniaxial_lam3",
+    # energies, Hessians, verdicts, voltage limits (helper A)
+    "invariant_I1", "omega", "omega_star", "equibiaxial_omega", "equibiaxial_omega_star",
+    "hessian_omega", "hessian_omega_star", "equibiaxial_hessian_omega",
+    "equibiaxial_hessian_omega_star", "leading_minors", "stability_verdict",
+    "equibiaxial_stability_verdict", "voltage_limit_D0", "voltage_limit_E0",
+    "uniaxial_voltage_limit_lam3", "uniaxial_voltage_limit_D0", "uniaxial_voltage_limit_E0",
+    "max_E0", "no_maximum_threshold",
 ]
 __all__ += [  # Stroh formalism and wrinkling (helper B)
     "electroelastic_moduli", "stroh_coefficients", "stroh_exponents", "stroh_matrix",

@@ -627,7 +627,7 @@ def _uniaxial_x(lam1, s, model):
     #     f(lam1^2) = -s exactly (avoid evaluating the rounding of lam1 - lam1^2/lam1)
     start = np.maximum(x_lo, lam1**2)
     f_st = np.where(lam1**2 >= x_lo, -s, f_lo)
-    B = np.flatnonzero(~pos & (f_st >= 0))
+    B = np.flatnonzero(~pos & (f_st >= 0) & (start < x_lock))
     zero = B[s[B] == 0]
     x[zero] = start[zero]
     B = B[s[B] < 0]
@@ -640,10 +640,15 @@ def _uniaxial_x(lam1, s, model):
     #     non-monotone; take the first sign change of a scan from x_lo (smallest D0)
     C = np.flatnonzero(pos & np.isfinite(x_lock) & (x_lock <= lam1**2) & (x_lock > x_lo))
     if C.size:
-        t = np.concatenate([np.linspace(0.0, 0.97, 98), 1.0 - 0.03 * 2.0 ** -np.arange(1, 40)])
+        t = np.concatenate([np.linspace(0.0, 0.97, 98), 1.0 - 0.03 * 2.0 ** -np.arange(1, 30)])
         xs = x_lo[C, None] + (x_lock[C, None] - x_lo[C, None]) * t[None, :]
         rows = np.repeat(C, t.size)
-        fs = g(xs.ravel(), rows)[0].reshape(xs.shape)
+        # grid points that round onto the locking limit are skipped (nan: no sign change)
+        xr = xs.ravel()
+        inside = lam1[rows] ** 2 + xr + 1.0 / (lam1[rows] ** 2 * xr) < I1max
+        fs = np.full(xr.size, np.nan)
+        fs[inside] = g(xr[inside], rows[inside])[0]
+        fs = fs.reshape(xs.shape)
         change = (fs[:, :-1] >= 0) & (fs[:, 1:] < 0)
         has = change.any(axis=1)
         k = np.argmax(change, axis=1)
