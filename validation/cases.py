@@ -34,7 +34,7 @@ KEPLINGER = {"length": 0.100, "width": 0.050, "thickness": 0.001, "mu": 9833.07,
 ALPHAS = (0.05, 0.3, 0.7, 1.0, 1.5)
 
 MODELS = ("neo-Hookean", "Gent")
-VARIANTS = ("coupled", "maxwell", "membrane")
+VARIANTS = ("coupled", "maxwell", "membrane", "membrane-maxwell")
 GEOMETRIES = ("equibiaxial", "uniaxial", "uniaxial-free")
 
 
@@ -76,9 +76,11 @@ class RunSpec:
         lateral edges, no clamps).
     model : {"neo-Hookean", "Gent"}
         Strain energy (Gent with ``Jm = 97.2``).
-    variant : {"coupled", "maxwell", "membrane"}
+    variant : {"coupled", "maxwell", "membrane", "membrane-maxwell"}
         3D fully coupled ``u-p-phi`` solver, 3D Maxwell-traction variant, or
-        the 2D membrane model (in-plane, exact incompressibility).
+        the 2D membrane model (in-plane, exact incompressibility) with the
+        electric energy in the total energy (``"membrane"``) or with the
+        Maxwell traction as a follower load (``"membrane-maxwell"``).
     s : float
         Dimensionless dead load (equi-biaxial traction, or weight/(mu A)).
     D0 : tuple of float
@@ -125,7 +127,7 @@ class RunSpec:
         """Stable identifier, used for state files and the CSV ``run`` column."""
         parts = [self.geometry, "nh" if self.model == "neo-Hookean" else "gent", self.variant]
         parts.append(f"a{self.alpha:g}" if self.alpha is not None else f"s{self.s:g}")
-        return "-".join(parts)
+        return "_".join(parts)
 
     @property
     def mesh_dict(self) -> dict:
@@ -167,7 +169,7 @@ def _steps(D0max: float, n: int) -> tuple:
 
 
 #: FE variants drawn on every case that has FE dots.
-FE_VARIANTS = ("membrane",)
+FE_VARIANTS = ("membrane", "membrane-maxwell")
 HOMOGENEOUS_MESH = (("n1", 1), ("n2", 1), ("n3", 1))
 QUICK_PLATE = (("n1", 20), ("n2", 1), ("n3", 10))
 FULL_PLATE = (("n1", 40), ("n2", 2), ("n3", 20))

@@ -43,8 +43,10 @@ class _Membrane:
         m = spec.mesh_dict
         loading = {"equibiaxial": "equibiaxial", "uniaxial": "clamped",
                    "uniaxial-free": "uniaxial"}[spec.geometry]
+        coupling = "maxwell" if spec.variant == "membrane-maxwell" else "full"
         self.problem = MembranePlate(_material(spec.model), L1=L1, L3=L3, H=H,
-                                     n1=m.get("n1", 1), n3=m.get("n3", 1), loading=loading)
+                                     n1=m.get("n1", 1), n3=m.get("n3", 1), loading=loading,
+                                     coupling=coupling)
 
     def record(self, step, fields: bool):
         from .sweep import StepRecord
@@ -97,7 +99,7 @@ class _Membrane:
 
 def build_problem(spec):
     """The FE problem wrapper of ``spec`` (``.problem`` is a ``RampProblem``)."""
-    if spec.variant == "membrane":
+    if spec.variant in ("membrane", "membrane-maxwell"):
         return _Membrane(spec)
     raise ValueError(f"variant {spec.variant!r} has no FE driver yet")
 

@@ -30,9 +30,11 @@ __all__ = [
 
 _VARIANT_MARKER = {"coupled": dict(marker="o", mfc="none", ms=6, mew=1.2),
                    "maxwell": dict(marker="s", mfc="none", ms=4, mew=1.0),
-                   "membrane": dict(marker="^", mfc="none", ms=5, mew=1.0)}
+                   "membrane": dict(marker="^", mfc="none", ms=5, mew=1.0),
+                   "membrane-maxwell": dict(marker="x", ms=4, mew=1.0)}
 _VARIANT_LABEL = {"coupled": "FE 3D, fully coupled", "maxwell": "FE 3D, Maxwell traction",
-                  "membrane": "FE 2D membrane"}
+                  "membrane": "FE 2D membrane, coupled",
+                  "membrane-maxwell": "FE 2D membrane, Maxwell traction"}
 
 
 def _new_axes(ax, n=1, figsize=None):
@@ -455,7 +457,7 @@ def plot_p33_profiles(fields, fe=None, ax=None, variant="coupled"):
     import matplotlib.pyplot as plt
 
     ax = _new_axes(ax, figsize=(6.5, 4.5))
-    runs = [r for r in dict.fromkeys(fields["run"]) if f"-{variant}-" in r]
+    runs = [r for r in dict.fromkeys(fields["run"]) if f"_{variant}_" in r]
     if not runs:
         raise ValueError(f"variant {variant!r} has no profiles in the table")
     sel_run = (fields["run"] == runs[0]) & (fields["kind"] == 0)
@@ -531,7 +533,7 @@ def case_figure(name: str, fe=None, fields=None):
     if name == "zs22":
         if fields is None:
             raise ValueError("case 'zs22' needs FE fields (run validate)")
-        variants = [v for v in _VARIANT_MARKER if any(f"-{v}-" in r for r in set(fields["run"]))]
+        variants = [v for v in _VARIANT_MARKER if any(f"_{v}_" in r for r in set(fields["run"]))]
         fig, axes = plt.subplots(1, len(variants), figsize=(6.5 * len(variants), 4.5),
                                  layout="constrained", squeeze=False)
         for ax, v in zip(axes[0], variants):

@@ -57,7 +57,7 @@ def write_report(results, folder, *, quick: bool) -> Path:
         lines.append(f"| {r.name} | {r.figure} | {r.n_runs} | {r.n_steps} | "
                      f"{_g(r.max_rel_error)} | {r.runtime_s:.1f} |")
     brk = [(r.name, k, v) for r in results for k, v in r.breakdown_D0.items()
-           if k.startswith("uniaxial")]
+           if k.startswith("uniaxial_")]
     if brk:
         lines += ["", "Breakdown (first step with min P33/mu < -0.01 along the centre line):", ""]
         lines += [f"- {name} / {k}: " + ("none up to the last D0" if v is None else f"D0 = {v:g}")
