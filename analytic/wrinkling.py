@@ -49,7 +49,7 @@ from scipy.optimize import brentq
 
 from ._checks import as_array, broadcast, check_choice, check_nonnegative, check_positive
 from .models import Model, as_model
-from .stroh import _exponents_from_coefficients, _stroh_N, stroh_coefficients
+from .stroh import _coefficients_fast, _exponents_from_coefficients, _stroh_N, stroh_coefficients
 
 __all__ = [
     "thin_plate_factors",
@@ -614,7 +614,7 @@ def _first_root(gfun, hi, n_scan=64, rtol=1e-14):
 
     ``gfun(idx, D0)`` evaluates the function for the points ``idx`` (1-D index
     array) at ``D0`` with shape ``(len(idx), k)``. Scan on ``n_scan`` intervals,
-    then bisection of the first sign change; ``nan`` if there is none.
+    then Illinois regula falsi on the first sign change; ``nan`` if none.
     """
     n = hi.shape[0]
     idx = np.arange(n)
@@ -630,16 +630,36 @@ def _first_root(gfun, hi, n_scan=64, rtol=1e-14):
         return out
     ii = idx[has]
     lo, up = D[ii, j[has]], D[ii, j[has] + 1]
-    glo = g[ii, j[has]]
+    glo, gup = g[ii, j[has]], g[ii, j[has] + 1]
     exact = glo == 0
-    n_iter = int(np.ceil(np.log2(1.0 / (n_scan * rtol)))) + 2
-    for _ in range(n_iter):
-        mid = 0.5 * (lo + up)
-        gm = gfun(ii, mid[:, None])[:, 0]
-        left = np.sign(gm) * np.sign(glo) <= 0
-        up = np.where(left, mid, up)
-        lo = np.where(left, lo, mid)
-        glo = np.where(left, glo, gm)
+    tol = rtol * np.maximum(hi[ii], 1.0)
+    # Illinois (modified regula falsi), with a bisection step whenever the
+    # bracket fails to halve; vectorised, converged points are frozen
+    side = np.zeros(ii.size, dtype=int)
+    active = ~exact & (up - lo > tol)
+    for _ in range(100):
+        if not active.any():
+            break
+        k = np.flatnonzero(active)
+        width = up[k] - lo[k]
+        with np.errstate(invalid="ignore", divide="ignore"):
+            x = up[k] - gup[k] * width / (gup[k] - glo[k])
+        bisect = ~np.isfinite(x) | (x <= lo[k]) | (x >= up[k]) | (np.abs(side[k]) >= 3)
+        x = np.where(bisect, 0.5 * (lo[k] + up[k]), x)
+        side[k] = np.where(bisect, 0, side[k])
+        gx = gfun(ii[k], x[:, None])[:, 0]
+        left = np.sign(gx) * np.sign(glo[k]) <= 0  # root in [lo, x]
+        # Illinois: halve the function value at the end that is kept
+        up[k] = np.where(left, x, up[k])
+        gup[k] = np.where(left, gx, np.where(side[k] < 0, 0.5 * gup[k], gup[k]))
+        lo[k] = np.where(left, lo[k], x)
+        glo[k] = np.where(left, np.where(side[k] > 0, 0.5 * glo[k], glo[k]), gx)
+        side[k] = np.where(left, np.where(side[k] > 0, side[k] + 1, 1), np.where(side[k] < 0, side[k] - 1, -1))
+        done = (up[k] - lo[k] <= tol[k]) | (gx == 0)
+        hit0 = gx == 0
+        lo[k] = np.where(hit0, x, lo[k])
+        up[k] = np.where(hit0, x, up[k])
+        active[k] = ~done
     out[ii] = np.where(exact, D[ii, j[has]], 0.5 * (lo + up))
     return out
 
@@ -665,7 +685,7 @@ def thick_limit_D0_numeric(
     -------
     D0 : float or ndarray
         Smallest root ``D0`` in ``[0, 2 (eta + 2) sqrt(2 W')]`` of the
-        half-space condition, by scan and bisection (relative accuracy
+        half-space condition, by scan and regula falsi (relative accuracy
         ~1e-14); ``nan`` if there is none. Agrees with
         :func:`thick_limit_D0_uniaxial` (a test checks 1e-10).
 
@@ -721,7 +741,8 @@ def critical_D0_biaxial(
 
     Notes
     -----
-    64-interval scan then bisection, vectorised; the bulk part (decaying
+    64-interval scan then Illinois regula falsi (safeguarded by bisection), to
+    ~1e-14 relative; vectorised; the bulk part (decaying
     subspace) is computed once per distinct stretch and ``D0``.
     """
     check_choice("mode", mode, _MODES)
@@ -753,11 +774,11 @@ def critical_D0_biaxial(
             state["scan"] = False
             # D0 rows depend only on (lam1, lam3, hi): compute bulk on unique rows
             Du = uniq[:, 2:3] * (D0[0] / hif[0] if hif[0] > 0 else D0[0])[None, :]
-            a, b, c, d = stroh_coefficients(uniq[:, 0:1], uniq[:, 1:2], Du, model, direction)
+            a, b, c, d = _coefficients_fast(uniq[:, 0:1], uniq[:, 1:2], Du, model, direction)
             Z, M, _ = _decaying(a, b, c, d)
             Z, M = Z[inv[idx]], M[inv[idx]]
         else:
-            a, b, c, d = stroh_coefficients(l1[idx][:, None], l3[idx][:, None], D0, model, direction)
+            a, b, c, d = _coefficients_fast(l1[idx][:, None], l3[idx][:, None], D0, model, direction)
             Z, M, _ = _decaying(a, b, c, d)
         return _g_from(Z, M, khf[idx][:, None], mode, control)
 
