@@ -298,7 +298,7 @@ class MembranePlate:
         """Zero displacement."""
         return np.zeros(self.ndofs)
 
-    def full(self, x: np.ndarray) -> np.ndarray:
+    def full(self, x: np.ndarray, load=None) -> np.ndarray:
         """Full displacement vector (scikit-fem dof order) from reduced unknowns."""
         return self.T @ x
 
@@ -377,6 +377,20 @@ class MembranePlate:
         Finv = np.swapaxes(_invT2(F, J), 0, 1)
         S = np.einsum("iK...,Kj...->ij...", Finv, P / self.H)  # 2nd Piola = F^-1 P
         return F, S
+
+    def centre_line(self, x: np.ndarray, load) -> dict:
+        """Profiles along the centre line ``X3 = 0`` (centre to clamp).
+
+        Returns
+        -------
+        dict
+            ``x1`` (reference ``X1``), ``lam1 = F11``, ``lam3 = F33``, ``lam2``
+            and ``P33`` (second Piola ``S33/mu``, total stress) at the points.
+        """
+        _, el = self._electric(load)
+        F, S = self._probe(self.T @ x, self._probe_line, el)
+        return {"x1": self.x_line.copy(), "lam1": F[0, 0], "lam3": F[1, 1],
+                "lam2": 1.0 / _det2(F), "P33": S[1, 1] / self.material.mu}
 
     def postprocess(self, x: np.ndarray, load) -> dict:
         """Stretches at the plate centre and ``P33`` along the lines.
