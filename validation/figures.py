@@ -31,7 +31,7 @@ __all__ = [
 _VARIANT_MARKER = {"coupled": dict(marker="o", mfc="none", ms=6, mew=1.2),
                    "maxwell": dict(marker="s", mfc="none", ms=4, mew=1.0),
                    "membrane": dict(marker="^", mfc="none", ms=5, mew=1.0),
-                   "membrane-maxwell": dict(marker="x", ms=4, mew=1.0)}
+                   "membrane-maxwell": dict(marker="d", mfc="none", ms=5, mew=1.0)}
 _VARIANT_LABEL = {"coupled": "FE 3D, fully coupled", "maxwell": "FE 3D, Maxwell traction",
                   "membrane": "FE 2D membrane, coupled",
                   "membrane-maxwell": "FE 2D membrane, Maxwell traction"}
@@ -387,8 +387,8 @@ def plot_uniaxial_wrinkling(fe=None, alphas=ALPHAS, ax=None, D0max=7.0):
     ax.set_ylabel(r"$D_0$")
     handles, labels = ax.get_legend_handles_labels()
     order = sorted(range(len(labels)), key=lambda i: labels[i] == "FE breakdown")
-    ax.legend(handles=[handles[i] for i in order] + _variant_legend(ax, fe), fontsize=7,
-              loc="lower right")
+    ax.legend(handles=[handles[i] for i in order] + _variant_legend(ax, fe), fontsize=8,
+              loc="center left", bbox_to_anchor=(1.01, 0.5))
     ax.set_title("Keplinger plate, uni-axial dead load (neo-Hookean)", fontsize=10)
     return ax
 
@@ -483,7 +483,7 @@ def plot_p33_profiles(fields, fe=None, ax=None, variant="coupled"):
     ax.axhline(0.0, color="k", lw=0.8)
     ax.set_xlabel(r"$x_1$ along the centre line (cm)")
     ax.set_ylabel(r"$P_{33}/\mu$")
-    ax.legend(fontsize=7, ncol=2)
+    ax.legend(fontsize=7, ncol=2, loc="upper center")
     ax.set_title(f"Keplinger plate, $\\alpha = 1$: lateral stress, {_VARIANT_LABEL[variant]}",
                  fontsize=10)
     return ax
@@ -520,7 +520,7 @@ def case_figure(name: str, fe=None, fields=None):
         _tag(axes)
         return fig
     if name == "uni-axial-ideal":
-        fig, ax = plt.subplots(figsize=(7, 5), layout="constrained")
+        fig, ax = plt.subplots(figsize=(9.5, 5), layout="constrained")
         plot_uniaxial_wrinkling(fe=fe, ax=ax)
         return fig
     if name == "lambda1-3":
