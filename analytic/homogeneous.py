@@ -59,7 +59,7 @@ _EPS = np.finfo(float).eps
 def _first(value, mask):
     """A representative offending entry of ``value`` for error messages."""
     v = np.broadcast_to(np.asarray(value), np.shape(mask))
-    return v[mask].flat[0] if np.ndim(mask) else v.item()
+    return (v[mask].flat[0] if np.ndim(mask) else v).item()
 
 
 def _derivs(model: Model, I1: np.ndarray, name: str, value):
@@ -147,6 +147,14 @@ def _expand(fun_sign, start, limit, want, maxsteps=80):
         found[active[hit]] = x[hit]
         active = active[~hit]
     return found
+
+
+def _sqrt_branch(D2, scale):
+    """``sqrt(D2)``; values within rounding of 0 (``|D2| <= 16 eps scale``) give 0, others
+    below 0 give ``nan`` (no real state)."""
+    D2 = np.where(np.abs(D2) <= 16 * _EPS * scale, 0.0, D2)
+    with np.errstate(invalid="ignore"):
+        return np.where(D2 >= 0, np.sqrt(np.abs(D2)), np.nan)
 
 
 def _I1(lam1, lam3):
@@ -467,11 +475,12 @@ def equibiaxial_D0(lam, s=0.0, model=None):
     lam, s = broadcast(lam=lam, s=s)
     if isinstance(model, NeoHookean):
         D2 = lam**6 - 1.0 - lam**5 * s
+        scale = lam**6 + 1.0 + np.abs(lam**5 * s)
     else:
         dW, _ = _derivs(model, 2 * lam**2 + lam**-4, "lam", lam)
         D2 = 2 * dW * (lam**6 - 1.0) - lam**5 * s
-    with np.errstate(invalid="ignore"):
-        return _out(np.where(D2 >= 0, np.sqrt(np.abs(D2)), np.nan))
+        scale = 2 * dW * (lam**6 + 1.0) + np.abs(lam**5 * s)
+    return _out(_sqrt_branch(D2, scale))
 
 
 def equibiaxial_E0(lam, s=0.0, model=None):
@@ -591,9 +600,8 @@ def _uniaxial_x(lam1, s, model):
     n = lam1.size
     x = np.full(n, np.nan)
     if isinstance(model, NeoHookean):
-        with np.errstate(invalid="ignore"):
-            xx = lam1 * (lam1 - s)
-        good = (lam1 > s) & (lam1**2 * xx**2 >= 1.0)
+        xx = lam1 * (lam1 - s)
+        good = (lam1 > s) & np.isfinite(_sqrt_branch(lam1**2 * xx**2 - 1.0, 2.0))
         x[good] = xx[good]
         return x
     I1max = model.I1_max()
@@ -611,6 +619,10 @@ def _uniaxial_x(lam1, s, model):
 
     idx = np.arange(n)
     f_lo = g(x_lo, idx)[0]
+    # the D0 = 0 state itself: f(x_lo) = 0 up to rounding
+    at_lo = np.abs(f_lo) <= 16 * _EPS * (np.abs(s) + lam1 * 2 * model.dW(lam1**2 + 2.0 / lam1))
+    x[at_lo] = x_lo[at_lo]
+    f_lo = np.where(at_lo, np.nan, f_lo)  # excluded from the brackets below
     pos = s > 0
     # first guess: the neo-Hookean x = lam1 (lam1 - s), corrected once for W'
     with np.errstate(invalid="ignore", divide="ignore"):
@@ -627,7 +639,7 @@ def _uniaxial_x(lam1, s, model):
     #     f(lam1^2) = -s exactly (avoid evaluating the rounding of lam1 - lam1^2/lam1)
     start = np.maximum(x_lo, lam1**2)
     f_st = np.where(lam1**2 >= x_lo, -s, f_lo)
-    B = np.flatnonzero(~pos & (f_st >= 0) & (start < x_lock))
+    B = np.flatnonzero(~pos & (f_st >= 0) & (start < x_lock) & ~at_lo)
     zero = B[s[B] == 0]
     x[zero] = start[zero]
     B = B[s[B] < 0]
@@ -638,7 +650,7 @@ def _uniaxial_x(lam1, s, model):
         x[Bk] = _rtsafe(lambda xv, i: g(xv, Bk[i]), hi[okB], start[Bk], x0[Bk])
     # (c) s > 0 and the Gent lock cuts in before lam1^2: f -> +inf at the lock and may be
     #     non-monotone; take the first sign change of a scan from x_lo (smallest D0)
-    C = np.flatnonzero(pos & np.isfinite(x_lock) & (x_lock <= lam1**2) & (x_lock > x_lo))
+    C = np.flatnonzero(pos & np.isfinite(x_lock) & (x_lock <= lam1**2) & (x_lock > x_lo) & ~at_lo)
     if C.size:
         t = np.concatenate([np.linspace(0.0, 0.97, 98), 1.0 - 0.03 * 2.0 ** -np.arange(1, 30)])
         xs = x_lo[C, None] + (x_lock[C, None] - x_lo[C, None]) * t[None, :]
@@ -742,9 +754,8 @@ def uniaxial_D0(lam1, s=0.0, model=None):
     lam1, s, model = _uniaxial_inputs(lam1, s, model)
     l1, sf = lam1.ravel(), s.ravel()
     if isinstance(model, NeoHookean):
-        with np.errstate(invalid="ignore"):
-            D2 = l1**4 * (l1 - sf) ** 2 - 1.0
-        D0 = np.where((l1 > sf) & (D2 >= 0), np.sqrt(np.abs(D2)), np.nan)
+        D2 = l1**4 * (l1 - sf) ** 2 - 1.0
+        D0 = np.where(l1 > sf, _sqrt_branch(D2, D2 + 2.0), np.nan)
     else:
         x = _uniaxial_x(l1, sf, model)
         good = np.isfinite(x)
@@ -775,7 +786,7 @@ def uniaxial_E0(lam1, s=0.0, model=None):
     if isinstance(model, NeoHookean):
         with np.errstate(invalid="ignore", divide="ignore"):
             r = 1.0 - l1**-4 * (l1 - sf) ** -2.0
-        E0 = np.where((l1 > sf) & (r >= 0), np.sqrt(np.abs(r)) / l1, np.nan)
+        E0 = np.where(l1 > sf, _sqrt_branch(r, 2.0) / l1, np.nan)
     else:
         x = _uniaxial_x(l1, sf, model)
         good = np.isfinite(x)
