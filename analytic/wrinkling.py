@@ -516,23 +516,6 @@ def surface_impedance(
     return out.reshape(N.shape[:-2] + (3, 3))
 
 
-def _g(a, b, c, d, kh, mode, control):
-    """Real dispersion function ``g`` of the module notes (vectorised)."""
-    Z, M, _ = _decaying(a, b, c, d)
-    rows = _ROWS[control]
-    sigma = 1.0 if mode == "antisymmetric" else -1.0
-    eye3 = np.eye(3)
-    V = np.concatenate([np.broadcast_to(eye3, Z.shape), Z], axis=-2)[..., rows, :]
-    TV = _T[rows][:, None] * V
-    kh = np.asarray(kh, dtype=float)
-    finite = np.isfinite(kh)
-    khf = np.where(finite, kh, 0.0)
-    Mk = np.where(np.isfinite(M), M, 0.0) * khf[..., None, None]
-    E = _expm3(Mk)
-    E = np.where(finite[..., None, None], E, 0.0)
-    return np.linalg.det(TV - sigma * (V @ E))
-
-
 def dispersion_function(
     lam1,
     lam3,
@@ -596,7 +579,8 @@ def dispersion_function(
         raise ValueError(f"kh must be > 0, got {kh}")
     a, b, c, d = stroh_coefficients(lam1, lam3, D0, model, direction)
     a, b, c, d, kh = broadcast(a=a, b=b, c=c, d=d, kh=kh)
-    return _ret(_g(a, b, c, d, kh, mode, control))
+    Z, M, _ = _decaying(a, b, c, d)
+    return _ret(_g_from(Z, M, kh, mode, control))
 
 
 # ---------------------------------------------------------------------------
@@ -609,18 +593,19 @@ def _search_bound(lam1, lam3, model, direction):
     return 2.0 * (lam_in / lam2 + 2.0) * np.sqrt(2.0 * W1)
 
 
-def _first_root(gfun, hi, n_scan=64, rtol=1e-14):
-    """Smallest root in ``[0, hi]`` of ``gfun(idx, D0)`` for each point (vectorised).
+def _first_root(scan, gfun, hi, n_scan=64, rtol=1e-14):
+    """Smallest root in ``[0, hi]`` of a function of ``D0``, per point (vectorised).
 
-    ``gfun(idx, D0)`` evaluates the function for the points ``idx`` (1-D index
-    array) at ``D0`` with shape ``(len(idx), k)``. Scan on ``n_scan`` intervals,
-    then Illinois regula falsi on the first sign change; ``nan`` if none.
+    ``scan(t)`` returns the function at ``D0 = hi * t`` for all points, shape
+    ``(n, len(t))``; ``gfun(idx, D0)`` returns it for the points ``idx`` at
+    ``D0`` of shape ``(len(idx), 1)``. Scan on ``n_scan`` intervals, then
+    Illinois regula falsi on the first sign change; ``nan`` if none.
     """
     n = hi.shape[0]
     idx = np.arange(n)
     t = np.linspace(0.0, 1.0, n_scan + 1)
     D = hi[:, None] * t[None, :]
-    g = gfun(idx, D)
+    g = scan(t)
     s = np.sign(g)
     change = (s[:, :-1] * s[:, 1:] <= 0) & np.isfinite(g[:, :-1]) & np.isfinite(g[:, 1:])
     has = change.any(axis=1)
@@ -763,26 +748,24 @@ def critical_D0_biaxial(
     shape = lam1.shape
     l1, l3, khf, hif = (np.ravel(x).astype(float) for x in (lam1, lam3, kh, hi))
 
-    # bulk reuse on the scan grid: distinct (lam1, lam3, hi) rows
+    # scan: the bulk (decaying subspace) depends on (lam1, lam3, D0) only, so it
+    # is computed once per distinct (lam1, lam3, hi) row and shared across kh
     key = np.stack([l1, l3, hif], axis=1)
     uniq, inv = np.unique(key, axis=0, return_inverse=True)
     inv = np.ravel(inv)
-    state = {"scan": True}
+
+    def scan(t):
+        Du = uniq[:, 2:3] * t[None, :]
+        a, b, c, d = _coefficients_fast(uniq[:, 0:1], uniq[:, 1:2], Du, model, direction)
+        Z, M, _ = _decaying(a, b, c, d)
+        return _g_from(Z[inv], M[inv], khf[:, None], mode, control)
 
     def gfun(idx, D0):
-        if state["scan"]:
-            state["scan"] = False
-            # D0 rows depend only on (lam1, lam3, hi): compute bulk on unique rows
-            Du = uniq[:, 2:3] * (D0[0] / hif[0] if hif[0] > 0 else D0[0])[None, :]
-            a, b, c, d = _coefficients_fast(uniq[:, 0:1], uniq[:, 1:2], Du, model, direction)
-            Z, M, _ = _decaying(a, b, c, d)
-            Z, M = Z[inv[idx]], M[inv[idx]]
-        else:
-            a, b, c, d = _coefficients_fast(l1[idx][:, None], l3[idx][:, None], D0, model, direction)
-            Z, M, _ = _decaying(a, b, c, d)
+        a, b, c, d = _coefficients_fast(l1[idx][:, None], l3[idx][:, None], D0, model, direction)
+        Z, M, _ = _decaying(a, b, c, d)
         return _g_from(Z, M, khf[idx][:, None], mode, control)
 
-    out = _first_root(gfun, hif)
+    out = _first_root(scan, gfun, hif)
     return _ret(out.reshape(shape))
 
 
