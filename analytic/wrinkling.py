@@ -818,8 +818,10 @@ def critical_D0(
     D0 : float or ndarray
         Smallest ``D0 >= 0`` at which the exact dispersion relation
         (:func:`dispersion_function`) has a root; ``nan`` if none in
-        ``[0, D0_max]`` (e.g. symmetric modes of thin plates; for ``lam < 1``
-        and small ``kh`` the plate already wrinkles without charge).
+        ``[0, D0_max]``: symmetric modes of thin plates have their root far
+        above (it grows like ``1/kh``, e.g. 60 at ``lam = 1.5``, ``kh = 0.1``;
+        pass a larger ``D0_max`` to find it); for ``lam < 1`` and small ``kh``
+        the plate already wrinkles without charge and no root exists.
 
     Notes
     -----
