@@ -8,3 +8,8 @@ from .newton import NewtonResult, RampResult, StepResult, newton, ramp  # noqa: 
 
 __all__ += ["LinearSolver", "SuperLUSolver", "PardisoSolver", "get_linear_solver",
             "NewtonResult", "StepResult", "RampResult", "newton", "ramp"]
+
+# --- FE variants (helper D): 2D membrane ---
+from .membrane import MembranePlate, membrane_kernel, membrane_keplinger, membrane_ramp  # noqa: E402,E501
+
+__all__ += ["MembranePlate", "membrane_kernel", "membrane_ramp", "membrane_keplinger"]
