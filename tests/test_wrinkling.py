@@ -364,3 +364,35 @@ def test_bad_input():
         surface_instability_stretch(loading="shear")
     with pytest.raises(ValueError, match="model"):
         thin_limit_D0(1.2, "neo")
+
+
+@pytest.mark.parametrize("control", ["charge", "voltage"])
+@pytest.mark.parametrize("model", MODELS, ids=lambda m: m.name)
+def test_finite_plate_against_transfer_matrix(model, control):
+    """Independent of the projector / reflection machinery: the whole plate via the
+    transfer matrix exp(K kh) (fine for moderate kh), whose determinant vanishes at
+    the antisymmetric and the symmetric roots."""
+    from analytic.stroh import stroh_coefficients
+    from analytic.wrinkling import _real_K
+
+    lam, kh = 1.3, 2.0
+    rows = [3, 4, 5] if control == "charge" else [2, 3, 4]
+    free = [i for i in range(6) if i not in rows]  # face data not prescribed
+
+    def full_plate(D0):
+        K = _real_K(*stroh_coefficients(lam, lam, D0, model))
+        return np.linalg.det(expm(K * kh)[np.ix_(rows, free)])
+
+    roots = []
+    for mode in ("antisymmetric", "symmetric"):
+        D = critical_D0(lam, kh, model, mode=mode, control=control)
+        # the transfer-matrix determinant changes sign across each root
+        h = 1e-6 * D
+        assert full_plate(D - h) * full_plate(D + h) < 0
+        roots.append(brentq(full_plate, D - h, D + h, xtol=1e-14))
+        # exp(K kh) has entries ~exp(p3 kh) ~ 1e3: roots agree to ~1e-12
+        assert roots[-1] == pytest.approx(D, rel=1e-10)
+    # and no root of the whole plate below the smaller one (smallest-root claim)
+    grid = np.linspace(0.0, 0.999 * min(roots), 400)
+    vals = np.array([full_plate(x) for x in grid])
+    assert np.all(np.sign(vals) == np.sign(vals[0]))
