@@ -8,6 +8,15 @@ from .newton import NewtonResult, RampResult, StepResult, newton, ramp  # noqa: 
 
 __all__ += ["LinearSolver", "SuperLUSolver", "PardisoSolver", "get_linear_solver",
             "NewtonResult", "StepResult", "RampResult", "newton", "ramp"]
+from .materials import GentDielectric, IdealDielectric, NeoHookeanDielectric  # noqa: E402
+from .mesh import PlateMesh, plate_mesh  # noqa: E402
+from .assembly import DofReduction, ScatterMap  # noqa: E402
+from .plate import PlateProblem  # noqa: E402
+from .drivers import equibiaxial_plate, keplinger_plate, keplinger_s  # noqa: E402
+
+__all__ += ["NeoHookeanDielectric", "GentDielectric", "IdealDielectric", "PlateMesh",
+            "plate_mesh", "DofReduction", "ScatterMap", "PlateProblem", "equibiaxial_plate",
+            "keplinger_plate", "keplinger_s"]
 
 # --- FE variants (helper D): 2D membrane ---
 from .membrane import MembranePlate, membrane_kernel, membrane_keplinger, membrane_ramp  # noqa: E402,E501

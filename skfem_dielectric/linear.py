@@ -45,6 +45,10 @@ class LinearSolver:
         """Return ``x`` with ``K x = b``."""
         raise NotImplementedError
 
+    def resolve(self, b: np.ndarray) -> np.ndarray | None:
+        """Solve with the last factorised matrix (``None`` if not supported)."""
+        return None
+
 
 class SuperLUSolver(LinearSolver):
     """scipy SuperLU direct solver.
@@ -76,10 +80,17 @@ class SuperLUSolver(LinearSolver):
 
     def solve(self, K: sp.spmatrix, b: np.ndarray) -> np.ndarray:
         """Factorise ``K`` (CSC copy) and solve ``K x = b``."""
+        self._lu = None
         lu = spla.splu(sp.csc_matrix(K), permc_spec=self.permc_spec,
                        diag_pivot_thresh=self.diag_pivot_thresh,
                        options={"SymmetricMode": True})
+        self._lu = lu
         return lu.solve(np.asarray(b, dtype=float))
+
+    def resolve(self, b: np.ndarray) -> np.ndarray | None:
+        """Solve with the last LU factors."""
+        lu = getattr(self, "_lu", None)
+        return None if lu is None else lu.solve(np.asarray(b, dtype=float))
 
 
 def pardiso_available() -> bool:
@@ -126,37 +137,60 @@ class PardisoSolver(LinearSolver):
         p.set_iparm(11, 1)   # symmetric scaling
         p.set_iparm(13, 1)   # symmetric weighted matching (recommended for saddle points)
         p.set_iparm(21, 1)   # Bunch-Kaufman pivoting
-        self._pattern: tuple[np.ndarray, np.ndarray] | None = None
-        self._upper: sp.csr_matrix | None = None
+        self._pattern: sp.csr_matrix | None = None
+        self._ucache = None
         self.inertia = None
 
     def _call(self, phase: int, A: sp.csr_matrix, b: np.ndarray) -> np.ndarray:
         self._ps.set_phase(phase)
         return self._ps._call_pardiso(A, b)
 
+    def _upper(self, K: sp.spmatrix) -> sp.csr_matrix:
+        """Upper triangle of ``K``; the selection is cached for a repeated CSR pattern."""
+        K = sp.csr_matrix(K)
+        c = self._ucache
+        if (c is not None and c[0].shape == K.indptr.shape and c[1].shape == K.indices.shape
+                and np.array_equal(c[0], K.indptr) and np.array_equal(c[1], K.indices)):
+            U = c[2]
+            U.data = np.ascontiguousarray(K.data[c[3]], dtype=np.float64)
+            return U
+        K.sort_indices()
+        rows = np.repeat(np.arange(K.shape[0]), np.diff(K.indptr))
+        sel = np.flatnonzero(K.indices >= rows)
+        counts = np.bincount(rows[sel], minlength=K.shape[0])
+        indptr = np.concatenate([[0], np.cumsum(counts)]).astype(np.int32)
+        U = sp.csr_matrix((K.data[sel].astype(np.float64), K.indices[sel].astype(np.int32),
+                           indptr), shape=K.shape)
+        self._ucache = (K.indptr.copy(), K.indices.copy(), U, sel)
+        return U
+
     def solve(self, K: sp.spmatrix, b: np.ndarray) -> np.ndarray:
         """Factorise ``K`` (analysis reused for an unchanged pattern) and solve ``K x = b``."""
-        U = sp.triu(sp.csr_matrix(K), format="csr")
-        U.sort_indices()
-        if U.dtype != np.float64:
-            U = U.astype(np.float64)
+        U = self._upper(K)
         b = np.asfortranarray(np.asarray(b, dtype=np.float64))
-        self._ps._check_A(U)
-        same = (self._pattern is not None and self._pattern[0].shape == U.indptr.shape
-                and self._pattern[1].shape == U.indices.shape
-                and np.array_equal(self._pattern[0], U.indptr)
-                and np.array_equal(self._pattern[1], U.indices))
+        if np.any(np.diff(U.indptr) == 0):
+            raise ValueError("matrix is singular: it has an empty row")
+        same = self._pattern is not None and self._pattern is U
         if not same:
             if self._pattern is not None:
                 self._call(-1, U, b)  # release the old factorisation
             self._call(11, U, b)
-            self._pattern = (U.indptr.copy(), U.indices.copy())
+            self._pattern = U
         self._call(22, U, b)
         n = K.shape[0]
         npos, nneg = int(self._ps.iparm[21]), int(self._ps.iparm[22])
         self.inertia = (npos, nneg, n - npos - nneg)
         x = self._call(33, U, b)
+        self._last = U
         return np.ascontiguousarray(x)
+
+    def resolve(self, b: np.ndarray) -> np.ndarray | None:
+        """Solve with the last numerical factorisation (PARDISO phase 33)."""
+        U = getattr(self, "_last", None)
+        if U is None:
+            return None
+        b = np.asfortranarray(np.asarray(b, dtype=np.float64))
+        return np.ascontiguousarray(self._call(33, U, b))
 
     def __del__(self):  # pragma: no cover - cleanup
         try:

@@ -8,7 +8,9 @@ The total energy density (per reference volume) of the mixed, fully coupled form
                    - \\frac{\\varepsilon}{2} J\\, G \\cdot C^{-1} G,
     \\qquad G = \\mathrm{Grad}\\,\\phi = -E_L,
 
-i.e. the paper's Eq. (modelE) ``Omega = W(I1) - eps/2 E_L.(C^-1 E_L)`` with the factor ``J``
+plus ``-mu0 ln J`` (``mu0 = 2 W'(3)``, see ``stress_free_reference`` of
+:func:`ideal_dielectric_response`; it vanishes for ``J = 1``), i.e. the paper's
+Eq. (modelE) ``Omega = W(I1) - eps/2 E_L.(C^-1 E_L)`` with the factor ``J``
 that makes ``D = eps E`` hold exactly also where the discrete ``J`` differs from one (for
 ``J = 1`` it is Eq. (modelE) itself).  ``kappa = inf`` (default) is the exactly
 incompressible mixed form.  The *penalty* form drops ``p`` and uses
@@ -17,7 +19,8 @@ incompressible mixed form.  The *penalty* form drops ``p`` and uses
 
 Derived quantities (``Finv = F^-1``, ``a = F^-T G = -E``, ``b = C^-1 G``):
 
-* first Piola stress ``dpsi/dF = 2 W1 F + p J F^-T + eps J a (x) b - eps/2 J |a|^2 F^-T``
+* first Piola stress
+  ``dpsi/dF = 2 W1 F + (p J - mu0) F^-T + eps J a (x) b - eps/2 J |a|^2 F^-T``
   (its push-forward ``J^-1 P F^T`` is ``2 W1 b_L + p I`` plus the Maxwell stress
   ``eps (E (x) E - |E|^2/2 I)``); the physical pressure is ``-p``;
 * Lagrangian electric displacement ``D_L = dpsi/dG = -eps J C^-1 G`` (``= eps J C^-1 E_L``,
@@ -197,8 +200,8 @@ def _det_inv(F: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
 
 def ideal_dielectric_response(material, F: np.ndarray, G: np.ndarray,
                               p: np.ndarray | None = None, kappa: float = math.inf,
-                              formulation: str = "mixed",
-                              need_tangent: bool = True) -> PointResponse:
+                              formulation: str = "mixed", need_tangent: bool = True,
+                              stress_free_reference: bool = True) -> PointResponse:
     """Energy density, first derivatives and consistent tangent of the ideal dielectric.
 
     Parameters
@@ -218,6 +221,15 @@ def ideal_dielectric_response(material, F: np.ndarray, G: np.ndarray,
     need_tangent
         If False only ``psi``, ``P``, ``dpsi_dp`` and ``D_L`` are computed (the tangent
         fields are empty arrays).
+    stress_free_reference
+        Add ``-mu0 ln J`` with ``mu0 = 2 W'(3)`` (default True).  It vanishes for
+        ``J = 1``, so the incompressible model is unchanged, but it makes the reference
+        state stress-free with ``p = 0`` instead of ``p = -mu``.  Without it the large
+        hydrostatic pre-stress ``p (F^-T : Grad v)^2`` in the discrete tangent is only
+        weakly controlled by the Q1 pressure space and makes discretely divergence-free
+        modes at free corners unstable (observed: spurious negative eigenvalues and Newton
+        stagnation on the clamped plate at ``s ~ 0.2``).  For the penalty form it gives the
+        usual compressible neo-Hookean ``mu/2 (I1 - 3) - mu ln J + kappa (J-1)^2/2``.
 
     Returns
     -------
@@ -256,36 +268,42 @@ def ideal_dielectric_response(material, F: np.ndarray, G: np.ndarray,
         vol = 0.5 * kappa * (J - 1.0) ** 2
         dpsi_dp = np.zeros_like(J)
         A_pp = 0.0
-    psi = W + vol - 0.5 * eps * J * aa
-    P = (2.0 * W1 * F + (pe * J - 0.5 * eps * J * aa) * FinvT
+    mu0 = 2.0 * float(material.energy_derivatives(np.array(3.0))[1]) if stress_free_reference \
+        else 0.0
+    psi = W + vol - 0.5 * eps * J * aa - mu0 * np.log(J)
+    P = (2.0 * W1 * F + (pe * J - 0.5 * eps * J * aa - mu0) * FinvT
          + eps * J * np.einsum("a...,K...->aK...", a, bvec))
     D_L = -eps * J * bvec
     if not need_tangent:
         e = np.empty(0)
         return PointResponse(psi, P, dpsi_dp, D_L, e, e, e, e, A_pp, J)
 
-    eye = np.eye(3)
     Cinv = np.einsum("Kc...,Lc...->KL...", Finv, Finv)
-    shape = J.shape
-    # elastic part: 2 W1 d_ab d_KL + 4 W11 F_aK F_bL
-    A = 4.0 * W11 * np.einsum("aK...,bL...->aKbL...", F, F)
-    A += 2.0 * W1 * np.einsum("ab,KL->aKbL", eye, eye).reshape((3, 3, 3, 3) + (1,) * len(shape))
-    # pressure part (p_eff J): d(J Finv_Ka)/dF_bL = J (Finv_Ka Finv_Lb - Finv_La Finv_Kb)
-    FiFi = np.einsum("aK...,bL...->aKbL...", FinvT, FinvT)        # Finv_Ka Finv_Lb
-    FiFi_x = np.einsum("aL...,bK...->aKbL...", FinvT, FinvT)      # Finv_La Finv_Kb
-    coef = pe * J - 0.5 * eps * J * aa
-    A += coef * (FiFi - FiFi_x)
-    if formulation == "penalty":
-        A += kappa * J * J * FiFi
-    # electric part (the J- and Finv-derivatives of -eps/2 J |a|^2 Finv_Ka are in `coef`)
-    ab = np.einsum("b...,L...->bL...", a, bvec)                    # a_b b_L
-    A += eps * J * np.einsum("aK...,bL...->aKbL...", FinvT, ab)    # -eps/2 J (-2 a_b b_L) Finv_Ka
-    # eps J a_a b_K: derivative of J, a_a and b_K
-    A += eps * J * np.einsum("aK...,bL...->aKbL...", np.einsum("a...,K...->aK...", a, bvec),
-                             FinvT)                                # J Finv_Lb a_a b_K
-    A -= eps * J * np.einsum("b...,La...,K...->aKbL...", a, Finv, bvec)   # -a_b Finv_La b_K
-    A -= eps * J * np.einsum("a...,Kb...,L...->aKbL...", a, Finv, bvec)   # -a_a Finv_Kb b_L
-    A -= eps * J * np.einsum("a...,b...,KL...->aKbL...", a, a, Cinv)      # -a_a a_b Cinv_KL
+    eJ = eps * J
+    M = np.einsum("a...,K...->aK...", a, bvec)                     # a_a b_K
+
+    def outer(X, Y):   # X_aK Y_bL
+        return X[:, :, None, None] * Y[None, None]
+
+    def cross(X, Y):   # X_aL Y_bK
+        return X[:, None, None, :] * np.swapaxes(Y, 0, 1)[None, :, :, None]
+
+    # coef = pressure + |a|^2 parts of P (their J- and Finv-derivatives)
+    coef = pe * J - 0.5 * eJ * aa
+    Y = coef * FinvT + eJ * M
+    # outer terms: 4 W11 F F + coef FT FT + eJ (FT M + M FT) (+ kappa J^2 FT FT)
+    A = outer(F, 4.0 * W11 * F) + outer(FinvT, Y + (kappa * J * J * FinvT
+                                                    if formulation == "penalty" else 0.0))
+    A += outer(M, eJ * FinvT)
+    # cross terms: -coef Finv_La Finv_Kb - eJ (Finv_La a_b b_K + a_a b_L Finv_Kb)
+    A -= cross(FinvT, Y - mu0 * FinvT)
+    A -= cross(M, eJ * FinvT)
+    # -eJ a_a a_b Cinv_KL
+    A -= (eJ * a)[:, None, None, None] * a[None, None, :, None] * Cinv[None, :, None, :]
+    # 2 W1 delta_ab delta_KL
+    for i in range(3):
+        for k in range(3):
+            A[i, k, i, k] += 2.0 * W1
     A_FG = eps * J * (np.einsum("La...,K...->aKL...", Finv, bvec)
                       + np.einsum("a...,KL...->aKL...", a, Cinv)
                       - np.einsum("L...,Ka...->aKL...", bvec, Finv))

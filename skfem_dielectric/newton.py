@@ -29,7 +29,8 @@ uninterrupted run (for a deterministic linear solver such as SuperLU).
 
 After each converged target, ``problem.postprocess(x, load)`` gives a dict of quantities
 stored in the :class:`StepResult`, then ``on_step(step)`` is called (the validation harness
-writes CSV rows and saves states there).  A target that cannot be reached ends the ramp:
+writes CSV rows and saves states there).  If the problem has ``stability(inertia)``,
+its verdict (``True``/``False``/``None``) is stored as ``quantities["stable"]``.  A target that cannot be reached ends the ramp:
 ``RampResult.converged=False``, ``reason``, ``failed_at`` (the load of the failed sub-step),
 a ``RuntimeWarning`` is issued and all converged steps are kept.
 """
@@ -146,6 +147,9 @@ class RampResult:
         Load of the sub-step that could not be solved (``None`` if converged).
     wall_seconds
         Total wall time of the ramp.
+    problem
+        The problem that was solved (set by the high-level drivers; use it to evaluate or
+        export the stored states), else ``None``.
     """
 
     steps: list[StepResult]
@@ -153,6 +157,7 @@ class RampResult:
     reason: str = ""
     failed_at: Any = None
     wall_seconds: float = 0.0
+    problem: Any = None
 
     def column(self, name: str) -> np.ndarray:
         """Array of quantity ``name`` over the converged steps (``"load"`` and
@@ -272,7 +277,21 @@ def newton(assemble: Callable[[np.ndarray], tuple[sp.spmatrix, np.ndarray]],
         alpha = 1.0
         K1, r1, err = _assemble(x + dx)
         rn1 = _norm(r1) if not err else np.inf
-        if line_search and not rn1 < rn:
+        dxn = _norm(dx)
+
+        def acceptable(r_trial, rn_trial, a):
+            # residual decrease, or Deuflhard's natural monotonicity test: the simplified
+            # Newton correction with the current factorisation shrinks (affine invariant;
+            # it accepts the full steps that penalty / saddle-point problems need although
+            # their residual norm grows on the first iterations)
+            if rn_trial < rn:
+                return True
+            if not np.isfinite(rn_trial):
+                return False
+            dxbar = solver.resolve(r_trial)
+            return dxbar is not None and _norm(dxbar) <= (1.0 - 0.5 * a) * dxn
+
+        if line_search and not acceptable(r1, rn1, 1.0):
             accepted = False
             for _ in range(max_backtracks):
                 alpha *= 0.5
@@ -286,7 +305,7 @@ def newton(assemble: Callable[[np.ndarray], tuple[sp.spmatrix, np.ndarray]],
                 else:
                     _, rt, e2 = _assemble(xt)
                     rnt = _norm(rt) if not e2 else np.inf
-                if rnt < rn:
+                if acceptable(rt, rnt, alpha):
                     accepted = True
                     break
             if not accepted:
@@ -414,6 +433,8 @@ def ramp(problem: RampProblem, loads: Sequence[Any], *, x0: np.ndarray | None = 
                           assembly_seconds=t_asm, solve_seconds=t_sol, inertia=inertia)
         if has_post:
             step.quantities = dict(problem.postprocess(x, target))
+        if hasattr(problem, "stability"):
+            step.quantities.setdefault("stable", problem.stability(inertia))
         out.steps.append(step)
         cur = target
         if on_step is not None:

@@ -32,9 +32,11 @@ def unflat(y):
 
 @pytest.mark.parametrize("mat", MATERIALS)
 @pytest.mark.parametrize("form,kappa", FORMS)
-def test_derivatives_match_central_differences(mat, form, kappa):
+@pytest.mark.parametrize("stress_free", [False, True])
+def test_derivatives_match_central_differences(mat, form, kappa, stress_free):
     y0 = flat(F0, G0, P0)
-    resp = lambda y: ideal_dielectric_response(mat, *unflat(y), kappa=kappa, formulation=form)
+    resp = lambda y: ideal_dielectric_response(mat, *unflat(y), kappa=kappa, formulation=form,
+                                               stress_free_reference=stress_free)
     r0 = resp(y0)
     grad = np.concatenate([r0.P.reshape(9, NPT), r0.D_L, r0.dpsi_dp[None]])
     hess = np.zeros((13, 13, NPT))
@@ -67,16 +69,19 @@ def test_derivatives_match_central_differences(mat, form, kappa):
     assert np.abs(hess - np.swapaxes(hess, 0, 1)).max() / scale_h < 1e-13
 
 
-def test_cauchy_stress_is_elastic_plus_maxwell():
+@pytest.mark.parametrize("stress_free", [False, True])
+def test_cauchy_stress_is_elastic_plus_maxwell(stress_free):
     mat = NeoHookeanDielectric(mu=1.0, eps=2.5)
-    r = ideal_dielectric_response(mat, F0, G0, P0)
+    r = ideal_dielectric_response(mat, F0, G0, P0, stress_free_reference=stress_free)
     J = np.linalg.det(np.moveaxis(F0, -1, 0))
     sigma = np.einsum("aK...,bK...->ab...", r.P, F0) / J
     Finv = np.linalg.inv(np.moveaxis(F0, -1, 0))
     E = -np.einsum("nMa,Mn->an", Finv, G0)          # E = -F^-T Grad phi
     b = np.einsum("aKn,bKn->abn", F0, F0)
     I = np.eye(3)[:, :, None]
-    expected = (mat.mu * b / J + P0 * I + mat.eps * (np.einsum("an,bn->abn", E, E)
+    # -mu ln J adds -mu/J I (vanishes from the model when J = 1)
+    p_eff = P0 - (mat.mu / J if stress_free else 0.0)
+    expected = (mat.mu * b / J + p_eff * I + mat.eps * (np.einsum("an,bn->abn", E, E)
                 - 0.5 * np.einsum("an,an->n", E, E) * I))
     np.testing.assert_allclose(sigma, expected, atol=1e-12)
     # D = J^-1 F D_L = eps E  (ideal dielectric, exact also for J != 1)

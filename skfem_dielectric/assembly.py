@@ -1,0 +1,140 @@
+"""Fast assembly helpers: dof reduction and a precomputed COO -> CSR scatter map.
+
+The FE models compute element matrices for all elements at once (batched numpy over
+elements and quadrature points) and scatter them into a CSR matrix whose sparsity pattern
+and scatter positions are computed once per mesh (:class:`ScatterMap`).  Dirichlet
+conditions and tied dofs (e.g. a rigid clamp whose nodes share one displacement) are
+handled by a :class:`DofReduction`: every full dof maps to one reduced unknown, or to ``-1``
+if it is prescribed.  Scattering element contributions through the reduced map directly
+gives ``P^T K P`` and ``P^T r`` of the prolongation ``x_full = P x_red + x_prescribed``
+without forming ``P``.
+
+These classes are problem-agnostic and shared by all FE models of the package.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import scipy.sparse as sp
+
+__all__ = ["DofReduction", "ScatterMap"]
+
+
+class DofReduction:
+    """Map from full dofs to reduced unknowns (prescribed dofs -> ``-1``).
+
+    Parameters
+    ----------
+    n_full
+        Number of full dofs.
+    fixed
+        Indices of prescribed dofs (their values come from ``x_prescribed``).
+    tied
+        List of index arrays; the dofs of each array share one reduced unknown.
+
+    Attributes
+    ----------
+    index
+        ``index[i]`` = reduced unknown of full dof ``i`` or ``-1``.
+    n
+        Number of reduced unknowns.
+    """
+
+    def __init__(self, n_full: int, fixed: np.ndarray | None = None,
+                 tied: list[np.ndarray] | None = None):
+        fixed = np.unique(np.asarray([] if fixed is None else fixed, dtype=np.int64))
+        tied = [np.unique(np.asarray(t, dtype=np.int64)) for t in (tied or [])]
+        label = np.arange(n_full, dtype=np.int64)
+        for t in tied:
+            if np.intersect1d(t, fixed).size:
+                raise ValueError("tied dofs must not be prescribed")
+            label[t] = t[0]
+        free = np.ones(n_full, dtype=bool)
+        free[fixed] = False
+        reps = np.unique(label[free])
+        index = np.full(n_full, -1, dtype=np.int64)
+        pos = np.searchsorted(reps, label[free])
+        index[free] = pos
+        self.index = index
+        self.n = int(reps.size)
+        self.n_full = int(n_full)
+        self.fixed = fixed
+        self._free = free
+        self._rep_of = reps  # full index representing each reduced unknown
+
+    def expand(self, x_red: np.ndarray, x_prescribed: np.ndarray | None = None) -> np.ndarray:
+        """Full vector ``P x_red + x_prescribed`` (prescribed values taken on fixed dofs)."""
+        x = np.zeros(self.n_full) if x_prescribed is None else np.array(x_prescribed, float)
+        x[self._free] = x_red[self.index[self._free]]
+        return x
+
+    def restrict(self, x_full: np.ndarray) -> np.ndarray:
+        """Reduced vector taking, for each unknown, the value of its representative dof."""
+        return np.asarray(x_full, dtype=float)[self._rep_of].copy()
+
+    def reduce(self, r_full: np.ndarray) -> np.ndarray:
+        """``P^T r_full``: sums over tied dofs, drops prescribed ones."""
+        return np.bincount(self.index[self._free], weights=r_full[self._free],
+                           minlength=self.n)
+
+
+class ScatterMap:
+    """Precomputed scatter of square element matrices into a reduced CSR matrix.
+
+    Parameters
+    ----------
+    dofs
+        ``(nel, m)`` reduced unknown of each element-local dof (``-1`` = eliminated).
+    n
+        Number of reduced unknowns.
+
+    Notes
+    -----
+    The pattern is built once with ``np.unique`` on the row-major keys; afterwards
+    :meth:`matrix` is one ``np.bincount`` over all element entries.  Repeated indices (tied
+    dofs) are summed, as the reduction requires.
+    """
+
+    def __init__(self, dofs: np.ndarray, n: int):
+        dofs = np.asarray(dofs, dtype=np.int64)
+        self.dofs = dofs
+        self.n = int(n)
+        nel, m = dofs.shape
+        rows = np.broadcast_to(dofs[:, :, None], (nel, m, m))
+        cols = np.broadcast_to(dofs[:, None, :], (nel, m, m))
+        valid = (rows >= 0) & (cols >= 0)
+        keys = np.where(valid, rows * self.n + cols, -1).ravel()
+        ukeys, inv = np.unique(keys, return_inverse=True)
+        has_invalid = ukeys.size > 0 and ukeys[0] < 0
+        if has_invalid:
+            ukeys = ukeys[1:]
+            inv = inv - 1
+        self.nnz = int(ukeys.size)
+        inv = np.where(inv < 0, self.nnz, inv)
+        self.pos = inv.astype(np.int32 if self.nnz < 2**31 - 1 else np.int64).reshape(nel, m, m)
+        r = ukeys // self.n
+        self.indices = (ukeys % self.n).astype(np.int32)
+        self.indptr = np.concatenate([[0], np.cumsum(np.bincount(r, minlength=self.n))]
+                                     ).astype(np.int32)
+        self._vmask = dofs >= 0
+
+    def data(self, Ke: np.ndarray, elements: slice | np.ndarray | None = None) -> np.ndarray:
+        """CSR data array of ``sum_e Ke[e]`` (optionally only the given ``elements``,
+        ``Ke`` then holds those elements' matrices)."""
+        pos = self.pos if elements is None else self.pos[elements]
+        return np.bincount(pos.ravel(), weights=np.asarray(Ke, float).ravel(),
+                           minlength=self.nnz + 1)[: self.nnz]
+
+    def csr(self, data: np.ndarray) -> sp.csr_matrix:
+        """CSR matrix with the precomputed pattern and the given data."""
+        return sp.csr_matrix((data, self.indices.copy(), self.indptr.copy()),
+                             shape=(self.n, self.n))
+
+    def matrix(self, Ke: np.ndarray) -> sp.csr_matrix:
+        """Assemble all element matrices ``Ke`` of shape ``(nel, m, m)``."""
+        return self.csr(self.data(Ke))
+
+    def vector(self, re: np.ndarray) -> np.ndarray:
+        """Assemble element vectors ``re`` of shape ``(nel, m)``."""
+        return np.bincount(self.dofs[self._vmask], weights=np.asarray(re, float)[self._vmask],
+                           minlength=self.n)
