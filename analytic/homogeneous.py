@@ -648,11 +648,12 @@ def _uniaxial_x(lam1, s, model):
         okB = np.isfinite(hi)
         Bk = B[okB]
         x[Bk] = _rtsafe(lambda xv, i: g(xv, Bk[i]), hi[okB], start[Bk], x0[Bk])
-    # (c) s > 0 and the Gent lock cuts in before lam1^2: f -> +inf at the lock and may be
-    #     non-monotone; take the first sign change of a scan from x_lo (smallest D0)
+    # (c) s > 0 and the Gent lock cuts in before lam1^2: f -> +inf at the lock and f may
+    #     dip below 0 and rise again; take the first sign change of a scan from x_lo
+    #     (the state with the smallest D0), refined by safeguarded Newton
     C = np.flatnonzero(pos & np.isfinite(x_lock) & (x_lock <= lam1**2) & (x_lock > x_lo) & ~at_lo)
     if C.size:
-        t = np.concatenate([np.linspace(0.0, 0.97, 98), 1.0 - 0.03 * 2.0 ** -np.arange(1, 30)])
+        t = np.concatenate([np.linspace(0.0, 0.97, 30), 1.0 - 0.03 * 2.0 ** -np.arange(1, 16)])
         xs = x_lo[C, None] + (x_lock[C, None] - x_lo[C, None]) * t[None, :]
         rows = np.repeat(C, t.size)
         # grid points that round onto the locking limit are skipped (nan: no sign change)
@@ -661,12 +662,16 @@ def _uniaxial_x(lam1, s, model):
         fs = np.full(xr.size, np.nan)
         fs[inside] = g(xr[inside], rows[inside])[0]
         fs = fs.reshape(xs.shape)
-        change = (fs[:, :-1] >= 0) & (fs[:, 1:] < 0)
+        f0, f1 = fs[:, :-1], fs[:, 1:]
+        change = ((f0 >= 0) & (f1 < 0)) | ((f0 < 0) & (f1 >= 0))
         has = change.any(axis=1)
-        k = np.argmax(change, axis=1)
+        k = np.argmax(change, axis=1)[has]
         Ck = C[has]
         r = np.arange(C.size)[has]
-        x[Ck] = _rtsafe(lambda xv, i: g(xv, Ck[i]), xs[r, k[has] + 1], xs[r, k[has]])
+        left, right = xs[r, k], xs[r, k + 1]
+        neg_left = fs[r, k] < 0
+        a, b = np.where(neg_left, left, right), np.where(neg_left, right, left)
+        x[Ck] = _rtsafe(lambda xv, i: g(xv, Ck[i]), a, b)
     return x
 
 
