@@ -18,6 +18,7 @@ import numpy as np
 __all__ = ["build_problem", "run_fe", "simulate", "bench"]
 
 L1, L3, H = 100.0, 50.0, 1.0     # mm
+_PARDISO = None                  # cached PARDISO solver for the stability verdicts
 
 
 class _Stop(Exception):
@@ -47,6 +48,12 @@ class _Membrane:
         self.problem = MembranePlate(_material(spec.model), L1=L1, L3=L3, H=H,
                                      n1=m.get("n1", 1), n3=m.get("n3", 1), loading=loading,
                                      coupling=coupling)
+
+    tolerances: dict = {}
+
+    def targets(self, spec) -> list:
+        """Ramp loads ``(s, D0)``: straight to the pre-load, then the charge targets."""
+        return [np.array([spec.s, d]) for d in spec.D0]
 
     def record(self, step, fields: bool):
         from .sweep import StepRecord
@@ -97,10 +104,99 @@ class _Membrane:
         return pts, cells, {"displacement": disp, "lam1": maps["lam1"], "lam3": maps["lam3"]}
 
 
+class _Plate:
+    """The 3D fully coupled u-p-phi plate (skfem_dielectric.plate) behind the runner protocol.
+
+    Mirrors :func:`skfem_dielectric.drivers.equibiaxial_plate` (1 element, eighth
+    model of a 4 x 1 x 4 plate: the state is homogeneous) and
+    :func:`skfem_dielectric.drivers.keplinger_plate` (eighth model of the
+    100 x 1 x 50 mm plate), including their pre-load steps and tolerances; the
+    problem object is kept so that fields and stability can be evaluated.
+    """
+
+    def __init__(self, spec):
+        from skfem_dielectric.drivers import make_material
+        from skfem_dielectric.mesh import plate_mesh
+        from skfem_dielectric.plate import PlateProblem
+
+        m = spec.mesh_dict
+        el = (m.get("n1", 1), m.get("n2", 1), m.get("n3", 1))
+        if spec.geometry == "equibiaxial":
+            pm = plate_mesh(4.0, 1.0, 4.0, *el, symmetry="eighth")
+            self.preload, self.tolerances = 4, {"atol": 0.0, "rtol": 1e-11}
+        elif spec.geometry == "uniaxial":
+            pm = plate_mesh(L1, H, L3, *el, symmetry="eighth")
+            self.preload, self.tolerances = 3, {"atol": 0.0, "rtol": 1e-9}
+        else:
+            raise ValueError(f"the 3D plate has no geometry {spec.geometry!r}")
+        self.problem = PlateProblem(pm, make_material(spec.model), loading=spec.geometry)
+
+    def targets(self, spec) -> list:
+        """Pre-load in equal steps ``(s k/n, 0)``, then ``(s, D0)`` for the charge targets."""
+        n = self.preload
+        return ([np.array([spec.s * k / n, 0.0]) for k in range(1, n + 1)]
+                + [np.array([spec.s, d]) for d in spec.D0 if d > 0])
+
+    def stability(self, x, load):
+        """Inertia verdict of the coupled tangent at a converged state (PARDISO), else None.
+
+        Computed apart from the ramp, whose deterministic SuperLU path is kept so
+        that a resumed ramp repeats the uninterrupted one bit for bit.
+        """
+        from skfem_dielectric.linear import get_linear_solver, pardiso_available
+
+        global _PARDISO
+        if not pardiso_available():
+            return None
+        if _PARDISO is None:             # one instance per process: its set-up is slow
+            _PARDISO = get_linear_solver("pardiso")
+        K, r = self.problem.assemble(x, load)
+        _PARDISO.solve(K, r)
+        return self.problem.stability(_PARDISO.inertia)
+
+    def record(self, step, fields: bool):
+        from .sweep import StepRecord
+
+        q = step.quantities
+        rec = StepRecord(D0=float(np.asarray(step.load)[1]), lam1=q["lam1"], lam3=q["lam3"],
+                         min_P33=q["min_P33"], min_P33_clamp=q.get("min_P33_clamp", np.nan),
+                         stable=self.stability(step.x, step.load), iterations=step.iterations)
+        if fields:
+            c = q["centre_line"]
+            rec.fields = {"kind": np.zeros(len(c["x1"])), "x1": np.asarray(c["x1"]) * 1e-3,
+                          "x3": np.zeros(len(c["x1"])), "P33": c["P33"], "lam1": c["lam1"],
+                          "lam3": c["lam3"]}
+        return rec
+
+    def maps(self, x, load) -> dict:
+        """``lam1 = |F e1|``, ``lam3 = |F e3|`` on a grid of the mid-thickness plane."""
+        g1, _, g3 = self.problem.plate.grids
+        x1 = np.linspace(g1[0], g1[-1], 4 * (len(g1) - 1) + 1)
+        x3 = np.linspace(g3[0], g3[-1], 4 * (len(g3) - 1) + 1)
+        X1, X3 = (a.ravel() for a in np.meshgrid(x1, x3, indexing="ij"))
+        tiny = 1e-9 * (g1[-1] - g1[0])
+        pts = np.vstack([np.clip(X1, g1[0] + tiny, g1[-1] - tiny), np.full(X1.size, tiny),
+                         np.clip(X3, g3[0] + tiny, g3[-1] - tiny)])
+        F = self.problem.evaluate(x, load, pts)["F"]
+        lam = np.linalg.norm(F, axis=0)
+        return {"kind": np.ones(X1.size), "x1": X1 * 1e-3, "x3": X3 * 1e-3, "lam1": lam[0],
+                "lam3": lam[2], "P33": np.full(X1.size, np.nan)}
+
+    def export_mesh(self, x, load):
+        """``(points, cells, point_data)`` of the hexahedral mesh (vertices) for meshio."""
+        pb = self.problem
+        m = pb.plate.mesh
+        xf = pb.full(x, load)
+        disp = np.stack([xf[3 * pb.b2.nodal_dofs[0] + a] for a in range(3)], axis=1)
+        return m.p.T.copy(), [("hexahedron", m.t.T.copy())], {"displacement": disp}
+
+
 def build_problem(spec):
     """The FE problem wrapper of ``spec`` (``.problem`` is a ``RampProblem``)."""
     if spec.variant in ("membrane", "membrane-maxwell"):
         return _Membrane(spec)
+    if spec.variant == "coupled":
+        return _Plate(spec)
     raise ValueError(f"variant {spec.variant!r} has no FE driver yet")
 
 
@@ -129,20 +225,26 @@ def run_fe(spec, start, state, on_step, linear_solver="superlu"):
     from .sweep import RunOutcome
 
     wrap = build_problem(spec)
-    targets = [np.array([spec.s, d]) for d in spec.D0]
+    targets = wrap.targets(spec)
     x0 = None if state is None else np.asarray(state["x"], dtype=float)
     start_load = None if state is None else np.asarray(state["load"], dtype=float)
-    counter = {"i": start}
+    if start_load is not None:
+        pos = [k for k, t in enumerate(targets) if np.allclose(t, start_load, rtol=0, atol=1e-14)]
+        if not pos:
+            raise ValueError(f"saved load {start_load} is not a target of run {spec.key}")
+        targets = targets[pos[0] + 1:]
 
     def cb(step):
-        i = counter["i"]
+        load = np.asarray(step.load, dtype=float)
+        if load[0] != spec.s:
+            return                                   # an intermediate pre-load step
+        i = spec.D0.index(float(load[1]))
         rec = wrap.record(step, spec.record_fields)
         if spec.record_fields and spec.D0[i] == 0.0:
             # stretch maps of the pre-loaded plate (kind 1) after the centre line (kind 0)
             maps = wrap.maps(step.x, step.load)
             rec.fields = {k: np.r_[rec.fields[k], maps[k]] for k in rec.fields}
-        counter["i"] += 1
-        if on_step(i, rec, {"x": step.x, "load": np.asarray(step.load, dtype=float)}):
+        if on_step(i, rec, {"x": step.x, "load": load}):
             raise _Stop
 
     try:
@@ -150,8 +252,8 @@ def run_fe(spec, start, state, on_step, linear_solver="superlu"):
 
         with warnings.catch_warnings():
             warnings.simplefilter("ignore", RuntimeWarning)   # the failure is recorded
-            res = ramp(wrap.problem, targets[start:], x0=x0, start=start_load, on_step=cb,
-                       linear_solver=linear_solver)
+            res = ramp(wrap.problem, targets, x0=x0, start=start_load, on_step=cb,
+                       linear_solver=linear_solver, **wrap.tolerances)
     except _Stop:
         return RunOutcome(True)
     failed = None if res.failed_at is None else float(np.asarray(res.failed_at).ravel()[-1])
