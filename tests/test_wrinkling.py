@@ -396,3 +396,23 @@ def test_finite_plate_against_transfer_matrix(model, control):
     grid = np.linspace(0.0, 0.999 * min(roots), 60)
     vals = full_plate(grid)
     assert np.all(np.sign(vals) == np.sign(vals[0]))
+
+
+def test_user_model_with_complex_exponents():
+    """W'' < 0 makes p2, p3 a complex-conjugate pair (b0^2 < a0 c): the projector
+    basis, the Schur basis and the closed form must still agree."""
+    from analytic import UserModel, stroh_exponents
+
+    m = UserModel(
+        W=lambda I: 0.5 * (I - 3) - 0.05 * (I - 3) ** 2,
+        dW=lambda I: 0.5 - 0.1 * (I - 3),
+        d2W=lambda I: -0.1 + 0 * I,
+        name="softening",
+        I1_limit=5.0,
+    )
+    _, p2, p3 = stroh_exponents(1.2, 1.2, 0.3, m)
+    assert abs(complex(p2).imag) > 0.1 and complex(p2) == pytest.approx(np.conj(complex(p3)))
+    Y = surface_impedance(1.2, 1.2, 0.3, m)
+    Ys = surface_impedance(1.2, 1.2, 0.3, m, method="schur")
+    assert np.max(np.abs(Y - Ys)) < 1e-12 * np.max(np.abs(Y))  # rounding only
+    assert thick_limit_D0_numeric(1.2, 1.2, m) == pytest.approx(thick_limit_D0(1.2, m), rel=1e-10)
