@@ -47,7 +47,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.optimize import brentq
 
-from ._checks import as_array, broadcast, check_choice, check_nonnegative, check_positive
+from ._checks import as_array, broadcast, check_choice, check_positive
 from .models import Model, as_model
 from .stroh import _coefficients_fast, _exponents_from_coefficients, _stroh_N, stroh_coefficients
 
