@@ -45,7 +45,6 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.optimize import brentq
 
 from ._checks import as_array, broadcast, check_choice, check_positive
 from .models import Model, as_model
@@ -364,6 +363,8 @@ def surface_instability_stretch(model: Model | None = None, loading: str = "equi
     >>> round(surface_instability_stretch(), 5), round(surface_instability_stretch(loading="uniaxial"), 5)
     (0.66614, 0.44375)
     """
+    from scipy.optimize import brentq  # lazy: keeps `import analytic` light
+
     check_choice("loading", loading, ("equibiaxial", "uniaxial"))
     model = as_model(model)
 
