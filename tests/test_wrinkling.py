@@ -416,3 +416,16 @@ def test_user_model_with_complex_exponents():
     Ys = surface_impedance(1.2, 1.2, 0.3, m, method="schur")
     assert np.max(np.abs(Y - Ys)) < 1e-12 * np.max(np.abs(Y))  # rounding only
     assert thick_limit_D0_numeric(1.2, 1.2, m) == pytest.approx(thick_limit_D0(1.2, m), rel=1e-10)
+
+
+def test_compressed_plate_semantics():
+    """lam < 1: thin plates buckle without charge (no root in D0 -> nan), thick ones
+    wrinkle at some D0 below the thick-plate limit. Reference for the first claim:
+    the classical flexural relation puts the D0 = 0 buckling stretch of kh = 0.5
+    at lam = 0.98709 > 0.9."""
+    assert np.isnan(critical_D0(0.9, 0.5))
+    assert np.isnan(thin_limit_D0(0.9))
+    D = critical_D0(0.9, 10.0)
+    assert 0.0 < D < thick_limit_D0(0.9)
+    # and it is a genuine root of the dispersion relation (sign change within 1e-9)
+    assert dispersion_function(0.9, 0.9, D * (1 - 1e-9), 10.0) * dispersion_function(0.9, 0.9, D * (1 + 1e-9), 10.0) < 0
