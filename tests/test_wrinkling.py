@@ -9,6 +9,7 @@ from analytic import (
     Gent,
     NeoHookean,
     critical_D0,
+    critical_D0_biaxial,
     critical_point_on_path,
     dispersion_function,
     equibiaxial_D0,
@@ -324,6 +325,23 @@ def test_no_wrinkling_on_uniaxial_charge_controlled_loading_curves(model):
         np.testing.assert_allclose(
             thin_limit_D0_uniaxial(lam1, lam3, model, "perpendicular"), D0, rtol=1e-9, atol=1e-9
         )
+        # finite thickness (beyond the paper): every plate is strictly stable, the
+        # perpendicular flexural margin closing like (kh)^2 as kh -> 0
+        sub = slice(None, None, 8)
+        khs = np.array([0.01, 0.02, 1.0, 10.0, np.inf])
+        for direction in ("parallel", "perpendicular"):
+            crit = critical_D0_biaxial(lam1[sub, None], lam3[sub, None], khs[None, :], model,
+                                       direction=direction)
+            assert np.all(crit > D0[sub, None])
+        gap = crit[:, :2] / D0[sub, None] - 1.0  # perpendicular, kh = 0.01 and 0.02
+        assert np.all(gap[:, 0] < 1e-4)
+        # O((kh)^2): doubling kh quadruples the gap while eta kh is small
+        # (eta = lam1 lam3^2 = p2 p3 reaches ~100 at the far end of the heavy
+        # paths, where kh = 0.02 is no longer a long wave): check eta kh < 0.25
+        eta = lam1[sub] * lam3[sub] ** 2
+        long = eta * 0.02 < 0.25
+        assert long.sum() >= 1
+        np.testing.assert_allclose(gap[long, 1] / gap[long, 0], 4.0, rtol=0.05)
 
 
 def test_critical_point_on_path_against_root():
