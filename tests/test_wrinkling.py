@@ -447,3 +447,27 @@ def test_compressed_plate_semantics():
     assert 0.0 < D < thick_limit_D0(0.9)
     # and it is a genuine root of the dispersion relation (sign change within 1e-9)
     assert dispersion_function(0.9, 0.9, D * (1 - 1e-9), 10.0) * dispersion_function(0.9, 0.9, D * (1 + 1e-9), 10.0) < 0
+
+
+@pytest.mark.parametrize("model", MODELS, ids=lambda m: m.name)
+def test_symmetric_long_waves_are_the_homogeneous_instability(model):
+    """kh -> 0 symmetric modes are homogeneous plane-strain (u3 = 0) thickness
+    changes. Under voltage control they appear where the Hessian of
+    omega(lam1, lam3, E0) = W(I1) - lam1^2 lam3^2 E0^2 / 2 (Sec. 3) loses
+    positivity in lam1 at fixed lam3 and E0 (neo-Hookean: D0^2 = lam^6 + 3);
+    under charge control omega*_11 > 0 and there is no such root (second factor
+    of Eq. detN3 > 0)."""
+    lam = np.array([1.0, 1.5, 2.0])
+    h = 1e-4
+
+    def w(l1):
+        return model.W(l1**2 + lam**2 + (l1 * lam) ** -2)
+
+    w11 = (w(lam + h) - 2 * w(lam) + w(lam - h)) / h**2  # central FD, error ~1e-7
+    D0_ref = lam**4 * np.sqrt(w11 / lam**2)  # omega_11 = w11 - lam3^2 E0^2 = 0
+    if model is NH:
+        np.testing.assert_allclose(D0_ref, np.sqrt(lam**6 + 3), rtol=1e-6)
+    got = critical_D0(lam, 0.01, model, mode="symmetric", control="voltage")
+    # O((kh)^2) = 1e-4 long-wave correction (observed 1e-6 .. 4e-6) plus FD error
+    np.testing.assert_allclose(got, D0_ref, rtol=2e-5)
+    assert np.all(np.isnan(critical_D0(lam, 0.01, model, mode="symmetric", control="charge")))
