@@ -456,7 +456,8 @@ def test_symmetric_long_waves_are_the_homogeneous_instability(model):
     omega(lam1, lam3, E0) = W(I1) - lam1^2 lam3^2 E0^2 / 2 (Sec. 3) loses
     positivity in lam1 at fixed lam3 and E0 (neo-Hookean: D0^2 = lam^6 + 3);
     under charge control omega*_11 > 0 and there is no such root (second factor
-    of Eq. detN3 > 0)."""
+    of Eq. detN3 > 0): the symmetric root recedes like 1/kh, far above the
+    search bound at kh = 0.01."""
     lam = np.array([1.0, 1.5, 2.0])
     h = 1e-4
 
