@@ -275,11 +275,11 @@ def test_no_wrinkling_on_equibiaxial_charge_controlled_loading_curves(model):
     """Fig. gent-equi-biaxial, shown rather than assumed: for s > 0 every point of
     every loading curve lies strictly below the critical D0 of every plate
     thickness (antisymmetric and symmetric modes, kh from 0.01 to inf)."""
-    khs = np.concatenate([np.logspace(-2, 2, 12), [np.inf]])
+    khs = np.concatenate([np.logspace(-2, 2, 10), [np.inf]])
     lams, D0s = [], []
     for s in S_EQUI:
         lam0 = equibiaxial_lam(0.0, s, model)  # start of the curve (D0 = 0)
-        lam = lam0 + np.linspace(0.0, 1.5, 22)[1:]
+        lam = lam0 + np.linspace(0.0, 1.5, 16)[1:]
         D0 = equibiaxial_D0(lam, s, model)
         assert np.all(np.isfinite(D0))
         # loading curve below both limits
