@@ -62,6 +62,7 @@ __all__ = [
 ]
 
 _LOADINGS = ("equibiaxial", "uniaxial")
+_CHUNK = 1 << 14  # rows per block in grid scans
 _CONTROLS = ("charge", "voltage")
 
 
@@ -526,11 +527,13 @@ def _uniaxial_locus_x(lam1, model):
         x = _rtsafe(f, np.zeros(n), 1.0 + 3.0 / lam1**2, 1.0 + 3.0 / lam1**2)
         with np.errstate(invalid="ignore"):
             return np.where(lam1**2 * x**2 >= 1.0, x, np.nan)
-    x_lo = 1.0 / lam1
     _derivs(model, lam1**2 + 2.0 / lam1, "lam1", lam1)
+    if n > _CHUNK:  # bound the memory of the scan grid (a loop over blocks, not points)
+        return np.concatenate([_uniaxial_locus_x(lam1[k:k + _CHUNK], model) for k in range(0, n, _CHUNK)])
+    x_lo = 1.0 / lam1
     x_top = _uniaxial_xlock(lam1, model.I1_max())
     x_top = np.where(np.isfinite(x_top), x_top, 64.0 * (x_lo + 3.0 / lam1**2 + 1.0))
-    t = np.concatenate([np.linspace(0.0, 0.97, 194), 1.0 - 0.03 * 2.0 ** -np.arange(1, 30)])
+    t = np.concatenate([np.linspace(0.0, 0.97, 48), 1.0 - 0.03 * 2.0 ** -np.arange(1, 16)])
     xs = x_lo[:, None] + (x_top - x_lo)[:, None] * t[None, :]
     rows = np.repeat(lam1, t.size)
     # grid points that round onto the locking limit are skipped (nan: no sign change)
@@ -548,16 +551,37 @@ def _uniaxial_locus_x(lam1, model):
     return x
 
 
-def _bisect(fun, a, b, iters=64):
-    """Vectorised bisection; ``fun(a) > 0 >= fun(b)`` (sign pattern) on entry."""
+def _bisect(fun, a, b, maxiter=100):
+    """Vectorised Illinois (modified regula falsi) root finder; ``fun(a) > 0 >= fun(b)``
+    on entry. Superlinear, derivative free, keeps the bracket; converged problems drop
+    out of the sweep."""
     a, b = np.array(a, dtype=float), np.array(b, dtype=float)
-    idx = np.arange(a.size)
-    for _ in range(iters):
-        m = 0.5 * (a + b)
-        fm = fun(m, idx)
-        pos = fm > 0
-        a, b = np.where(pos, m, a), np.where(pos, b, m)
-    return 0.5 * (a + b)
+    n = a.size
+    out = np.full(n, np.nan)
+    idx = np.arange(n)
+    fa, fb = fun(a, idx), fun(b, idx)
+    side = np.zeros(n)
+    for _ in range(maxiter):
+        if idx.size == 0:
+            break
+        with np.errstate(divide="ignore", invalid="ignore"):
+            c = b - fb * (b - a) / (fb - fa)
+        bad = ~np.isfinite(c) | ((c - a) * (c - b) >= 0)
+        c = np.where(bad, 0.5 * (a + b), c)
+        fc = fun(c, idx)
+        pos = fc > 0
+        # Illinois: halve the value kept twice in a row on the same side
+        fa_new = np.where(pos, fc, np.where(side == -1, 0.5 * fa, fa))
+        fb_new = np.where(pos, np.where(side == 1, 0.5 * fb, fb), fc)
+        a, b = np.where(pos, c, a), np.where(pos, b, c)
+        fa, fb = fa_new, fb_new
+        side = np.where(pos, 1, -1)
+        conv = (np.abs(b - a) <= 4 * np.finfo(float).eps * np.abs(c)) | (fc == 0) | ~np.isfinite(fc)
+        out[idx[conv]] = c[conv]
+        keep = ~conv
+        idx, a, b, fa, fb, side = idx[keep], a[keep], b[keep], fa[keep], fb[keep], side[keep]
+    out[idx] = 0.5 * (a + b)
+    return out
 
 
 def _locus_inputs(lam1, model):

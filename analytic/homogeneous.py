@@ -651,8 +651,9 @@ def _uniaxial_x(lam1, s, model):
     # (c) s > 0 and the Gent lock cuts in before lam1^2: f -> +inf at the lock and f may
     #     dip below 0 and rise again; take the first sign change of a scan from x_lo
     #     (the state with the smallest D0), refined by safeguarded Newton
-    C = np.flatnonzero(pos & np.isfinite(x_lock) & (x_lock <= lam1**2) & (x_lock > x_lo) & ~at_lo)
-    if C.size:
+    C_all = np.flatnonzero(pos & np.isfinite(x_lock) & (x_lock <= lam1**2) & (x_lock > x_lo) & ~at_lo)
+    for c0 in range(0, C_all.size, 1 << 16):  # blocks bound the memory of the scan grid
+        C = C_all[c0:c0 + (1 << 16)]
         t = np.concatenate([np.linspace(0.0, 0.97, 30), 1.0 - 0.03 * 2.0 ** -np.arange(1, 16)])
         xs = x_lo[C, None] + (x_lock[C, None] - x_lo[C, None]) * t[None, :]
         rows = np.repeat(C, t.size)
