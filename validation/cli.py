@@ -54,6 +54,11 @@ def build_parser() -> argparse.ArgumentParser:
     v.add_argument("--out", required=True, type=Path, help="output folder")
     v.add_argument("--jobs", type=int, default=1, help="worker processes (default 1)")
     v.add_argument("--force", action="store_true", help="recompute instead of resuming")
+    v.add_argument("--solver", choices=["superlu", "pardiso"], default="superlu",
+                   help="linear solver of the FE ramps: superlu (default, deterministic: a "
+                        "resumed run repeats the uninterrupted one bit for bit) or pardiso "
+                        "(faster on fine meshes, needs the 'fast' extra; multi-threaded, so "
+                        "the last digits may differ between runs)")
     v.add_argument("--no-progress", action="store_true", help="no progress bars")
 
     s = sub.add_parser("simulate", help="run one FE ramp and export VTU/XDMF",
@@ -113,9 +118,15 @@ def _cmd_curves(args) -> int:
 def _cmd_validate(args) -> int:
     from .sweep import validate
 
+    import functools
+
+    from .fe import run_fe
+
     t0 = time.perf_counter()
+    runner = None if args.solver == "superlu" else functools.partial(run_fe,
+                                                                     linear_solver=args.solver)
     results = validate(args.case, args.out, quick=args.quick, force=args.force, jobs=args.jobs,
-                       progress=False if args.no_progress else None)
+                       runner=runner, progress=False if args.no_progress else None)
     print((args.out / "report.md").read_text(), end="")
     print(f"\nwall time {time.perf_counter() - t0:.1f} s; results in {args.out}")
     return 0 if all(r.n_steps or not r.n_runs for r in results) else 1
