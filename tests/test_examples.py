@@ -26,6 +26,9 @@ _S_KEPLINGER = 0.150 * 9.81 / (9833.07 * 50e-6)
 
 # name of the script -> (global variable, reference value, rtol, why this reference)
 PINNED: dict[str, tuple[str, float, float, str]] = {
+    "ex01_loading_curves": ("E0max_s0", np.sqrt(3.0) / 2 ** (4.0 / 3.0), 1e-9,
+                            "literature: neo-Hookean s = 0 voltage-control maximum "
+                            "sqrt(3)/2^(4/3) at lam = 2^(1/3) (DESIGN.md §2)"),
     "ex02_wrinkling_map": ("thick_at_1", np.sqrt(1.0 + np.sqrt(5.0)), 1e-6,
                            "Eq. (ideal-shortwave) at lam = 1: D0^4 - 2 D0^2 - 4 = 0; lam = 1 "
                            "is a grid point, so only the root finder's tolerance remains"),
