@@ -105,10 +105,15 @@ def _refine_start(x, f, n=80):
     if ok.any() and not ok[0]:
         i = int(np.argmax(ok))
         lo, hi = x[i - 1], x[i]
-        t = np.geomspace(1e-12, 1.0, n)
-        xs = lo + (hi - lo) * t
+        for _ in range(60):                    # where the curve starts: bisect on finiteness
+            mid = 0.5 * (lo + hi)
+            if np.isfinite(np.asarray(f(np.array([mid])), dtype=float)[0]):
+                hi = mid
+            else:
+                lo = mid
+        xs = hi + (x[i] - hi) * np.r_[0.0, np.geomspace(1e-10, 1.0, n)]
         ys = np.asarray(f(xs), dtype=float)
-        x, y = np.r_[xs, x[i + 1:]], np.r_[ys, y[i + 1:]]
+        x, y = np.r_[x[:i], xs, x[i + 1:]], np.r_[y[:i], ys, y[i + 1:]]
     return x, y
 
 
