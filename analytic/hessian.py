@@ -37,7 +37,7 @@ from .homogeneous import (
     equibiaxial_lam,
     uniaxial_lam1,
 )
-from .models import Model, NeoHookean, as_model
+from .models import NeoHookean, as_model
 
 __all__ = [
     "invariant_I1",

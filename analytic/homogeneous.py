@@ -98,8 +98,7 @@ def _rtsafe(fun, a, b, x0=None, *, rtol=4 * _EPS, maxiter=200):
         x0 = np.broadcast_to(np.asarray(x0, dtype=float).ravel(), x.shape)
         inside = np.isfinite(x0) & ((x0 - a) * (x0 - b) < 0)
         x = np.where(inside, x0, x)
-    dxold = np.abs(b - a)
-    for _ in range(maxiter):
+    for it in range(maxiter):
         if active.size == 0:
             break
         f, df = fun(x, active)
@@ -107,23 +106,25 @@ def _rtsafe(fun, a, b, x0=None, *, rtol=4 * _EPS, maxiter=200):
         a = np.where(neg, x, a)
         b = np.where(neg, b, x)
         with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
-            xn = x - f / df
-        shrink = np.abs(2 * f) <= np.abs(dxold * df)
-        ok = np.isfinite(xn) & ((xn - a) * (xn - b) < 0) & shrink
-        # a Newton step below one ulp lands on the bracket end: that is convergence
-        tiny = np.isfinite(xn) & ((xn - a) * (xn - b) <= 0) & shrink
-        xb = 0.5 * (a + b)
-        xn = np.where(ok | tiny, xn, xb)
-        dx = np.abs(xn - x)
-        dxold = dx
+            step = f / df
+        xn = x - step
+        # Newton inside the (closed) bracket, else bisection; every 16th sweep bisects
+        # to break a possible Newton cycle
+        newton = (xn - a) * (xn - b) <= 0  # False for nan/inf
+        if it % 16 == 15:
+            newton[:] = False
+        xn = np.where(newton, xn, 0.5 * (a + b))
+        ax = np.abs(x)
         # a Newton step of relative size 1e-9 leaves an error of order 1e-18 (quadratic
-        # convergence); bisection steps stop when the bracket is a few ulps wide
-        conv = (f == 0) | ((ok | tiny) & (dx <= 1e-9 * np.abs(x))) | (dx <= rtol * np.abs(x))
-        conv |= np.abs(b - a) <= rtol * np.abs(x)
-        xf = np.where(f == 0, x, xn)
-        out[active[conv]] = xf[conv]
-        keep = ~conv
-        active, x, a, b, dxold = active[keep], xn[keep], a[keep], b[keep], dxold[keep]
+        # convergence); bisection stops when the bracket is a few ulps wide
+        conv = (newton & (np.abs(step) <= 1e-9 * ax)) | (np.abs(b - a) <= rtol * ax) | (f == 0)
+        if np.any(conv):
+            xf = np.where(f == 0, x, xn)
+            out[active[conv]] = xf[conv]
+            keep = ~conv
+            active, x, a, b = active[keep], xn[keep], a[keep], b[keep]
+        else:
+            x = xn
     out[active] = x  # bracket has shrunk for maxiter sweeps: accept
     return out
 
