@@ -245,56 +245,8 @@ def biaxial_E0(lam1, lam3, D0):
     return _out(D0 / (lam1**2 * lam3**2))
 
 
-def biaxial_stretches(s1, s3, D0, model=None, *, maxiter: int = 100):
-    """Stretches ``(lam1, lam3)`` of the plate under dead loads ``s1, s3`` and charge ``D0``.
-
-    Parameters
-    ----------
-    s1, s3 : array_like
-        Nominal tractions ``t1/mu``, ``t3/mu`` on the lateral faces.
-    D0 : array_like
-        Dimensionless charge (only ``D0^2`` matters).
-    model : Model, optional
-        Strain-energy model (default :class:`NeoHookean`).
-    maxiter : int
-        Newton iterations allowed.
-
-    Returns
-    -------
-    lam1, lam3 : ndarray
-        The equilibrium stretches; ``nan`` where none was found (no minimiser,
-        e.g. a user model that softens too much).
-
-    Notes
-    -----
-    Under charge control the equilibrium minimises ``psi* = omega*(lam1, lam3,
-    D0) - s1 lam1 - s3 lam3`` at fixed ``D0`` (Sec. 3.1, ``psi*`` without the
-    ``D0 E0`` term). For ``W' > 0`` and ``W'' >= 0`` (neo-Hookean, Gent)
-    ``omega*`` is strictly convex in ``(lam1, lam3)`` because ``I1`` and
-    ``lam1^-2 lam3^-2`` are, so the equilibrium is unique and charge-controlled
-    actuation is stable (Sec. 5). It is found by Newton's method with a
-    backtracking line search on ``|grad psi*|^2``, vectorised over all points.
-
-    Examples
-    --------
-    Uni-axial neo-Hookean dead load ``s = 1`` at ``D0 = 2``, against
-    Eq. (DEuniax), ``lam1^2 (lam1 - s) = sqrt(1 + D0^2)``:
-
-    >>> from analytic import biaxial_stretches
-    >>> l1, l3 = biaxial_stretches(1.0, 0.0, 2.0)
-    >>> round(float(l1**2 * (l1 - 1.0)), 12), round(float(l3**2 - l1 * (l1 - 1.0)), 12)
-    (2.2360679775, 0.0)
-    """
-    model = as_model(model)
-    s1 = as_array("s1", s1)
-    s3 = as_array("s3", s3)
-    D0 = as_array("D0", D0)
-    for name, v in (("s1", s1), ("s3", s3), ("D0", D0)):
-        if np.any(~np.isfinite(v)):
-            raise ValueError(f"{name} must be finite, got {v!r}")
-    s1, s3, D0 = broadcast(s1=s1, s3=s3, D0=D0)
-    shape = s1.shape
-    s1, s3, q = s1.ravel(), s3.ravel(), D0.ravel() ** 2
+def _biaxial_core(s1, s3, q, model, start=None, maxiter=100):
+    """Newton solve of ``grad psi* = 0`` on flat arrays (see :func:`biaxial_stretches`)."""
     I1max = model.I1_max()
 
     def residual(a, b, i):
@@ -319,6 +271,12 @@ def biaxial_stretches(s1, s3, D0, model=None, *, maxiter: int = 100):
         lo, hi = _equibiaxial_limits(model)
         x0 = np.minimum(x0, 1.0 + 0.5 * (hi - 1.0))
     a, b = x0.copy(), x0.copy()
+    if start is not None:  # a better first guess where it is admissible
+        sa, sb = start
+        with np.errstate(invalid="ignore", divide="ignore"):
+            good = np.isfinite(sa) & np.isfinite(sb) & (sa > 0) & (sb > 0)
+            good &= _I1(np.where(good, sa, 1.0), np.where(good, sb, 1.0)) < 3.0 + 0.9 * (I1max - 3.0)
+        a, b = np.where(good, sa, a), np.where(good, sb, b)
     n = a.size
     la, lb = np.full(n, np.nan), np.full(n, np.nan)
     active = np.arange(n)
@@ -370,6 +328,60 @@ def biaxial_stretches(s1, s3, D0, model=None, *, maxiter: int = 100):
         a, b = a + t * pa, b + t * pb
         active, a, b = active[ok], a[ok], b[ok]
         res = tuple(v[ok] for v in new)
+    return la, lb
+
+
+def biaxial_stretches(s1, s3, D0, model=None, *, maxiter: int = 100):
+    """Stretches ``(lam1, lam3)`` of the plate under dead loads ``s1, s3`` and charge ``D0``.
+
+    Parameters
+    ----------
+    s1, s3 : array_like
+        Nominal tractions ``t1/mu``, ``t3/mu`` on the lateral faces.
+    D0 : array_like
+        Dimensionless charge (only ``D0^2`` matters).
+    model : Model, optional
+        Strain-energy model (default :class:`NeoHookean`).
+    maxiter : int
+        Newton iterations allowed.
+
+    Returns
+    -------
+    lam1, lam3 : ndarray
+        The equilibrium stretches; ``nan`` where none was found (no minimiser,
+        e.g. a user model that softens too much).
+
+    Notes
+    -----
+    Under charge control the equilibrium minimises ``psi* = omega*(lam1, lam3,
+    D0) - s1 lam1 - s3 lam3`` at fixed ``D0`` (Sec. 3.1, ``psi*`` without the
+    ``D0 E0`` term). For ``W' > 0`` and ``W'' >= 0`` (neo-Hookean, Gent)
+    ``omega*`` is strictly convex in ``(lam1, lam3)`` because ``I1`` and
+    ``lam1^-2 lam3^-2`` are, so the equilibrium is unique and charge-controlled
+    actuation is stable (Sec. 5). It is found by Newton's method with a
+    backtracking line search on ``|grad psi*|^2``, vectorised over all points.
+
+    Examples
+    --------
+    Uni-axial neo-Hookean dead load ``s = 1`` at ``D0 = 2``, against
+    Eq. (DEuniax), ``lam1^2 (lam1 - s) = sqrt(1 + D0^2)``:
+
+    >>> from analytic import biaxial_stretches
+    >>> l1, l3 = biaxial_stretches(1.0, 0.0, 2.0)
+    >>> round(float(l1**2 * (l1 - 1.0)), 12), round(float(l3**2 - l1 * (l1 - 1.0)), 12)
+    (2.2360679775, 0.0)
+    """
+    model = as_model(model)
+    s1 = as_array("s1", s1)
+    s3 = as_array("s3", s3)
+    D0 = as_array("D0", D0)
+    for name, v in (("s1", s1), ("s3", s3), ("D0", D0)):
+        if np.any(~np.isfinite(v)):
+            raise ValueError(f"{name} must be finite, got {v!r}")
+    s1, s3, D0 = broadcast(s1=s1, s3=s3, D0=D0)
+    shape = s1.shape
+    s1, s3, q = s1.ravel(), s3.ravel(), D0.ravel() ** 2
+    la, lb = _biaxial_core(s1, s3, q, model, None, maxiter)
     return _out(la.reshape(shape)), _out(lb.reshape(shape))
 
 
@@ -842,8 +854,6 @@ def uniaxial_lam1(D0, s=0.0, model=None):
     if np.any(~np.isfinite(s)):
         raise ValueError(f"s must be finite, got {s!r}")
     D0, s = broadcast(D0=D0, s=s)
-    if not isinstance(model, NeoHookean):
-        return biaxial_stretches(s, 0.0 * s, D0, model)[0]
     shape = D0.shape
     c, sf = np.sqrt(1.0 + D0.ravel() ** 2), s.ravel()
     lo = np.maximum(sf, 0.0)  # q(lo) = lo^2 (lo - s) - c < 0
@@ -852,4 +862,10 @@ def uniaxial_lam1(D0, s=0.0, model=None):
     def q(l1, i):
         return l1**2 * (l1 - sf[i]) - c[i], l1 * (3 * l1 - 2 * sf[i])
 
-    return _out(_rtsafe(q, lo, hi).reshape(shape))
+    l1 = _rtsafe(q, lo, hi)
+    if isinstance(model, NeoHookean):
+        return _out(l1.reshape(shape))
+    # other models: Newton on grad psi* = 0 from the neo-Hookean state
+    l3 = np.sqrt(l1 * (l1 - sf))
+    la, _ = _biaxial_core(sf, 0.0 * sf, D0.ravel() ** 2, model, (l1, l3))
+    return _out(la.reshape(shape))
