@@ -259,6 +259,16 @@ def test_library_never_prints_or_shows():
             assert "print(" not in src, path
 
 
+def test_runner_reporting_a_step_twice_is_an_error(tmp_path):
+    def twice(spec, start, state, on_step):
+        on_step(0, StepRecord(0.0, 1.0, 1.0, 0.0), {})
+        on_step(0, StepRecord(0.0, 1.0, 1.0, 0.0), {})
+        return RunOutcome(True)
+
+    with pytest.raises(RuntimeError, match="steps must come once each"):
+        run_case(eq_case(n_s=1), tmp_path, runner=twice, progress=False)
+
+
 def test_bad_input():
     with pytest.raises(ValueError, match="geometry"):
         vc.RunSpec("shear", "neo-Hookean", "coupled", 1.0, (0.0, 1.0))

@@ -133,7 +133,7 @@ class _Plate:
 
     def targets(self, spec) -> list:
         """Pre-load in equal steps ``(s k/n, 0)``, then ``(s, D0)`` for the charge targets."""
-        n = self.preload
+        n = self.preload if spec.s > 0 else 1          # s = 0: a single (0, 0) target
         return ([np.array([spec.s * k / n, 0.0]) for k in range(1, n + 1)]
                 + [np.array([spec.s, d]) for d in spec.D0 if d > 0])
 

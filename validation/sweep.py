@@ -350,6 +350,9 @@ def _run_one(case, spec, start, state, runner, csv_path, fields_path, state_dir,
     last = {"step": start - 1}
 
     def on_step(index: int, rec: StepRecord, st: dict) -> bool:
+        if index != last["step"] + 1:
+            raise RuntimeError(f"runner reported step {index} of run {spec.key} after step "
+                               f"{last['step']}; steps must come once each, in order")
         brk = _breakdown(spec, rec)
         _append(csv_path, header, [_row(case, spec, index, rec, True, brk, spec.D0[index])])
         if spec.record_fields and rec.fields:
