@@ -1,3 +1,17 @@
-"""FE-versus-analytic validation: the paper's figures with FE dots, and the CLI."""
+"""FE-versus-analytic validation: the paper's figures with FE dots, and the CLI.
 
-__all__: list[str] = []
+The main job is :func:`validate` (``skfem-dielectric validate``): it runs the FE
+ramps of every :data:`CASES` entry (one per figure of the paper), writes tidy
+CSVs step by step (resumable), draws the figures and writes ``summary.json``
+and ``report.md``.
+"""
+
+from .cases import ALPHAS, CASES, KEPLINGER, Case, RunSpec, get_case, keplinger_s
+from .sweep import (BREAKDOWN_TOL, CaseResult, RunOutcome, StepRecord, make_figure, read_table,
+                    run_case, run_cases, validate)
+
+__all__ = [
+    "ALPHAS", "CASES", "KEPLINGER", "Case", "RunSpec", "get_case", "keplinger_s",
+    "BREAKDOWN_TOL", "CaseResult", "RunOutcome", "StepRecord", "make_figure", "read_table",
+    "run_case", "run_cases", "validate",
+]
