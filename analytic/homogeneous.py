@@ -781,7 +781,7 @@ def uniaxial_D0(lam1, s=0.0, model=None):
         D0 = np.full(l1.size, np.nan)
         xg, lg = x[good], l1[good]
         dW = model.dW(lg**2 + xg + 1.0 / (lg**2 * xg))
-        D0[good] = np.sqrt(np.maximum(2 * dW * (lg**2 * xg**2 - 1.0), 0.0))
+        D0[good] = np.nan_to_num(_sqrt_branch(2 * dW * (lg**2 * xg**2 - 1.0), 2 * dW * (lg**2 * xg**2 + 1.0)))
     return _out(D0.reshape(lam1.shape))
 
 
@@ -812,7 +812,7 @@ def uniaxial_E0(lam1, s=0.0, model=None):
         E0 = np.full(l1.size, np.nan)
         xg, lg = x[good], l1[good]
         dW = model.dW(lg**2 + xg + 1.0 / (lg**2 * xg))
-        E0[good] = np.sqrt(np.maximum(2 * dW * (lg**2 * xg**2 - 1.0), 0.0)) / (lg**2 * xg)
+        E0[good] = np.nan_to_num(_sqrt_branch(2 * dW * (lg**2 * xg**2 - 1.0), 2 * dW * (lg**2 * xg**2 + 1.0))) / (lg**2 * xg)
     return _out(E0.reshape(lam1.shape))
 
 
