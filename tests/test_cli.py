@@ -98,6 +98,25 @@ def test_simulate_exports_vtu(tmp_path):
     np.testing.assert_allclose(m.point_data["lam1"], lam, rtol=1e-8)
 
 
+def test_simulate_3d_exports_xdmf(tmp_path):
+    import meshio
+
+    out = tmp_path / "sim"
+    assert main(["simulate", "--geometry", "equibiaxial", "--s", "1.5", "--variant", "coupled",
+                 "--mesh", "1", "1", "1", "--D0-max", "2", "--steps", "1", "--format", "xdmf",
+                 "--out", str(out)]) == 0
+    with meshio.xdmf.TimeSeriesReader(out / "equibiaxial_nh_coupled_s1.5.xdmf") as r:
+        r.read_points_cells()
+        assert r.num_steps == 2
+        _, _, cell_data = r.read_data(1)
+    # homogeneous: every element has lam1 = lam3 = the root of Eq. (loading_gent), D0 = 2;
+    # mixed formulation, Newton tolerance 1e-11 relative
+    r = np.roots([1, -1.5, 0, 0, 0, 0, -(1 + 2.0**2)])
+    lam = max(r[np.abs(r.imag) < 1e-12].real)
+    np.testing.assert_allclose(cell_data["lam1"][0], lam, rtol=1e-8)
+    np.testing.assert_allclose(cell_data["lam3"][0], lam, rtol=1e-8)
+
+
 def test_bad_input_exit_code(tmp_path, capsys):
     assert main(["validate", "--out", str(tmp_path), "--jobs", "0"]) == 2
     assert "--jobs must be >= 1, got 0" in capsys.readouterr().err

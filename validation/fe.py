@@ -91,8 +91,10 @@ class _Membrane:
                 "lam1": F[0, 0], "lam3": F[1, 1], "P33": np.full(pts.shape[1], np.nan)}
 
 
-    def export_mesh(self, x, load):
-        """``(points (n, 3), cells, point_data)`` of the deformed membrane for meshio."""
+    def export(self, x, load):
+        """meshio ``Mesh`` of the membrane: displacement ``(u1, 0, u3)``, ``lam1``, ``lam3``."""
+        import meshio
+
         pb = self.problem
         u = pb.T @ x
         ud = u[pb.basis.nodal_dofs]                       # (2, nverts): u1, u3
@@ -100,8 +102,9 @@ class _Membrane:
         pts = np.c_[p[0], np.zeros(p.shape[1]), p[1]]     # (x1, x2 = 0, x3)
         disp = np.c_[ud[0], np.zeros(p.shape[1]), ud[1]]
         maps = self.maps(x, load)
-        cells = [("quad", pb.mesh.t[:4].T.copy())]
-        return pts, cells, {"displacement": disp, "lam1": maps["lam1"], "lam3": maps["lam3"]}
+        return meshio.Mesh(pts, [("quad", pb.mesh.t[:4].T.copy())],
+                           point_data={"displacement": disp, "lam1": maps["lam1"],
+                                       "lam3": maps["lam3"]})
 
 
 class _Plate:
@@ -182,13 +185,11 @@ class _Plate:
         return {"kind": np.ones(X1.size), "x1": X1 * 1e-3, "x3": X3 * 1e-3, "lam1": lam[0],
                 "lam3": lam[2], "P33": np.full(X1.size, np.nan)}
 
-    def export_mesh(self, x, load):
-        """``(points, cells, point_data)`` of the hexahedral mesh (vertices) for meshio."""
-        pb = self.problem
-        m = pb.plate.mesh
-        xf = pb.full(x, load)
-        disp = np.stack([xf[3 * pb.b2.nodal_dofs[0] + a] for a in range(3)], axis=1)
-        return m.p.T.copy(), [("hexahedron", m.t.T.copy())], {"displacement": disp}
+    def export(self, x, load):
+        """meshio ``Mesh`` (:func:`skfem_dielectric.export.step_mesh`): u, phi, p, P33, stretches."""
+        from skfem_dielectric.export import step_mesh
+
+        return step_mesh(self.problem, x, load)
 
 
 def build_problem(spec):
@@ -317,7 +318,7 @@ def simulate(*, geometry="uniaxial", model="neo-Hookean", variant="coupled", s=N
     frames, rows = [], []
 
     def on_step(i, rec, st):
-        frames.append(wrap.export_mesh(st["x"], st["load"]))
+        frames.append(wrap.export(st["x"], st["load"]))
         rows.append([i, spec.D0[i], rec.lam1, rec.lam3, rec.min_P33, rec.min_P33_clamp,
                      rec.iterations])
         return False
@@ -326,17 +327,17 @@ def simulate(*, geometry="uniaxial", model="neo-Hookean", variant="coupled", s=N
     written = []
     stem = f"{spec.key}"
     if fmt == "vtu":
-        for i, (pts, cells, pdata) in enumerate(frames):
+        for i, mesh in enumerate(frames):
             path = out / f"{stem}_{i:03d}.vtu"
-            meshio.write(path, meshio.Mesh(pts, cells, point_data=pdata))
+            meshio.write(path, mesh)
             written.append(path)
     elif frames:
         path = out / f"{stem}.xdmf"
-        pts, cells, _ = frames[0]
         with meshio.xdmf.TimeSeriesWriter(path, data_format="XML") as w:   # no h5py needed
-            w.write_points_cells(pts, cells)
-            for i, (_, _, pdata) in enumerate(frames):
-                w.write_data(spec.D0[i], point_data=pdata)
+            w.write_points_cells(frames[0].points, frames[0].cells)
+            for i, mesh in enumerate(frames):
+                w.write_data(spec.D0[i], point_data=mesh.point_data,
+                             cell_data=mesh.cell_data or None)
         written.append(path)
     table = out / f"{stem}_steps.csv"
     with open(table, "w", newline="") as fh:
@@ -380,7 +381,7 @@ def bench(*, mesh=(20, 1, 10), alpha=1.0, D0_max=6.0, steps=6, variant="coupled"
     wrap = build_problem(spec)
     t_build = time.perf_counter() - t_build
     lines = [f"Keplinger plate, alpha = {alpha:g} (s = {spec.s:.4g}), variant {variant}, "
-             f"mesh {tuple(mesh)}, {wrap.problem.ndofs} unknowns, set-up {t_build:.2f} s",
+             f"mesh {tuple(mesh)}, {wrap.problem.initial_state().size} unknowns, set-up {t_build:.2f} s",
              f"{'step':>4} {'D0':>6} {'lam1':>9} {'min_P33':>9} {'iters':>5} {'seconds':>8}"]
     t = [time.perf_counter()]
 
