@@ -125,3 +125,31 @@ def test_bad_input_exit_code(tmp_path, capsys):
     assert "steps must be >= 1, got 0" in capsys.readouterr().err
     with pytest.raises(SystemExit):
         build_parser().parse_args(["validate", "--case", "nope", "--out", "x"])
+
+
+@pytest.mark.slow
+def test_readme_main_job(tmp_path):
+    """``skfem-dielectric validate --quick --out results``: every case, every figure (~3 min)."""
+    from validation.cases import CASES
+
+    out = tmp_path / "results"
+    assert main(["validate", "--quick", "--out", str(out), "--no-progress"]) == 0
+    summary = json.loads((out / "summary.json").read_text())["cases"]
+    for name, case in CASES.items():
+        assert (out / f"{name}.png").exists() and (out / f"{name}.pdf").exists()
+        with open(out / f"{name}.csv", newline="") as fh:
+            assert set(CONTRACT) <= set(next(csv.reader(fh)))
+        t = read_table(out / f"{name}.csv")
+        for spec in case.quick:                 # one row per FE step, in order
+            steps = t["step"][t["run"] == spec.key]
+            assert list(steps) == list(range(len(steps))) and len(steps) >= 1
+    # homogeneous states: Newton tolerance only (see test_validate_quick_homogeneous_case)
+    for name in ("nh-d-e", "gent-d-e", "gent-equi-biaxial", "figde"):
+        assert summary[name]["max_rel_error"] < 1e-8, name
+    # clamped plate, energy-coupled models: within 1 % of Eq. (DEuniax) at the centre
+    by_run = summary["uni-axial-ideal"]["max_rel_error_by_run"]
+    assert max(v for k, v in by_run.items() if "maxwell" not in k) < 1e-2
+    brk = summary["uni-axial-ideal"]["breakdown_D0"]
+    for variant in ("coupled", "membrane"):
+        d = [brk[f"uniaxial_nh_{variant}_a{a:g}"] for a in (0.05, 0.3, 0.7, 1.0, 1.5)]
+        assert None not in d and np.all(np.diff(d) >= 0) and d[-1] > d[0], d
