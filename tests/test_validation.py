@@ -278,3 +278,23 @@ def test_bad_input():
         vc.get_case("nope")
     with pytest.raises(ValueError, match="jobs"):
         run_cases([], ".", jobs=0)
+
+
+def test_progress_bar_quiet_unless_terminal():
+    import io
+
+    from validation.progress import Progress
+
+    class TTY(io.StringIO):
+        def isatty(self):
+            return True
+
+    quiet, tty = io.StringIO(), TTY()
+    for stream in (quiet, tty):
+        with Progress(4, "case", stream=stream) as bar:
+            for _ in range(4):
+                bar.update(note="D0=1")
+    assert quiet.getvalue() == ""                              # not a terminal: silent
+    last = tty.getvalue().split("\r")[-1]
+    assert last.split()[:3] == ["case", "[" + "#" * Progress.width + "]", "4/4"]
+    assert tty.getvalue().endswith("\n")
