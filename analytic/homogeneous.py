@@ -33,7 +33,7 @@ from __future__ import annotations
 import numpy as np
 
 from ._checks import as_array, broadcast, check_positive
-from .models import Model, NeoHookean, as_model
+from .models import Gent, Model, NeoHookean, as_model
 
 __all__ = [
     "biaxial_stress",
@@ -608,6 +608,32 @@ def equibiaxial_lam(D0, s=0.0, model=None):
 # ----------------------------------------------------------------------------
 # uni-axial dead load (t3 = 0)
 # ----------------------------------------------------------------------------
+def _uniaxial_x_gent(lam1, s, Jm):
+    """Gent closed form of ``x = lam3^2``: with ``2W' = Jm/(Jm + 3 - I1)`` the condition
+    ``s = 2W'(lam1 - x/lam1)`` times ``x (Jm + 3 - I1)`` is the quadratic
+    ``(Jm/lam1 - s) x^2 + (s (Jm + 3 - lam1^2) - Jm lam1) x - s/lam1^2 = 0``.
+    Of its roots, those with ``D0^2 >= 0`` (``x >= 1/lam1``) and ``I1 < 3 + Jm`` are
+    states; the smallest (smallest ``D0``) is returned, ``nan`` if none."""
+    A = Jm / lam1 - s
+    B = s * (Jm + 3.0 - lam1**2) - Jm * lam1
+    C = -s / lam1**2
+    with np.errstate(invalid="ignore", divide="ignore"):
+        sq = np.sqrt(np.maximum(B * B - 4.0 * A * C, 0.0))
+        qq = -0.5 * (B + np.where(B >= 0, sq, -sq))
+        r1 = qq / A
+        r2 = np.where(qq != 0, C / qq, -C / B)  # stable product form; A = 0: linear root
+        r1 = np.where(A != 0, r1, np.nan)
+    x_lo = 1.0 / lam1
+    tol = 64 * _EPS * x_lo  # rounding of the D0 = 0 root
+    best = np.full(lam1.shape, np.inf)
+    for r in (r1, r2):
+        r = np.where(np.abs(r - x_lo) <= tol, x_lo, r)
+        with np.errstate(invalid="ignore", divide="ignore"):
+            ok = np.isfinite(r) & (r >= x_lo) & (lam1**2 + r + 1.0 / (lam1**2 * r) < 3.0 + Jm)
+        best = np.where(ok & (r < best), r, best)
+    return np.where(np.isfinite(best), best, np.nan)
+
+
 def _uniaxial_x(lam1, s, model):
     """``x = lam3^2`` on the uni-axial branch (flat arrays in, flat array out)."""
     n = lam1.size
@@ -620,6 +646,8 @@ def _uniaxial_x(lam1, s, model):
     I1max = model.I1_max()
     x_lo = 1.0 / lam1  # D0 = 0
     _derivs(model, lam1**2 + 2.0 / lam1, "lam1", lam1)  # D0 = 0 state must be admissible
+    if type(model) is Gent:
+        return _uniaxial_x_gent(lam1, s, model.Jm)
     x_lock = _uniaxial_xlock(lam1, I1max)
 
     def g(xv, i):
@@ -721,12 +749,13 @@ def uniaxial_lam3(lam1, s=0.0, model=None):
     Notes
     -----
     Eq. (uni-axial-loading)_1 generalised to any ``W``; neo-Hookean closed form
-    ``lam3 = sqrt(lam1 (lam1 - s))``. For other models ``x = lam3^2`` is found by
-    a vectorised safeguarded Newton method on ``[lam1^-1, lam1^2]`` (``s > 0``;
-    the right-hand side decreases from its ``D0 = 0`` value to ``0`` there for
-    Gent). Only within a few per cent of the Gent locking stretch can the
-    right-hand side be non-monotone; there the smallest ``lam3`` (smallest
-    ``D0``) is returned.
+    ``lam3 = sqrt(lam1 (lam1 - s))``. Gent: multiplying by ``x (Jm + 3 - I1)``
+    (``x = lam3^2``) turns the condition into the quadratic
+    ``(Jm/lam1 - s) x^2 + (s (Jm + 3 - lam1^2) - Jm lam1) x - s/lam1^2 = 0``,
+    solved in closed form. Other models: a vectorised safeguarded Newton method
+    on ``[lam1^-1, lam1^2]`` (``s > 0``), with a scan where a locking limit cuts
+    in. Within a few per cent of the Gent locking stretch two states can share
+    ``lam1``; the smaller ``lam3`` (smaller ``D0``) is returned.
 
     Examples
     --------

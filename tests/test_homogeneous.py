@@ -151,6 +151,26 @@ def test_uniaxial_matches_printed_DEuniax(model):
         np.testing.assert_allclose(E0[on] ** 2, lam1[on] ** -2 - lam1[on] ** -4 * l3[on] ** -4, atol=1e-13)
 
 
+def test_gent_uniaxial_closed_form_matches_generic_solver():
+    """The Gent quadratic in lam3^2 against the root finder run on a user-model copy of
+    Gent, up to the locking stretch (including the region where two states share lam1)."""
+    Jm = 97.2
+    gent_user = an.UserModel(
+        W=lambda I: -0.5 * Jm * np.log(1 - (I - 3) / Jm),
+        dW=lambda I: 0.5 / (1 - (I - 3) / Jm),
+        d2W=lambda I: 0.5 / (Jm * (1 - (I - 3) / Jm) ** 2),
+        name="gent-user", I1_limit=3 + Jm,
+    )
+    lam1 = np.linspace(0.6, 9.95, 400)[:, None]
+    s = np.array([-1.0, 0.0, 0.5, 2.0, 6.0, 30.0, 47.0])[None, :]
+    a = an.uniaxial_lam3(lam1, s, GENT)
+    b = an.uniaxial_lam3(lam1, s, gent_user)
+    assert np.array_equal(np.isnan(a), np.isnan(b))
+    assert np.count_nonzero(np.isfinite(a)) > 1000
+    # both converge to a few ulps of lam3^2; near the lock the roots are ill-conditioned
+    np.testing.assert_allclose(a, b, rtol=1e-10)
+
+
 def test_uniaxial_s0_is_equibiaxial():
     """With s = 0 both in-plane stresses vanish: the uni-axial state is the equi-biaxial one."""
     lam1 = np.linspace(1.0, 3.0, 21)
