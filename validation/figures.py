@@ -523,9 +523,15 @@ def case_figure(name: str, fe=None, fields=None):
         _tag(axes)
         return fig
     if name == "gent-equi-biaxial":
-        fig, axes = plt.subplots(1, 2, figsize=(11, 4.5), layout="constrained")
+        fig, axes = plt.subplots(1, 2, figsize=(13, 4.8), layout="constrained")
         for ax, model in zip(axes, ("neo-Hookean", "Gent")):
             plot_equibiaxial_wrinkling(model, fe=fe, ax=ax)
+        # one shared legend beside the panels, clear of the s = 4.5 curve
+        leg = axes[0].get_legend()
+        handles, labels = leg.legend_handles, [t.get_text() for t in leg.get_texts()]
+        for ax in axes:
+            ax.get_legend().remove()
+        fig.legend(handles, labels, loc="outside right center", fontsize=8)
         _tag(axes)
         return fig
     if name == "figde":
