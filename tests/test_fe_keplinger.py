@@ -1,0 +1,104 @@
+"""The uni-axial Keplinger plate (paper Sec. 5-6) against the homogeneous uni-axial theory.
+
+Reference: Eq. (DEuniax) ``D0 = sqrt(lam1^4 (lam1 - s)^2 - 1)`` and, before charging,
+``lam1 - lam1^-2 = s``, solved here with brentq (independent of the FE code).
+"""
+
+import numpy as np
+import pytest
+from scipy.optimize import brentq
+
+from skfem_dielectric.drivers import keplinger_plate, keplinger_s
+
+ALPHAS = [0.05, 0.3, 0.7, 1.0, 1.5]
+
+
+def lam1_uniaxial(D0, s):
+    if D0 == 0:
+        return brentq(lambda L: L - L**-2 - s, 1.0, 50.0, xtol=1e-14)
+    return brentq(lambda L: L**4 * (L - s) ** 2 - 1 - D0**2, max(s, 1.0), 50.0, xtol=1e-14)
+
+
+def test_keplinger_s_matches_paper_value():
+    # s = alpha m g / (mu A) with m = 150 g, g = 9.81, mu = 9833.07 Pa, A = 50 mm^2
+    assert abs(keplinger_s(1.0) - 0.150 * 9.81 / (9833.07 * 50e-6)) < 1e-12
+    assert abs(keplinger_s(1.0) - 2.993) < 5e-4
+
+
+def test_keplinger_alpha1_follows_uniaxial_curve_on_coarse_mesh():
+    steps = []
+    res = keplinger_plate(1.0, D0=[1, 2, 3, 4, 5, 6], elements=(8, 1, 4),
+                          linear_solver="superlu", on_step=steps.append)
+    assert res.converged, res.reason
+    assert len(steps) == len(res.steps) == 9
+    s = keplinger_s(1.0)
+    prob = res.problem
+    # the rigid clamp: one shared u1 dof carrying the resultant s mu A_face (eighth model:
+    # A_face = (H/2)(L3/2) = 12.5 mm^2, mu = 1)
+    f = prob.red.reduce(prob.external((s, 0.0)))
+    tied = prob.red.index[3 * prob.b2.get_dofs("x1_plus").all()]
+    assert np.unique(tied).size == 1
+    assert abs(f[tied[0]] - s * 12.5) < 1e-12 * s * 12.5
+    pre = res.steps[2]
+    assert pre["phase"] == "preload" and pre.load[1] == 0
+    # before charging: centre stretch within 0.5 % of the homogeneous value (issue demand;
+    # measured +0.06 % -- the clamps barely affect the centre of a 2:1 plate)
+    assert abs(pre["lam1"] / lam1_uniaxial(0.0, s) - 1) < 5e-3
+    for st in res.steps[3:]:
+        dev = st["lam1"] / lam1_uniaxial(st.load[1], s) - 1
+        # under charge: within 1 % of Eq. (DEuniax) (measured |dev| <= 0.11 % up to D0 = 6)
+        assert abs(dev) < 1e-2
+        # min P33 reported at every step, on the centre line and near the clamp
+        assert np.isfinite(st["min_P33"]) and np.isfinite(st["min_P33_clamp"])
+    # P33 on the centre line is positive before charging and turns compressive near the
+    # clamp under charge (the paper's breakdown indicator, Fig. zs22)
+    assert res.steps[2]["min_P33"] > 0 > res.steps[-1]["min_P33"]
+    assert res.steps[-1]["x1_min_P33"] > 40.0
+
+
+def test_keplinger_resume_is_bitwise_identical():
+    kw = dict(D0=[1, 2], elements=(4, 1, 2), preload_steps=2, linear_solver="superlu")
+    full = keplinger_plate(1.0, **kw)
+    part = keplinger_plate(1.0, x0=full.steps[2].x, start=full.steps[2].load, **kw)
+    assert [st.load[1] for st in part.steps] == [2.0]
+    # same targets from the same state with a deterministic solver: identical bits
+    assert np.array_equal(part.steps[-1].x, full.steps[-1].x)
+
+
+def test_keplinger_bad_input():
+    with pytest.raises(ValueError, match="g must be"):
+        keplinger_s(1.0, g=0.0)
+    with pytest.raises(ValueError, match="alpha"):
+        keplinger_s(float("nan"))
+    with pytest.raises(ValueError, match="start"):
+        keplinger_plate(1.0, D0=[1.0], elements=(2, 1, 1), start=(9.0, 9.0),
+                        x0=np.zeros(3))
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("alpha", ALPHAS)
+def test_keplinger_every_alpha_deviation(alpha):
+    s = keplinger_s(alpha)
+    res = keplinger_plate(alpha, D0=[1, 2, 3, 4, 5, 6], elements=(20, 1, 10),
+                          linear_solver="auto")
+    devs = {st.load[1]: st["lam1"] / lam1_uniaxial(st.load[1], s) - 1 for st in res.steps}
+    print(f"alpha={alpha} s={s:.4f} converged={res.converged} deviations:",
+          {k: f"{v:+.3%}" for k, v in devs.items()})
+    assert res.steps, res.reason
+    # 1 % for the paper's pre-stressed cases; small weights deviate more because the
+    # clamps hold back the lateral expansion (measured, reported in docs/fe.md)
+    tol = 1e-2 if alpha >= 0.7 else 5e-2
+    assert all(abs(v) < tol for v in devs.values())
+
+
+@pytest.mark.slow
+def test_keplinger_mesh_refinement():
+    lams = []
+    for n1, n3 in [(10, 5), (20, 10), (40, 20)]:
+        res = keplinger_plate(1.0, D0=[2, 4], elements=(n1, 1, n3), linear_solver="auto")
+        assert res.converged, res.reason
+        lams.append(np.array([st["lam1"] for st in res.steps]))
+    change = np.abs(lams[2] / lams[1] - 1).max()
+    print("lam1 per mesh:", lams, "max change between finest meshes:", change)
+    # the issue's demand: < 0.1 % between the two finest meshes
+    assert change < 1e-3
