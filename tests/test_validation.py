@@ -243,8 +243,10 @@ def test_validate_writes_only_into_out(tmp_path, monkeypatch):
         assert {f"{n}.csv", f"{n}.png", f"{n}.pdf"} <= files
     summary = json.loads((out / "summary.json").read_text())
     assert summary["cases"][names[0]]["max_rel_error"] == pytest.approx(PERTURB * 10, abs=1e-11)
-    # breakdown of the fake: first D0 on the 0.5 grid with 0.05 - 0.02 D0 < -0.01, i.e. 3.5
+    # breakdown of the fake: first D0 on the 0.5 grid with 0.05 a - 0.02 D0 < -0.01
     assert set(summary["cases"]["zs22"]["breakdown_D0"].values()) == {3.5}
+    assert summary["cases"]["uni-axial-ideal"]["breakdown_D0_by_alpha"] == {
+        v: {"0.3": 1.5, "1": 3.5} for v in ("coupled", "maxwell")}
     assert (out / "report.md").read_text().count("\n| ") == 5   # header, rule, 3 cases
     assert plt.get_fignums() == []                               # figures closed
 

@@ -23,9 +23,10 @@ def summary_dict(results, *, quick: bool) -> dict:
     Returns
     -------
     dict
-        JSON-serialisable; ``breakdown_D0`` maps each run (for the uni-axial
-        cases, one per ``alpha`` and variant) to the first ``D0`` where ``P33``
-        near the clamps turned compressive, or ``None``.
+        JSON-serialisable; ``breakdown_D0`` maps each run to the first ``D0``
+        where ``min P33/mu`` on the centre line fell below ``-0.01`` (or the
+        solver stopped), else ``None``; for the uni-axial cases
+        ``breakdown_D0_by_alpha`` holds the same per variant and ``alpha``.
     """
     cases = {}
     for r in results:

@@ -97,6 +97,7 @@ class CaseResult:
     max_rel_error: float | None
     max_rel_error_by_run: dict = field(default_factory=dict)
     breakdown_D0: dict = field(default_factory=dict)
+    breakdown_D0_by_alpha: dict = field(default_factory=dict)
     reasons: dict = field(default_factory=dict)
     runtime_s: float = 0.0
     resumed_steps: int = 0
@@ -409,6 +410,10 @@ def summarise_case(case: Case, csv_path: Path, n_runs: int) -> CaseResult:
             res.breakdown_D0[key] = float(t["D0"][sel][np.argmax(brk)])
         else:
             res.breakdown_D0[key] = None
+        if "alpha" in t and np.isfinite(t["alpha"][sel][0]):
+            variant = str(t["variant"][sel][0])
+            res.breakdown_D0_by_alpha.setdefault(variant, {})[format(t["alpha"][sel][0], "g")] = \
+                res.breakdown_D0[key]
         fails = ~conv[sel]
         if fails.any():
             res.reasons[key] = f"no convergence at D0 = {t['D0'][sel][np.argmax(fails)]:g}"
