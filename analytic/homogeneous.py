@@ -568,14 +568,15 @@ def equibiaxial_lam(D0, s=0.0, model=None):
     lo_lim, hi_lim = _equibiaxial_limits(model)
 
     nh = isinstance(model, NeoHookean)
+    cq = 1.0 + q
 
     def h(lam, i):
         r = 1.0 / lam
         r4 = (r * r) ** 2
         r5, r6 = r4 * r, r4 * r * r
         if nh:  # 2W' = 1, W'' = 0
-            f = lam - r5 * (1.0 + q[i]) - s[i]
-            return f, 1.0 + 5.0 * r6 * (1.0 + q[i])
+            cr5 = cq[i] * r5
+            return lam - cr5 - s[i], 1.0 + 5.0 * cr5 * r
         I1 = 2 * lam * lam + r4
         dW, d2W = model.dW(I1), model.d2W(I1)
         I1p, I1pp = 4 * (lam - r5), 4 + 20 * r6
@@ -587,6 +588,17 @@ def equibiaxial_lam(D0, s=0.0, model=None):
         c6 = (1.0 + q) ** (1.0 / 6.0)
         lo = ((1.0 + q) / (c6 + np.maximum(-s, 0.0))) ** 0.2
         hi = c6 + np.maximum(s, 0.0)
+        lam = _rtsafe(h, lo, hi, 0.5 * s + np.sqrt(0.25 * s**2 + c6**2))
+        return _out(lam.reshape(shape))
+    if type(model) is Gent:
+        # 2W' >= 1 (W'' >= 0, 2W'(3) = 1): h_Gent >= h_nH for lam >= 1 and <= for lam <= 1,
+        # so the root lies between 1 and the explicit neo-Hookean bounds (see nh above)
+        c6 = (1.0 + q) ** (1.0 / 6.0)
+        up = -q - s <= 0  # h(1) <= 0: root at or above 1
+        lo = np.where(up, 1.0, np.maximum(((1.0 + q) / (c6 + np.maximum(-s, 0.0))) ** 0.2,
+                                           lo_lim * (1 + 1e-12)))
+        hi = np.where(up, np.minimum(c6 + np.maximum(s, 0.0), hi_lim * (1 - 1e-12)), 1.0)
+        # first guess: the neo-Hookean estimate used above (exact for nH at s = 0)
         lam = _rtsafe(h, lo, hi, 0.5 * s + np.sqrt(0.25 * s**2 + c6**2))
         return _out(lam.reshape(shape))
     one = np.ones(q.size)
