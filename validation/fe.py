@@ -225,6 +225,10 @@ def run_fe(spec, start, state, on_step, linear_solver="superlu"):
 
     from .sweep import RunOutcome
 
+    if "maxwell" in spec.variant:
+        # the Maxwell follower load has a non-symmetric tangent; the PARDISO wrapper is
+        # symmetric-indefinite (upper triangle only), so these runs always use SuperLU
+        linear_solver = "superlu"
     wrap = build_problem(spec)
     targets = wrap.targets(spec)
     x0 = None if state is None else np.asarray(state["x"], dtype=float)
