@@ -13,7 +13,8 @@ import time
 import numpy as np
 
 from skfem_dielectric.materials import NeoHookeanDielectric
-from skfem_dielectric.membrane import MembranePlate, keplinger_s, membrane_ramp
+from skfem_dielectric.drivers import keplinger_s
+from skfem_dielectric.membrane import MembranePlate, membrane_ramp
 
 
 def main(solver: str = "superlu") -> None:

@@ -33,7 +33,6 @@ __all__ = [
     "MembranePlate",
     "membrane_ramp",
     "membrane_keplinger",
-    "keplinger_s",
 ]
 
 
@@ -202,9 +201,9 @@ class MembranePlate:
     def __init__(self, material, L1: float = 100.0, L3: float = 50.0, H: float = 1.0,
                  n1: int = 40, n3: int = 20, loading: str = "clamped",
                  control: str = "charge", coupling: str = "full"):
-        import scipy.sparse as sp
         import skfem as fe
 
+        from .assembly import DofReduction, ScatterMap
         from .mesh2d import BatchedVectorForm, point_gradients
 
         if loading not in _LOADINGS:
@@ -245,20 +244,16 @@ class MembranePlate:
             tied = np.unique(np.concatenate([dofs["x1_plus"].nodal["u^1"],
                                              dofs["x1_plus"].facet["u^1"]]))
         fixed = np.unique(np.concatenate(fixed))
-        free = np.setdiff1d(np.arange(n), np.concatenate([fixed, tied]))
-        # full = T @ reduced: free dofs one-to-one, tied dofs share the last column
-        nred = free.size + (1 if tied.size else 0)
-        rows = np.concatenate([free, tied])
-        cols = np.concatenate([np.arange(free.size), np.full(tied.size, nred - 1)])
-        self.T = sp.csr_matrix((np.ones(rows.size), (rows, cols)), shape=(n, nred))
-        self.TT = self.T.T.tocsr()
-        self.tied_index = nred - 1 if tied.size else None
+        # shared machinery: dof reduction (fixed + tied clamp dofs) and scatter map
+        self.red = DofReduction(n, fixed, [tied] if tied.size else None)
+        self.scatter = ScatterMap(self.red.index[self.basis.element_dofs.T], self.red.n)
+        self.tied_index = int(self.red.index[tied[0]]) if tied.size else None
         # external load for s = 1 (force per reference length mu H on the loaded edges)
         mu = material.mu
         f = np.zeros(n)
         if loading == "clamped":
-            fred = np.zeros(nred)
-            fred[-1] = mu * self.H * a3  # resultant on the quarter: mu s H L3/2
+            fred = np.zeros(self.red.n)
+            fred[self.tied_index] = mu * self.H * a3  # resultant on the quarter: mu s H L3/2
         else:
             for name, comp in (("x1_plus", 0), ("x3_plus", 1))[: 2 if loading == "equibiaxial" else 1]:
                 fb = fe.FacetBasis(mesh, elem, facets=mesh.boundaries[name], intorder=4)
@@ -270,7 +265,7 @@ class MembranePlate:
                     return e[0] * v[0] + e[1] * v[1]
 
                 f += trac.assemble(fb)
-            fred = self.TT @ f
+            fred = self.red.reduce(f)
         self.f_unit = fred
         if coupling == "maxwell":
             facets = np.concatenate([mesh.boundaries["x1_plus"], mesh.boundaries["x3_plus"]])
@@ -279,7 +274,8 @@ class MembranePlate:
             self._mx = dict(
                 V=np.array([np.asarray(fbm.basis[a][0]) for a in range(nb)]),
                 G=np.array([fbm.basis[a][0].grad for a in range(nb)]),
-                N=fbm.normals, dx=fbm.dx, dofs=fbm.element_dofs)
+                N=fbm.normals, dx=fbm.dx, dofs=fbm.element_dofs,
+                scatter=ScatterMap(self.red.index[fbm.element_dofs.T], self.red.n))
         # probes: centre line X3 = 0 and the line next to the clamp X1 = 0.95 L1/2
         self.x_line = np.linspace(0.0, a1, 4 * self.n1 + 1)
         self.x_clamp = np.linspace(0.0, a3, 4 * self.n3 + 1)
@@ -292,7 +288,17 @@ class MembranePlate:
     @property
     def ndofs(self) -> int:
         """Number of reduced unknowns."""
-        return self.T.shape[1]
+        return self.red.n
+
+    @property
+    def T(self):
+        """Sparse prolongation ``u_full = T x`` (all prescribed values are zero)."""
+        import scipy.sparse as sp
+
+        idx = self.red.index
+        rows = np.flatnonzero(idx >= 0)
+        return sp.csr_matrix((np.ones(rows.size), (rows, idx[rows])),
+                             shape=(idx.size, self.red.n))
 
     def initial_state(self) -> np.ndarray:
         """Zero displacement."""
@@ -300,7 +306,7 @@ class MembranePlate:
 
     def full(self, x: np.ndarray, load=None) -> np.ndarray:
         """Full displacement vector (scikit-fem dof order) from reduced unknowns."""
-        return self.T @ x
+        return self.red.expand(np.asarray(x, dtype=float))
 
     def _electric(self, load):
         s, e0 = np.asarray(load, dtype=float).reshape(2)
@@ -310,9 +316,8 @@ class MembranePlate:
         return s, dict(E_L=e0 * np.sqrt(mu / eps))
 
     def _edge_maxwell(self, u, sigma, need_tangent=True):
-        """Follower traction ``c J^-2 F^-T N`` on the edges, ``c = H sigma^2/(2 eps)``."""
-        import scipy.sparse as sp
-
+        """Follower traction ``c J^-2 F^-T N`` on the edges, ``c = H sigma^2/(2 eps)``;
+        reduced ``(K, r)`` contributions (``K`` is ``None`` without the tangent)."""
         m = self._mx
         F = np.einsum("ae,aijeq->ijeq", u[m["dofs"]], m["G"], optimize=True)
         F = F + np.eye(2)[:, :, None, None]
@@ -321,19 +326,14 @@ class MembranePlate:
         g = np.einsum("iM...,M...->i...", G, m["N"])
         c = self.H * sigma**2 / (2.0 * self.material.eps) * m["dx"]
         t = c * J**-2 * g
-        r = -np.einsum("ieq,aieq->ae", t, m["V"], optimize=True)
-        r = np.bincount(m["dofs"].ravel(), weights=r.ravel(), minlength=self.basis.N)
+        re = -np.einsum("ieq,aieq->ea", t, m["V"], optimize=True)
+        r = m["scatter"].vector(re)
         if not need_tangent:
             return None, r
         dt = -c * J**-2 * (2.0 * np.einsum("kl...,i...->ikl...", G, g)
                            + np.einsum("il...,k...->ikl...", G, g))
-        Ke = -np.einsum("aieq,ikleq,bkleq->abe", m["V"], dt, m["G"], optimize=True)
-        d = m["dofs"]
-        nb, ne = d.shape
-        rows = np.broadcast_to(d[:, None, :], (nb, nb, ne)).ravel()
-        cols = np.broadcast_to(d[None, :, :], (nb, nb, ne)).ravel()
-        K = sp.csr_matrix((Ke.ravel(), (rows, cols)), shape=(self.basis.N,) * 2)
-        return K, r
+        Ke = -np.einsum("aieq,ikleq,bkleq->eab", m["V"], dt, m["G"], optimize=True)
+        return m["scatter"].matrix(Ke), r
 
     def _kernel_options(self, load):
         s, el = self._electric(load)
@@ -343,27 +343,28 @@ class MembranePlate:
         return s, el, None
 
     def assemble(self, x: np.ndarray, load) -> tuple:
-        """Reduced tangent and residual ``T^T (f_int(u) - s f_ext)``."""
+        """Reduced tangent and residual ``P^T (f_int(u) - s f_ext)``."""
         s, el, sigma = self._kernel_options(load)
-        u = self.T @ x
+        u = self.full(x)
         F = self.form.grad(u) + np.eye(2)[:, :, None, None]
         _, P, A = membrane_kernel(F, self.material, H=self.H, **el)
-        K, r = self.form.assemble(P, A)
+        K = self.scatter.matrix(self.form.element_matrices(A))
+        r = self.scatter.vector(self.form.element_vectors(P))
         if sigma is not None:
             Km, rm = self._edge_maxwell(u, sigma)
             K, r = K + Km, r + rm
-        return self.TT @ K @ self.T, self.TT @ r - s * self.f_unit
+        return K, r - s * self.f_unit
 
     def residual(self, x: np.ndarray, load) -> np.ndarray:
         """Reduced residual only (line search)."""
         s, el, sigma = self._kernel_options(load)
-        u = self.T @ x
+        u = self.full(x)
         F = self.form.grad(u) + np.eye(2)[:, :, None, None]
         _, P, _ = membrane_kernel(F, self.material, H=self.H, **el)
-        r = self.form.assemble_vector(P)
+        r = self.scatter.vector(self.form.element_vectors(P))
         if sigma is not None:
             r = r + self._edge_maxwell(u, sigma, need_tangent=False)[1]
-        return self.TT @ r - s * self.f_unit
+        return r - s * self.f_unit
 
     def residual_scale(self, load) -> float:
         """Scale of the residual: ``mu H L1`` (a force)."""
@@ -388,7 +389,7 @@ class MembranePlate:
             and ``P33`` (second Piola ``S33/mu``, total stress) at the points.
         """
         _, el = self._electric(load)
-        F, S = self._probe(self.T @ x, self._probe_line, el)
+        F, S = self._probe(self.full(x), self._probe_line, el)
         return {"x1": self.x_line.copy(), "lam1": F[0, 0], "lam3": F[1, 1],
                 "lam2": 1.0 / _det2(F), "P33": S[1, 1] / self.material.mu}
 
@@ -402,7 +403,7 @@ class MembranePlate:
         along ``X1 = 0.95 L1/2`` next to the clamp.
         """
         _, el = self._electric(load)
-        u = self.T @ x
+        u = self.full(x)
         mu = self.material.mu
         F, S = self._probe(u, self._probe_line, el)
         Fk, Sk = self._probe(u, self._probe_clamp, el)
@@ -461,28 +462,6 @@ def membrane_ramp(problem: MembranePlate, s: float, D0, **ramp_options):
     return ramp(problem, _ramp_targets(s, D0), **ramp_options)
 
 
-def keplinger_s(alpha: float = 1.0, m: float = 0.150, g: float = 9.81,
-                mu: float = 9833.07, A: float = 50e-6) -> float:
-    """Dimensionless dead load of the Keplinger et al. plate, ``s = alpha m g/(mu A)``.
-
-    Parameters
-    ----------
-    alpha : float
-        Weight factor (the paper uses 0.05, 0.3, 0.7, 1.0, 1.5).
-    m, g, mu, A : float
-        Mass (kg), gravity (m/s^2, 9.81 here), shear modulus (Pa) and reference
-        cross-section (m^2), paper Sec. 6 / Fig. uni-axial-ideal.
-
-    Returns
-    -------
-    float
-        ``s`` (2.993 for ``alpha = 1``).
-    """
-    for name, v in (("alpha", alpha), ("m", m), ("g", g), ("mu", mu), ("A", A)):
-        _check_pos(name, v)
-    return alpha * m * g / (mu * A)
-
-
 def membrane_keplinger(alpha: float = 1.0, D0=np.arange(0.0, 6.01, 0.5), material=None,
                        n1: int = 40, n3: int = 20, L1: float = 100.0, L3: float = 50.0,
                        H: float = 1.0, g: float = 9.81, **ramp_options):
@@ -492,7 +471,8 @@ def membrane_keplinger(alpha: float = 1.0, D0=np.arange(0.0, 6.01, 0.5), materia
     ----------
     alpha : float
         Weight factor, ``s = alpha m g/(mu A)`` with ``m = 150 g``,
-        ``mu = 9833.07 Pa``, ``A = 50 mm^2`` (:func:`keplinger_s`).
+        ``mu = 9833.07 Pa``, ``A = 50 mm^2``
+        (:func:`skfem_dielectric.drivers.keplinger_s`).
     D0 : array_like
         Charge targets after the pre-load (start with 0 to record it).
     material : optional
@@ -513,6 +493,7 @@ def membrane_keplinger(alpha: float = 1.0, D0=np.arange(0.0, 6.01, 0.5), materia
         Per step ``lam1`` (centre), ``lam3``, ``min_P33`` along the centre line,
         ``min_P33_clamp`` next to the clamp, ``lam1_mean``.
     """
+    from .drivers import keplinger_s
     from .materials import NeoHookeanDielectric
 
     material = NeoHookeanDielectric(1.0, 1.0) if material is None else material

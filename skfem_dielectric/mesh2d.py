@@ -1,21 +1,21 @@
-"""Helpers for the 2D models: batched assembly of displacement forms, point probes.
+"""Helpers for the 2D models: batched element arrays of displacement forms, point probes.
 
-:class:`BatchedVectorForm` assembles the residual ``int P : Grad v`` and tangent
-``int Grad v : A : Grad du`` of a hyperelastic-type energy on a vector basis
-with array operations over all elements and quadrature points at once, with
-the sparsity pattern and scatter map built once per basis.
+:class:`BatchedVectorForm` computes the element residuals ``int P : Grad v`` and
+tangents ``int Grad v : A : Grad du`` of a hyperelastic-type energy on a vector
+basis with array operations over all elements and quadrature points at once;
+the scatter into the reduced sparse system is the shared
+:class:`skfem_dielectric.assembly.ScatterMap`.
 """
 
 from __future__ import annotations
 
 import numpy as np
-import scipy.sparse as sp
 
 __all__ = ["BatchedVectorForm", "point_gradients"]
 
 
 class BatchedVectorForm:
-    """Batched assembly on a scikit-fem vector basis.
+    """Batched element arrays on a scikit-fem vector basis.
 
     Parameters
     ----------
@@ -26,8 +26,11 @@ class BatchedVectorForm:
     Notes
     -----
     ``grad(u)`` gives ``Grad u`` at the quadrature points, ``(d, d, nel, nqp)``;
-    ``assemble(P, A)`` returns ``K_ab = sum_q A_ijkl G^a_ij G^b_kl dx`` (CSR)
-    and ``r_a = sum_q P_ij G^a_ij dx``.
+    ``element_vectors(P)`` the ``(nel, nb)`` array ``r_a = sum_q P_ij G^a_ij dx``
+    and ``element_matrices(A)`` the ``(nel, nb, nb)`` array
+    ``K_ab = sum_q A_ijkl G^a_ij G^b_kl dx``; they are scattered with
+    :class:`skfem_dielectric.assembly.ScatterMap` (the dof table is
+    ``basis.element_dofs.T``), as in the 3D solver.
     """
 
     def __init__(self, basis):
@@ -35,35 +38,19 @@ class BatchedVectorForm:
         self.G = np.array([basis.basis[a][0].grad for a in range(basis.Nbfun)])
         self.dofs = basis.element_dofs  # (nb, nel)
         self.dx = basis.dx
-        self.N = basis.N
-        nb, nel = self.dofs.shape
-        rows = np.broadcast_to(self.dofs[:, None, :], (nb, nb, nel)).ravel()
-        cols = np.broadcast_to(self.dofs[None, :, :], (nb, nb, nel)).ravel()
-        key = rows.astype(np.int64) * self.N + cols
-        ukey, self._pos = np.unique(key, return_inverse=True)
-        self._indices = (ukey % self.N).astype(np.int32)
-        self._indptr = np.searchsorted(ukey // self.N, np.arange(self.N + 1)).astype(np.int32)
-        self._nnz = ukey.size
 
     def grad(self, u: np.ndarray) -> np.ndarray:
         """``Grad u`` at the quadrature points, shape ``(d, d, nel, nqp)``."""
         return np.einsum("ae,aijeq->ijeq", u[self.dofs], self.G, optimize=True)
 
-    def assemble_vector(self, P: np.ndarray) -> np.ndarray:
-        """``r_a = int P : Grad phi_a``."""
-        re = np.einsum("ijeq,aijeq->ae", P * self.dx, self.G, optimize=True)
-        return np.bincount(self.dofs.ravel(), weights=re.ravel(), minlength=self.N)
+    def element_vectors(self, P: np.ndarray) -> np.ndarray:
+        """``r_a = int P : Grad phi_a`` per element, shape ``(nel, nb)``."""
+        return np.einsum("ijeq,aijeq->ea", P * self.dx, self.G, optimize=True)
 
-    def assemble_matrix(self, A: np.ndarray) -> sp.csr_matrix:
-        """``K_ab = int Grad phi_a : A : Grad phi_b``."""
+    def element_matrices(self, A: np.ndarray) -> np.ndarray:
+        """``K_ab = int Grad phi_a : A : Grad phi_b`` per element, ``(nel, nb, nb)``."""
         AG = np.einsum("ijkleq,bkleq->ijbeq", A * self.dx, self.G, optimize=True)
-        Ke = np.einsum("aijeq,ijbeq->abe", self.G, AG, optimize=True)
-        data = np.bincount(self._pos, weights=Ke.ravel(), minlength=self._nnz)
-        return sp.csr_matrix((data, self._indices, self._indptr), shape=(self.N, self.N))
-
-    def assemble(self, P: np.ndarray, A: np.ndarray):
-        """``(K, r)``, see :meth:`assemble_matrix` and :meth:`assemble_vector`."""
-        return self.assemble_matrix(A), self.assemble_vector(P)
+        return np.einsum("aijeq,ijbeq->eab", self.G, AG, optimize=True)
 
 
 def point_gradients(basis, points: np.ndarray):

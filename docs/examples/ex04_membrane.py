@@ -25,7 +25,8 @@ breakdown indicator (Sec. 6).
 import numpy as np
 
 from skfem_dielectric.materials import NeoHookeanDielectric
-from skfem_dielectric.membrane import MembranePlate, keplinger_s, membrane_ramp
+from skfem_dielectric.drivers import keplinger_s
+from skfem_dielectric.membrane import MembranePlate, membrane_ramp
 
 s = keplinger_s(alpha=1.0)  # 2.993
 plate = MembranePlate(NeoHookeanDielectric(mu=1.0, eps=1.0), L1=100.0, L3=50.0, H=1.0,
