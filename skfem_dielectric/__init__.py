@@ -17,6 +17,9 @@ from .drivers import equibiaxial_plate, keplinger_plate, keplinger_s  # noqa: E4
 __all__ += ["NeoHookeanDielectric", "GentDielectric", "IdealDielectric", "PlateMesh",
             "plate_mesh", "DofReduction", "ScatterMap", "PlateProblem", "equibiaxial_plate",
             "keplinger_plate", "keplinger_s"]
+from .export import step_mesh, write_vtu_series, write_xdmf  # noqa: E402
+
+__all__ += ["step_mesh", "write_vtu_series", "write_xdmf"]
 
 # --- FE variants (helper D): 2D membrane ---
 from .membrane import MembranePlate, membrane_kernel, membrane_keplinger, membrane_ramp  # noqa: E402,E501

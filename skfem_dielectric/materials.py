@@ -270,7 +270,8 @@ def ideal_dielectric_response(material, F: np.ndarray, G: np.ndarray,
         A_pp = 0.0
     mu0 = 2.0 * float(material.energy_derivatives(np.array(3.0))[1]) if stress_free_reference \
         else 0.0
-    psi = W + vol - 0.5 * eps * J * aa - mu0 * np.log(J)
+    with np.errstate(invalid="ignore", divide="ignore"):   # J <= 0 -> nan -> Newton rejects
+        psi = W + vol - 0.5 * eps * J * aa - mu0 * np.log(J)
     P = (2.0 * W1 * F + (pe * J - 0.5 * eps * J * aa - mu0) * FinvT
          + eps * J * np.einsum("a...,K...->aK...", a, bvec))
     D_L = -eps * J * bvec
