@@ -33,6 +33,8 @@ def step_mesh(problem, x: np.ndarray, load: Any):
     """
     from skfem.io.meshio import to_meshio
 
+    if hasattr(problem, "step_mesh"):  # 2D variants (membrane, cross-section) export themselves
+        return problem.step_mesh(x, load)
     xf = problem.full(x, load)
     m = problem.plate.mesh
     nv = m.p.shape[1]
