@@ -194,7 +194,7 @@ def plot_equibiaxial_loading(model="neo-Hookean", s_values=(0, 1, 2, 3), quantit
     ax.set_ylim(0, 8.0 if quantity == "D0" else 0.8)
     handles, _ = ax.get_legend_handles_labels()
     ax.legend(handles=handles + _variant_legend(ax, fe), fontsize=8,
-              loc="center right" if quantity == "D0" else "upper right")
+              loc="lower right" if quantity == "D0" else "upper right")
     ax.set_title(f"{model}, equi-biaxial: ${quantity[0]}_0$ vs stretch", fontsize=10)
     return ax
 
@@ -517,21 +517,17 @@ def case_figure(name: str, fe=None, fields=None):
     if name in ("nh-d-e", "gent-d-e"):
         model, s_values = ("neo-Hookean", (0, 1, 2, 3)) if name == "nh-d-e" \
             else ("Gent", (0, 1, 2.3, 3))
-        fig, axes = plt.subplots(1, 2, figsize=(10, 4.2), layout="constrained")
+        fig, axes = plt.subplots(1, 2, figsize=(12.5, 4.4), layout="constrained")
         plot_equibiaxial_loading(model, s_values, "D0", fe=fe, ax=axes[0])
         plot_equibiaxial_loading(model, s_values, "E0", fe=fe, ax=axes[1])
+        _shared_legend(fig, axes)
         _tag(axes)
         return fig
     if name == "gent-equi-biaxial":
         fig, axes = plt.subplots(1, 2, figsize=(13, 4.8), layout="constrained")
         for ax, model in zip(axes, ("neo-Hookean", "Gent")):
             plot_equibiaxial_wrinkling(model, fe=fe, ax=ax)
-        # one shared legend beside the panels, clear of the s = 4.5 curve
-        leg = axes[0].get_legend()
-        handles, labels = leg.legend_handles, [t.get_text() for t in leg.get_texts()]
-        for ax in axes:
-            ax.get_legend().remove()
-        fig.legend(handles, labels, loc="outside right center", fontsize=8)
+        _shared_legend(fig, axes)             # clear of the s = 4.5 curve
         _tag(axes)
         return fig
     if name == "figde":
@@ -565,6 +561,15 @@ def case_figure(name: str, fe=None, fields=None):
             ax.set_axis_off()
         return fig
     raise ValueError(f"no figure for case {name!r}")
+
+
+def _shared_legend(fig, axes):
+    """Replace the panels' (identical) legends by one legend beside the figure."""
+    leg = axes[0].get_legend()
+    handles, labels = leg.legend_handles, [t.get_text() for t in leg.get_texts()]
+    for ax in axes:
+        ax.get_legend().remove()
+    fig.legend(handles, labels, loc="outside right center", fontsize=8)
 
 
 def _tag(axes):
