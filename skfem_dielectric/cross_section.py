@@ -433,6 +433,43 @@ class CrossSection:
         """Scale of the residual: ``mu L1 H`` (a force per unit length in x3)."""
         return self.material.mu * self.L1 * self.H
 
+    def step_mesh(self, x: np.ndarray, load):
+        """meshio ``Mesh`` of a state (used by :mod:`skfem_dielectric.export`).
+
+        Points ``(X1, X2, 0)``; point data ``displacement`` ``(u1, u2, 0)``,
+        ``potential``, ``pressure``; cell data (element averages) ``P33``,
+        ``P11`` (total second Piola over ``mu``), ``lam1``, ``lam2``, ``lam3``.
+        """
+        from skfem.io.meshio import to_meshio
+
+        load = self._load(load)
+        u, p, phi, lam3 = self.split(x, load)
+        nv = self.mesh.p.shape[1]
+        disp = np.column_stack([u.reshape(-1, 2)[:nv], np.zeros(nv)])
+        gu, lam3, gf, R, _ = self._volume(x, load, need_tangent=False)
+        F = np.zeros((3, 3) + gu.shape[2:])
+        F[:2, :2] = gu
+        F[0, 0] += 1.0
+        F[1, 1] += 1.0
+        F[2, 2] = lam3
+        P = R.P
+        if self._local:
+            from .maxwell import maxwell_stress
+
+            J = F[2, 2] * (F[0, 0] * F[1, 1] - F[0, 1] * F[1, 0])
+            tau = maxwell_stress(F, -self._sigma(load), self.material.eps)
+            Finv = np.moveaxis(np.linalg.inv(np.moveaxis(F, (0, 1), (-2, -1))), (-2, -1),
+                               (0, 1))
+            P = P + J * np.einsum("ab...,Kb...->aK...", tau, Finv)
+        Finv = np.moveaxis(np.linalg.inv(np.moveaxis(F, (0, 1), (-2, -1))), (-2, -1), (0, 1))
+        S = np.einsum("Ka...,aL...->KL...", Finv, P) / self.material.mu
+        cell = {"P33": S[2, 2], "P11": S[0, 0], "lam1": F[0, 0], "lam2": F[1, 1],
+                "lam3": np.full_like(F[0, 0], lam3)}
+        cell = {k: [v.mean(axis=-1)] for k, v in cell.items()}
+        return to_meshio(self.mesh, point_data={"displacement": disp, "potential": phi[:nv],
+                                                "pressure": p[:nv]},
+                         cell_data=cell, encode_cell_data=False)
+
     def postprocess(self, x: np.ndarray, load) -> dict:
         """Stretches at the centre and ``P33`` along the centre line ``x2 = 0``.
 
@@ -510,4 +547,6 @@ def cross_section_ramp(problem: CrossSection, s1: float, s3: float, D0, **ramp_o
     D0 = np.atleast_1d(np.asarray(D0, dtype=float))
     if D0.ndim != 1 or D0.size == 0 or not np.all(np.isfinite(D0)):
         raise ValueError(f"D0 must be a non-empty 1-D array of finite values, got {D0}")
-    return ramp(problem, [np.array([s1, s3, d]) for d in D0], **ramp_options)
+    out = ramp(problem, [np.array([s1, s3, d]) for d in D0], **ramp_options)
+    out.problem = problem  # for skfem_dielectric.export
+    return out

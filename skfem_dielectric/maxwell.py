@@ -491,6 +491,13 @@ class MaxwellPlate(_plate_problem_class()):
                    E_L=np.einsum("aK...,a...->K...", F, D / self.material.eps))
         return out
 
+    def full(self, x, load):
+        """Full dof vector; also records the charge of ``load`` for :meth:`stresses`
+        (the local field depends on it; post-processing and export call ``full``
+        first)."""
+        self._post_sigma = self._sigma(load)
+        return super().full(x, load)
+
     def postprocess(self, x, load):
         """:meth:`PlateProblem.postprocess` with the total (elastic + Maxwell) stress."""
         self._post_sigma = self._sigma(load)

@@ -393,6 +393,31 @@ class MembranePlate:
         return {"x1": self.x_line.copy(), "lam1": F[0, 0], "lam3": F[1, 1],
                 "lam2": 1.0 / _det2(F), "P33": S[1, 1] / self.material.mu}
 
+    def step_mesh(self, x: np.ndarray, load):
+        """meshio ``Mesh`` of a state (used by :mod:`skfem_dielectric.export`).
+
+        Points are ``(X1, X3, 0)``; point data ``displacement`` ``(u1, u3, 0)``;
+        cell data (element averages) ``P33``, ``P11`` (second Piola over ``mu``),
+        ``lam1``, ``lam2``, ``lam3``.
+        """
+        from skfem.io.meshio import to_meshio
+
+        _, el = self._electric(load)
+        u = self.full(x)
+        nv = self.mesh.p.shape[1]
+        uv = u.reshape(-1, 2)[:nv]  # vector dofs interleaved, vertices first
+        disp = np.column_stack([uv, np.zeros(nv)])
+        F = self.form.grad(u) + np.eye(2)[:, :, None, None]
+        _, P, _ = membrane_kernel(F, self.material, H=self.H, **el)
+        J = _det2(F)
+        Finv = np.swapaxes(_invT2(F, J), 0, 1)
+        S = np.einsum("iK...,Kj...->ij...", Finv, P / self.H) / self.material.mu
+        cell = {"P33": S[1, 1], "P11": S[0, 0], "lam1": F[0, 0], "lam2": 1.0 / J,
+                "lam3": F[1, 1]}
+        cell = {k: [v.mean(axis=-1)] for k, v in cell.items()}
+        return to_meshio(self.mesh, point_data={"displacement": disp}, cell_data=cell,
+                         encode_cell_data=False)
+
     def postprocess(self, x: np.ndarray, load) -> dict:
         """Stretches at the plate centre and ``P33`` along the lines.
 
@@ -455,11 +480,14 @@ def membrane_ramp(problem: MembranePlate, s: float, D0, **ramp_options):
     -------
     RampResult
         One :class:`StepResult` per target with the quantities of
-        :meth:`MembranePlate.postprocess` (``lam1``, ``lam3``, ``min_P33``, ...).
+        :meth:`MembranePlate.postprocess` (``lam1``, ``lam3``, ``min_P33``, ...);
+        ``result.problem`` is ``problem`` (for :mod:`skfem_dielectric.export`).
     """
     from .newton import ramp
 
-    return ramp(problem, _ramp_targets(s, D0), **ramp_options)
+    out = ramp(problem, _ramp_targets(s, D0), **ramp_options)
+    out.problem = problem  # as the 3D drivers: lets skfem_dielectric.export write it
+    return out
 
 
 def membrane_keplinger(alpha: float = 1.0, D0=np.arange(0.0, 6.01, 0.5), material=None,

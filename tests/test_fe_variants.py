@@ -155,3 +155,31 @@ def test_keplinger_maxwell_matches_coupled_3d_up_to_breakdown(coupled_keplinger)
         # two discretise the same equations (Div tau_m = 0 for the solved field)
         assert abs(mx[d]["lam1"] / cpl[d]["lam1"] - 1) < 1e-3, d
         assert abs(mx[d]["min_P33"] - cpl[d]["min_P33"]) < 0.05, d
+
+
+def test_export_of_the_2d_variants(tmp_path):
+    """VTU series of the membrane and cross-section ramps: the exported fields are the
+    post-processed ones (homogeneous equi-biaxial state: P33 = s/lam in every cell)."""
+    import meshio
+
+    from skfem_dielectric.cross_section import CrossSection, cross_section_ramp
+    from skfem_dielectric.export import write_vtu_series
+    from skfem_dielectric.membrane import MembranePlate, membrane_ramp
+
+    s = 1.5
+    for name, res in (
+        ("membrane", membrane_ramp(MembranePlate(NeoHookeanDielectric(MU, EPS), L1=2.0,
+                                                 L3=1.0, H=0.1, n1=2, n3=1,
+                                                 loading="equibiaxial"), s, [0.0, 2.0])),
+        ("section", cross_section_ramp(CrossSection(NeoHookeanDielectric(MU, EPS), L1=2.0,
+                                                    H=1.0, n1=2, n2=1), s, s, [0.0, 2.0])),
+    ):
+        files = write_vtu_series(res, tmp_path / name)
+        assert len(files) == 3 and files[-1].suffix == ".pvd"
+        m = meshio.read(files[1])
+        lam = res.steps[1]["lam1"]
+        # homogeneous state: every element carries the post-processed values (round-off)
+        np.testing.assert_allclose(m.cell_data["P33"][0], s / lam, rtol=1e-8)
+        np.testing.assert_allclose(m.cell_data["lam1"][0], lam, rtol=1e-10)
+        # corner displacement (L1/2 from the centre line) = (lam - 1) L1/2
+        assert abs(m.point_data["displacement"][:, 0].max() - (lam - 1) * 1.0) < 1e-9
