@@ -110,6 +110,7 @@ class ScatterMap:
             ukeys = ukeys[1:]
             inv = inv - 1
         self.nnz = int(ukeys.size)
+        self._ukeys = ukeys
         inv = np.where(inv < 0, self.nnz, inv)
         self.pos = inv.astype(np.int32 if self.nnz < 2**31 - 1 else np.int64).reshape(nel, m, m)
         r = ukeys // self.n
@@ -117,6 +118,32 @@ class ScatterMap:
         self.indptr = np.concatenate([[0], np.cumsum(np.bincount(r, minlength=self.n))]
                                      ).astype(np.int32)
         self._vmask = dofs >= 0
+
+    def positions(self, rows: np.ndarray, cols: np.ndarray) -> np.ndarray:
+        """Scatter positions of an element block of any layout.
+
+        ``rows`` and ``cols`` are broadcastable arrays of reduced indices (``-1`` =
+        eliminated) whose broadcast shape is the block's layout, e.g. ``(nel, 27, 3, 3, 27)``
+        for a displacement block stored as ``(i, a, b, j)``.  The entries must belong to the
+        pattern.  Eliminated entries get the dummy position ``nnz``.  Use with
+        :meth:`block_data`.
+        """
+        rows, cols = np.broadcast_arrays(np.asarray(rows, np.int64), np.asarray(cols, np.int64))
+        valid = (rows >= 0) & (cols >= 0)
+        keys = np.where(valid, rows * self.n + cols, 0)
+        pos = np.searchsorted(self._ukeys, keys)
+        pos = np.where(valid, pos, self.nnz)
+        if np.any(valid & (self._ukeys[np.minimum(pos, self.nnz - 1)] != keys)):
+            raise ValueError("block entries outside the sparsity pattern")
+        return pos.astype(self.pos.dtype)
+
+    def block_data(self, blocks: list[tuple[np.ndarray, np.ndarray]]) -> np.ndarray:
+        """CSR data of ``sum`` over ``(positions, values)`` pairs of equal shapes."""
+        out = np.zeros(self.nnz + 1)
+        for pos, val in blocks:
+            out += np.bincount(pos.ravel(), weights=np.asarray(val, float).ravel(),
+                               minlength=self.nnz + 1)
+        return out[: self.nnz]
 
     def data(self, Ke: np.ndarray, elements: slice | np.ndarray | None = None) -> np.ndarray:
         """CSR data array of ``sum_e Ke[e]`` (optionally only the given ``elements``,

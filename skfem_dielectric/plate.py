@@ -206,6 +206,8 @@ class PlateProblem:
                     fixed.append(np.array([3 * k + ax - 1]))
         self.red = DofReduction(self.n_full, np.concatenate(fixed) if fixed else None, tied)
         self.scatter = ScatterMap(self.red.index[self.edofs], self.red.n)
+        self._block_pos = self._block_positions()
+        self._pos_cache: dict[tuple[int, int], np.ndarray] = {}
 
         # ---- external loads per unit load value ----
         mu, eps = material.mu, material.eps
@@ -234,6 +236,26 @@ class PlateProblem:
         self.stats = {"assembly_calls": 0}
 
     # ------------------------------------------------------------------ helpers
+    def _block_positions(self) -> dict[str, np.ndarray]:
+        """Scatter positions of the tangent blocks in the layouts `_element_blocks` uses."""
+        red = self.red.index[self.edofs]
+        mu_, mp = self.m_u, self.m_p
+        U = red[:, :mu_].reshape(self.nel, 27, 3)                 # (e, i, a)
+        Ph = red[:, mu_ + mp:]                                    # (e, j)
+        sc = self.scatter
+        pos = {
+            "uu": sc.positions(U[:, :, :, None, None], U.transpose(0, 2, 1)[:, None, None]),
+            "uf": sc.positions(U[:, :, :, None], Ph[:, None, None, :]),
+            "fu": sc.positions(Ph[:, None, None, :], U[:, :, :, None]),
+            "ff": sc.positions(Ph[:, :, None], Ph[:, None, :]),
+        }
+        if mp:
+            Pd = red[:, mu_:mu_ + mp]
+            pos["up"] = sc.positions(U[:, :, :, None], Pd[:, None, None, :])
+            pos["pu"] = sc.positions(Pd[:, None, None, :], U[:, :, :, None])
+            pos["pp"] = sc.positions(Pd[:, :, None], Pd[:, None, :])
+        return pos
+
     def _centre(self) -> np.ndarray:
         """Plate centre (the origin), which lies in every model."""
         return np.zeros(3)
@@ -319,43 +341,63 @@ class PlateProblem:
         parts.append((self.dNphii[sl] @ D)[:, :, 0])
         return np.concatenate(parts, axis=1)
 
-    def _element_matrix(self, r, sl):
-        """Element tangents ``(ne, m, m)``; every contraction is a batched matmul whose
-        operands are laid out so that no large transpose is needed."""
+    def _block_sizes(self) -> list[tuple[str, int]]:
+        mp, mf = self.m_p, self.m_phi
+        sizes = [("uu", 81 * 81), ("uf", 81 * mf), ("fu", 81 * mf), ("ff", mf * mf)]
+        if mp:
+            sizes += [("up", 81 * mp), ("pu", 81 * mp)]
+            if math.isfinite(self.kappa) and self.formulation == "mixed":
+                sizes.append(("pp", mp * mp))
+        return sizes
+
+    def _chunk_positions(self, sl) -> np.ndarray:
+        """Flat scatter positions of a chunk's block buffer (cached per chunk)."""
+        key = (sl.start, sl.stop)
+        pos = self._pos_cache.get(key)
+        if pos is None:
+            P = self._block_pos
+            pos = np.concatenate([P[name][sl].ravel() for name, _ in self._block_sizes()])
+            self._pos_cache[key] = pos
+        return pos
+
+    def _element_blocks(self, r, sl) -> np.ndarray:
+        """Tangent blocks of a chunk written into one flat buffer (layouts need no
+        transposes; the matmuls write in place), ordered as `_chunk_positions`."""
         w = self.w[sl]
         ne, nq = w.shape
-        mu_, mp, mf = self.m_u, self.m_p, self.m_phi
-        nb = 27
+        mp, mf = self.m_p, self.m_phi
         dNi, dNt = self.dNi[sl], self.dNt[sl]
         dNphii, dNphit = self.dNphii[sl], self.dNphit[sl]
-        Ke = np.zeros((ne, mu_ + mp + mf, mu_ + mp + mf))
-        # u-u: V[e,q,(K a b),j] = sum_L A[aKbL] dN_jL ; Kuu[i,(a b j)] = sum_(qK) dN_iK V
+        sizes = self._block_sizes()
+        buf = np.empty(ne * sum(n for _, n in sizes))
+        views, o = {}, 0
+        for name, n in sizes:
+            views[name] = buf[o: o + ne * n]
+            o += ne * n
+        # u-u, layout (e, i, a, b, j)
         A = np.ascontiguousarray(np.moveaxis(r.A_FF * w, (4, 5), (0, 1))
                                  .transpose(0, 1, 3, 2, 4, 5)).reshape(ne, nq, 27, 3)
-        V = (A @ dNt).reshape(ne, nq * 3, 9 * nb)
-        Kuu = (dNi @ V).reshape(ne, nb, 3, 3, nb).transpose(0, 1, 2, 4, 3)
-        Ke[:, :mu_, :mu_] = Kuu.reshape(ne, mu_, mu_)
-        # u-phi
+        V = (A @ dNt).reshape(ne, nq * 3, 9 * 27)
+        np.matmul(dNi, V, out=views["uu"].reshape(ne, 27, 243))
+        # u-phi, layout (e, i, a, j), used for both off-diagonal blocks
         A = np.ascontiguousarray(np.moveaxis(r.A_FG * w, (3, 4), (0, 1))
                                  .transpose(0, 1, 3, 2, 4)).reshape(ne, nq, 9, 3)
-        V = (A @ dNphit).reshape(ne, nq * 3, 3 * mf)
-        Kuf = (dNi @ V).reshape(ne, mu_, mf)
-        Ke[:, :mu_, mu_ + mp:] = Kuf
-        Ke[:, mu_ + mp:, :mu_] = Kuf.transpose(0, 2, 1)
+        np.matmul(dNi, (A @ dNphit).reshape(ne, nq * 3, 3 * mf),
+                  out=views["uf"].reshape(ne, 27, 3 * mf))
+        views["fu"][:] = views["uf"]
         # phi-phi
-        A = np.ascontiguousarray(np.moveaxis(r.A_GG * w, (2, 3), (0, 1)))      # e q K L
-        V = (A @ dNphit).reshape(ne, nq * 3, mf)
-        Ke[:, mu_ + mp:, mu_ + mp:] = dNphii @ V
+        A = np.ascontiguousarray(np.moveaxis(r.A_GG * w, (2, 3), (0, 1)))
+        np.matmul(dNphii, (A @ dNphit).reshape(ne, nq * 3, mf),
+                  out=views["ff"].reshape(ne, mf, mf))
         if mp:
             A = np.moveaxis(r.A_Fp * w, (2, 3), (0, 1)).transpose(0, 1, 3, 2)  # e q K a
             V = (A[..., None] * self.N1[sl][:, :, None, None, :]).reshape(ne, nq * 3, 3 * mp)
-            Kup = (dNi @ V).reshape(ne, mu_, mp)
-            Ke[:, :mu_, mu_:mu_ + mp] = Kup
-            Ke[:, mu_:mu_ + mp, :mu_] = Kup.transpose(0, 2, 1)
-            if r.A_pp != 0.0:
-                Ke[:, mu_:mu_ + mp, mu_:mu_ + mp] = r.A_pp * np.einsum(
-                    "eqk,eql,eq->ekl", self.N1[sl], self.N1[sl], w)
-        return Ke
+            np.matmul(dNi, V, out=views["up"].reshape(ne, 27, 3 * mp))
+            views["pu"][:] = views["up"]
+            if "pp" in views:
+                views["pp"][:] = (r.A_pp * np.einsum("eqk,eql,eq->ekl", self.N1[sl],
+                                                     self.N1[sl], w)).ravel()
+        return buf
 
     def _chunks(self):
         n = max(1, -(-self.nel // self.chunk))
@@ -366,13 +408,13 @@ class PlateProblem:
             if b > a:
                 yield slice(int(a), int(b))
 
-    # ------------------------------------------------------------ RampProblem API
     def _assemble_chunk(self, xf, sl):
         r, *_ = self._response(xf, sl)
-        Ke = self._element_matrix(r, sl)
+        data = np.bincount(self._chunk_positions(sl), weights=self._element_blocks(r, sl),
+                           minlength=self.scatter.nnz + 1)[: self.scatter.nnz]
         re = self._element_residual(r, sl)
-        return self.scatter.data(Ke, sl), np.bincount(
-            self.edofs[sl].ravel(), weights=re.ravel(), minlength=self.n_full)
+        return data, np.bincount(self.edofs[sl].ravel(), weights=re.ravel(),
+                                 minlength=self.n_full)
 
     def assemble(self, x: np.ndarray, load) -> tuple[Any, np.ndarray]:
         """Reduced tangent (CSR, symmetric) and residual at reduced state ``x``.
