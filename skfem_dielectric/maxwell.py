@@ -378,6 +378,9 @@ class MaxwellPlate(_plate_problem_class()):
                     else [])
             self.red = DofReduction(self.n_full, fixed, tied)
             self.scatter = ScatterMap(self.red.index[self.edofs], self.red.n)
+            if hasattr(self, "_block_positions"):  # scatter positions cached by the core
+                self._block_pos = self._block_positions()
+                self._pos_cache = {}
         names = [n for n in _LOADED_FACES if n in m.boundaries]
         facets = np.concatenate([m.boundaries[n] for n in names])
         intorder = options.get("intorder", 4)
@@ -410,10 +413,22 @@ class MaxwellPlate(_plate_problem_class()):
                 r.A_FF = r0.A_FF
         return r, F, G, p
 
+    # The volume u-rows do not depend on phi (their stress is elastic), while the phi-rows
+    # keep D_L(F, Grad phi): zero the u-phi tangent block, keep the phi-u block. Two hooks,
+    # for the dense element matrices and for the flat block buffer of the core's assembly.
     def _element_matrix(self, r, sl):
         Ke = super()._element_matrix(r, sl)
-        Ke[:, : self.m_u, self.m_u + self.m_p:] = 0.0  # volume u-rows do not see phi
+        Ke[:, : self.m_u, self.m_u + self.m_p:] = 0.0
         return Ke
+
+    def _element_blocks(self, r, sl):
+        buf = super()._element_blocks(r, sl)
+        ne, o = sl.stop - sl.start, 0
+        for name, n in self._block_sizes():
+            if name == "uf":
+                buf[o: o + ne * n] = 0.0
+            o += ne * n
+        return buf
 
     def external(self, load) -> np.ndarray:
         """Dead tractions; the charges only under the electrostatic field."""
