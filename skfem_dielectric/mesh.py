@@ -65,6 +65,19 @@ class PlateMesh:
         """Names of the boundaries of the model."""
         return tuple(self.mesh.boundaries.keys())
 
+    def facets(self, name: str) -> np.ndarray:
+        """Facet indices of the boundary ``name``.
+
+        Raises
+        ------
+        ValueError
+            If the model has no boundary of that name.
+        """
+        if name not in self.mesh.boundaries:
+            raise ValueError(f"unknown boundary {name!r}; this model has "
+                             f"{self.boundary_names}")
+        return self.mesh.boundaries[name]
+
 
 def _check_size(name: str, value: float) -> float:
     v = float(value)

@@ -176,10 +176,10 @@ class PlateProblem:
 
         # ---- constraints ----
         def udofs(name, comp):
-            return 3 * self.b2.get_dofs(name).all() + comp
+            return 3 * self.b2.get_dofs(plate.facets(name)).all() + comp
 
         def phidofs(name):
-            return self.off_phi + self.bphi.get_dofs(name).all()
+            return self.off_phi + self.bphi.get_dofs(plate.facets(name)).all()
 
         fixed, tied = [], []
         self._phi_top = phidofs("top")
@@ -264,6 +264,18 @@ class PlateProblem:
     def _nearest(basis, point) -> int:
         d = np.linalg.norm(basis.doflocs - np.asarray(point)[:, None], axis=0)
         return int(np.argmin(d))
+
+    def boundary_dofs(self, name: str, field: str = "u") -> np.ndarray:
+        """Full dof indices of boundary ``name`` for ``field`` ``"u"`` (all three components,
+        node-major), ``"p"`` or ``"phi"``; ``ValueError`` for unknown names or fields."""
+        facets = self.plate.facets(name)
+        if field == "u":
+            return (3 * self.b2.get_dofs(facets).all()[:, None] + np.arange(3)).ravel()
+        if field == "p" and self.n_p:
+            return self.off_p + self.b1.get_dofs(facets).all()
+        if field == "phi":
+            return self.off_phi + self.bphi.get_dofs(facets).all()
+        raise ValueError(f"field must be 'u', 'p' (mixed only) or 'phi', got {field!r}")
 
     def _check_load(self, load) -> tuple[float, float]:
         ld = np.atleast_1d(np.asarray(load, dtype=float))

@@ -9,6 +9,7 @@ import math
 import numpy as np
 import pytest
 from scipy.optimize import brentq
+from skfem import MeshHex
 
 from skfem_dielectric.drivers import equibiaxial_plate
 from skfem_dielectric.materials import NeoHookeanDielectric
@@ -135,6 +136,16 @@ def test_bad_inputs():
     with pytest.raises(ValueError, match="load"):
         PlateProblem(pm, mat).assemble(np.zeros(PlateProblem(pm, mat).red.n),
                                        (float("nan"), 0.0))
+    with pytest.raises(ValueError, match="unknown boundary 'bottom'"):
+        PlateProblem(pm, mat).boundary_dofs("bottom")      # cut by the x2 symmetry plane
+    with pytest.raises(ValueError, match="field"):
+        PlateProblem(pm, mat).boundary_dofs("top", "T")
+    # a mesh without the clamp face cannot carry the uni-axial load
+    g = pm.grids
+    bare = type(pm)(mesh=MeshHex.init_tensor(*g).with_boundaries(
+        {"top": lambda x: x[1] > 0.49}), L1=4.0, H=1.0, L3=2.0, symmetry=(), grids=g)
+    with pytest.raises(ValueError, match="x1_plus"):
+        PlateProblem(bare, mat, loading="uniaxial")
     with pytest.raises(ValueError, match="D0"):
         equibiaxial_plate(1.0, [1.0, float("nan")])
     with pytest.raises(ValueError, match="s must be finite"):
