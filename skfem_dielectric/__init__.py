@@ -25,3 +25,10 @@ __all__ += ["step_mesh", "write_vtu_series", "write_xdmf"]
 from .membrane import MembranePlate, membrane_kernel, membrane_keplinger, membrane_ramp  # noqa: E402,E501
 
 __all__ += ["MembranePlate", "membrane_kernel", "membrane_ramp", "membrane_keplinger"]
+
+# --- FE variants (helper D): Maxwell-traction coupling, 2D cross-section ---
+from .maxwell import MaxwellPlate, maxwell_equibiaxial, maxwell_keplinger, nonsymmetric_solver  # noqa: E402,E501
+from .cross_section import CrossSection, cross_section_ramp  # noqa: E402
+
+__all__ += ["MaxwellPlate", "maxwell_equibiaxial", "maxwell_keplinger", "nonsymmetric_solver",
+            "CrossSection", "cross_section_ramp"]
