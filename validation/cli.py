@@ -122,6 +122,12 @@ def _cmd_validate(args) -> int:
 
     from .fe import run_fe
 
+    if args.solver == "pardiso":
+        from skfem_dielectric.linear import pardiso_available
+
+        if not pardiso_available():
+            raise ValueError("--solver pardiso needs pypardiso (pip install -e '.[fast]'), "
+                             "got no pypardiso")
     t0 = time.perf_counter()
     runner = None if args.solver == "superlu" else functools.partial(run_fe,
                                                                      linear_solver=args.solver)
