@@ -68,7 +68,7 @@ def test_voltage_control_equibiaxial():
 # --------------------------------------------------------------------------
 from scipy.optimize import brentq  # noqa: E402
 
-from skfem_dielectric.membrane import MembranePlate  # noqa: E402
+from skfem_dielectric.membrane import MembranePlate, membrane_ramp  # noqa: E402
 from skfem_dielectric.newton import ramp  # noqa: E402
 
 
@@ -160,3 +160,21 @@ def test_fe_tangent_matches_finite_differences_of_residual():
 def test_bad_input_raises(kw, name):
     with pytest.raises(ValueError, match=name):
         MembranePlate(NeoHookeanDielectric(MU, EPS), **kw)
+
+
+def test_bad_loads_raise():
+    from skfem_dielectric.membrane import membrane_keplinger
+
+    pb = MembranePlate(NeoHookeanDielectric(MU, EPS), n1=1, n3=1)
+    with pytest.raises(ValueError, match="s must be finite"):
+        membrane_ramp(pb, np.nan, [0.0])
+    with pytest.raises(ValueError, match="D0"):
+        membrane_ramp(pb, 1.0, [0.0, np.inf])
+    with pytest.raises(ValueError, match="D0"):
+        membrane_ramp(pb, 1.0, [])
+    with pytest.raises(ValueError, match="alpha"):
+        membrane_keplinger(alpha=np.nan, n1=1, n3=1)
+    with pytest.raises(ValueError, match="coupling"):
+        MembranePlate(NeoHookeanDielectric(MU, EPS), coupling="both")
+    with pytest.raises(ValueError, match="control"):
+        MembranePlate(NeoHookeanDielectric(MU, EPS), coupling="maxwell", control="voltage")
