@@ -150,6 +150,9 @@ class RampResult:
     problem
         The problem that was solved (set by the high-level drivers; use it to evaluate or
         export the stored states), else ``None``.
+    iterations_total, assembly_calls, assembly_seconds, solve_seconds
+        Totals over *all* Newton attempts of the ramp, including failed sub-steps and
+        line-search evaluations (the per-step values count only converged targets).
     """
 
     steps: list[StepResult]
@@ -158,6 +161,10 @@ class RampResult:
     failed_at: Any = None
     wall_seconds: float = 0.0
     problem: Any = None
+    iterations_total: int = 0
+    assembly_calls: int = 0
+    assembly_seconds: float = 0.0
+    solve_seconds: float = 0.0
 
     def column(self, name: str) -> np.ndarray:
         """Array of quantity ``name`` over the converged steps (``"load"`` and
@@ -408,6 +415,10 @@ def ramp(problem: RampProblem, loads: Sequence[Any], *, x0: np.ndarray | None = 
             iters += nr.iterations
             t_asm += sum(nr.assembly_seconds)
             t_sol += sum(nr.solve_seconds)
+            out.iterations_total += nr.iterations
+            out.assembly_calls += len(nr.assembly_seconds)
+            out.assembly_seconds += sum(nr.assembly_seconds)
+            out.solve_seconds += sum(nr.solve_seconds)
             if nr.converged:
                 x = nr.x
                 inertia = nr.inertia
