@@ -38,7 +38,8 @@ def small_case():
         # 3D: pre-load in sub-steps, then charge; resumes from (x, load) of a target
         vc.RunSpec("equibiaxial", "Gent", "coupled", 1.5, (0.0, 1.0, 2.0, 3.0)),
         vc.RunSpec("uniaxial", "neo-Hookean", "coupled", vc.keplinger_s(1.0), (0.0, 1.5, 3.0),
-                   alpha=1.0, mesh=(("n1", 4), ("n2", 1), ("n3", 2)), record_fields=True),
+                   alpha=1.0, mesh=(("n1", 4), ("n2", 1), ("n3", 2)), record_fields=True,
+                   record_maps=True),
         vc.RunSpec("uniaxial", "neo-Hookean", "membrane", vc.keplinger_s(1.0),
                    (0.0, 1.0, 2.0, 3.0, 4.0), alpha=1.0, mesh=(("n1", 8), ("n2", 1), ("n3", 4)),
                    record_fields=True),

@@ -91,7 +91,9 @@ class RunSpec:
         Mesh divisions ``(("n1", .), ("n2", .), ("n3", .))`` along length,
         thickness and width.
     record_fields : bool
-        Also store per-step fields (centre-line ``P33`` profile, stretch maps).
+        Also store the centre-line profile (``P33``, stretches) of every step.
+    record_maps : bool
+        Also store the mid-plane stretch maps of the pre-loaded plate (``D0 = 0``).
     stop_at_breakdown : bool
         End the ramp at the first step where ``P33`` near the clamps turns
         compressive (the paper's breakdown), as the paper's COMSOL runs did.
@@ -105,6 +107,7 @@ class RunSpec:
     alpha: float | None = None
     mesh: tuple = (("n1", 1), ("n2", 1), ("n3", 1))
     record_fields: bool = False
+    record_maps: bool = False
     stop_at_breakdown: bool = True
 
     def __post_init__(self):
@@ -191,9 +194,11 @@ def _homogeneous(geometry, models, s_values, D0max, n, variants=FE_VARIANTS):
                  for m in models for v in variants for s in s_values)
 
 
-def _keplinger(alphas, D0max, n, meshes, variants=FE_VARIANTS, record_fields=False):
+def _keplinger(alphas, D0max, n, meshes, variants=FE_VARIANTS, record_fields=False,
+               record_maps=False):
     return tuple(RunSpec("uniaxial", "neo-Hookean", v, keplinger_s(a), _steps(D0max, n), alpha=a,
-                         mesh=_mesh(meshes, v), record_fields=record_fields)
+                         mesh=_mesh(meshes, v), record_fields=record_fields,
+                         record_maps=record_maps)
                  for v in variants for a in alphas)
 
 
@@ -227,8 +232,9 @@ CASES: dict[str, Case] = {c.name: c for c in (
          "stretch maps lam1, lam3 of the weighted Keplinger plate before charging",
          "uniaxial",
          quick=_keplinger((1.0,), 0.0, 0, {"coupled": (("n1", 20), ("n2", 1), ("n3", 10))},
-                          variants=("coupled",), record_fields=True),
-         full=_keplinger((1.0,), 0.0, 0, FULL_PLATE, variants=("coupled",), record_fields=True)),
+                          variants=("coupled",), record_fields=True, record_maps=True),
+         full=_keplinger((1.0,), 0.0, 0, FULL_PLATE, variants=("coupled",), record_fields=True,
+                         record_maps=True)),
     Case("zs22", "fig:zs22",
          "P33/mu along the centre line for increasing D0 up to the breakdown (alpha = 1)",
          "uniaxial",

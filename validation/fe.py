@@ -245,7 +245,7 @@ def run_fe(spec, start, state, on_step, linear_solver="superlu"):
             return                                   # an intermediate pre-load step
         i = spec.D0.index(float(load[1]))
         rec = wrap.record(step, spec.record_fields)
-        if spec.record_fields and spec.D0[i] == 0.0:
+        if spec.record_fields and spec.record_maps and spec.D0[i] == 0.0:
             # stretch maps of the pre-loaded plate (kind 1) after the centre line (kind 0)
             maps = wrap.maps(step.x, step.load)
             rec.fields = {k: np.r_[rec.fields[k], maps[k]] for k in rec.fields}
