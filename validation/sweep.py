@@ -220,7 +220,8 @@ def _load_state(path: Path) -> dict | None:
 
 
 def _manifest(case: Case, runs: tuple) -> dict:
-    return {"case": case.name, "runs": [[r.key, list(r.D0), [list(m) for m in r.mesh]]
+    return {"case": case.name, "runs": [[r.key, list(r.D0), [list(m) for m in r.mesh],
+                                         r.record_fields, r.record_maps, r.stop_at_breakdown]
                                         for r in runs]}
 
 
