@@ -150,3 +150,16 @@ def test_bad_inputs():
         equibiaxial_plate(1.0, [1.0, float("nan")])
     with pytest.raises(ValueError, match="s must be finite"):
         equibiaxial_plate(float("nan"), [1.0])
+
+
+@pytest.mark.skipif(not __import__("skfem_dielectric.linear", fromlist=["x"]).pardiso_available(),
+                    reason="inertia needs PARDISO")
+def test_charge_control_is_stable_by_inertia():
+    # Paper Sec. 4: charge-controlled activation of the neo-Hookean plate is always
+    # Hessian-stable; the inertia verdict (exactly n_p + n_phi negative eigenvalues) must
+    # agree on the homogeneous plate at every step (pre-load and charge ramp).
+    res = equibiaxial_plate(1.5, [2.0, 4.0, 6.0], elements=(2, 1, 2), linear_solver="pardiso")
+    assert res.converged
+    assert [st["stable"] for st in res.steps] == [True] * len(res.steps)
+    with_superlu = equibiaxial_plate(1.5, [2.0], linear_solver="superlu")
+    assert with_superlu.steps[-1]["stable"] is None       # SuperLU reports no inertia
