@@ -1,14 +1,26 @@
 """Maxwell-traction coupling: an elastic problem loaded by the field's traction.
 
-The second method of the paper's Sec. 6: instead of solving electrostatics, the
-purely elastic incompressible problem is loaded on its deformed boundary by
-the Maxwell stress ``tau_m = E (x) D - (E.D)/2 I``.
+The second method of the paper's Sec. 6: the purely elastic incompressible
+problem (elastic stress only in the volume) is loaded on its deformed boundary
+by the Maxwell stress ``tau_m = E (x) D - (E.D)/2 I``.
 
-Field used
-----------
+Fields
+------
+Two fields can enter ``tau_m`` (``MaxwellPlate(field=...)``):
+
+* ``"electrostatic"`` (default): the potential is solved on the deformed body
+  as in the fully coupled model and ``E = -F^-T Grad phi``, ``D = eps E``
+  (:func:`maxwell_traction_field`). With this field ``Div tau_m = 0``, so the
+  variant discretises the same equations as the fully coupled solver.
+* ``"local"``: no electrostatics (:func:`maxwell_traction`), described next.
+  Exact on homogeneous states, but not curl-free where ``lam2`` varies in the
+  plane, so it misses the tangential field and the faces' shear traction that
+  balance the gradient of the lateral pull: wrong near clamps
+  (docs/fe_variants.md).
+
 The charges sprayed on the faces move with the material, ``N.D_L = -sigma_F``
-per reference area (DESIGN.md §2). We take the Lagrangian displacement
-uniform through the body, ``D_L = -sigma_F e2`` (the homogeneous solution):
+per reference area (DESIGN.md §2). The local field takes the Lagrangian
+displacement uniform through the body, ``D_L = -sigma_F e2`` (the homogeneous solution):
 it satisfies Gauss' law ``Div D_L = 0`` and the charge boundary condition
 exactly. Its push-forward is
 
