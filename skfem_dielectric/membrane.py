@@ -255,7 +255,8 @@ class MembranePlate:
             fred = np.zeros(self.red.n)
             fred[self.tied_index] = mu * self.H * a3  # resultant on the quarter: mu s H L3/2
         else:
-            for name, comp in (("x1_plus", 0), ("x3_plus", 1))[: 2 if loading == "equibiaxial" else 1]:
+            edges = (("x1_plus", 0), ("x3_plus", 1))
+            for name, comp in edges[: 2 if loading == "equibiaxial" else 1]:
                 fb = fe.FacetBasis(mesh, elem, facets=mesh.boundaries[name], intorder=4)
                 e = np.zeros(2)
                 e[comp] = mu * self.H
