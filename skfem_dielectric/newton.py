@@ -32,7 +32,8 @@ stored in the :class:`StepResult`, then ``on_step(step)`` is called (the validat
 writes CSV rows and saves states there).  If the problem has ``stability(inertia)``,
 its verdict (``True``/``False``/``None``) is stored as ``quantities["stable"]``.  A target that cannot be reached ends the ramp:
 ``RampResult.converged=False``, ``reason``, ``failed_at`` (the load of the failed sub-step),
-a ``RuntimeWarning`` is issued and all converged steps are kept.
+a ``RuntimeWarning`` is issued and all converged steps are kept; the furthest converged
+sub-step towards the failed target is appended as a step with ``target_reached=False``.
 """
 
 from __future__ import annotations
@@ -113,6 +114,9 @@ class StepResult:
     inertia
         Inertia of the last factorised tangent of this step if the linear solver reports it
         (PARDISO), else ``None``.
+    target_reached
+        False for the last step of a ramp that stopped: the furthest converged sub-step on
+        the way to the target that could not be reached (its ``load`` is intermediate).
     """
 
     load: Any
@@ -126,6 +130,7 @@ class StepResult:
     assembly_seconds: float = 0.0
     solve_seconds: float = 0.0
     inertia: tuple[int, int, int] | None = None
+    target_reached: bool = True
 
     def __getitem__(self, key: str) -> Any:
         return self.quantities[key]
@@ -434,6 +439,19 @@ def ramp(problem: RampProblem, loads: Sequence[Any], *, x0: np.ndarray | None = 
                     break
                 dfrac *= 0.5
         if failed:
+            if frac > 0.0:   # keep the furthest converged sub-step towards the target
+                load = _as_load(b if frac >= 1.0 else a + frac * (b - a))
+                step = StepResult(load=load, converged=True, iterations=iters,
+                                  substeps=subs, cutbacks=cuts, residual_norms=hist,
+                                  x=x.copy(), assembly_seconds=t_asm, solve_seconds=t_sol,
+                                  inertia=inertia, target_reached=False)
+                if has_post:
+                    step.quantities = dict(problem.postprocess(x, load))
+                if hasattr(problem, "stability"):
+                    step.quantities.setdefault("stable", problem.stability(inertia))
+                out.steps.append(step)
+                if on_step is not None:
+                    on_step(step)
             out.converged = False
             out.reason = (f"target load {target!r} not reached after {max_cutbacks} "
                           f"cut-backs; last Newton failure: {failed}")
