@@ -60,7 +60,8 @@ def write_report(results, folder, *, quick: bool) -> Path:
     brk = [(r.name, k, v) for r in results for k, v in r.breakdown_D0.items()
            if k.startswith("uniaxial_")]
     if brk:
-        lines += ["", "Breakdown (first step with min P33/mu < -0.01 along the centre line):", ""]
+        lines += ["", "Breakdown (first step with P33/mu < -0.01 on the centre line, at least "
+                  "2 thicknesses from the clamps):", ""]
         lines += [f"- {name} / {k}: " + ("none up to the last D0" if v is None else f"D0 = {v:g}")
                   for name, k, v in brk]
     fails = [(r.name, k, v) for r in results for k, v in r.reasons.items()]
