@@ -434,11 +434,11 @@ def plot_stretch_maps(fields, axes=None):
         x1, x3, v = _mirror(fields["x1"][sel], fields["x3"][sel], fields[name][sel], L, W)
         pts, idx = np.unique(np.c_[np.round(x1, 12), np.round(x3, 12)], axis=0, return_index=True)
         tri = mtri.Triangulation(100 * x3[idx], 100 * x1[idx])   # cm, x1 vertical like the paper
-        # colour range from the 1st-99th percentiles: the clamp corners are singular
-        lo, hi = np.percentile(v[idx], [1, 99])
+        # colour range from the 5th-99th percentiles: the clamp edges are singular
+        lo, hi = np.percentile(v[idx], [5, 99])
         levels = np.linspace(lo, hi if hi > lo else lo + 1e-9, 21)
         pc = ax.tricontourf(tri, v[idx], levels=levels, cmap="viridis", extend="both")
-        plt.colorbar(pc, ax=ax, label=label)
+        plt.colorbar(pc, ax=ax, label=label, format="%.3g")
         ax.set_aspect("equal")
         ax.set_xlabel(r"$x_3$ (cm)")
         ax.set_ylabel(r"$x_1$ (cm)")
