@@ -250,11 +250,11 @@ def ideal_dielectric_response(material, F: np.ndarray, G: np.ndarray,
         raise ValueError("kappa must be finite for the penalty formulation, got inf")
     eps = material.eps
     J, Finv = _det_inv(F)
-    I1 = np.einsum("aK...,aK...->...", F, F)
+    I1 = (F * F).sum(axis=(0, 1))
     W, W1, W11 = material.energy_derivatives(I1)
-    a = np.einsum("Mc...,M...->c...", Finv, G)          # F^-T G
-    bvec = np.einsum("Kc...,c...->K...", Finv, a)        # C^-1 G
-    aa = np.einsum("c...,c...->...", a, a)
+    a = (Finv * G[:, None]).sum(axis=0)                  # F^-T G
+    bvec = (Finv * a[None]).sum(axis=1)                  # C^-1 G
+    aa = (a * a).sum(axis=0)
     FinvT = np.swapaxes(Finv, 0, 1)                      # FinvT[a, K] = Finv[K, a]
     if formulation == "mixed":
         if p is None:
@@ -273,15 +273,15 @@ def ideal_dielectric_response(material, F: np.ndarray, G: np.ndarray,
     with np.errstate(invalid="ignore", divide="ignore"):   # J <= 0 -> nan -> Newton rejects
         psi = W + vol - 0.5 * eps * J * aa - mu0 * np.log(J)
     P = (2.0 * W1 * F + (pe * J - 0.5 * eps * J * aa - mu0) * FinvT
-         + eps * J * np.einsum("a...,K...->aK...", a, bvec))
+         + eps * J * (a[:, None] * bvec[None]))
     D_L = -eps * J * bvec
     if not need_tangent:
         e = np.empty(0)
         return PointResponse(psi, P, dpsi_dp, D_L, e, e, e, e, A_pp, J)
 
-    Cinv = np.einsum("Kc...,Lc...->KL...", Finv, Finv)
+    Cinv = (Finv[:, None] * Finv[None]).sum(axis=2)
     eJ = eps * J
-    M = np.einsum("a...,K...->aK...", a, bvec)                     # a_a b_K
+    M = a[:, None] * bvec[None]                                    # a_a b_K
 
     def outer(X, Y):   # X_aK Y_bL
         return X[:, :, None, None] * Y[None, None]
@@ -305,9 +305,9 @@ def ideal_dielectric_response(material, F: np.ndarray, G: np.ndarray,
     for i in range(3):
         for k in range(3):
             A[i, k, i, k] += 2.0 * W1
-    A_FG = eps * J * (np.einsum("La...,K...->aKL...", Finv, bvec)
-                      + np.einsum("a...,KL...->aKL...", a, Cinv)
-                      - np.einsum("L...,Ka...->aKL...", bvec, Finv))
+    A_FG = eJ * (np.swapaxes(Finv, 0, 1)[:, None, :] * bvec[None, :, None]   # Finv_La b_K
+                 + a[:, None, None] * Cinv[None]                             # a_a Cinv_KL
+                 - np.swapaxes(Finv, 0, 1)[:, :, None] * bvec[None, None, :])  # b_L Finv_Ka
     A_GG = -eps * J * Cinv
     A_Fp = J * FinvT if formulation == "mixed" else np.zeros_like(FinvT)
     return PointResponse(psi, P, dpsi_dp, D_L, A, A_FG, A_GG, A_Fp, A_pp, J)

@@ -321,13 +321,14 @@ class PlateProblem:
     def _fields(self, xf: np.ndarray, sl: slice):
         ed = self.edofs[sl]
         ne = ed.shape[0]
-        ue = xf[ed[:, : self.m_u]].reshape(ne, 27, 3)
-        F = np.einsum("eia,eqiK->aKeq", ue, self.dN[sl])
+        ue = xf[ed[:, : self.m_u]].reshape(ne, 1, 27, 3)
+        F = np.ascontiguousarray((self.dNt[sl] @ ue).transpose(3, 2, 0, 1))   # (a, K, e, q)
         F[0, 0] += 1.0
         F[1, 1] += 1.0
         F[2, 2] += 1.0
         phie = xf[ed[:, self.m_u + self.m_p:]]
-        G = np.einsum("ei,eqiK->Keq", phie, self.dNphi[sl])
+        G = np.ascontiguousarray(
+            (self.dNphit[sl] @ phie[:, None, :, None])[..., 0].transpose(2, 0, 1))
         if self.m_p:
             pe = xf[ed[:, self.m_u: self.m_u + self.m_p]]
             p = np.einsum("ek,eqk->eq", pe, self.N1[sl])
