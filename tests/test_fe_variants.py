@@ -183,3 +183,20 @@ def test_export_of_the_2d_variants(tmp_path):
         np.testing.assert_allclose(m.cell_data["lam1"][0], lam, rtol=1e-10)
         # corner displacement (L1/2 from the centre line) = (lam - 1) L1/2
         assert abs(m.point_data["displacement"][:, 0].max() - (lam - 1) * 1.0) < 1e-9
+
+
+def test_nonsymmetric_pardiso_solves_the_maxwell_tangent():
+    """PARDISO LU (mtype 11) on the non-symmetric tangent equals SuperLU."""
+    from skfem_dielectric.linear import pardiso_available
+
+    if not pardiso_available():
+        pytest.skip("pypardiso not installed")
+    pb = MaxwellPlate(plate_mesh(4.0, 1.0, 2.0, 2, 1, 1), NeoHookeanDielectric(MU, EPS),
+                      loading="uniaxial")
+    x = 0.01 * np.random.default_rng(9).standard_normal(pb.red.n)
+    K, r = pb.assemble(x, (1.0, 2.0))
+    dx_lu = nonsymmetric_solver("pardiso").solve(K, r)
+    dx_ref = nonsymmetric_solver("superlu").solve(K, r)
+    # two direct solvers on a well-conditioned system agree to round-off x condition number
+    np.testing.assert_allclose(dx_lu, dx_ref, rtol=1e-8, atol=1e-10 * np.abs(dx_ref).max())
+    assert np.abs(K @ dx_lu - r).max() <= 1e-9 * np.abs(r).max()
