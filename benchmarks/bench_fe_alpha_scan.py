@@ -47,12 +47,12 @@ def main(argv=None) -> int:
               f"({time.perf_counter() - t0:.0f} s)  converged = {res.converged}")
         if not res.converged:
             print(f"  breakdown: {res.reason[:160]}  failed at load {res.failed_at}")
-        print("     D0    lam1_fe  lam1_hom    dev%   lam3_fe  min_P33 (x1)   "
+        print("  s_step     D0    lam1_fe  lam1_hom    dev%   lam3_fe  min_P33 (x1)   "
               "min_P33_clamp  stable  its")
         for st in res.steps:
-            d = float(st.load[1])
-            ref = lam1_uniaxial(d, s)
-            print(f"  {d:5.2f}  {st['lam1']:8.5f}  {ref:8.5f}  {100 * (st['lam1'] / ref - 1):+6.3f}"
+            s_step, d = float(st.load[0]), float(st.load[1])   # pre-load steps: s < s_final
+            ref = lam1_uniaxial(d, s_step)
+            print(f"  {s_step:6.3f}  {d:5.2f}  {st['lam1']:8.5f}  {ref:8.5f}  {100 * (st['lam1'] / ref - 1):+6.3f}"
                   f"  {st['lam3']:8.5f}  {st['min_P33']:+8.4f} ({st['x1_min_P33']:4.1f})"
                   f"  {st['min_P33_clamp']:+8.4f}     {str(st['stable']):5s}  {st.iterations}")
     return 0
