@@ -32,6 +32,10 @@ PINNED: dict[str, tuple[str, float, float, str]] = {
     "ex02_wrinkling_map": ("thick_at_1", np.sqrt(1.0 + np.sqrt(5.0)), 1e-6,
                            "Eq. (ideal-shortwave) at lam = 1: D0^4 - 2 D0^2 - 4 = 0; lam = 1 "
                            "is a grid point, so only the root finder's tolerance remains"),
+    "ex03_fe_plate": ("lam_final", float(max(r.real for r in np.roots([1, -1.5, 0, 0, 0, 0, -37])
+                                            if abs(r.imag) < 1e-12)), 1e-8,
+                      "homogeneous 3D plate, s = 1.5, D0 = 6: Eq. (loading_gent) "
+                      "lam^6 - s lam^5 - 1 - D0^2 = 0; mixed formulation, Newton tolerance"),
     "ex04_membrane": ("lam1_final", _uniaxial_lam1(6.0, _S_KEPLINGER), 1e-2,
                       "the clamped plate follows the homogeneous curve at its centre within "
                       "1 % (paper Sec. 6, issue 4); measured deviation about 1e-4"),
