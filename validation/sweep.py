@@ -60,7 +60,7 @@ __all__ = [
 #: ``D0`` step of 0.5, so ``1e-2`` separates the two.
 BREAKDOWN_TOL = 1e-2
 
-_FMT = ".12g"   # 12 significant digits in the CSV
+_FMT = ".12g"   # 12 significant digits (and at most 12 decimals) in the CSV
 
 
 @dataclass
@@ -137,7 +137,11 @@ def _fmt(x) -> str:
     if isinstance(x, str):
         return x
     x = float(x)
-    return "" if not np.isfinite(x) else format(x, _FMT)
+    if not np.isfinite(x):
+        return ""
+    # 12 significant digits and at most 12 decimals: round-off noise (P33 ~ 1e-15 on a
+    # homogeneous plate, last bits of threaded BLAS sums) does not reach the file
+    return format(round(x, 12) + 0.0, _FMT)
 
 
 def _analytic(spec: RunSpec, D0: float) -> tuple[float, float]:
