@@ -142,7 +142,7 @@ class PlateProblem:
         self.dN = np.ascontiguousarray(np.moveaxis(
             np.array([f[0].grad for f in self.b2.basis]), (0, 1), (2, 3)))   # (e,q,i,K)
         self.N1 = np.ascontiguousarray(np.moveaxis(
-            np.array([f[0].value for f in self.b1.basis]), 0, 2))           # (e,q,k)
+            np.array([np.array(f[0]) for f in self.b1.basis]), 0, 2))           # (e,q,k)
         if phi_element == "Q2":
             self.dNphi = self.dN
         else:
@@ -508,7 +508,7 @@ class PlateProblem:
             df = self.b2.elem.gbasis(mp, X, i, tind=cells)[0]
             for a in range(3):
                 ca = xf[3 * ed2[i] + a]
-                u[a] += ca * df.value[:, 0]
+                u[a] += ca * np.array(df)[:, 0]
                 F[a] += ca * df.grad[:, :, 0]
         F += np.eye(3)[:, :, None]
         phi, G = np.zeros(n), np.zeros((3, n))
@@ -516,14 +516,14 @@ class PlateProblem:
         for i in range(edf.shape[0]):
             df = self.bphi.elem.gbasis(mp, X, i, tind=cells)[0]
             c = xf[self.off_phi + edf[i]]
-            phi += c * df.value[:, 0]
+            phi += c * np.array(df)[:, 0]
             G += c * df.grad[:, :, 0]
         p = np.zeros(n)
         if self.n_p:
             ed1 = self.b1.element_dofs[:, cells]
             for i in range(ed1.shape[0]):
                 df = self.b1.elem.gbasis(mp, X, i, tind=cells)[0]
-                p += xf[self.off_p + ed1[i]] * df.value[:, 0]
+                p += xf[self.off_p + ed1[i]] * np.array(df)[:, 0]
         return {"u": u, "phi": phi, "p": p, "F": F, "G": G}
 
     def stresses(self, F: np.ndarray, G: np.ndarray, p: np.ndarray | None) -> dict[str, np.ndarray]:
