@@ -185,6 +185,19 @@ def test_resume_after_crash_between_row_and_state(tmp_path):
     assert filecmp.cmp(tmp_path / "a" / "nh-d-e.csv", tmp_path / "b" / "nh-d-e.csv", shallow=False)
 
 
+def test_second_writer_is_refused(tmp_path):
+    fcntl = pytest.importorskip("fcntl")
+    case = eq_case(n_s=1)
+    lock = tmp_path / ".state" / "nh-d-e" / "lock"
+    lock.parent.mkdir(parents=True)
+    with open(lock, "w") as fh:                     # another process writing this case
+        fcntl.flock(fh, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        with pytest.raises(ValueError, match="being written by another process"):
+            run_case(case, tmp_path, runner=FakeRunner(), progress=False)
+    res = run_case(case, tmp_path, runner=FakeRunner(), progress=False)   # lock released
+    assert res.n_steps == 5
+
+
 def test_force_recomputes(tmp_path):
     case = eq_case(n_s=1)
     run_case(case, tmp_path, runner=FakeRunner(), progress=False)

@@ -311,8 +311,45 @@ def run_case(case: Case | str, out, *, quick: bool = False, force: bool = False,
                 p.unlink()
         shutil.rmtree(state_dir, ignore_errors=True)
     state_dir.mkdir(parents=True, exist_ok=True)
-    man_path.write_text(json.dumps(manifest))
+    with _case_lock(state_dir, case.name):
+        man_path.write_text(json.dumps(manifest))
+        return _run_locked(case, runs, out, csv_path, fields_path, state_dir, runner, progress,
+                           t0)
 
+
+class _case_lock:
+    """Exclusive lock on ``.state/<case>/lock`` while a process writes the case.
+
+    Two processes writing the same case into the same folder would interleave
+    rows; ``flock`` is released by the OS when a process dies, so a killed run
+    never blocks its own resume. (No-op where ``fcntl`` is unavailable.)
+    """
+
+    def __init__(self, state_dir: Path, name: str):
+        self.path, self.name, self.fh = state_dir / "lock", name, None
+
+    def __enter__(self):
+        try:
+            import fcntl
+        except ImportError:           # pragma: no cover - Windows
+            return self
+        self.fh = open(self.path, "w")
+        try:
+            fcntl.flock(self.fh, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except OSError:
+            self.fh.close()
+            raise ValueError(f"case {self.name!r} is being written by another process into "
+                             f"{self.path.parent.parent.parent}") from None
+        return self
+
+    def __exit__(self, *exc):
+        if self.fh is not None:
+            self.fh.close()          # releases the lock
+
+
+def _run_locked(case, runs, out, csv_path, fields_path, state_dir, runner, progress,
+                t0) -> CaseResult:
+    """Body of :func:`run_case` under the case lock: resume plan, ramps, summary."""
     header = csv_columns(case)
     _, old_rows = _read_rows(csv_path)
     f_header, old_frows = _read_rows(fields_path)
