@@ -178,6 +178,11 @@ class RampResult:
             return np.array([st.load for st in self.steps], dtype=float)
         if name == "iterations":
             return np.array([st.iterations for st in self.steps], dtype=int)
+        known = set().union(*(st.quantities for st in self.steps)) if self.steps else set()
+        if name not in known:
+            raise ValueError(
+                f"name must be 'load', 'iterations' or a post-processed quantity "
+                f"{sorted(known)}, got {name!r}")
         return np.array([st.quantities[name] for st in self.steps])
 
     @property

@@ -96,3 +96,16 @@ def test_bad_inputs():
         get_linear_solver("mumps")
     with pytest.raises(ValueError, match="finite"):
         ramp(Cubic(), [1.0, np.nan])
+
+
+def test_ramp_column_unknown_name_is_a_clear_error():
+    # A quantity name that the problem does not post-process must name itself and the
+    # available names (a KeyError deep in a list comprehension helps nobody).
+    from skfem_dielectric.newton import RampResult, StepResult
+
+    st = StepResult(load=np.array([1.0]), converged=True, iterations=2, substeps=1, cutbacks=0,
+                    residual_norms=[[1.0, 1e-12]], x=np.zeros(1), quantities={"lam1": 1.5})
+    res = RampResult(steps=[st], converged=True)
+    assert res.column("lam1") == pytest.approx([1.5], rel=0, abs=0)
+    with pytest.raises(ValueError, match="'lam'"):
+        res.column("lam")
