@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["as_array", "check_positive", "check_nonnegative", "check_choice", "broadcast"]
+__all__ = ["as_array", "check_finite", "check_positive", "check_nonnegative", "check_choice", "broadcast"]
 
 
 def as_array(name: str, value) -> np.ndarray:
@@ -15,6 +15,14 @@ def as_array(name: str, value) -> np.ndarray:
         raise ValueError(f"{name} must be a real number or array, got {value!r}") from None
     if np.any(np.isnan(arr)):
         raise ValueError(f"{name} must not be NaN, got {value!r}")
+    return arr
+
+
+def check_finite(name: str, value) -> np.ndarray:
+    """``value`` as a float array, all entries finite (the message shows the converted array)."""
+    arr = as_array(name, value)
+    if np.any(~np.isfinite(arr)):
+        raise ValueError(f"{name} must be finite, got {arr!r}")
     return arr
 
 

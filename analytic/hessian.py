@@ -26,7 +26,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ._checks import as_array, broadcast, check_choice, check_positive
+from ._checks import as_array, broadcast, check_choice, check_finite, check_positive
 from .homogeneous import (
     _derivs,
     _equibiaxial_limits,
@@ -733,9 +733,7 @@ def max_E0(s, model=None, loading: str = "equibiaxial"):
     """
     model = as_model(model)
     check_choice("loading", loading, _LOADINGS)
-    s = as_array("s", s)
-    if np.any(~np.isfinite(s)):
-        raise ValueError(f"s must be finite, got {s!r}")
+    s = check_finite("s", s)
     shape = s.shape
     sf = s.ravel()
     nh = isinstance(model, NeoHookean)

@@ -32,7 +32,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ._checks import as_array, broadcast, check_positive
+from ._checks import as_array, broadcast, check_finite, check_positive
 from .models import Gent, Model, NeoHookean, as_model
 
 __all__ = [
@@ -558,13 +558,7 @@ def equibiaxial_lam(D0, s=0.0, model=None):
     3.0
     """
     model = as_model(model)
-    D0 = as_array("D0", D0)
-    if np.any(~np.isfinite(D0)):
-        raise ValueError(f"D0 must be finite, got {D0!r}")
-    s = as_array("s", s)
-    if np.any(~np.isfinite(s)):
-        raise ValueError(f"s must be finite, got {s!r}")
-    D0, s = broadcast(D0=D0, s=s)
+    D0, s = broadcast(D0=check_finite("D0", D0), s=check_finite("s", s))
     shape = D0.shape
     q, s = D0.ravel() ** 2, s.ravel()
     lo_lim, hi_lim = _equibiaxial_limits(model)
@@ -734,10 +728,7 @@ def _uniaxial_x(lam1, s, model):
 def _uniaxial_inputs(lam1, s, model):
     model = as_model(model)
     lam1 = check_positive("lam1", lam1)
-    s = as_array("s", s)
-    if np.any(~np.isfinite(s)):
-        raise ValueError(f"s must be finite, got {s!r}")
-    lam1, s = broadcast(lam1=lam1, s=s)
+    lam1, s = broadcast(lam1=lam1, s=check_finite("s", s))
     return lam1, s, model
 
 
@@ -890,13 +881,7 @@ def uniaxial_lam1(D0, s=0.0, model=None):
     2.5
     """
     model = as_model(model)
-    D0 = as_array("D0", D0)
-    if np.any(~np.isfinite(D0)):
-        raise ValueError(f"D0 must be finite, got {D0!r}")
-    s = as_array("s", s)
-    if np.any(~np.isfinite(s)):
-        raise ValueError(f"s must be finite, got {s!r}")
-    D0, s = broadcast(D0=D0, s=s)
+    D0, s = broadcast(D0=check_finite("D0", D0), s=check_finite("s", s))
     shape = D0.shape
     c, sf = np.sqrt(1.0 + D0.ravel() ** 2), s.ravel()
     lo = np.maximum(sf, 0.0)  # q(lo) = lo^2 (lo - s) - c < 0
