@@ -31,6 +31,8 @@ import math
 
 import numpy as np
 
+from .materials import _check_int, _check_positive
+
 __all__ = ["CrossSection", "cross_section_kernel", "cross_section_ramp"]
 
 _CONTROLS = ("charge", "voltage")
@@ -75,19 +77,6 @@ def cross_section_kernel(material, gradu: np.ndarray, lam3, p: np.ndarray,
     G = np.zeros((3,) + shape)
     G[:2] = gradphi
     return ideal_dielectric_response(material, F, G, p, need_tangent=need_tangent)
-
-
-def _check_pos(name: str, value) -> float:
-    v = float(value)
-    if not (math.isfinite(v) and v > 0):
-        raise ValueError(f"{name} must be a finite number > 0, got {value!r}")
-    return v
-
-
-def _check_int(name: str, value) -> int:
-    if int(value) != value or int(value) < 1:
-        raise ValueError(f"{name} must be a positive integer, got {value!r}")
-    return int(value)
 
 
 class CrossSection:
@@ -145,9 +134,9 @@ class CrossSection:
         self._local = coupling == "maxwell" and field == "local"
         self._elastic_volume = coupling == "maxwell" and field == "electrostatic"
         self.material = material
-        self.L1, self.H = _check_pos("L1", L1), _check_pos("H", H)
+        self.L1, self.H = _check_positive("L1", L1), _check_positive("H", H)
         self.n1, self.n2 = _check_int("n1", n1), _check_int("n2", n2)
-        self.lam3_fixed = None if lam3 is None else _check_pos("lam3", lam3)
+        self.lam3_fixed = None if lam3 is None else _check_positive("lam3", lam3)
         self.control = control
         a1, a2 = self.L1 / 2, self.H / 2
         tol = 1e-9 * max(a1, a2)

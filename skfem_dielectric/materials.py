@@ -50,6 +50,12 @@ def _check_positive(name: str, value: float) -> float:
     return v
 
 
+def _check_int(name: str, value) -> int:
+    if int(value) != value or int(value) < 1:
+        raise ValueError(f"{name} must be a positive integer, got {value!r}")
+    return int(value)
+
+
 @dataclass(frozen=True)
 class NeoHookeanDielectric:
     """Neo-Hookean ideal dielectric, ``W = mu/2 (I1 - 3)``, Eq. (gent)_1.

@@ -28,6 +28,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from .materials import _check_int, _check_positive
+
 __all__ = [
     "membrane_kernel",
     "MembranePlate",
@@ -131,19 +133,6 @@ _CONTROLS = ("charge", "voltage")
 _COUPLINGS = ("full", "maxwell")
 
 
-def _check_pos(name: str, value) -> float:
-    v = float(value)
-    if not (np.isfinite(v) and v > 0):
-        raise ValueError(f"{name} must be a finite number > 0, got {value!r}")
-    return v
-
-
-def _check_int(name: str, value) -> int:
-    if int(value) != value or int(value) < 1:
-        raise ValueError(f"{name} must be a positive integer, got {value!r}")
-    return int(value)
-
-
 class MembranePlate:
     """Quarter of a rectangular dielectric membrane, a :class:`RampProblem`.
 
@@ -216,8 +205,8 @@ class MembranePlate:
             raise ValueError(f"coupling 'maxwell' needs control='charge', got {control!r}")
         self.coupling = coupling
         self.material = material
-        self.L1, self.L3, self.H = (_check_pos("L1", L1), _check_pos("L3", L3),
-                                    _check_pos("H", H))
+        self.L1, self.L3, self.H = (_check_positive("L1", L1), _check_positive("L3", L3),
+                                    _check_positive("H", H))
         self.n1, self.n3 = _check_int("n1", n1), _check_int("n3", n3)
         self.loading, self.control = loading, control
         a1, a3 = self.L1 / 2, self.L3 / 2
