@@ -146,10 +146,13 @@ def test_readme_main_job(tmp_path):
     # homogeneous states: Newton tolerance only (see test_validate_quick_homogeneous_case)
     for name in ("nh-d-e", "gent-d-e", "gent-equi-biaxial", "figde"):
         assert summary[name]["max_rel_error"] < 1e-8, name
-    # clamped plate, energy-coupled models: within 1 % of Eq. (DEuniax) at the centre
+    # clamped plate, 3D coupled, 3D Maxwell traction and membrane: within 1 % of
+    # Eq. (DEuniax) at the centre (measured 2.5e-3; the clamps act near the ends only)
     by_run = summary["uni-axial-ideal"]["max_rel_error_by_run"]
-    assert max(v for k, v in by_run.items() if "maxwell" not in k) < 1e-2
+    assert any("_maxwell_" in k for k in by_run) and max(by_run.values()) < 1e-2
     brk = summary["uni-axial-ideal"]["breakdown_D0"]
-    for variant in ("coupled", "membrane"):
+    # the two 3D couplings discretise the same equations: the same breakdown step
+    assert all(brk[k] == brk[k.replace("_maxwell_", "_coupled_")] for k in brk if "_maxwell_" in k)
+    for variant in ("coupled", "maxwell", "membrane"):
         d = [brk[f"uniaxial_nh_{variant}_a{a:g}"] for a in (0.05, 0.3, 0.7, 1.0, 1.5)]
         assert None not in d and np.all(np.diff(d) >= 0) and d[-1] > d[0], d

@@ -89,3 +89,39 @@ def test_process_pool_matches_serial(tmp_path, monkeypatch):
                            shallow=False)
     # homogeneous 3D and membrane plates against Eq. (loading_gent): Newton tolerance
     assert res[0].max_rel_error < 1e-8
+
+
+def test_maxwell_keplinger_against_coupled_and_resume(tmp_path):
+    # the quick Keplinger plate (eighth model, 10 x 1 x 5 Q2), alpha = 1, D0 steps of 0.5
+    # up to the breakdown: 3D fully coupled vs 3D Maxwell traction (electrostatic field)
+    s = vc.keplinger_s(1.0)
+    mesh = vc._mesh(vc.QUICK_PLATE, "maxwell")
+    runs = tuple(vc.RunSpec("uniaxial", "neo-Hookean", v, s, tuple(np.arange(0.0, 6.01, 0.5)),
+                            alpha=1.0, mesh=mesh) for v in ("coupled", "maxwell"))
+    case = vc.Case("uni-axial-ideal", "uni-axial-ideal", "test", "uniaxial", quick=runs,
+                   full=runs)
+    run_case(case, tmp_path / "full", runner=run_fe, progress=False)
+    # interrupted inside the Maxwell ramp (coupled: 7 rows up to the breakdown), resumed:
+    # the same bytes (SuperLU, deterministic)
+    with pytest.raises(Interrupted):
+        run_case(case, tmp_path / "part", runner=StopAfter(10), progress=False)
+    run_case(case, tmp_path / "part", runner=run_fe, progress=False)
+    assert filecmp.cmp(tmp_path / "full" / "uni-axial-ideal.csv",
+                       tmp_path / "part" / "uni-axial-ideal.csv", shallow=False)
+    t = read_table(tmp_path / "full" / "uni-axial-ideal.csv")
+    c, m = (t["variant"] == "coupled"), (t["variant"] == "maxwell")
+    # both ramps stop at the same step, the first one with P33 < -0.01 mu (measured D0 = 3,
+    # as for the coupled plate in docs/validation.md)
+    assert list(t["D0"][c]) == list(t["D0"][m]) == list(np.arange(0.0, 3.01, 0.5))
+    assert t["breakdown"][c][-1] and t["breakdown"][m][-1]
+    # the two couplings discretise the same equations (Div tau_m = 0); they differ only by
+    # the discrete int Div P_m . v at the clamp corners: issue 5 asks for 0.1 % on lam1 and
+    # 5 % of mu on min P33 up to the breakdown (measured 5.8e-4 and 3.4e-4 mu)
+    np.testing.assert_allclose(t["lam1_fe"][m], t["lam1_fe"][c], rtol=1e-3)
+    np.testing.assert_allclose(t["min_P33_interior"][m], t["min_P33_interior"][c], atol=0.05)
+    # pre-load: no charge, no Maxwell traction, the same elastic problem: Newton tolerance
+    np.testing.assert_allclose(t["lam1_fe"][m][0], t["lam1_fe"][c][0], rtol=1e-8)
+    # at the centre lam1 follows the homogeneous uni-axial curve Eq. (DEuniax) within 1 %
+    # (the clamps act near the ends only; measured 2.5e-3 for the coupled plate)
+    np.testing.assert_allclose(t["lam1_fe"][m], t["lam1_analytic"][m], rtol=1e-2)
+    assert np.all(t["stable"][m] == None)        # noqa: E711 (non-symmetric: no verdict)

@@ -145,7 +145,16 @@ class _Plate:
             self.preload, self.tolerances = 3, {"atol": 0.0, "rtol": 1e-9}
         else:
             raise ValueError(f"the 3D plate has no geometry {spec.geometry!r}")
-        self.problem = PlateProblem(pm, make_material(spec.model), loading=spec.geometry)
+        if spec.variant == "maxwell":
+            from skfem_dielectric.maxwell import MaxwellPlate
+
+            # Maxwell traction with the field of the potential solved on the deformed body
+            # (the variant that discretises the fully coupled equations; docs/fe_variants.md)
+            self.problem = MaxwellPlate(pm, make_material(spec.model), loading=spec.geometry,
+                                        field="electrostatic")
+        else:
+            self.problem = PlateProblem(pm, make_material(spec.model), loading=spec.geometry)
+        self.maxwell = spec.variant == "maxwell"
 
     def targets(self, spec) -> list:
         """Pre-load in equal steps ``(s k/n, 0)``, then ``(s, D0)`` for the charge targets."""
@@ -162,7 +171,8 @@ class _Plate:
         from skfem_dielectric.linear import get_linear_solver, pardiso_available
 
         global _PARDISO
-        if not pardiso_available():
+        if self.maxwell or not pardiso_available():
+            # the Maxwell tangent is non-symmetric: its inertia is no stability verdict
             return None
         if _PARDISO is None:             # one instance per process: its set-up is slow
             _PARDISO = get_linear_solver("pardiso")
@@ -210,7 +220,7 @@ def build_problem(spec):
     """The FE problem wrapper of ``spec`` (``.problem`` is a ``RampProblem``)."""
     if spec.variant in ("membrane", "membrane-maxwell"):
         return _Membrane(spec)
-    if spec.variant == "coupled":
+    if spec.variant in ("coupled", "maxwell"):
         return _Plate(spec)
     raise ValueError(f"variant {spec.variant!r} has no FE driver yet")
 
@@ -240,9 +250,12 @@ def run_fe(spec, start, state, on_step, linear_solver="superlu"):
     from .sweep import RunOutcome
 
     if "maxwell" in spec.variant:
-        # the Maxwell follower load has a non-symmetric tangent; the PARDISO wrapper is
-        # symmetric-indefinite (upper triangle only), so these runs always use SuperLU
-        linear_solver = "superlu"
+        # the Maxwell follower load has a non-symmetric tangent, which the symmetric-
+        # indefinite PARDISO set-up (upper triangle only) cannot factorise: SuperLU, or
+        # PARDISO as a general LU (mtype 11) when PARDISO is asked for
+        from skfem_dielectric.maxwell import nonsymmetric_solver
+
+        linear_solver = nonsymmetric_solver(linear_solver)
     wrap = build_problem(spec)
     targets = wrap.targets(spec)
     x0 = None if state is None else np.asarray(state["x"], dtype=float)

@@ -34,7 +34,7 @@ _VARIANT_MARKER = {"coupled": dict(marker="o", mfc="none", ms=6, mew=1.2),
                    "membrane-maxwell": dict(marker="d", mfc="none", ms=5, mew=1.0)}
 _VARIANT_LABEL = {"coupled": "FE 3D, fully coupled", "maxwell": "FE 3D, Maxwell traction",
                   "membrane": "FE 2D membrane, coupled",
-                  "membrane-maxwell": "FE 2D membrane, Maxwell traction"}
+                  "membrane-maxwell": "FE 2D membrane, Maxwell (local field)"}
 
 
 def _new_axes(ax, n=1, figsize=None):
