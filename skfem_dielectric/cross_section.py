@@ -32,11 +32,10 @@ import math
 import numpy as np
 
 from .materials import _check_int, _check_positive
+from .membrane import _check_control_coupling, _D0_targets
 
 __all__ = ["CrossSection", "cross_section_kernel", "cross_section_ramp"]
 
-_CONTROLS = ("charge", "voltage")
-_COUPLINGS = ("full", "maxwell")
 _FIELDS = ("electrostatic", "local")
 
 
@@ -122,12 +121,7 @@ class CrossSection:
 
         from .assembly import DofReduction, ScatterMap
 
-        if control not in _CONTROLS:
-            raise ValueError(f"control must be one of {_CONTROLS}, got {control!r}")
-        if coupling not in _COUPLINGS:
-            raise ValueError(f"coupling must be one of {_COUPLINGS}, got {coupling!r}")
-        if coupling == "maxwell" and control != "charge":
-            raise ValueError(f"coupling 'maxwell' needs control='charge', got {control!r}")
+        _check_control_coupling(control, coupling)
         if field not in _FIELDS:
             raise ValueError(f"field must be one of {_FIELDS}, got {field!r}")
         self.coupling, self.field = coupling, field
@@ -533,9 +527,7 @@ def cross_section_ramp(problem: CrossSection, s1: float, s3: float, D0, **ramp_o
     for name, v in (("s1", s1), ("s3", s3)):
         if not math.isfinite(float(v)):
             raise ValueError(f"{name} must be finite, got {v}")
-    D0 = np.atleast_1d(np.asarray(D0, dtype=float))
-    if D0.ndim != 1 or D0.size == 0 or not np.all(np.isfinite(D0)):
-        raise ValueError(f"D0 must be a non-empty 1-D array of finite values, got {D0}")
+    D0 = _D0_targets(D0)
     out = ramp(problem, [np.array([s1, s3, d]) for d in D0], **ramp_options)
     out.problem = problem  # for skfem_dielectric.export
     return out

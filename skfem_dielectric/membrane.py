@@ -133,6 +133,16 @@ _CONTROLS = ("charge", "voltage")
 _COUPLINGS = ("full", "maxwell")
 
 
+def _check_control_coupling(control: str, coupling: str) -> None:
+    """Shared by the 2D models: known ``control``/``coupling``; Maxwell coupling needs charge."""
+    if control not in _CONTROLS:
+        raise ValueError(f"control must be one of {_CONTROLS}, got {control!r}")
+    if coupling not in _COUPLINGS:
+        raise ValueError(f"coupling must be one of {_COUPLINGS}, got {coupling!r}")
+    if coupling == "maxwell" and control != "charge":
+        raise ValueError(f"coupling 'maxwell' needs control='charge', got {control!r}")
+
+
 class MembranePlate:
     """Quarter of a rectangular dielectric membrane, a :class:`RampProblem`.
 
@@ -197,12 +207,7 @@ class MembranePlate:
 
         if loading not in _LOADINGS:
             raise ValueError(f"loading must be one of {_LOADINGS}, got {loading!r}")
-        if control not in _CONTROLS:
-            raise ValueError(f"control must be one of {_CONTROLS}, got {control!r}")
-        if coupling not in _COUPLINGS:
-            raise ValueError(f"coupling must be one of {_COUPLINGS}, got {coupling!r}")
-        if coupling == "maxwell" and control != "charge":
-            raise ValueError(f"coupling 'maxwell' needs control='charge', got {control!r}")
+        _check_control_coupling(control, coupling)
         self.coupling = coupling
         self.material = material
         self.L1, self.L3, self.H = (_check_positive("L1", L1), _check_positive("L3", L3),
@@ -443,10 +448,15 @@ def _ramp_targets(s, D0) -> list:
     s = float(s)
     if not np.isfinite(s):
         raise ValueError(f"s must be finite, got {s}")
+    return [np.array([s, d]) for d in _D0_targets(D0)]
+
+
+def _D0_targets(D0) -> np.ndarray:
+    """``D0`` (or ``E0``) ramp targets as a non-empty 1-D array of finite floats."""
     D0 = np.atleast_1d(np.asarray(D0, dtype=float))
     if D0.ndim != 1 or D0.size == 0 or not np.all(np.isfinite(D0)):
         raise ValueError(f"D0 must be a non-empty 1-D array of finite values, got {D0}")
-    return [np.array([s, d]) for d in D0]
+    return D0
 
 
 def membrane_ramp(problem: MembranePlate, s: float, D0, **ramp_options):
