@@ -16,7 +16,9 @@ Two implementations:
     MKL PARDISO through ``pypardiso`` (the ``fast`` extra), used as a real symmetric
     indefinite solver (``mtype=-2``, upper triangle only) with the symbolic analysis done
     once per sparsity pattern and reused for all later numerical factorisations.  PARDISO
-    reports the matrix inertia, used by the stability verdict.
+    reports the matrix inertia, used by the stability verdict.  The MKL library is located
+    once per process (:func:`new_pypardiso_solver`); each solver keeps its own PARDISO
+    handle and factorisation.
 
 Use :func:`get_linear_solver` to obtain one by name.
 """
