@@ -294,9 +294,9 @@ class PardisoLUSolver(_linear_solver_base()):
     inertia = None
 
     def __init__(self):
-        from pypardiso import PyPardisoSolver  # optional dependency (`fast` extra)
+        from .linear import new_pypardiso_solver  # optional dependency (`fast` extra)
 
-        self._ps = PyPardisoSolver(mtype=11)
+        self._ps = new_pypardiso_solver(11)
 
     def solve(self, K, b):
         """Factorise ``K`` and solve ``K x = b``."""
