@@ -313,3 +313,16 @@ def test_progress_bar_quiet_unless_terminal():
     last = tty.getvalue().split("\r")[-1]
     assert last.split()[:3] == ["case", "[" + "#" * Progress.width + "]", "4/4"]
     assert tty.getvalue().endswith("\n")
+
+
+def test_read_table_verdict_columns_are_bool_even_when_empty(tmp_path):
+    # Without PARDISO no stability verdict is computed: an all-empty ``stable`` column must
+    # still read as None (not NaN), so code comparing with None works on every machine.
+    from validation.sweep import read_table
+
+    p = tmp_path / "t.csv"
+    p.write_text("D0,stable,converged\n0.5,,True\n1.0,,False\n")
+    t = read_table(p)
+    assert list(t["stable"]) == [None, None]
+    assert list(t["converged"]) == [True, False]
+    assert t["D0"].tolist() == [0.5, 1.0]

@@ -179,11 +179,17 @@ def _row(case: Case, spec: RunSpec, index: int, rec: StepRecord | None, converge
     return [_fmt(vals[c]) for c in csv_columns(case)]
 
 
+#: Verdict columns: always bool/None, also when every cell is empty (e.g. ``stable``
+#: without PARDISO), so that a table's column types do not depend on its content.
+_BOOL_COLUMNS = frozenset({"converged", "stable", "breakdown"})
+
+
 def read_table(path) -> dict[str, np.ndarray]:
     """Read a tidy CSV written by the harness into columns.
 
     Numeric columns become float arrays (empty cells ``nan``), ``True``/``False``
-    columns become object arrays of bool/None, the others string arrays.
+    columns (and always ``converged``, ``stable``, ``breakdown``) become object arrays of
+    bool/None, the others string arrays.
     """
     with open(path, newline="") as fh:
         rows = list(csv.reader(fh))
@@ -193,7 +199,8 @@ def read_table(path) -> dict[str, np.ndarray]:
     table = {}
     for j, name in enumerate(header):
         col = [r[j] for r in body]
-        if col and all(v in ("True", "False", "") for v in col) and any(col):
+        if name in _BOOL_COLUMNS or (col and all(v in ("True", "False", "") for v in col)
+                                     and any(col)):
             table[name] = np.array([None if v == "" else v == "True" for v in col], dtype=object)
             continue
         try:
