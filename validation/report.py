@@ -46,7 +46,10 @@ def write_summary(results, folder, *, quick: bool) -> Path:
 
 
 def _g(x, fmt=".2e"):
-    return "-" if x is None else format(x, fmt)
+    # The CSV keeps 12 significant digits, so an error of exactly 0 means "below 1e-11".
+    if x is None:
+        return "-"
+    return "< 1e-11" if x == 0 else format(x, fmt)
 
 
 def write_report(results, folder, *, quick: bool) -> Path:
