@@ -208,6 +208,7 @@ class PlateProblem:
         self.scatter = ScatterMap(self.red.index[self.edofs], self.red.n)
         self._block_pos = self._block_positions()
         self._pos_cache: dict[tuple[int, int], np.ndarray] = {}
+        self._work: dict[tuple[int, int, int], np.ndarray] = {}
 
         # ---- external loads per unit load value ----
         mu, eps = material.mu, material.eps
@@ -382,21 +383,31 @@ class PlateProblem:
         dNi, dNt = self.dNi[sl], self.dNt[sl]
         dNphii, dNphit = self.dNphii[sl], self.dNphit[sl]
         sizes = self._block_sizes()
-        buf = np.empty(ne * sum(n for _, n in sizes))
+        # the buffer is reused across calls (one per chunk: no page faults of a fresh large
+        # array on every call); it is consumed by the scatter before the next call
+        size = ne * sum(n for _, n in sizes)
+        key = (sl.start, sl.stop, size)
+        buf = self._work.get(key)
+        if buf is None:
+            buf = self._work[key] = np.empty(size)
         views, o = {}, 0
         for name, n in sizes:
             views[name] = buf[o: o + ne * n]
             o += ne * n
-        # u-u, layout (e, i, a, b, j)
-        A = np.ascontiguousarray(np.moveaxis(r.A_FF * w, (4, 5), (0, 1))
-                                 .transpose(0, 1, 3, 2, 4, 5)).reshape(ne, nq, 27, 3)
-        V = (A @ dNt).reshape(ne, nq * 3, 9 * 27)
-        np.matmul(dNi, V, out=views["uu"].reshape(ne, 27, 243))
-        # u-phi, layout (e, i, a, j), used for both off-diagonal blocks
-        A = np.ascontiguousarray(np.moveaxis(r.A_FG * w, (3, 4), (0, 1))
-                                 .transpose(0, 1, 3, 2, 4)).reshape(ne, nq, 9, 3)
-        np.matmul(dNi, (A @ dNphit).reshape(ne, nq * 3, 3 * mf),
-                  out=views["uf"].reshape(ne, 27, 3 * mf))
+        uu = views["uu"].reshape(ne, 27, 243)
+        uf = views["uf"].reshape(ne, 27, 3 * mf)
+        # u-u, layout (e, i, a, b, j), and u-phi, layout (e, i, a, j), in sub-batches of
+        # elements so that the large temporaries stay small (cache, no page faults)
+        for a in range(0, ne, 32):
+            b = min(a + 32, ne)
+            nb = b - a
+            A = np.ascontiguousarray(np.moveaxis(r.A_FF[..., a:b, :] * w[a:b], (4, 5), (0, 1))
+                                     .transpose(0, 1, 3, 2, 4, 5)).reshape(nb, nq, 27, 3)
+            V = (A @ dNt[a:b]).reshape(nb, nq * 3, 9 * 27)
+            np.matmul(dNi[a:b], V, out=uu[a:b])
+            A = np.ascontiguousarray(np.moveaxis(r.A_FG[..., a:b, :] * w[a:b], (3, 4), (0, 1))
+                                     .transpose(0, 1, 3, 2, 4)).reshape(nb, nq, 9, 3)
+            np.matmul(dNi[a:b], (A @ dNphit[a:b]).reshape(nb, nq * 3, 3 * mf), out=uf[a:b])
         views["fu"][:] = views["uf"]
         # phi-phi
         A = np.ascontiguousarray(np.moveaxis(r.A_GG * w, (2, 3), (0, 1)))
