@@ -370,7 +370,9 @@ class PlateProblem:
         pos = self._pos_cache.get(key)
         if pos is None:
             P = self._block_pos
-            pos = np.concatenate([P[name][sl].ravel() for name, _ in self._block_sizes()])
+            # intp: np.bincount would otherwise convert the int32 positions on every call
+            pos = np.concatenate([P[name][sl].ravel() for name, _ in self._block_sizes()]
+                                 ).astype(np.intp)
             self._pos_cache[key] = pos
         return pos
 
