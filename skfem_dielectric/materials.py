@@ -204,6 +204,114 @@ def _det_inv(F: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     return J, inv
 
 
+def _check_form(formulation: str, kappa: float) -> float:
+    if formulation not in ("mixed", "penalty"):
+        raise ValueError(f"formulation must be 'mixed' or 'penalty', got {formulation!r}")
+    kappa = float(kappa)
+    if not kappa > 0:
+        raise ValueError(f"kappa must be > 0, got {kappa}")
+    if formulation == "penalty" and not math.isfinite(kappa):
+        raise ValueError("kappa must be finite for the penalty formulation, got inf")
+    return kappa
+
+
+def _points_first(T: np.ndarray, s: np.ndarray | None, nt: int) -> np.ndarray:
+    """Contiguous copy of ``T`` (``nt`` tensor axes first) with the point axes first,
+    times the weights ``s`` (one pass)."""
+    pts = T.shape[nt:]
+    out = np.empty(pts + T.shape[:nt])
+    src = np.moveaxis(T, tuple(range(nt)), tuple(range(-nt, 0)))
+    if s is None:
+        out[...] = src
+    else:
+        np.multiply(src, s.reshape(s.shape + (1,) * nt), out=out)
+    return out
+
+
+def _response(material, F: np.ndarray, G: np.ndarray, p: np.ndarray | None, kappa: float,
+              formulation: str, need_tangent: bool, stress_free_reference: bool,
+              weights: np.ndarray | None) -> PointResponse:
+    """Core of :func:`ideal_dielectric_response`: tensor-first ``F``, ``G``, ``psi``, ``P``,
+    ``D_L``; the tangent (times ``weights``) in the assembly layout, point axes first:
+    ``A_FF[..., K, a, b, L]``, ``A_FG[..., K, a, L]``, ``A_GG[..., K, L]``,
+    ``A_Fp[..., K, a]``.
+
+    The fourth-order tangent is two batched products of small matrices: the dyads
+    ``X_aK Y_bL`` (``4 W'' F F``, the pressure / ``|a|^2`` terms, ``M F^-T``, and
+    ``-eps J a a C^-1`` written as three dyads through ``C^-1 = F^-1 F^-T``) and the two
+    crossed terms ``X_aL Y_bK``, plus ``2 W' I``.
+    """
+    kappa = _check_form(formulation, kappa)
+    eps = material.eps
+    J, Finv = _det_inv(F)
+    I1 = (F * F).sum(axis=(0, 1))
+    W, W1, W11 = material.energy_derivatives(I1)
+    a = (Finv * G[:, None]).sum(axis=0)                  # F^-T G
+    bvec = (Finv * a[None]).sum(axis=1)                  # C^-1 G
+    aa = (a * a).sum(axis=0)
+    FinvT = np.swapaxes(Finv, 0, 1)                      # FinvT[a, K] = Finv[K, a]
+    finite_k = math.isfinite(kappa)
+    if formulation == "mixed":
+        if p is None:
+            p = np.zeros_like(J)
+        pe = p
+        vol = p * (J - 1.0) - (0.5 * p * p / kappa if finite_k else 0.0)
+        dpsi_dp = J - 1.0 - (p / kappa if finite_k else 0.0)
+        A_pp = -1.0 / kappa if finite_k else 0.0
+    else:
+        pe = kappa * (J - 1.0)
+        vol = 0.5 * kappa * (J - 1.0) ** 2
+        dpsi_dp = np.zeros_like(J)
+        A_pp = 0.0
+    mu0 = 2.0 * float(material.energy_derivatives(np.array(3.0))[1]) if stress_free_reference \
+        else 0.0
+    eJ = eps * J
+    with np.errstate(invalid="ignore", divide="ignore"):   # J <= 0 -> nan -> Newton rejects
+        psi = W + vol - 0.5 * eJ * aa - mu0 * np.log(J)
+    coef = pe * J - 0.5 * eJ * aa
+    M = a[:, None] * bvec[None]                                    # M[a, K] = a_a b_K
+    P = 2.0 * W1 * F + (coef - mu0) * FinvT + eJ * M
+    D_L = -eJ * bvec
+    if not need_tangent:
+        e = np.empty(0)
+        return PointResponse(psi, P, dpsi_dp, D_L, e, e, e, e, A_pp, J)
+
+    shp = J.shape
+    s = None if weights is None else np.broadcast_to(weights, shp)
+    sw = 1.0 if s is None else s
+    Y = coef * FinvT + eJ * M                                      # [b, L]
+    # dyads X_aK Y_bL: X stored [m, K, a], Y stored [m, b, L]
+    Xd = [Finv, np.swapaxes(M, 0, 1)]
+    Yd = [Y + kappa * J * J * FinvT if formulation == "penalty" else Y, eJ * FinvT]
+    for m in range(3):     # -eJ a_a a_b Cinv_KL = sum_m (Finv_Km a_a)(-eJ a_b Finv_Lm)
+        Xd.append(Finv[:, m][:, None] * a[None])
+        Yd.append(-eJ * a[:, None] * Finv[:, m][None])
+    if np.any(W11 != 0.0):
+        Xd.append(np.swapaxes(F, 0, 1))
+        Yd.append(4.0 * W11 * F)
+    nm = len(Xd)
+    X = _points_first(np.array(Xd).reshape((nm, 9) + shp), None, 2).swapaxes(-1, -2)
+    Yw = _points_first(np.array(Yd).reshape((nm, 9) + shp), s, 2)
+    A = (X @ Yw).reshape(shp + (3, 3, 3, 3))                        # [K, a, b, L]
+    # crossed terms -(X_aL Y_bK): X stored [L, a], Y stored [b, K]; product [L, a, b, K]
+    Xc = _points_first(np.array([Finv, bvec[:, None] * a[None]]).reshape((2, 9) + shp),
+                       None, 2).swapaxes(-1, -2)
+    Yc = _points_first(np.array([Y - mu0 * FinvT, eJ * FinvT]).reshape((2, 9) + shp), s, 2)
+    A -= np.swapaxes((Xc @ Yc).reshape(shp + (3, 3, 3, 3)), -4, -1)
+    d = 2.0 * W1 * sw
+    for i in range(3):
+        for k in range(3):
+            A[..., k, i, i, k] += d
+    # A_FG[a,K,L] = eJ (Finv_La b_K + a_a Cinv_KL - b_L Finv_Ka), stored [K, a, L]
+    Cinv = (Finv[:, None] * Finv[None]).sum(axis=2)
+    A_FG = eJ * (bvec[:, None, None] * Finv.transpose(1, 0, *range(2, Finv.ndim))[None]
+                 + a[None, :, None] * Cinv[:, None, :] - Finv[:, :, None] * bvec[None, None])
+    A_GG = -eps * J * Cinv
+    A_Fp = J * Finv if formulation == "mixed" else np.zeros_like(Finv)
+    return PointResponse(psi, P, dpsi_dp, D_L, A, _points_first(A_FG, s, 3),
+                         _points_first(A_GG, s, 2), _points_first(A_Fp, s, 2), A_pp, J)
+
+
 def ideal_dielectric_response(material, F: np.ndarray, G: np.ndarray,
                               p: np.ndarray | None = None, kappa: float = math.inf,
                               formulation: str = "mixed", need_tangent: bool = True,
@@ -240,6 +348,8 @@ def ideal_dielectric_response(material, F: np.ndarray, G: np.ndarray,
     Returns
     -------
     PointResponse
+        Tensor indices first (``A_FF[a, K, b, L, ...]`` etc.; the tangent fields are views
+        of the points-first arrays the assembly uses).
 
     Notes
     -----
@@ -247,73 +357,12 @@ def ideal_dielectric_response(material, F: np.ndarray, G: np.ndarray,
     docstring); the stresses are verified against finite differences of ``psi`` and the
     tangent against finite differences of the stresses in ``tests/test_fe_materials.py``.
     """
-    if formulation not in ("mixed", "penalty"):
-        raise ValueError(f"formulation must be 'mixed' or 'penalty', got {formulation!r}")
-    kappa = float(kappa)
-    if not kappa > 0:
-        raise ValueError(f"kappa must be > 0, got {kappa}")
-    if formulation == "penalty" and not math.isfinite(kappa):
-        raise ValueError("kappa must be finite for the penalty formulation, got inf")
-    eps = material.eps
-    J, Finv = _det_inv(F)
-    I1 = (F * F).sum(axis=(0, 1))
-    W, W1, W11 = material.energy_derivatives(I1)
-    a = (Finv * G[:, None]).sum(axis=0)                  # F^-T G
-    bvec = (Finv * a[None]).sum(axis=1)                  # C^-1 G
-    aa = (a * a).sum(axis=0)
-    FinvT = np.swapaxes(Finv, 0, 1)                      # FinvT[a, K] = Finv[K, a]
-    if formulation == "mixed":
-        if p is None:
-            p = np.zeros_like(J)
-        pe = p
-        vol = p * (J - 1.0) - (0.5 * p * p / kappa if math.isfinite(kappa) else 0.0)
-        dpsi_dp = J - 1.0 - (p / kappa if math.isfinite(kappa) else 0.0)
-        A_pp = -1.0 / kappa if math.isfinite(kappa) else 0.0
-    else:
-        pe = kappa * (J - 1.0)
-        vol = 0.5 * kappa * (J - 1.0) ** 2
-        dpsi_dp = np.zeros_like(J)
-        A_pp = 0.0
-    mu0 = 2.0 * float(material.energy_derivatives(np.array(3.0))[1]) if stress_free_reference \
-        else 0.0
-    with np.errstate(invalid="ignore", divide="ignore"):   # J <= 0 -> nan -> Newton rejects
-        psi = W + vol - 0.5 * eps * J * aa - mu0 * np.log(J)
-    P = (2.0 * W1 * F + (pe * J - 0.5 * eps * J * aa - mu0) * FinvT
-         + eps * J * (a[:, None] * bvec[None]))
-    D_L = -eps * J * bvec
-    if not need_tangent:
-        e = np.empty(0)
-        return PointResponse(psi, P, dpsi_dp, D_L, e, e, e, e, A_pp, J)
-
-    Cinv = (Finv[:, None] * Finv[None]).sum(axis=2)
-    eJ = eps * J
-    M = a[:, None] * bvec[None]                                    # a_a b_K
-
-    def outer(X, Y):   # X_aK Y_bL
-        return X[:, :, None, None] * Y[None, None]
-
-    def cross(X, Y):   # X_aL Y_bK
-        return X[:, None, None, :] * np.swapaxes(Y, 0, 1)[None, :, :, None]
-
-    # coef = pressure + |a|^2 parts of P (their J- and Finv-derivatives)
-    coef = pe * J - 0.5 * eJ * aa
-    Y = coef * FinvT + eJ * M
-    # outer terms: 4 W11 F F + coef FT FT + eJ (FT M + M FT) (+ kappa J^2 FT FT)
-    A = outer(F, 4.0 * W11 * F) + outer(FinvT, Y + (kappa * J * J * FinvT
-                                                    if formulation == "penalty" else 0.0))
-    A += outer(M, eJ * FinvT)
-    # cross terms: -coef Finv_La Finv_Kb - eJ (Finv_La a_b b_K + a_a b_L Finv_Kb)
-    A -= cross(FinvT, Y - mu0 * FinvT)
-    A -= cross(M, eJ * FinvT)
-    # -eJ a_a a_b Cinv_KL
-    A -= (eJ * a)[:, None, None, None] * a[None, None, :, None] * Cinv[None, :, None, :]
-    # 2 W1 delta_ab delta_KL
-    for i in range(3):
-        for k in range(3):
-            A[i, k, i, k] += 2.0 * W1
-    A_FG = eJ * (np.swapaxes(Finv, 0, 1)[:, None, :] * bvec[None, :, None]   # Finv_La b_K
-                 + a[:, None, None] * Cinv[None]                             # a_a Cinv_KL
-                 - np.swapaxes(Finv, 0, 1)[:, :, None] * bvec[None, None, :])  # b_L Finv_Ka
-    A_GG = -eps * J * Cinv
-    A_Fp = J * FinvT if formulation == "mixed" else np.zeros_like(FinvT)
-    return PointResponse(psi, P, dpsi_dp, D_L, A, A_FG, A_GG, A_Fp, A_pp, J)
+    F = np.asarray(F, dtype=float)
+    r = _response(material, F, np.asarray(G, dtype=float), p, kappa, formulation, need_tangent,
+                  stress_free_reference, None)
+    if need_tangent:
+        r.A_FF = np.moveaxis(r.A_FF, (-3, -4, -2, -1), (0, 1, 2, 3))
+        r.A_FG = np.moveaxis(r.A_FG, (-2, -3, -1), (0, 1, 2))
+        r.A_GG = np.moveaxis(r.A_GG, (-2, -1), (0, 1))
+        r.A_Fp = np.moveaxis(r.A_Fp, (-1, -2), (0, 1))
+    return r

@@ -415,24 +415,15 @@ class MaxwellPlate(_plate_problem_class()):
     def _response(self, xf, sl, need_tangent=True):
         r, F, G, p = super()._response(xf, sl, need_tangent)
         if self.field == "electrostatic":
-            from .materials import ideal_dielectric_response
-
-            r0 = ideal_dielectric_response(self.material, F, np.zeros_like(G), p,
-                                           kappa=self.kappa, formulation="mixed",
-                                           need_tangent=need_tangent)
+            r0 = self._point_response(F, np.zeros_like(G), p, sl, need_tangent)
             r.P = r0.P
             if need_tangent:
                 r.A_FF = r0.A_FF
         return r, F, G, p
 
     # The volume u-rows do not depend on phi (their stress is elastic), while the phi-rows
-    # keep D_L(F, Grad phi): zero the u-phi tangent block, keep the phi-u block. Two hooks,
-    # for the dense element matrices and for the flat block buffer of the core's assembly.
-    def _element_matrix(self, r, sl):
-        Ke = super()._element_matrix(r, sl)
-        Ke[:, : self.m_u, self.m_u + self.m_p:] = 0.0
-        return Ke
-
+    # keep D_L(F, Grad phi): zero the u-phi block of the core's flat block buffer, keep the
+    # phi-u block.
     def _element_blocks(self, r, sl):
         buf = super()._element_blocks(r, sl)
         ne, o = sl.stop - sl.start, 0

@@ -46,6 +46,7 @@ import numpy as np
 from skfem import Basis, ElementHex1, ElementHex2, FacetBasis, LinearForm, asm
 
 from .assembly import DofReduction, ScatterMap
+from .materials import _response as _material_response
 from .materials import ideal_dielectric_response
 from .mesh import PlateMesh
 
@@ -320,6 +321,7 @@ class PlateProblem:
 
     # --------------------------------------------------------------- kinematics
     def _fields(self, xf: np.ndarray, sl: slice):
+        """``F[a, K, e, q]``, ``Grad phi[K, e, q]`` and ``p[e, q]`` of the elements ``sl``."""
         ed = self.edofs[sl]
         ne = ed.shape[0]
         ue = xf[ed[:, : self.m_u]].reshape(ne, 1, 27, 3)
@@ -337,11 +339,15 @@ class PlateProblem:
             p = None
         return F, G, p
 
+    def _point_response(self, F, G, p, sl, need_tangent=True):
+        """Material response of the elements ``sl``: tensor-first stresses, the tangent
+        times the quadrature weights in the points-first layout `_element_blocks` uses."""
+        return _material_response(self.material, F, G, p, self.kappa, self.formulation,
+                                  need_tangent, True, self.w[sl] if need_tangent else None)
+
     def _response(self, xf, sl, need_tangent=True):
         F, G, p = self._fields(xf, sl)
-        return ideal_dielectric_response(self.material, F, G, p, kappa=self.kappa,
-                                         formulation=self.formulation,
-                                         need_tangent=need_tangent), F, G, p
+        return self._point_response(F, G, p, sl, need_tangent), F, G, p
 
     def _element_residual(self, r, sl):
         w = self.w[sl]
@@ -403,20 +409,17 @@ class PlateProblem:
         for a in range(0, ne, 32):
             b = min(a + 32, ne)
             nb = b - a
-            A = np.ascontiguousarray(np.moveaxis(r.A_FF[..., a:b, :] * w[a:b], (4, 5), (0, 1))
-                                     .transpose(0, 1, 3, 2, 4, 5)).reshape(nb, nq, 27, 3)
+            A = r.A_FF[a:b].reshape(nb, nq, 27, 3)                        # e q (K a b) L
             V = (A @ dNt[a:b]).reshape(nb, nq * 3, 9 * 27)
             np.matmul(dNi[a:b], V, out=uu[a:b])
-            A = np.ascontiguousarray(np.moveaxis(r.A_FG[..., a:b, :] * w[a:b], (3, 4), (0, 1))
-                                     .transpose(0, 1, 3, 2, 4)).reshape(nb, nq, 9, 3)
+            A = r.A_FG[a:b].reshape(nb, nq, 9, 3)                          # e q (K a) L
             np.matmul(dNi[a:b], (A @ dNphit[a:b]).reshape(nb, nq * 3, 3 * mf), out=uf[a:b])
         views["fu"][:] = views["uf"]
         # phi-phi
-        A = np.ascontiguousarray(np.moveaxis(r.A_GG * w, (2, 3), (0, 1)))
-        np.matmul(dNphii, (A @ dNphit).reshape(ne, nq * 3, mf),
+        np.matmul(dNphii, (r.A_GG @ dNphit).reshape(ne, nq * 3, mf),
                   out=views["ff"].reshape(ne, mf, mf))
         if mp:
-            A = np.moveaxis(r.A_Fp * w, (2, 3), (0, 1)).transpose(0, 1, 3, 2)  # e q K a
+            A = r.A_Fp                                                     # e q K a
             V = (A[..., None] * self.N1[sl][:, :, None, None, :]).reshape(ne, nq * 3, 3 * mp)
             np.matmul(dNi, V, out=views["up"].reshape(ne, 27, 3 * mp))
             views["pu"][:] = views["up"]
