@@ -118,6 +118,10 @@ class ScatterMap:
         self.indptr = np.concatenate([[0], np.cumsum(np.bincount(r, minlength=self.n))]
                                      ).astype(np.int32)
         self._vmask = dofs >= 0
+        # shared by every matrix :meth:`csr` returns (no 47 MB copy per Newton iteration);
+        # read-only so that no caller can corrupt the pattern of the others
+        self.indices.flags.writeable = False
+        self.indptr.flags.writeable = False
 
     def positions(self, rows: np.ndarray, cols: np.ndarray) -> np.ndarray:
         """Scatter positions of an element block of any layout.
@@ -153,9 +157,13 @@ class ScatterMap:
                            minlength=self.nnz + 1)[: self.nnz]
 
     def csr(self, data: np.ndarray) -> sp.csr_matrix:
-        """CSR matrix with the precomputed pattern and the given data."""
-        return sp.csr_matrix((data, self.indices.copy(), self.indptr.copy()),
-                             shape=(self.n, self.n))
+        """CSR matrix with the precomputed pattern and the given data.
+
+        The matrices share the pattern arrays ``indices``/``indptr`` (read-only, sorted);
+        each owns its ``data``."""
+        K = sp.csr_matrix((data, self.indices, self.indptr), shape=(self.n, self.n))
+        K.has_sorted_indices = True
+        return K
 
     def matrix(self, Ke: np.ndarray) -> sp.csr_matrix:
         """Assemble all element matrices ``Ke`` of shape ``(nel, m, m)``."""

@@ -205,7 +205,8 @@ class PardisoSolver(LinearSolver):
         K = sp.csr_matrix(K)
         c = self._ucache
         if (c is not None and c[0].shape == K.indptr.shape and c[1].shape == K.indices.shape
-                and np.array_equal(c[0], K.indptr) and np.array_equal(c[1], K.indices)):
+                and ((c[0] is K.indptr and c[1] is K.indices)      # shared read-only pattern
+                     or (np.array_equal(c[0], K.indptr) and np.array_equal(c[1], K.indices)))):
             U = c[2]
             U.data = np.ascontiguousarray(K.data[c[3]], dtype=np.float64)
             return U
@@ -216,7 +217,9 @@ class PardisoSolver(LinearSolver):
         indptr = np.concatenate([[0], np.cumsum(counts)]).astype(np.int32)
         U = sp.csr_matrix((K.data[sel].astype(np.float64), K.indices[sel].astype(np.int32),
                            indptr), shape=K.shape)
-        self._ucache = (K.indptr.copy(), K.indices.copy(), U, sel)
+        shared = not (K.indptr.flags.writeable or K.indices.flags.writeable)
+        self._ucache = ((K.indptr, K.indices) if shared else (K.indptr.copy(), K.indices.copy())
+                        ) + (U, sel)
         return U
 
     def solve(self, K: sp.spmatrix, b: np.ndarray) -> np.ndarray:

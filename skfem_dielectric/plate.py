@@ -462,7 +462,13 @@ class PlateProblem:
         data = parts[0][0]
         rf = parts[0][1]
         for d, r in parts[1:]:
-            data += d
+            if self._pool is not None:     # the sum of the 47 MB data arrays, in threads
+                cuts = np.linspace(0, data.size, self.threads + 1).astype(int)
+                list(self._pool.map(lambda ab: np.add(data[ab[0]:ab[1]], d[ab[0]:ab[1]],
+                                                      out=data[ab[0]:ab[1]]),
+                                    zip(cuts[:-1], cuts[1:])))
+            else:
+                data += d
             rf += r
         rf -= self.external(load)
         self.stats["assembly_calls"] += 1
