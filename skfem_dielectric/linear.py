@@ -267,7 +267,8 @@ def get_linear_solver(name: str | LinearSolver = "auto", **options) -> LinearSol
     name
         ``"superlu"`` (scipy, always available), ``"pardiso"`` (needs ``pypardiso``) or
         ``"auto"`` (PARDISO if importable, else SuperLU).  A :class:`LinearSolver`
-        instance is returned unchanged.
+        instance, or any object with ``solve(K, b)`` (and optionally ``resolve(b)`` and
+        ``inertia``), is returned unchanged.
     **options
         Passed to the solver's constructor.
 
@@ -275,8 +276,9 @@ def get_linear_solver(name: str | LinearSolver = "auto", **options) -> LinearSol
     -------
     LinearSolver
     """
-    if isinstance(name, LinearSolver):
-        return name
+    if isinstance(name, LinearSolver) or (not isinstance(name, str)
+                                          and callable(getattr(name, "solve", None))):
+        return name                     # an instance (duck-typed: ``solve(K, b)``)
     if name == "auto":
         name = "pardiso" if pardiso_available() else "superlu"
     if name == "superlu":

@@ -158,6 +158,12 @@ class RampResult:
     iterations_total, assembly_calls, assembly_seconds, solve_seconds
         Totals over *all* Newton attempts of the ramp, including failed sub-steps and
         line-search evaluations (the per-step values count only converged targets).
+    assembly_times, solve_times
+        Wall time of every assembly call and every linear solve, in order (for medians
+        and profiles; their sums are ``assembly_seconds`` and ``solve_seconds``).
+    unstable_at
+        With ``stop_on_instability``: load of the converged (sub-)step whose tangent was
+        judged unstable, where the ramp stopped (``None`` otherwise).
     """
 
     steps: list[StepResult]
@@ -170,6 +176,9 @@ class RampResult:
     assembly_calls: int = 0
     assembly_seconds: float = 0.0
     solve_seconds: float = 0.0
+    assembly_times: list[float] = field(default_factory=list)
+    solve_times: list[float] = field(default_factory=list)
+    unstable_at: Any = None
 
     def column(self, name: str) -> np.ndarray:
         """Array of quantity ``name`` over the converged steps (``"load"`` and
@@ -361,7 +370,7 @@ def ramp(problem: RampProblem, loads: Sequence[Any], *, x0: np.ndarray | None = 
          start: Any = None, on_step: Callable[[StepResult], Any] | None = None,
          linear_solver: str | LinearSolver = "superlu", max_cutbacks: int = 6,
          atol: float = 1e-10, rtol: float = 1e-10, max_iter: int = 25,
-         line_search: bool = True) -> RampResult:
+         line_search: bool = True, stop_on_instability: bool = False) -> RampResult:
     """Run ``problem`` through the target ``loads`` with adaptive sub-stepping.
 
     Parameters
@@ -386,6 +395,13 @@ def ramp(problem: RampProblem, loads: Sequence[Any], *, x0: np.ndarray | None = 
         Newton settings (see :func:`newton`); ``rtol`` is relative to
         ``problem.residual_scale(load)`` when the problem has it, else to the first
         residual of each sub-step.
+    stop_on_instability
+        Stop at the first converged sub-step that ``problem.stability(inertia)`` judges
+        unstable (needs a solver that reports the inertia, i.e. PARDISO; otherwise the
+        verdict is ``None`` and the ramp goes on).  That step is kept (``target_reached``
+        False if it is intermediate) and its load is ``unstable_at``.  A load-controlled
+        Newton cannot follow the path through such a point, so without this option the
+        ramp spends its cut-backs trying (see ``docs/fe.md``, breakdown).
 
     Returns
     -------
@@ -404,6 +420,7 @@ def ramp(problem: RampProblem, loads: Sequence[Any], *, x0: np.ndarray | None = 
     has_scale = hasattr(problem, "residual_scale")
     has_res = hasattr(problem, "residual")
     has_post = hasattr(problem, "postprocess")
+    has_stab = hasattr(problem, "stability")
     out = RampResult(steps=[], converged=True)
 
     for target in targets:
@@ -414,6 +431,7 @@ def ramp(problem: RampProblem, loads: Sequence[Any], *, x0: np.ndarray | None = 
         hist: list[list[float]] = []
         t_asm = t_sol = 0.0
         failed = ""
+        unstable = None
         while frac < 1.0:
             f_new = min(1.0, frac + dfrac)
             load = _as_load(b if f_new >= 1.0 else a + f_new * (b - a))
@@ -429,6 +447,8 @@ def ramp(problem: RampProblem, loads: Sequence[Any], *, x0: np.ndarray | None = 
             out.assembly_calls += len(nr.assembly_seconds)
             out.assembly_seconds += sum(nr.assembly_seconds)
             out.solve_seconds += sum(nr.solve_seconds)
+            out.assembly_times.extend(nr.assembly_seconds)
+            out.solve_times.extend(nr.solve_seconds)
             if nr.converged:
                 x = nr.x
                 inertia = nr.inertia
@@ -436,6 +456,10 @@ def ramp(problem: RampProblem, loads: Sequence[Any], *, x0: np.ndarray | None = 
                 subs += 1
                 hist.append(nr.residual_norms)
                 dfrac = min(2.0 * dfrac, 1.0)
+                if (stop_on_instability and has_stab
+                        and problem.stability(inertia) is False):
+                    unstable = load
+                    break
             else:
                 cuts += 1
                 if cuts > max_cutbacks:
@@ -443,6 +467,23 @@ def ramp(problem: RampProblem, loads: Sequence[Any], *, x0: np.ndarray | None = 
                     out.failed_at = load
                     break
                 dfrac *= 0.5
+        if unstable is not None:
+            step = StepResult(load=unstable, converged=True, iterations=iters,
+                              substeps=subs, cutbacks=cuts, residual_norms=hist,
+                              x=x.copy(), assembly_seconds=t_asm, solve_seconds=t_sol,
+                              inertia=inertia, target_reached=frac >= 1.0)
+            if has_post:
+                step.quantities = dict(problem.postprocess(x, unstable))
+            step.quantities.setdefault("stable", False)
+            out.steps.append(step)
+            if on_step is not None:
+                on_step(step)
+            out.converged = False
+            out.unstable_at = unstable
+            out.reason = (f"stability lost at load {unstable!r} (inertia of the tangent: "
+                          f"{inertia}); stopped on request (stop_on_instability)")
+            warnings.warn(out.reason, RuntimeWarning, stacklevel=2)
+            break
         if failed:
             if frac > 0.0:   # keep the furthest converged sub-step towards the target
                 load = _as_load(b if frac >= 1.0 else a + frac * (b - a))

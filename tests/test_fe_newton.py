@@ -109,3 +109,64 @@ def test_ramp_column_unknown_name_is_a_clear_error():
     assert res.column("lam1") == pytest.approx([1.5], rel=0, abs=0)
     with pytest.raises(ValueError, match="'lam'"):
         res.column("lam")
+
+
+class DenseInertiaSolver:
+    """Dense solve that reports the inertia from the eigenvalues (an independent check of
+    the ramp's stop rule; PARDISO reports it from its LDL^T pivots)."""
+
+    name = "dense"
+
+    def solve(self, K, b):
+        A = K.toarray()
+        ev = np.linalg.eigvalsh(A)
+        self.inertia = (int(np.sum(ev > 0)), int(np.sum(ev < 0)), int(np.sum(ev == 0)))
+        self._A = A
+        return np.linalg.solve(A, b)
+
+    def resolve(self, b):
+        return np.linalg.solve(self._A, b)
+
+
+class SoftensAt:
+    """x1^3 + x1 = t (always stiff) and (1 - t/t_c) x2 = 0: the trivial branch x2 = 0 of
+    the second dof loses stability (negative stiffness) beyond t_c, Newton still converges."""
+
+    t_c = 2.5
+
+    def initial_state(self):
+        return np.zeros(2)
+
+    def assemble(self, x, load):
+        k2 = 1.0 - load / self.t_c
+        return (sp.diags([3 * x[0] ** 2 + 1, k2]).tocsr(),
+                np.array([x[0] ** 3 + x[0] - load, k2 * x[1]]))
+
+    def residual_scale(self, load):
+        return 1.0
+
+    def postprocess(self, x, load):
+        return {"x1": x[0]}
+
+    def stability(self, inertia):
+        return None if inertia is None else inertia[1] == 0
+
+
+def test_ramp_stops_at_the_first_unstable_step():
+    loads = [1.0, 2.0, 3.0, 4.0]
+    with pytest.warns(RuntimeWarning, match="stability lost"):
+        res = ramp(SoftensAt(), loads, linear_solver=DenseInertiaSolver(), atol=1e-13,
+                   rtol=0, stop_on_instability=True)
+    assert not res.converged and res.unstable_at == 3.0 and res.failed_at is None
+    assert [st.load for st in res.steps] == [1.0, 2.0, 3.0]
+    assert [st["stable"] for st in res.steps] == [True, True, False]
+    assert res.steps[-1].target_reached
+    np.testing.assert_allclose(res.column("x1"), cardano(np.array(loads[:3])), rtol=1e-12)
+    # per-call timings add up to the totals
+    assert len(res.assembly_times) == res.assembly_calls
+    assert np.isclose(sum(res.solve_times), res.solve_seconds)
+    # without the option the ramp goes on through the unstable states
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        res = ramp(SoftensAt(), loads, linear_solver=DenseInertiaSolver(), atol=1e-13, rtol=0)
+    assert res.converged and [st["stable"] for st in res.steps] == [True, True, False, False]
