@@ -90,8 +90,8 @@ class ScatterMap:
 
     Notes
     -----
-    The pattern is built once with ``np.unique`` on the row-major keys; afterwards
-    :meth:`matrix` is one ``np.bincount`` over all element entries.  Repeated indices (tied
+    The pattern is built once by sorting the row-major keys; afterwards :meth:`matrix` is
+    one ``np.bincount`` over all element entries.  Repeated indices (tied
     dofs) are summed, as the reduction requires.
     """
 
@@ -100,19 +100,16 @@ class ScatterMap:
         self.dofs = dofs
         self.n = int(n)
         nel, m = dofs.shape
-        rows = np.broadcast_to(dofs[:, :, None], (nel, m, m))
-        cols = np.broadcast_to(dofs[:, None, :], (nel, m, m))
-        valid = (rows >= 0) & (cols >= 0)
-        keys = np.where(valid, rows * self.n + cols, -1).ravel()
-        ukeys, inv = np.unique(keys, return_inverse=True)
-        has_invalid = ukeys.size > 0 and ukeys[0] < 0
-        if has_invalid:
-            ukeys = ukeys[1:]
-            inv = inv - 1
+        # sorted unique row-major keys of the valid (row, col) pairs: np.sort + a diff
+        # (0.3 s for the 10.8 M keys of the 34k-dof plate; np.unique took 1.4-3.4 s with the
+        # inverse and up to 16 s without it on numpy 2.4)
+        keys = self._keys(dofs[:, :, None], dofs[:, None, :]).ravel()
+        keys = np.sort(keys[keys >= 0])
+        ukeys = keys[np.r_[True, keys[1:] != keys[:-1]]] if keys.size else keys
         self.nnz = int(ukeys.size)
         self._ukeys = ukeys
-        inv = np.where(inv < 0, self.nnz, inv)
-        self.pos = inv.astype(np.int32 if self.nnz < 2**31 - 1 else np.int64).reshape(nel, m, m)
+        self._dtype = np.int32 if self.nnz < 2**31 - 1 else np.int64
+        self._pos = None
         r = ukeys // self.n
         self.indices = (ukeys % self.n).astype(np.int32)
         self.indptr = np.concatenate([[0], np.cumsum(np.bincount(r, minlength=self.n))]
@@ -123,6 +120,21 @@ class ScatterMap:
         self.indices.flags.writeable = False
         self.indptr.flags.writeable = False
 
+    def _keys(self, rows, cols) -> np.ndarray:
+        """Row-major keys ``row * n + col`` of broadcast index arrays, ``-1`` where either
+        index is eliminated."""
+        rows, cols = np.broadcast_arrays(np.asarray(rows, np.int64), np.asarray(cols, np.int64))
+        return np.where((rows >= 0) & (cols >= 0), rows * self.n + cols, -1)
+
+    @property
+    def pos(self) -> np.ndarray:
+        """``(nel, m, m)`` scatter positions of dense element matrices (computed on first
+        use; models that scatter element blocks through :meth:`positions` never need it)."""
+        if self._pos is None:
+            d = self.dofs
+            self._pos = self.positions(d[:, :, None], d[:, None, :])
+        return self._pos
+
     def positions(self, rows: np.ndarray, cols: np.ndarray) -> np.ndarray:
         """Scatter positions of an element block of any layout.
 
@@ -132,14 +144,30 @@ class ScatterMap:
         pattern.  Eliminated entries get the dummy position ``nnz``.  Use with
         :meth:`block_data`.
         """
-        rows, cols = np.broadcast_arrays(np.asarray(rows, np.int64), np.asarray(cols, np.int64))
-        valid = (rows >= 0) & (cols >= 0)
-        keys = np.where(valid, rows * self.n + cols, 0)
-        pos = np.searchsorted(self._ukeys, keys)
-        pos = np.where(valid, pos, self.nnz)
-        if np.any(valid & (self._ukeys[np.minimum(pos, self.nnz - 1)] != keys)):
+        keys = self._keys(rows, cols)
+        valid = keys >= 0
+        pos = self._search(keys)
+        pos[~valid] = self.nnz
+        if np.any(valid) and (self.nnz == 0 or np.any(
+                valid & (self._ukeys[np.minimum(pos, self.nnz - 1)] != keys))):
             raise ValueError("block entries outside the sparsity pattern")
-        return pos.astype(self.pos.dtype)
+        return pos.astype(self._dtype)
+
+    def _search(self, keys: np.ndarray) -> np.ndarray:
+        """``np.searchsorted(self._ukeys, keys)``, through sorted queries when the key and
+        the query index fit in 63 bits together (a merge instead of 10 M binary searches
+        into a 47 MB array: 1.05 -> ~0.5 s on the 34k-dof plate)."""
+        flat = keys.ravel()
+        nbits = max(1, int(flat.size - 1).bit_length())
+        top = int(self.n) * int(self.n)
+        if flat.size < 2**20 or top.bit_length() + nbits > 62:
+            return np.searchsorted(self._ukeys, keys)
+        code = (np.maximum(flat, 0) << nbits) | np.arange(flat.size, dtype=np.int64)
+        code.sort()
+        order = code & ((1 << nbits) - 1)
+        out = np.empty(flat.size, dtype=np.int64)
+        out[order] = np.searchsorted(self._ukeys, code >> nbits)
+        return out.reshape(keys.shape)
 
     def block_data(self, blocks: list[tuple[np.ndarray, np.ndarray]]) -> np.ndarray:
         """CSR data of ``sum`` over ``(positions, values)`` pairs of equal shapes."""

@@ -97,6 +97,12 @@ class SuperLUSolver(LinearSolver):
         return None if lu is None else lu.solve(np.asarray(b, dtype=float))
 
 
+def _same_memory(a: np.ndarray, b: np.ndarray) -> bool:
+    """True if ``a`` and ``b`` view the same memory with the same layout (O(1))."""
+    return (a.__array_interface__["data"][0] == b.__array_interface__["data"][0]
+            and a.shape == b.shape and a.strides == b.strides and a.dtype == b.dtype)
+
+
 def _quiet_mkl_threads() -> None:
     """Let MKL's OpenMP threads sleep as soon as a PARDISO call returns.
 
@@ -205,7 +211,7 @@ class PardisoSolver(LinearSolver):
         K = sp.csr_matrix(K)
         c = self._ucache
         if (c is not None and c[0].shape == K.indptr.shape and c[1].shape == K.indices.shape
-                and ((c[0] is K.indptr and c[1] is K.indices)      # shared read-only pattern
+                and ((c[4] and _same_memory(c[0], K.indptr) and _same_memory(c[1], K.indices))
                      or (np.array_equal(c[0], K.indptr) and np.array_equal(c[1], K.indices)))):
             U = c[2]
             U.data = np.ascontiguousarray(K.data[c[3]], dtype=np.float64)
@@ -217,9 +223,11 @@ class PardisoSolver(LinearSolver):
         indptr = np.concatenate([[0], np.cumsum(counts)]).astype(np.int32)
         U = sp.csr_matrix((K.data[sel].astype(np.float64), K.indices[sel].astype(np.int32),
                            indptr), shape=K.shape)
+        # a read-only pattern (shared by the matrices of a ScatterMap) is recognised by its
+        # memory, in O(1); otherwise keep a copy and compare the contents
         shared = not (K.indptr.flags.writeable or K.indices.flags.writeable)
         self._ucache = ((K.indptr, K.indices) if shared else (K.indptr.copy(), K.indices.copy())
-                        ) + (U, sel)
+                        ) + (U, sel, shared)
         return U
 
     def solve(self, K: sp.spmatrix, b: np.ndarray) -> np.ndarray:

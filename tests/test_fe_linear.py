@@ -55,3 +55,27 @@ def test_two_nonsymmetric_pypardiso_solvers_are_independent():
         # diagonally dominant non-symmetric matrices: LU agrees with SuperLU to round-off
         np.testing.assert_allclose(ps.solve(M, b), spla.spsolve(M.tocsc(), b), rtol=1e-10,
                                    atol=1e-13)
+
+
+@pytest.mark.skipif(not pardiso_available(), reason="needs pypardiso")
+def test_pardiso_reuses_the_upper_triangle_of_a_shared_pattern(monkeypatch):
+    from skfem_dielectric.assembly import ScatterMap
+
+    # 1-D chain of 2-node elements with element matrices [[2, -1], [-1, 2]] + diag shift:
+    # SPD tridiagonal, solved exactly; the second matrix shares the read-only pattern
+    n = 200
+    dofs = np.c_[np.arange(n - 1), np.arange(1, n)]
+    sc = ScatterMap(dofs, n)
+    Ke = np.broadcast_to(np.array([[2.0, -1.0], [-1.0, 2.0]]), (n - 1, 2, 2))
+    solver = PardisoSolver()
+    b = np.ones(n)
+    uppers = []
+    for scale in (1.0, 3.0):
+        K = sc.matrix(scale * Ke)
+        x = solver.solve(K, b)
+        np.testing.assert_allclose(K @ x, b, rtol=1e-12)
+        uppers.append(solver._ucache[2])
+        # from the second matrix on the pattern is recognised by its memory (O(1)), not by
+        # comparing its contents
+        monkeypatch.setattr(np, "array_equal", lambda *a, **k: pytest.fail("compared"))
+    assert solver._ucache[4] and uppers[0] is uppers[1]

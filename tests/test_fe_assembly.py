@@ -1,0 +1,55 @@
+"""The scatter map against an independent scipy COO assembly."""
+
+import numpy as np
+import pytest
+import scipy.sparse as sp
+
+from skfem_dielectric.assembly import DofReduction, ScatterMap
+
+
+def _connectivity(rng, nel=3000, m=20, n_full=4000):
+    dofs = rng.integers(0, n_full, size=(nel, m))
+    red = DofReduction(n_full, fixed=rng.choice(n_full, 50, replace=False),
+                       tied=[np.arange(10, 20)])
+    return red.index[dofs], red.n
+
+
+def test_scatter_matches_coo_assembly():
+    rng = np.random.default_rng(3)
+    dofs, n = _connectivity(rng)
+    Ke = rng.standard_normal(dofs.shape + (dofs.shape[1],))
+    sc = ScatterMap(dofs, n)
+    K = sc.matrix(Ke)
+    # reference: COO with the eliminated (-1) rows/columns dropped, duplicates summed
+    r = np.broadcast_to(dofs[:, :, None], Ke.shape)
+    c = np.broadcast_to(dofs[:, None, :], Ke.shape)
+    ok = (r >= 0) & (c >= 0)
+    ref = sp.coo_matrix((Ke[ok], (r[ok], c[ok])), shape=(n, n)).tocsr()
+    # summation order differs: round-off only
+    assert abs(K - ref).max() <= 1e-12 * abs(ref).max()
+    assert K.nnz == ref.nnz and K.has_sorted_indices
+    # the returned matrices share the read-only pattern
+    K2 = sc.csr(np.zeros(sc.nnz))
+    assert np.shares_memory(K2.indices, K.indices) and not K.indices.flags.writeable
+
+
+def test_block_positions_equal_plain_binary_search():
+    # > 2^20 queries: the sorted-query path; the reference is np.searchsorted itself
+    rng = np.random.default_rng(4)
+    dofs, n = _connectivity(rng, nel=2000, m=30)
+    sc = ScatterMap(dofs, n)
+    rows = dofs[:, :, None, None]
+    cols = dofs[:, None, None, :]
+    pos = sc.positions(rows, np.broadcast_to(cols, (dofs.shape[0], 1, 2, 30)))
+    assert pos.size > 2**20
+    keys = np.where((rows >= 0) & (cols >= 0), rows * n + cols, -1)
+    keys = np.broadcast_to(keys, pos.shape)
+    ref = np.where(keys >= 0, np.searchsorted(sc._ukeys, keys), sc.nnz)
+    assert np.array_equal(pos, ref)
+    np.testing.assert_array_equal(sc.pos, sc.positions(dofs[:, :, None], dofs[:, None, :]))
+
+
+def test_block_outside_the_pattern_is_an_error():
+    sc = ScatterMap(np.array([[0, 1], [1, 2]]), 3)
+    with pytest.raises(ValueError, match="outside the sparsity pattern"):
+        sc.positions(np.array([0]), np.array([2]))
