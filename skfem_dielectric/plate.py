@@ -324,14 +324,18 @@ class PlateProblem:
         """``F[a, K, e, q]``, ``Grad phi[K, e, q]`` and ``p[e, q]`` of the elements ``sl``."""
         ed = self.edofs[sl]
         ne = ed.shape[0]
-        ue = xf[ed[:, : self.m_u]].reshape(ne, 1, 27, 3)
-        F = np.ascontiguousarray((self.dNt[sl] @ ue).transpose(3, 2, 0, 1))   # (a, K, e, q)
+        nq = self.nq
+        # one (nq*3 x 27) @ (27 x 3) product per element, not one tiny one per point
+        ue = xf[ed[:, : self.m_u]].reshape(ne, 27, 3)
+        FT = (self.dNt[sl].reshape(ne, nq * 3, 27) @ ue).reshape(ne, nq, 3, 3)  # (e, q, K, a)
+        F = np.ascontiguousarray(FT.transpose(3, 2, 0, 1))                    # (a, K, e, q)
         F[0, 0] += 1.0
         F[1, 1] += 1.0
         F[2, 2] += 1.0
         phie = xf[ed[:, self.m_u + self.m_p:]]
-        G = np.ascontiguousarray(
-            (self.dNphit[sl] @ phie[:, None, :, None])[..., 0].transpose(2, 0, 1))
+        mf = phie.shape[1]
+        G = np.ascontiguousarray((self.dNphit[sl].reshape(ne, nq * 3, mf) @ phie[:, :, None])
+                                 .reshape(ne, nq, 3).transpose(2, 0, 1))
         if self.m_p:
             pe = xf[ed[:, self.m_u: self.m_u + self.m_p]]
             p = np.einsum("ek,eqk->eq", pe, self.N1[sl])
