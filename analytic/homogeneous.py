@@ -850,6 +850,125 @@ def uniaxial_E0(lam1, s=0.0, model=None):
     return _out(E0.reshape(lam1.shape))
 
 
+def _uniaxial_cubic_root(c, sig):
+    """Positive root ``l`` of ``l^2 (l - sig) = c`` (``c >= 1``), flat arrays.
+
+    ``l^2 (l - sig)`` increases from ``0`` on ``l > max(sig, 0)``, so the root is unique.
+    ``sig >= 0``: Cardano with ``m = sig/3``, ``l = m + u + m^2/u``,
+    ``u = cbrt(m^3 + c/2 + sqrt((c/2)(c/2 + 2 m^3)))`` (all terms positive).
+    ``sig < 0``: ``y = 1/l`` is the positive root of ``y^3 - 3P y - 2Q = 0`` with
+    ``P = -sig/(3c)``, ``Q = 1/(2c)``: ``y = u + P/u``, ``u = cbrt(Q + sqrt(Q^2 - P^3))``,
+    or where ``Q^2 < P^3`` (three real roots) the largest,
+    ``y = 2 sqrt(P) cos(arccos(Q/P^(3/2))/3)`` (``cos`` in ``[1/2, 1]``): no cancellation
+    either way, also for ``|sig| >> c`` where ``l ~ sqrt(c/|sig|)``.
+    """
+    m = sig / 3.0
+    b = 0.5 * c
+    u = np.cbrt(m * m * m + b + np.sqrt(b * (b + 2.0 * m * m * m)))
+    l = m + u + m * m / u
+    neg = sig < 0
+    if np.any(neg):
+        cn = c[neg]
+        P, Q = -sig[neg] / (3.0 * cn), 0.5 / cn
+        disc = Q * Q - P * P * P
+        y = np.empty(cn.size)
+        one = disc >= 0
+        un = np.cbrt(Q[one] + np.sqrt(disc[one]))
+        y[one] = un + P[one] / un
+        Pt, Qt = P[~one], Q[~one]
+        rP = np.sqrt(Pt)
+        y[~one] = 2.0 * rP * np.cos(np.arccos(np.minimum(Qt / (Pt * rP), 1.0)) / 3.0)
+        l[neg] = 1.0 / y
+    return l
+
+
+def _uniaxial_lam1_gent(q, s, Jm, block=1 << 14, maxiter=100):
+    """Gent ``lam1(D0; s)`` on flat arrays (``q = D0^2``); see :func:`uniaxial_lam1`.
+
+    With ``xi = 1/(2W') = 1 - (I1 - 3)/Jm`` the uni-axial equations ``s = 2W'(lam1 -
+    lam3^2/lam1)``, ``D0^2 = 2W'(lam1^2 lam3^4 - 1)`` are the neo-Hookean ones with
+    loads ``s xi``, ``D0^2 xi``: ``lam1^2 (lam1 - s xi) = c = sqrt(1 + D0^2 xi)`` (a
+    cubic) and ``lam3^2 = c/lam1``. What is left is the scalar equation
+    ``R(xi) = I1(xi) - 3 - Jm (1 - xi) = 0`` with ``I1 = lam1^2 + (c + 1/c)/lam1``.
+    ``R(0) = -Jm < 0 <= R(1) = I1_nH - 3``, every ``xi`` in ``[0, 1]`` gives a real
+    state, and each root is an equilibrium, which is unique (``omega*`` is strictly
+    convex on the convex set ``I1 < 3 + Jm``): ``[0, 1]`` brackets exactly one root.
+    Safeguarded Newton (bisection fallback) from ``xi = 1`` (the neo-Hookean state),
+    vectorised and run in cache-sized blocks; the final ``lam1`` gets one Newton
+    polish on the cubic.
+    """
+    n = q.size
+    out = np.empty(n)
+    with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
+        for k0 in range(0, n, block):
+            t, sb = q[k0:k0 + block], s[k0:k0 + block]
+            m = t.size
+            # bounds on xi at the root (where I1 = 3 + Jm (1 - xi) < 3 + Jm), for huge D0 or
+            # |s|: I1 >= lam1^2 + c/lam1 >= 3 (c/2)^(2/3) gives c <= cmax = 2 (1 + Jm/3)^(3/2),
+            # i.e. D0^2 xi <= cmax^2 - 1; s > 0: I1 > lam1^2 > (s xi)^2; s < 0: lam1^2 |s| xi < c
+            # and I1 >= (c + 1/c)/lam1 >= 2/lam1 give 4 |s| xi < cmax (3 + Jm)^2. At each
+            # bound R >= Jm xi >= 0, so it is an upper end of the bracket and Newton's start
+            cmax = 2.0 * (1.0 + Jm / 3.0) ** 1.5
+            with np.errstate(divide="ignore"):
+                hi = np.minimum(1.0, (cmax * cmax - 1.0) / t)
+                hi = np.minimum(hi, np.where(sb > 0, np.sqrt(3.0 + Jm), 0.25 * cmax * (3.0 + Jm) ** 2) / np.abs(sb))
+            lo = np.zeros(m)
+            xi = hi.copy()
+            conv = np.zeros(m, dtype=bool)
+            for it in range(maxiter):
+                c = np.sqrt(1.0 + t * xi)
+                sig = sb * xi
+                l = _uniaxial_cubic_root(c, sig)
+                ic, il = 1.0 / c, 1.0 / l
+                w = (c + ic) * il
+                f = l * l + w - 3.0 - Jm * (1.0 - xi)
+                # d/dxi by implicit differentiation of the cubic: (3l^2 - 2 sig l) l' = c' + s l^2
+                dc = 0.5 * t * ic
+                dl = (dc + sb * l * l) / (l * (3.0 * l - 2.0 * sig))
+                df = (2.0 * l - w * il) * dl + (1.0 - ic * ic) * dc * il + Jm
+                neg = f < 0
+                lo = np.where(neg, xi, lo)
+                hi = np.where(neg, hi, xi)
+                step = f / df
+                xn = xi - step
+                # Newton inside the closed bracket, else bisection; every 16th sweep bisects
+                newton = (xn >= lo) & (xn <= hi) if it % 16 != 15 else np.zeros(m, dtype=bool)
+                xn = np.where(newton, xn, 0.5 * (lo + hi))
+                # a Newton step of relative size 1e-9 leaves an error ~1e-18 (quadratic
+                # convergence); a bisected bracket a few ulps wide also stops
+                done = (newton & (np.abs(step) <= 1e-9 * xi)) | (hi - lo <= 4 * _EPS * xi)
+                xi = np.where(conv, xi, xn)
+                conv |= done
+                if conv.all():
+                    break
+            c = np.sqrt(1.0 + t * xi)
+            sig = sb * xi
+            l = _uniaxial_cubic_root(c, sig)
+            out[k0:k0 + block] = l - (l * l * (l - sig) - c) / (l * (3.0 * l - 2.0 * sig))
+    return out
+
+
+def _uniaxial_lam1_biaxial(D0, s, model, l1=None):
+    """Generic ``lam1(D0; s)`` on flat arrays: Newton on ``grad psi* = 0`` with ``t3 = 0``
+    (:func:`_biaxial_core`) from the neo-Hookean state ``l1`` (computed if not given)."""
+    if l1 is None:
+        l1 = _uniaxial_lam1_nh(np.sqrt(1.0 + D0**2), s)
+    l3 = np.sqrt(l1 * (l1 - s))
+    la, _ = _biaxial_core(s, 0.0 * s, D0**2, model, (l1, l3))
+    return la
+
+
+def _uniaxial_lam1_nh(c, s):
+    """Neo-Hookean ``lam1``: root of ``l^2 (l - s) = c`` by safeguarded Newton (flat arrays)."""
+    lo = np.maximum(s, 0.0)  # q(lo) = lo^2 (lo - s) - c < 0
+    hi = lo + c ** (1.0 / 3.0) + np.abs(s)  # q(hi) > 0
+
+    def q(l1, i):
+        return l1**2 * (l1 - s[i]) - c[i], l1 * (3 * l1 - 2 * s[i])
+
+    return _rtsafe(q, lo, hi)
+
+
 def uniaxial_lam1(D0, s=0.0, model=None):
     """Charge-controlled stretch ``lam1(D0; s)`` under a uni-axial dead load (inverse of :func:`uniaxial_D0`).
 
@@ -870,30 +989,33 @@ def uniaxial_lam1(D0, s=0.0, model=None):
     Notes
     -----
     Inverse of Eq. (DEuniax). Neo-Hookean: the single root ``lam1 > max(s, 0)``
-    of ``lam1^2 (lam1 - s) = sqrt(1 + D0^2)``. Other models: the unique
-    minimiser of ``omega* - s lam1`` with ``t3 = 0`` (:func:`biaxial_stretches`
-    with ``s3 = 0``).
+    of ``lam1^2 (lam1 - s) = sqrt(1 + D0^2)``. Gent (Eqs. gent, W): with
+    ``xi = 1/(2W') = 1 - (I1 - 3)/Jm`` the equations are the neo-Hookean ones with
+    loads ``s xi`` and ``D0^2 xi``, so ``lam1^2 (lam1 - s xi) = sqrt(1 + D0^2 xi)``
+    (solved by Cardano) and ``lam3^2 = sqrt(1 + D0^2 xi)/lam1``; ``xi`` is the single
+    root in ``[0, 1]`` of ``I1(xi) = 3 + Jm (1 - xi)``, found by a vectorised
+    safeguarded Newton method. Other models: the unique minimiser of ``omega* - s
+    lam1`` with ``t3 = 0`` (:func:`biaxial_stretches` with ``s3 = 0``). The state is
+    the charge-controlled equilibrium (unique). Beyond the Gent equi-biaxial locking
+    stretch (large ``s``, small ``Jm``) two uni-axial states can share ``lam1`` and
+    ``lam1(D0)`` turns back; there it may be the state that :func:`uniaxial_D0` (one
+    state per ``lam1``) does not return.
 
     Examples
     --------
-    >>> from analytic import uniaxial_lam1, uniaxial_D0
+    >>> from analytic import uniaxial_lam1, uniaxial_D0, Gent
     >>> round(float(uniaxial_D0(uniaxial_lam1(2.5, 1.0), 1.0)), 12)
+    2.5
+    >>> round(float(uniaxial_D0(uniaxial_lam1(2.5, 1.0, Gent(97.2)), 1.0, Gent(97.2))), 12)
     2.5
     """
     model = as_model(model)
     D0, s = broadcast(D0=check_finite("D0", D0), s=check_finite("s", s))
     shape = D0.shape
-    c, sf = np.sqrt(1.0 + D0.ravel() ** 2), s.ravel()
-    lo = np.maximum(sf, 0.0)  # q(lo) = lo^2 (lo - s) - c < 0
-    hi = lo + c ** (1.0 / 3.0) + np.abs(sf)  # q(hi) > 0
-
-    def q(l1, i):
-        return l1**2 * (l1 - sf[i]) - c[i], l1 * (3 * l1 - 2 * sf[i])
-
-    l1 = _rtsafe(q, lo, hi)
+    D0f, sf = D0.ravel(), s.ravel()
+    if type(model) is Gent:
+        return _out(_uniaxial_lam1_gent(D0f**2, sf, model.Jm).reshape(shape))
+    l1 = _uniaxial_lam1_nh(np.sqrt(1.0 + D0f**2), sf)
     if isinstance(model, NeoHookean):
         return _out(l1.reshape(shape))
-    # other models: Newton on grad psi* = 0 from the neo-Hookean state
-    l3 = np.sqrt(l1 * (l1 - sf))
-    la, _ = _biaxial_core(sf, 0.0 * sf, D0.ravel() ** 2, model, (l1, l3))
-    return _out(la.reshape(shape))
+    return _out(_uniaxial_lam1_biaxial(D0f, sf, model, l1).reshape(shape))

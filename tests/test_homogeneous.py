@@ -101,7 +101,8 @@ def test_gent_tends_to_neo_hookean_with_rate_one_over_Jm():
     err_eq = [np.max(np.abs(an.equibiaxial_D0(lam, 1.0, an.Gent(J)) - an.equibiaxial_D0(lam, 1.0))) for J in Jms]
     err_ua = [np.max(np.abs(an.uniaxial_D0(lam1, 1.0, an.Gent(J)) - an.uniaxial_D0(lam1, 1.0))) for J in Jms]
     err_inv = [np.max(np.abs(an.equibiaxial_lam(lam, 1.0, an.Gent(J)) - an.equibiaxial_lam(lam, 1.0))) for J in Jms]
-    for err in (err_eq, err_ua, err_inv):
+    err_ua_inv = [np.max(np.abs(an.uniaxial_lam1(lam, 1.0, an.Gent(J)) - an.uniaxial_lam1(lam, 1.0))) for J in Jms]
+    for err in (err_eq, err_ua, err_inv, err_ua_inv):
         rate = np.polyfit(np.log(Jms), np.log(err), 1)[0]
         assert rate == pytest.approx(-1.0, abs=0.05)  # first-order in 1/Jm, asymptotic regime
         # constant of the 1/Jm law settled: err * Jm agrees between the two largest Jm
@@ -198,6 +199,70 @@ def test_uniaxial_lam1_neo_hookean_cubic():
     assert lam1.shape == (41, 4)
     np.testing.assert_allclose(lam1**2 * (lam1 - s), np.broadcast_to(np.sqrt(1 + D0**2), (41, 4)),
                                rtol=1e-14)
+
+
+@pytest.mark.parametrize("Jm", [20.0, 97.2])
+def test_gent_uniaxial_lam1_round_trip(Jm):
+    """uniaxial_D0(uniaxial_lam1(D0)) == D0 for Gent (the fast path: Newton in xi = 1/(2W'))."""
+    g = an.Gent(Jm)
+    eps = np.finfo(float).eps
+    for s in (0.5, 1.0, 2.993, 5.0):
+        # D0 >= 0.5: a lam1 exact to a few ulps gives D0 to (d ln D0/d ln lam1) x (a few eps);
+        # that factor is <= 660 here (s = 5: lam1 hardly moves with D0), so <= 3e-13 < 1e-12
+        D0 = np.linspace(0.5, 6.0, 56)
+        lam1 = an.uniaxial_lam1(D0, s, g)
+        np.testing.assert_allclose(an.uniaxial_D0(lam1, s, g), D0, rtol=1e-12, atol=0)
+        # D0 -> 0 the map lam1 -> D0 = sqrt(G(lam1)) is infinitely steep at the branch start,
+        # so no method can give 1e-12 relative there: the error budget is 4 ulps of lam1,
+        # |D0_rt^2 - D0^2| <= 4 eps lam1 |dG/dlam1| (G = D0^2; one-sided FD slope, the branch
+        # starts at lam1(0)); observed <= 1.2 ulp
+        D0 = np.array([0.0, 1e-6, 1e-4, 1e-3, 1e-2, 0.1, 0.3])
+        lam1 = an.uniaxial_lam1(D0, s, g)
+        h = 1e-6 * lam1
+        dG = (an.uniaxial_D0(lam1 + 2 * h, s, g) ** 2 - an.uniaxial_D0(lam1 + h, s, g) ** 2) / h
+        assert np.all(dG > 0)  # D0 grows along the loading branch
+        err = np.abs(an.uniaxial_D0(lam1, s, g) ** 2 - D0**2)
+        assert np.all(err <= 4 * eps * lam1 * dG), (s, err / (eps * lam1 * dG))
+
+
+def test_gent_uniaxial_lam1_matches_biaxial_newton():
+    """The Gent fast path against the 2-D Newton solve of grad psi* = 0 with s3 = 0 (the
+    previous implementation, still used for user models), including s <= 0, large D0 and the
+    near-lock range where lam1(D0) turns back (Jm = 20, s = 10: lam1 beyond the equi-biaxial
+    locking stretch 3.39)."""
+    D0 = np.concatenate([np.linspace(0.0, 6.0, 61), [10.0, 20.0, 50.0]])[:, None]
+    s = np.array([-2.0, -0.5, 0.0, 0.5, 1.0, 2.993, 5.0, 10.0])[None, :]
+    for Jm in (5.0, 20.0, 97.2):
+        g = an.Gent(Jm)
+        new = an.uniaxial_lam1(D0, s, g)
+        ref, _ = an.biaxial_stretches(s, 0.0, D0, g)
+        assert new.shape == (64, 8) and np.all(np.isfinite(new)) and np.all(np.isfinite(ref))
+        # both stop at ~1e-14 relative (Newton residual 1e-14 of the stress scale; here
+        # observed <= 1e-14): 1e-12 leaves a factor 100 for the conditioning near the lock
+        np.testing.assert_allclose(new, ref, rtol=1e-12)
+    # there lam1(D0) is not monotone; the result is the equilibrium (matched above), which
+    # uniaxial_D0 (one state per lam1) need not return: its D0 at lam1[1] is 1.38, not 2
+    lam1 = an.uniaxial_lam1(np.array([0.0, 2.0, 6.0]), 10.0, an.Gent(20.0))  # 3.8596, 3.8620, 3.8499
+    assert lam1[1] > lam1[0] and lam1[2] < lam1[1]
+
+
+def test_gent_uniaxial_lam1_conventions():
+    """Scalar in, scalar out; broadcasting; only D0^2 matters; D0 = s = 0 is the reference
+    state; non-finite input raises like the other models."""
+    out = an.uniaxial_lam1(2.0, 1.0, GENT)
+    assert np.ndim(out) == 0
+    assert an.uniaxial_lam1(0.0, 0.0, GENT) == 1.0  # Cardano at xi = 1: u = cbrt(1) exactly
+    D0 = np.linspace(0, 5, 11)[:, None]
+    s = np.array([-1.0, 0.0, 1.0])
+    lam1 = an.uniaxial_lam1(D0, s, GENT)
+    assert lam1.shape == (11, 3)
+    for j, sj in enumerate(s):  # column j equals the scalar-s evaluation, bit for bit
+        np.testing.assert_array_equal(lam1[:, j], an.uniaxial_lam1(D0[:, 0], sj, GENT))
+    np.testing.assert_array_equal(an.uniaxial_lam1(-D0, s, GENT), lam1)
+    with pytest.raises(ValueError, match=r"D0 must be finite"):
+        an.uniaxial_lam1(np.inf, 1.0, GENT)
+    with pytest.raises(ValueError, match=r"s must not be NaN"):
+        an.uniaxial_lam1(1.0, np.nan, GENT)
 
 
 # ----------------------------------------------------------------------------- biaxial
