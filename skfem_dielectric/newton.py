@@ -398,7 +398,7 @@ def ramp(problem: RampProblem, loads: Sequence[Any], *, x0: np.ndarray | None = 
     stop_on_instability
         Stop at the first converged sub-step that ``problem.stability(inertia)`` judges
         unstable (needs a solver that reports the inertia, i.e. PARDISO; otherwise the
-        verdict is ``None`` and the ramp goes on).  That step is kept (``target_reached``
+        verdict is ``None`` and the ramp goes on, with one ``RuntimeWarning``).  That step is kept (``target_reached``
         False if it is intermediate) and its load is ``unstable_at``.  A load-controlled
         Newton cannot follow the path through such a point, so without this option the
         ramp spends its cut-backs trying (see ``docs/fe.md``, breakdown).
@@ -421,6 +421,7 @@ def ramp(problem: RampProblem, loads: Sequence[Any], *, x0: np.ndarray | None = 
     has_res = hasattr(problem, "residual")
     has_post = hasattr(problem, "postprocess")
     has_stab = hasattr(problem, "stability")
+    no_verdict_warned = False
     out = RampResult(steps=[], converged=True)
 
     for target in targets:
@@ -456,10 +457,17 @@ def ramp(problem: RampProblem, loads: Sequence[Any], *, x0: np.ndarray | None = 
                 subs += 1
                 hist.append(nr.residual_norms)
                 dfrac = min(2.0 * dfrac, 1.0)
-                if (stop_on_instability and has_stab
-                        and problem.stability(inertia) is False):
-                    unstable = load
-                    break
+                if stop_on_instability and has_stab:
+                    verdict = problem.stability(inertia)
+                    if verdict is False:
+                        unstable = load
+                        break
+                    if verdict is None and not no_verdict_warned:
+                        no_verdict_warned = True
+                        warnings.warn("stop_on_instability has no effect: the linear solver "
+                                      "reports no inertia, so there is no stability verdict "
+                                      "(use linear_solver='pardiso')", RuntimeWarning,
+                                      stacklevel=2)
             else:
                 cuts += 1
                 if cuts > max_cutbacks:

@@ -170,3 +170,13 @@ def test_ramp_stops_at_the_first_unstable_step():
         warnings.simplefilter("error")
         res = ramp(SoftensAt(), loads, linear_solver=DenseInertiaSolver(), atol=1e-13, rtol=0)
     assert res.converged and [st["stable"] for st in res.steps] == [True, True, False, False]
+
+
+def test_stop_on_instability_without_inertia_warns_and_goes_on():
+    # SuperLU reports no inertia: no verdict, the option cannot act and says so
+    with pytest.warns(RuntimeWarning, match="no effect"):
+        res = ramp(SoftensAt(), [1.0, 2.0, 3.0], linear_solver="superlu", atol=1e-13, rtol=0,
+                   stop_on_instability=True)
+    assert res.converged and res.unstable_at is None
+    np.testing.assert_allclose(res.column("x1"), cardano(np.array([1.0, 2.0, 3.0])),
+                               rtol=1e-12)
