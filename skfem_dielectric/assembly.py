@@ -188,7 +188,9 @@ class ScatterMap:
         """CSR matrix with the precomputed pattern and the given data.
 
         The matrices share the pattern arrays ``indices``/``indptr`` (read-only, sorted);
-        each owns its ``data``."""
+        each owns its ``data``.  Arithmetic, slicing, conversion and ``data`` updates work
+        as usual; in-place *structural* changes (``eliminate_zeros``) raise ``ValueError``
+        (read-only) — call them on ``K.copy()``."""
         K = sp.csr_matrix((data, self.indices, self.indptr), shape=(self.n, self.n))
         K.has_sorted_indices = True
         return K

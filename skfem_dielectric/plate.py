@@ -452,6 +452,10 @@ class PlateProblem:
     def assemble(self, x: np.ndarray, load) -> tuple[Any, np.ndarray]:
         """Reduced tangent (CSR, symmetric) and residual at reduced state ``x``.
 
+        The CSR matrices of one problem share a read-only sparsity pattern
+        (:meth:`~skfem_dielectric.assembly.ScatterMap.csr`): copy before in-place
+        structural changes such as ``eliminate_zeros``.
+
         Element batches are assembled by ``threads`` worker threads (numpy releases the GIL
         in the batched matmuls)."""
         xf = self.full(x, load)

@@ -53,3 +53,14 @@ def test_block_outside_the_pattern_is_an_error():
     sc = ScatterMap(np.array([[0, 1], [1, 2]]), 3)
     with pytest.raises(ValueError, match="outside the sparsity pattern"):
         sc.positions(np.array([0]), np.array([2]))
+
+
+def test_shared_pattern_is_protected_and_copies_are_free():
+    sc = ScatterMap(np.array([[0, 1], [1, 2]]), 3)
+    K = sc.matrix(np.ones((2, 2, 2)))
+    with pytest.raises(ValueError):
+        K.eliminate_zeros()                  # would rewrite the pattern of every matrix
+    K2 = K.copy()
+    K2.data[:] = 0.0
+    K2.eliminate_zeros()
+    assert K2.nnz == 0 and K.nnz == 7        # 3x3 tridiagonal pattern untouched
