@@ -424,6 +424,21 @@ def ramp(problem: RampProblem, loads: Sequence[Any], *, x0: np.ndarray | None = 
     no_verdict_warned = False
     out = RampResult(steps=[], converged=True)
 
+    def record(load, target_reached):
+        """Keep the converged state ``x`` at ``load`` as a step (post-processed, with the
+        stability verdict of its last tangent) and report it to ``on_step``."""
+        step = StepResult(load=load, converged=True, iterations=iters, substeps=subs,
+                          cutbacks=cuts, residual_norms=hist, x=x.copy(),
+                          assembly_seconds=t_asm, solve_seconds=t_sol, inertia=inertia,
+                          target_reached=target_reached)
+        if has_post:
+            step.quantities = dict(problem.postprocess(x, load))
+        if has_stab:
+            step.quantities.setdefault("stable", problem.stability(inertia))
+        out.steps.append(step)
+        if on_step is not None:
+            on_step(step)
+
     for target in targets:
         a, b = np.asarray(cur, dtype=float), np.asarray(target, dtype=float)
         frac, dfrac = 0.0, 1.0
@@ -476,16 +491,7 @@ def ramp(problem: RampProblem, loads: Sequence[Any], *, x0: np.ndarray | None = 
                     break
                 dfrac *= 0.5
         if unstable is not None:
-            step = StepResult(load=unstable, converged=True, iterations=iters,
-                              substeps=subs, cutbacks=cuts, residual_norms=hist,
-                              x=x.copy(), assembly_seconds=t_asm, solve_seconds=t_sol,
-                              inertia=inertia, target_reached=frac >= 1.0)
-            if has_post:
-                step.quantities = dict(problem.postprocess(x, unstable))
-            step.quantities.setdefault("stable", False)
-            out.steps.append(step)
-            if on_step is not None:
-                on_step(step)
+            record(unstable, frac >= 1.0)
             out.converged = False
             out.unstable_at = unstable
             out.reason = (f"stability lost at load {unstable!r} (inertia of the tangent: "
@@ -494,33 +500,13 @@ def ramp(problem: RampProblem, loads: Sequence[Any], *, x0: np.ndarray | None = 
             break
         if failed:
             if frac > 0.0:   # keep the furthest converged sub-step towards the target
-                load = _as_load(b if frac >= 1.0 else a + frac * (b - a))
-                step = StepResult(load=load, converged=True, iterations=iters,
-                                  substeps=subs, cutbacks=cuts, residual_norms=hist,
-                                  x=x.copy(), assembly_seconds=t_asm, solve_seconds=t_sol,
-                                  inertia=inertia, target_reached=False)
-                if has_post:
-                    step.quantities = dict(problem.postprocess(x, load))
-                if hasattr(problem, "stability"):
-                    step.quantities.setdefault("stable", problem.stability(inertia))
-                out.steps.append(step)
-                if on_step is not None:
-                    on_step(step)
+                record(_as_load(b if frac >= 1.0 else a + frac * (b - a)), False)
             out.converged = False
             out.reason = (f"target load {target!r} not reached after {max_cutbacks} "
                           f"cut-backs; last Newton failure: {failed}")
             warnings.warn(out.reason, RuntimeWarning, stacklevel=2)
             break
-        step = StepResult(load=target, converged=True, iterations=iters, substeps=subs,
-                          cutbacks=cuts, residual_norms=hist, x=x.copy(),
-                          assembly_seconds=t_asm, solve_seconds=t_sol, inertia=inertia)
-        if has_post:
-            step.quantities = dict(problem.postprocess(x, target))
-        if hasattr(problem, "stability"):
-            step.quantities.setdefault("stable", problem.stability(inertia))
-        out.steps.append(step)
         cur = target
-        if on_step is not None:
-            on_step(step)
+        record(target, True)
     out.wall_seconds = time.perf_counter() - t_start
     return out
