@@ -23,3 +23,21 @@ def _central_difference_columns(residual, x, load, cols, h=1e-6):
 def fd_columns():
     """The central-difference tangent columns of a problem's reduced residual."""
     return _central_difference_columns
+
+
+def _assert_tangent_columns(residual, K, x, load, cols, h=1e-6, floor=0.0):
+    """Assert that columns ``cols`` of the dense tangent ``K`` match central differences of
+    ``residual`` with step ``h``: ``|fd - K[:, j]| <= 1e-6 max(|K[:, j]|, floor)``.
+
+    The reason for 1e-6: central differences have an error O(h^2) + round-off/h ~ 1e-9
+    relative at h = 1e-6, so 1e-6 leaves a wide margin yet catches any missing term.
+    ``floor`` (e.g. 1.0) guards columns whose entries are all tiny.
+    """
+    for j, fd in zip(cols, _central_difference_columns(residual, x, load, cols, h).T):
+        assert np.abs(fd - K[:, j]).max() <= 1e-6 * max(np.abs(K[:, j]).max(), floor)
+
+
+@pytest.fixture
+def assert_tangent_columns():
+    """Checker of assembled tangent columns against central differences."""
+    return _assert_tangent_columns
