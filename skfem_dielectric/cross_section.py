@@ -120,6 +120,7 @@ class CrossSection:
         import skfem as fe
 
         from .assembly import DofReduction, ScatterMap
+        from .mesh2d import quarter_quad_mesh
 
         _check_control_coupling(control, coupling)
         if field not in _FIELDS:
@@ -133,15 +134,7 @@ class CrossSection:
         self.lam3_fixed = None if lam3 is None else _check_positive("lam3", lam3)
         self.control = control
         a1, a2 = self.L1 / 2, self.H / 2
-        tol = 1e-9 * max(a1, a2)
-        mesh = fe.MeshQuad.init_tensor(np.linspace(0, a1, self.n1 + 1),
-                                       np.linspace(0, a2, self.n2 + 1))
-        mesh = mesh.with_boundaries({
-            "sym_x1": lambda x: np.abs(x[0]) < tol,
-            "sym_x2": lambda x: np.abs(x[1]) < tol,
-            "x1_plus": lambda x: np.abs(x[0] - a1) < tol,
-            "top": lambda x: np.abs(x[1] - a2) < tol,
-        })
+        mesh = quarter_quad_mesh(a1, a2, self.n1, self.n2, ("sym_x1", "sym_x2", "x1_plus", "top"))
         self.mesh = mesh
         eu = fe.ElementVector(fe.ElementQuad2())
         self.bu = fe.Basis(mesh, eu, intorder=4)

@@ -203,7 +203,7 @@ class MembranePlate:
         import skfem as fe
 
         from .assembly import DofReduction, ScatterMap
-        from .mesh2d import BatchedVectorForm, point_gradients
+        from .mesh2d import BatchedVectorForm, point_gradients, quarter_quad_mesh
 
         if loading not in _LOADINGS:
             raise ValueError(f"loading must be one of {_LOADINGS}, got {loading!r}")
@@ -215,15 +215,8 @@ class MembranePlate:
         self.n1, self.n3 = _check_int("n1", n1), _check_int("n3", n3)
         self.loading, self.control = loading, control
         a1, a3 = self.L1 / 2, self.L3 / 2
-        mesh = fe.MeshQuad.init_tensor(np.linspace(0, a1, self.n1 + 1),
-                                       np.linspace(0, a3, self.n3 + 1))
-        tol = 1e-9 * max(a1, a3)
-        mesh = mesh.with_boundaries({
-            "sym_x1": lambda x: np.abs(x[0]) < tol,
-            "sym_x3": lambda x: np.abs(x[1]) < tol,
-            "x1_plus": lambda x: np.abs(x[0] - a1) < tol,
-            "x3_plus": lambda x: np.abs(x[1] - a3) < tol,
-        })
+        mesh = quarter_quad_mesh(a1, a3, self.n1, self.n3,
+                                 ("sym_x1", "sym_x3", "x1_plus", "x3_plus"))
         self.mesh = mesh
         elem = fe.ElementVector(fe.ElementQuad2())
         self.basis = fe.Basis(mesh, elem, intorder=4)

@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["BatchedVectorForm", "point_gradients"]
+__all__ = ["BatchedVectorForm", "point_gradients", "quarter_quad_mesh"]
 
 
 class BatchedVectorForm:
@@ -77,3 +77,32 @@ def point_gradients(basis, points: np.ndarray):
     G = np.array([basis.elem.gbasis(mapping, ref, a, tind=cells)[0].grad[..., 0]
                   for a in range(basis.Nbfun)])
     return G, basis.element_dofs[:, cells]
+
+
+def quarter_quad_mesh(a1: float, a2: float, n1: int, n2: int, names: tuple[str, str, str, str]):
+    """Quadrilateral mesh of the quarter ``[0, a1] x [0, a2]`` with named boundaries.
+
+    Parameters
+    ----------
+    a1, a2 : float
+        Half-lengths of the modelled rectangle (the symmetry planes are at 0).
+    n1, n2 : int
+        Elements along each side.
+    names : 4 str
+        Names of the sides ``x = 0``, ``y = 0``, ``x = a1``, ``y = a2``.
+
+    Returns
+    -------
+    skfem.MeshQuad
+    """
+    import skfem as fe
+
+    tol = 1e-9 * max(a1, a2)
+    mesh = fe.MeshQuad.init_tensor(np.linspace(0, a1, n1 + 1), np.linspace(0, a2, n2 + 1))
+    x0, y0, x1, y1 = names
+    return mesh.with_boundaries({
+        x0: lambda x: np.abs(x[0]) < tol,
+        y0: lambda x: np.abs(x[1]) < tol,
+        x1: lambda x: np.abs(x[0] - a1) < tol,
+        y1: lambda x: np.abs(x[1] - a2) < tol,
+    })
