@@ -172,7 +172,8 @@ class PointResponse:
     A_FF, A_FG, A_GG, A_Fp
         Second derivatives ``d2psi/dF_aK dF_bL`` ``(3,3,3,3,...)``,
         ``d2psi/dF_aK dG_L`` ``(3,3,3,...)``, ``d2psi/dG_K dG_L`` ``(3,3,...)`` and
-        ``d2psi/dF_aK dp = J Finv_Ka`` ``(3,3,...)``.
+        ``d2psi/dF_aK dp = J Finv_Ka`` ``(3,3,...)``.  (The private ``_response`` used by
+        the assembly returns them points-first, in the layouts it documents.)
     A_pp
         ``-1/kappa`` (scalar).
     J
@@ -304,7 +305,7 @@ def _response(material, F: np.ndarray, G: np.ndarray, p: np.ndarray | None, kapp
             A[..., k, i, i, k] += d
     # A_FG[a,K,L] = eJ (Finv_La b_K + a_a Cinv_KL - b_L Finv_Ka), stored [K, a, L]
     Cinv = (Finv[:, None] * Finv[None]).sum(axis=2)
-    A_FG = eJ * (bvec[:, None, None] * Finv.transpose(1, 0, *range(2, Finv.ndim))[None]
+    A_FG = eJ * (bvec[:, None, None] * FinvT[None]
                  + a[None, :, None] * Cinv[:, None, :] - Finv[:, :, None] * bvec[None, None])
     A_GG = -eps * J * Cinv
     A_Fp = J * Finv if formulation == "mixed" else np.zeros_like(Finv)
