@@ -25,7 +25,7 @@ def lam1_uniaxial(D0: float, s: float) -> float:
 
 
 def main(argv=None) -> int:
-    from skfem_dielectric.drivers import keplinger_plate, keplinger_s
+    from skfem_dielectric import keplinger_plate, keplinger_s
 
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--n1", type=int, default=20)
@@ -37,7 +37,7 @@ def main(argv=None) -> int:
     a = ap.parse_args(argv)
     D0 = np.arange(a.dD0, a.D0max + 1e-9, a.dD0)
     for alpha in a.alpha:
-        s = keplinger_s(alpha)
+        s = keplinger_s(alpha, g=9.81)
         t0 = time.perf_counter()
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")

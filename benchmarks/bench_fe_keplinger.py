@@ -32,7 +32,7 @@ import warnings
 def run(solver: str, n1: int, n3: int, threads: int | None, stop_unstable: bool) -> dict:
     import numpy as np
 
-    from skfem_dielectric.drivers import keplinger_plate
+    from skfem_dielectric import keplinger_plate
 
     t0 = time.perf_counter()
     wall_ok = [0.0]

@@ -1,34 +1,50 @@
-"""scikit-fem finite elements for charge-controlled soft dielectric plates."""
+"""scikit-fem finite elements for charge-controlled soft dielectric plates.
 
-__all__: list[str] = []
+Every model is a :class:`Problem` (module :mod:`skfem_dielectric.problem`): the Newton
+solver, the load ramp and the export work on any of them.  Models: :class:`PlateProblem`
+(3D, fully coupled or Maxwell-traction coupling), :class:`MembranePlate` (2D membrane),
+:class:`CrossSection` (2D generalised plane strain).  Weak forms: :mod:`skfem_dielectric.forms`.
+"""
 
-# --- FE core (helper C): generic Newton / ramp machinery and linear solvers ---
-from .linear import LinearSolver, PardisoSolver, SuperLUSolver, get_linear_solver  # noqa: E402
-from .newton import NewtonResult, RampResult, StepResult, newton, ramp  # noqa: E402
+from .assembly import DofReduction, ScatterMap
+from .cross_section import CrossSection
+from .drivers import (cross_section_ramp, equibiaxial_plate, equibiaxial_problem,
+                      keplinger_plate, keplinger_problem, maxwell_equibiaxial,
+                      maxwell_keplinger, membrane_keplinger, membrane_ramp, run_ramp)
+from .export import step_mesh, write_vtu_series, write_xdmf
+from .forms.maxwell_traction import maxwell_stress, maxwell_traction, maxwell_traction_field
+from .forms.membrane import membrane_kernel
+from .forms.plane_strain import cross_section_kernel
+from .linear import (LinearSolver, PardisoLUSolver, PardisoSolver, SuperLUSolver,
+                     get_linear_solver, nonsymmetric_solver, pardiso_available)
+from .loads import charge_targets, keplinger_s, preload_then_charge, remaining_targets
+from .materials import (GentDielectric, IdealDielectric, NeoHookeanDielectric, PointResponse,
+                        ideal_dielectric_response, make_material)
+from .membrane import MembranePlate
+from .mesh import PlateMesh, plate_mesh
+from .mesh2d import point_gradients
+from .newton import NewtonResult, newton
+from .plate import PlateProblem
+from .problem import Layout, Problem
+from .ramp import RampResult, StepResult, ramp
 
-__all__ += ["LinearSolver", "SuperLUSolver", "PardisoSolver", "get_linear_solver",
-            "NewtonResult", "StepResult", "RampResult", "newton", "ramp"]
-from .materials import GentDielectric, IdealDielectric, NeoHookeanDielectric  # noqa: E402
-from .mesh import PlateMesh, plate_mesh  # noqa: E402
-from .assembly import DofReduction, ScatterMap  # noqa: E402
-from .plate import PlateProblem  # noqa: E402
-from .drivers import equibiaxial_plate, keplinger_plate, keplinger_s  # noqa: E402
-
-__all__ += ["NeoHookeanDielectric", "GentDielectric", "IdealDielectric", "PlateMesh",
-            "plate_mesh", "DofReduction", "ScatterMap", "PlateProblem", "equibiaxial_plate",
-            "keplinger_plate", "keplinger_s"]
-from .export import step_mesh, write_vtu_series, write_xdmf  # noqa: E402
-
-__all__ += ["step_mesh", "write_vtu_series", "write_xdmf"]
-
-# --- FE variants (helper D): 2D membrane ---
-from .membrane import MembranePlate, membrane_kernel, membrane_keplinger, membrane_ramp  # noqa: E402,E501
-
-__all__ += ["MembranePlate", "membrane_kernel", "membrane_ramp", "membrane_keplinger"]
-
-# --- FE variants (helper D): Maxwell-traction coupling, 2D cross-section ---
-from .maxwell import MaxwellPlate, maxwell_equibiaxial, maxwell_keplinger, nonsymmetric_solver  # noqa: E402,E501
-from .cross_section import CrossSection, cross_section_ramp  # noqa: E402
-
-__all__ += ["MaxwellPlate", "maxwell_equibiaxial", "maxwell_keplinger", "nonsymmetric_solver",
-            "CrossSection", "cross_section_ramp"]
+__all__ = [
+    # the contract and the machinery
+    "Problem", "Layout", "newton", "NewtonResult", "ramp", "RampResult", "StepResult",
+    "LinearSolver", "SuperLUSolver", "PardisoSolver", "PardisoLUSolver", "get_linear_solver",
+    "nonsymmetric_solver", "pardiso_available", "DofReduction", "ScatterMap",
+    # materials and meshes
+    "NeoHookeanDielectric", "GentDielectric", "IdealDielectric", "PointResponse",
+    "ideal_dielectric_response", "make_material", "PlateMesh", "plate_mesh",
+    "point_gradients",
+    # models and their point kernels
+    "PlateProblem", "MembranePlate", "CrossSection", "membrane_kernel",
+    "cross_section_kernel", "maxwell_stress", "maxwell_traction", "maxwell_traction_field",
+    # loads and drivers
+    "keplinger_s", "charge_targets", "preload_then_charge", "remaining_targets",
+    "equibiaxial_problem", "keplinger_problem", "run_ramp", "equibiaxial_plate",
+    "keplinger_plate", "maxwell_equibiaxial", "maxwell_keplinger", "membrane_ramp",
+    "membrane_keplinger", "cross_section_ramp",
+    # export
+    "step_mesh", "write_vtu_series", "write_xdmf",
+]

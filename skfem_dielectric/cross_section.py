@@ -11,9 +11,9 @@ stress ``s3`` on the x3-faces (its equation is ``int T33 dA = s3 mu A``, the
 resultant over the reference cross-section ``A``). The unknowns are the
 displacement ``u`` (Q2), the pressure multiplier ``p`` (Q1, Taylor-Hood), the
 potential ``phi`` (Q2) and ``lam3``: the mixed, exactly incompressible, fully
-coupled formulation of the 3D solver (energy density and tangent from
-:func:`skfem_dielectric.materials.ideal_dielectric_response`, embedded in 3D),
-which is the geometry of the paper's Stroh wrinkling analysis (Sec. 3).
+coupled formulation of the 3D solver (weak form:
+:mod:`skfem_dielectric.forms.plane_strain`), which is the geometry of the paper's Stroh
+wrinkling analysis (Sec. 3).
 
 The model is the quarter ``[0, L1/2] x [0, H/2]``: ``u1 = 0`` on ``x1 = 0``,
 ``u2 = 0`` and ``phi = 0`` on ``x2 = 0`` (the potential is odd in x2, so this
@@ -30,56 +30,25 @@ from __future__ import annotations
 import math
 
 import numpy as np
+import skfem as fe
+from skfem.io.meshio import to_meshio
 
-from .materials import _check_int, _check_positive
-from .membrane import _check_control_coupling, _D0_targets
+from .assembly import DofReduction, ScatterMap
+from .checks import check_choice, check_count, check_positive
+from .forms.maxwell_traction import maxwell_nominal_stress, maxwell_stress
+from .forms.plane_strain import PlaneStrainForm, cross_section_kernel
+from .kinematics import det3, plane_strain_F, second_piola
+from .membrane import check_control_coupling
+from .mesh2d import point_gradients, quarter_quad_mesh
+from .problem import Layout, Problem
 
-__all__ = ["CrossSection", "cross_section_kernel", "cross_section_ramp"]
+__all__ = ["CrossSection"]
 
-_FIELDS = ("electrostatic", "local")
-
-
-def cross_section_kernel(material, gradu: np.ndarray, lam3, p: np.ndarray,
-                         gradphi: np.ndarray, need_tangent: bool = True):
-    """Energy derivatives of the generalised-plane-strain state at points.
-
-    Parameters
-    ----------
-    material
-        Ideal dielectric (:mod:`skfem_dielectric.materials`).
-    gradu : ndarray, shape (2, 2, ...)
-        In-plane displacement gradient.
-    lam3 : float
-        Uniform out-of-plane stretch.
-    p : ndarray, shape (...)
-        Pressure multiplier (the physical pressure is ``-p``).
-    gradphi : ndarray, shape (2, ...)
-        In-plane potential gradient (``E_L = -Grad phi``).
-    need_tangent : bool
-        Whether the second derivatives are needed.
-
-    Returns
-    -------
-    PointResponse
-        The 3D response of :func:`ideal_dielectric_response` at
-        ``F = diag-block(I + gradu, lam3)``, ``G = (gradphi, 0)``; the in-plane
-        blocks and the ``33`` entries are what the 2D model uses.
-    """
-    from .materials import ideal_dielectric_response
-
-    shape = gradu.shape[2:]
-    F = np.zeros((3, 3) + shape)
-    F[:2, :2] = gradu
-    F[0, 0] += 1.0
-    F[1, 1] += 1.0
-    F[2, 2] = lam3
-    G = np.zeros((3,) + shape)
-    G[:2] = gradphi
-    return ideal_dielectric_response(material, F, G, p, need_tangent=need_tangent)
+FIELDS = ("electrostatic", "local")
 
 
-class CrossSection:
-    """Quarter cross-section in generalised plane strain, a :class:`RampProblem`.
+class CrossSection(Problem):
+    """Quarter cross-section in generalised plane strain, a :class:`~skfem_dielectric.problem.Problem`.
 
     Parameters
     ----------
@@ -99,12 +68,12 @@ class CrossSection:
         control): elastic stress in the volume, the Maxwell traction
         ``-tau_m cof(F) N`` on the top face, the end ``x1 = L1/2`` and (in the
         ``lam3`` equation) the x3 faces, linearised in the non-symmetric
-        tangent (:mod:`skfem_dielectric.maxwell`).
+        tangent (:mod:`skfem_dielectric.forms.maxwell_traction`).
     field : {"electrostatic", "local"}
         Field in ``tau_m`` for the Maxwell coupling: from the potential solved
         on the deformed section (default), or the local thin-plate field
         ``D = F D_L/J`` without electrostatics (exact on homogeneous states
-        only; see :class:`skfem_dielectric.maxwell.MaxwellPlate`).
+        only; see :class:`skfem_dielectric.plate.PlateProblem`).
 
     Notes
     -----
@@ -117,21 +86,17 @@ class CrossSection:
     def __init__(self, material, L1: float = 20.0, H: float = 1.0, n1: int = 8,
                  n2: int = 2, lam3: float | None = None, control: str = "charge",
                  coupling: str = "full", field: str = "electrostatic"):
-        import skfem as fe
-
-        from .assembly import DofReduction, ScatterMap
-        from .mesh2d import quarter_quad_mesh
-
-        _check_control_coupling(control, coupling)
-        if field not in _FIELDS:
-            raise ValueError(f"field must be one of {_FIELDS}, got {field!r}")
+        check_control_coupling(control, coupling)
+        check_choice("field", field, FIELDS)
         self.coupling, self.field = coupling, field
+        self.symmetric = coupling == "full"
+        self.load_names = ("s1", "s3", "D0" if control == "charge" else "E0")
         self._local = coupling == "maxwell" and field == "local"
         self._elastic_volume = coupling == "maxwell" and field == "electrostatic"
         self.material = material
-        self.L1, self.H = _check_positive("L1", L1), _check_positive("H", H)
-        self.n1, self.n2 = _check_int("n1", n1), _check_int("n2", n2)
-        self.lam3_fixed = None if lam3 is None else _check_positive("lam3", lam3)
+        self.L1, self.H = check_positive("L1", L1), check_positive("H", H)
+        self.n1, self.n2 = check_count("n1", n1), check_count("n2", n2)
+        self.lam3_fixed = None if lam3 is None else check_positive("lam3", lam3)
         self.control = control
         a1, a2 = self.L1 / 2, self.H / 2
         mesh = quarter_quad_mesh(a1, a2, self.n1, self.n2, ("sym_x1", "sym_x2", "x1_plus", "top"))
@@ -163,22 +128,19 @@ class CrossSection:
             fixed.append(np.array([o_l]))
         self.red = DofReduction(n_full, np.concatenate(fixed))
         self.scatter = ScatterMap(self.red.index[edofs], self.red.n)
+        self._layout = Layout.from_reduction(
+            self.red, {"u": slice(0, o_p), "p": slice(o_p, o_f), "phi": slice(o_f, o_l),
+                       "lam3": slice(o_l, n_full)}, ("p", "phi"))
+        fbm = fbf = None
         if coupling == "maxwell":
             # Maxwell traction on the charged face (top) and the lateral end (x1_plus)
             facets = np.concatenate([mesh.boundaries["top"], mesh.boundaries["x1_plus"]])
-            self.fbm = fe.FacetBasis(mesh, eu, facets=facets, intorder=4)
-            self.Gm = np.array([self.fbm.basis[a][0].grad for a in range(self.nb[0])])
-            self.Vm = np.array([np.asarray(self.fbm.basis[a][0]) for a in range(self.nb[0])])
+            fbm = fe.FacetBasis(mesh, eu, facets=facets, intorder=4)
             fbf = fe.FacetBasis(mesh, fe.ElementQuad2(), facets=facets, intorder=4)
-            self.Gmf = np.array([fbf.basis[a][0].grad for a in range(self.nb[2])])
-            self._fphi = fbf.element_dofs
-            fdofs = np.vstack([self.fbm.element_dofs,
+            fdofs = np.vstack([fbm.element_dofs,
                                np.full((1, facets.size), o_l), o_f + fbf.element_dofs]).T
             self.scatter_m = ScatterMap(self.red.index[fdofs], self.red.n)
-        # basis arrays at quadrature points
-        self.Gu = np.array([self.bu.basis[a][0].grad for a in range(self.nb[0])])
-        self.Np = np.array([np.asarray(self.bp.basis[a][0]) for a in range(self.nb[1])])
-        self.Gf = np.array([self.bf.basis[a][0].grad for a in range(self.nb[2])])
+        self.form = PlaneStrainForm(self.bu, self.bp, self.bf, fbm, fbf)
         self.dx = self.bu.dx
         # unit loads: traction mu e1 on x1_plus, charge 1 on top
         mu = material.mu
@@ -195,8 +157,6 @@ class CrossSection:
         f[o_f:o_l] = fe.LinearForm(lambda v, w: v).assemble(ft)
         self.q_top = self.red.reduce(f)  # int w dA on the top face
         self.x_line = np.linspace(0.0, a1, 4 * self.n1 + 1)
-        from .mesh2d import point_gradients
-
         pts = np.vstack([self.x_line, np.zeros_like(self.x_line)])
         self._probe_u = point_gradients(self.bu, pts)
         cells = mesh.element_finder(mapping=self.bf.mapping)(*pts)
@@ -209,11 +169,12 @@ class CrossSection:
                                    for a in range(self.nb[1])]),
                          self.bp.element_dofs[:, cells])
 
-    # -- state ----------------------------------------------------------------
+    # -- Problem contract -------------------------------------------------------
     @property
-    def ndofs(self) -> int:
-        """Number of reduced unknowns."""
-        return self.red.n
+    def layout(self) -> Layout:
+        """Blocks ``u``, ``p``, ``phi`` and ``lam3`` (when unknown); ``p`` and ``phi``
+        are the multiplier/potential blocks."""
+        return self._layout
 
     def _prescribed(self, load) -> np.ndarray:
         s1, s3, e0 = load
@@ -244,9 +205,8 @@ class CrossSection:
 
     def _fields(self, x, load):
         u, p, phi, lam3 = self.split(x, load)
-        gu = np.einsum("ae,aijeq->ijeq", u[self.bu.element_dofs], self.Gu, optimize=True)
-        pq = np.einsum("ae,aeq->eq", p[self.bp.element_dofs], self.Np, optimize=True)
-        gf = np.einsum("ae,aieq->ieq", phi[self.bf.element_dofs], self.Gf, optimize=True)
+        gu, pq, gf = self.form.fields(u, p, phi, (self.bu.element_dofs, self.bp.element_dofs,
+                                                  self.bf.element_dofs))
         return gu, lam3, pq, gf
 
     def _rhs(self, load) -> np.ndarray:
@@ -259,72 +219,8 @@ class CrossSection:
             r = r - sigma * self.q_top  # weak form: int D_L.Grad w + int sigma_F w = 0
         return r
 
-    def _element_vectors(self, R, Rm=None) -> np.ndarray:
-        """Element residuals; ``Rm`` (default ``R``) gives the stress of the u/lam3 rows."""
-        Rm = R if Rm is None else Rm
-        dx = self.dx
-        ru = np.einsum("ijeq,aijeq->ea", Rm.P[:2, :2] * dx, self.Gu, optimize=True)
-        rp = np.einsum("eq,aeq->ea", R.dpsi_dp * dx, self.Np, optimize=True)
-        rf = np.einsum("ieq,aieq->ea", R.D_L[:2] * dx, self.Gf, optimize=True)
-        rl = np.sum(Rm.P[2, 2] * dx, axis=1)[:, None]
-        return np.concatenate([ru, rp, rf, rl], axis=1)
-
     def _sigma(self, load) -> float:
         return float(load[2]) * math.sqrt(self.material.mu * self.material.eps)
-
-    def _maxwell(self, x, load, lam3, gu, gf, need_tangent=True):
-        """Maxwell-traction terms: edges (top, x1_plus) and the x3 faces.
-
-        Returns the edge element vectors/matrices over the facet dofs
-        ``[u (18), lam3, phi (9)]`` and the x3-face traction ``t3`` with its
-        derivatives (per reference area of the section)."""
-        from .maxwell import maxwell_traction, maxwell_traction_field
-
-        eps = self.material.eps
-        D_L = -self._sigma(load)
-        u, _, phi, _ = self.split(x, load)
-
-        def F3(g):
-            F = np.zeros((3, 3) + g.shape[2:])
-            F[:2, :2] = g
-            F[0, 0] += 1.0
-            F[1, 1] += 1.0
-            F[2, 2] = lam3
-            return F
-
-        def vec3(v):
-            out = np.zeros((3,) + v.shape[1:])
-            out[:2] = v
-            return out
-
-        gm = np.einsum("ae,aijeq->ijeq", u[self.fbm.element_dofs], self.Gm, optimize=True)
-        N = vec3(np.asarray(self.fbm.normals))
-        N3 = np.zeros((3,) + gu.shape[2:])
-        N3[2] = 1.0
-        if self._local:
-            t0, dF = maxwell_traction(F3(gm), N, D_L, eps)
-            t3, dF3 = maxwell_traction(F3(gu), N3, D_L, eps)
-            dG = dG3 = None
-        else:
-            gmf = np.einsum("ae,aieq->ieq", phi[self._fphi], self.Gmf, optimize=True)
-            t0, dF, dG = maxwell_traction_field(F3(gm), vec3(gmf), N, eps)
-            t3, dF3, dG3 = maxwell_traction_field(F3(gu), vec3(gf), N3, eps)
-        dx = self.fbm.dx
-        nu, nf = self.nb[0], self.nb[2]
-        m = nu + 1 + nf
-        re = np.zeros((dx.shape[0], m))
-        re[:, :nu] = -np.einsum("ieq,aieq->ea", t0[:2] * dx, self.Vm, optimize=True)
-        Ke = None
-        if need_tangent:
-            Ke = np.zeros((dx.shape[0], m, m))
-            Ke[:, :nu, :nu] = -np.einsum("aieq,ikleq,bkleq->eab", self.Vm, dF[:2, :2, :2] * dx,
-                                         self.Gm, optimize=True)
-            Ke[:, :nu, nu] = -np.einsum("aieq,ieq->ea", self.Vm, dF[:2, 2, 2] * dx,
-                                        optimize=True)
-            if dG is not None:
-                Ke[:, :nu, nu + 1:] = -np.einsum("aieq,ileq,bleq->eab", self.Vm,
-                                                 dG[:2, :2] * dx, self.Gmf, optimize=True)
-        return re, Ke, t3, dF3, dG3
 
     def _volume(self, x, load, need_tangent=True):
         gu, lam3, pq, gf = self._fields(x, load)
@@ -337,73 +233,27 @@ class CrossSection:
 
     def residual(self, x: np.ndarray, load) -> np.ndarray:
         """Reduced residual."""
+        return self._system(x, load, need_tangent=False)[1]
+
+    def _system(self, x, load, need_tangent):
         load = self._load(load)
-        gu, lam3, gf, R, Rm = self._volume(x, load, need_tangent=False)
-        ve = self._element_vectors(R, Rm)
-        if self.coupling == "maxwell":
-            re, _, t3, _, _ = self._maxwell(x, load, lam3, gu, gf, need_tangent=False)
-            ve[:, -1] -= np.sum(t3[2] * self.dx, axis=1)
-            return (self.scatter.vector(ve) + self.scatter_m.vector(re) - self._rhs(load))
-        return self.scatter.vector(ve) - self._rhs(load)
+        gu, lam3, gf, R, Rm = self._volume(x, load, need_tangent=need_tangent)
+        form = self.form
+        ve = form.vectors(R, Rm)
+        Ke = form.matrices(R, Rm, self._elastic_volume) if need_tangent else None
+        if self.coupling != "maxwell":
+            K = self.scatter.matrix(Ke) if need_tangent else None
+            return K, self.scatter.vector(ve) - self._rhs(load)
+        u, _, phi, _ = self.split(x, load)
+        re, Km, t3, dF3, dG3 = form.maxwell(u, phi, lam3, gu, gf, -self._sigma(load),
+                                            self.material.eps, self._local, need_tangent)
+        form.x3_face_terms(ve, Ke, t3, dF3, dG3)
+        K = self.scatter.matrix(Ke) + self.scatter_m.matrix(Km) if need_tangent else None
+        return K, self.scatter.vector(ve) + self.scatter_m.vector(re) - self._rhs(load)
 
     def assemble(self, x: np.ndarray, load):
-        """Reduced symmetric (saddle-point) tangent and residual."""
-        load = self._load(load)
-        gu, lam3, gf, R, Rm = self._volume(x, load)
-        dx = self.dx
-        Gu, Np, Gf = self.Gu, self.Np, self.Gf
-        nu, npp, nf = self.nb
-        nel = dx.shape[0]
-        m = nu + npp + nf + 1
-        Ke = np.zeros((nel, m, m))
-        iu, ip, jf, il = (slice(0, nu), slice(nu, nu + npp), slice(nu + npp, m - 1),
-                          m - 1)
-        AFF = Rm.A_FF * dx
-        # u-u, u-lam3, lam3-lam3
-        AG = np.einsum("ijkleq,bkleq->ijbeq", AFF[:2, :2, :2, :2], Gu, optimize=True)
-        Ke[:, iu, iu] = np.einsum("aijeq,ijbeq->eab", Gu, AG, optimize=True)
-        kul = np.einsum("ijeq,aijeq->ea", AFF[:2, :2, 2, 2], Gu, optimize=True)
-        Ke[:, iu, il] = kul
-        Ke[:, il, iu] = kul
-        Ke[:, il, il] = np.sum(AFF[2, 2, 2, 2], axis=1)
-        # u-phi, lam3-phi
-        AFG = R.A_FG * dx
-        kuf = np.einsum("aijeq,ijLeq,bLeq->eab", Gu, AFG[:2, :2, :2], Gf, optimize=True)
-        if not self._elastic_volume:
-            Ke[:, iu, jf] = kuf
-        Ke[:, jf, iu] = np.swapaxes(kuf, 1, 2)
-        klf = np.einsum("Leq,bLeq->eb", AFG[2, 2, :2], Gf, optimize=True)
-        if not self._elastic_volume:
-            Ke[:, il, jf] = klf
-        Ke[:, jf, il] = klf
-        # u-p, lam3-p
-        AFp = R.A_Fp * dx
-        kup = np.einsum("aijeq,ijeq,beq->eab", Gu, AFp[:2, :2], Np, optimize=True)
-        Ke[:, iu, ip] = kup
-        Ke[:, ip, iu] = np.swapaxes(kup, 1, 2)
-        klp = np.einsum("eq,beq->eb", AFp[2, 2], Np, optimize=True)
-        Ke[:, il, ip] = klp
-        Ke[:, ip, il] = klp
-        # phi-phi, p-p
-        Ke[:, jf, jf] = np.einsum("aKeq,KLeq,bLeq->eab", Gf, R.A_GG[:2, :2] * dx, Gf,
-                                  optimize=True)
-        if R.A_pp != 0.0:
-            Ke[:, ip, ip] = R.A_pp * np.einsum("aeq,beq,eq->eab", Np, Np, dx, optimize=True)
-        ve = self._element_vectors(R, Rm)
-        if self.coupling == "maxwell":
-            re, Km, t3, dF3, dG3 = self._maxwell(x, load, lam3, gu, gf)
-            ve[:, -1] -= np.sum(t3[2] * dx, axis=1)
-            dT3 = dF3 * dx
-            Ke[:, il, iu] -= np.einsum("kleq,bkleq->eb", dT3[2, :2, :2], Gu, optimize=True)
-            Ke[:, il, il] -= np.sum(dT3[2, 2, 2], axis=1)
-            if dG3 is not None:
-                Ke[:, il, jf] -= np.einsum("leq,bleq->eb", dG3[2, :2] * dx, Gf, optimize=True)
-            K = self.scatter.matrix(Ke) + self.scatter_m.matrix(Km)
-            r = self.scatter.vector(ve) + self.scatter_m.vector(re) - self._rhs(load)
-            return K, r
-        K = self.scatter.matrix(Ke)
-        r = self.scatter.vector(ve) - self._rhs(load)
-        return K, r
+        """Reduced tangent (symmetric saddle point for the full coupling) and residual."""
+        return self._system(x, load, need_tangent=True)
 
     def residual_scale(self, load) -> float:
         """Scale of the residual: ``mu L1 H`` (a force per unit length in x3)."""
@@ -416,29 +266,16 @@ class CrossSection:
         ``potential``, ``pressure``; cell data (element averages) ``P33``,
         ``P11`` (total second Piola over ``mu``), ``lam1``, ``lam2``, ``lam3``.
         """
-        from skfem.io.meshio import to_meshio
-
         load = self._load(load)
         u, p, phi, lam3 = self.split(x, load)
         nv = self.mesh.p.shape[1]
         disp = np.column_stack([u.reshape(-1, 2)[:nv], np.zeros(nv)])
         gu, lam3, gf, R, _ = self._volume(x, load, need_tangent=False)
-        F = np.zeros((3, 3) + gu.shape[2:])
-        F[:2, :2] = gu
-        F[0, 0] += 1.0
-        F[1, 1] += 1.0
-        F[2, 2] = lam3
+        F = plane_strain_F(gu, lam3)
         P = R.P
         if self._local:
-            from .maxwell import maxwell_stress
-
-            J = F[2, 2] * (F[0, 0] * F[1, 1] - F[0, 1] * F[1, 0])
-            tau = maxwell_stress(F, -self._sigma(load), self.material.eps)
-            Finv = np.moveaxis(np.linalg.inv(np.moveaxis(F, (0, 1), (-2, -1))), (-2, -1),
-                               (0, 1))
-            P = P + J * np.einsum("ab...,Kb...->aK...", tau, Finv)
-        Finv = np.moveaxis(np.linalg.inv(np.moveaxis(F, (0, 1), (-2, -1))), (-2, -1), (0, 1))
-        S = np.einsum("Ka...,aL...->KL...", Finv, P) / self.material.mu
+            P = P + maxwell_nominal_stress(F, -self._sigma(load), self.material.eps)[1]
+        S = second_piola(F, P) / self.material.mu
         cell = {"P33": S[2, 2], "P11": S[0, 0], "lam1": F[0, 0], "lam2": F[1, 1],
                 "lam3": np.full_like(F[0, 0], lam3)}
         cell = {k: [v.mean(axis=-1)] for k, v in cell.items()}
@@ -469,14 +306,8 @@ class CrossSection:
         D0 = float(-R.D_L[1, 0] / math.sqrt(mu * eps))
         if self._local:
             # total stress = elastic + Maxwell stress of the assumed field D = F D_L / J
-            from .maxwell import maxwell_stress
-
-            F = np.zeros((3, 3) + gu.shape[2:])
-            F[:2, :2] = gu
-            F[0, 0] += 1.0
-            F[1, 1] += 1.0
-            F[2, 2] = lam3
-            J = F[2, 2] * (F[0, 0] * F[1, 1] - F[0, 1] * F[1, 0])
+            F = plane_strain_F(gu, lam3)
+            J = det3(F)
             tau_m = maxwell_stress(F, -self._sigma(load), eps)
             P33 = P33 + J * tau_m[2, 2] / lam3**2 / mu
             C22 = F[0, 1, 0] ** 2 + F[1, 1, 0] ** 2
@@ -492,35 +323,3 @@ class CrossSection:
             "E0": E0,
             "D0": D0,
         }
-
-
-def cross_section_ramp(problem: CrossSection, s1: float, s3: float, D0, **ramp_options):
-    """Pre-load ``(s1, s3)`` then the charge (or voltage) ramp on a cross-section.
-
-    Parameters
-    ----------
-    problem : CrossSection
-        The discretised cross-section.
-    s1, s3 : float
-        Dimensionless nominal stresses along x1 and x3 (``s3`` is ignored when
-        ``lam3`` is prescribed). Equi-biaxial: ``s1 = s3 = s``; uni-axial:
-        ``s3 = 0``.
-    D0 : array_like
-        Targets of ``D0`` (or ``E0`` under voltage control).
-    **ramp_options
-        Passed to :func:`skfem_dielectric.newton.ramp`.
-
-    Returns
-    -------
-    RampResult
-        Quantities of :meth:`CrossSection.postprocess` per step.
-    """
-    from .newton import ramp
-
-    for name, v in (("s1", s1), ("s3", s3)):
-        if not math.isfinite(float(v)):
-            raise ValueError(f"{name} must be finite, got {v}")
-    D0 = _D0_targets(D0)
-    out = ramp(problem, [np.array([s1, s3, d]) for d in D0], **ramp_options)
-    out.problem = problem  # for skfem_dielectric.export
-    return out

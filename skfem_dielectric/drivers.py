@@ -1,12 +1,14 @@
-"""High-level drivers: pre-load, then a charge (or voltage) ramp, returning a RampResult.
+"""High-level drivers: build a model, pre-load it, then ramp the charge (or voltage).
 
-Both drivers solve in dimensionless units: stresses in units of ``mu``, ``eps = 1``,
+Every driver solves in dimensionless units: stresses in units of ``mu``, ``eps = 1``,
 lengths as given (the Keplinger plate in mm), so ``s`` and ``D0`` (``E0``) are the paper's
-dimensionless loads.  The load of every step is the pair ``(s, D0)`` (``(s, E0)`` under
-voltage control): first ``preload_steps`` targets ``(s k/n, 0)``, then ``(s, D0_i)`` for
-the requested ``D0`` values.  Each step's ``quantities`` hold the post-processed values of
-:meth:`skfem_dielectric.plate.PlateProblem.postprocess` plus ``phase`` (``"preload"`` or
-``"charge"``) and ``stable`` (inertia verdict with PARDISO, else ``None``).
+dimensionless loads.  The 3D drivers are a *builder* (:func:`equibiaxial_problem`,
+:func:`keplinger_problem`: the :class:`~skfem_dielectric.plate.PlateProblem`) and a
+ramp along :func:`~skfem_dielectric.loads.preload_then_charge` (:func:`run_ramp`); use the
+builders to ramp a plate along a path of your own.  The load of every step is the pair
+``(s, D0)`` (``(s, E0)`` under voltage control).  Each step's ``quantities`` hold the
+post-processed values of the model plus ``phase`` (``"preload"`` or ``"charge"``) and
+``stable`` (inertia verdict with PARDISO, else ``None``).
 
 Resuming: pass ``x0=step.x`` and ``start=step.load`` of a saved step together with the
 *same* arguments; targets up to and including ``start`` are skipped and the remaining steps
@@ -20,84 +22,127 @@ from typing import Any, Callable, Sequence
 
 import numpy as np
 
-from .materials import GentDielectric, IdealDielectric, NeoHookeanDielectric
+from .checks import check_finite
+from .cross_section import CrossSection
+from .linear import LinearSolver
+from .loads import charge_targets, keplinger_s, preload_then_charge, remaining_targets
+from .materials import NeoHookeanDielectric, make_material
+from .membrane import MembranePlate
 from .mesh import plate_mesh
-from .newton import RampResult, StepResult, ramp
 from .plate import PlateProblem
+from .problem import Problem
+from .ramp import RampResult, StepResult, ramp
 
-__all__ = ["equibiaxial_plate", "keplinger_plate", "keplinger_s", "make_material"]
+__all__ = ["equibiaxial_problem", "keplinger_problem", "run_ramp", "equibiaxial_plate",
+           "keplinger_plate", "maxwell_equibiaxial", "maxwell_keplinger", "membrane_ramp",
+           "membrane_keplinger", "cross_section_ramp"]
 
 
-def make_material(model: Any = "neo-Hookean", Jm: float = 97.2):
-    """Dimensionless material (``mu = eps = 1``) from a model name or object.
+def _phase(load) -> str:
+    return "preload" if np.asarray(load)[1] == 0 else "charge"
+
+
+def run_ramp(problem: Problem, targets: Sequence[Any], *,
+             on_step: Callable[[StepResult], Any] | None = None,
+             x0: np.ndarray | None = None, start: Any = None,
+             linear_solver: str | LinearSolver = "auto", extra: dict | None = None,
+             **ramp_options) -> RampResult:
+    """Ramp ``problem`` through ``targets``, resuming after ``start``, and tag the steps.
 
     Parameters
     ----------
-    model
-        ``"neo-Hookean"``, ``"Gent"`` (with ``Jm``), or a material object
-        (``NeoHookeanDielectric``, ``GentDielectric``, ``IdealDielectric``) used as is.
-    Jm
-        Gent stiffening parameter.
+    problem
+        Any :class:`~skfem_dielectric.problem.Problem` whose loads are ``(s, D0)``-like
+        pairs (the second component 0 marks the pre-load).
+    targets
+        The whole load path (e.g. :func:`~skfem_dielectric.loads.preload_then_charge`).
+    on_step, x0, start
+        Callback and resume state: with ``start`` (the load of a saved step, which must be
+        one of ``targets``) and ``x0`` (its state) the ramp continues after ``start``.
+    linear_solver
+        Name or instance (:func:`~skfem_dielectric.linear.get_linear_solver`).
+    extra
+        Quantities added to every step (e.g. ``alpha``); each step also gets ``phase``.
+    **ramp_options
+        Newton and cut-back settings of :func:`~skfem_dielectric.ramp.ramp`.
+
+    Returns
+    -------
+    RampResult
+        With ``problem`` set (for evaluation and export of the stored states).
     """
-    if isinstance(model, (NeoHookeanDielectric, GentDielectric, IdealDielectric)):
-        return model
-    if isinstance(model, str):
-        key = model.lower().replace("-", "").replace("_", "").replace(" ", "")
-        if key in ("neohookean", "nh"):
-            return NeoHookeanDielectric(1.0, 1.0)
-        if key == "gent":
-            return GentDielectric(1.0, 1.0, Jm)
-    raise ValueError(f"model must be 'neo-Hookean', 'Gent' or a material object, got {model!r}")
-
-
-def _finite(name: str, value: float) -> float:
-    v = float(value)
-    if not math.isfinite(v):
-        raise ValueError(f"{name} must be finite, got {value!r}")
-    return v
-
-
-def _targets(s: float, values: Sequence[float], preload_steps: int) -> list[np.ndarray]:
-    if int(preload_steps) != preload_steps or preload_steps < 1:
-        raise ValueError(f"preload_steps must be an integer >= 1, got {preload_steps!r}")
-    vals = np.atleast_1d(np.asarray(values, dtype=float))
-    if vals.ndim != 1 or not np.all(np.isfinite(vals)):
-        raise ValueError(f"D0 must be a finite sequence, got {values!r}")
-    t = [np.array([s * k / preload_steps, 0.0]) for k in range(1, int(preload_steps) + 1)]
-    for v in vals:
-        if v == 0.0:
-            continue
-        t.append(np.array([s, v]))
-    return t
-
-
-def _run(problem: PlateProblem, targets, *, on_step, x0, start, linear_solver, phase_of,
-         extra: dict, **ramp_kw) -> RampResult:
+    targets = list(targets)
     if start is not None:
-        st = np.asarray(start, dtype=float)
-        idx = [i for i, t in enumerate(targets) if np.allclose(t, st, rtol=0, atol=1e-14)]
-        if not idx:
-            raise ValueError(f"start {start!r} is not one of the ramp's loads")
-        targets = targets[idx[0] + 1:]
+        targets = remaining_targets(targets, start)
         if x0 is None:
             raise ValueError("start given without x0")
+    extra = dict(extra or {})
 
     def hook(step: StepResult):
         step.quantities.update(extra)
-        step.quantities["phase"] = phase_of(step.load)
+        step.quantities["phase"] = _phase(step.load)
         if on_step is not None:
             on_step(step)
 
     out = ramp(problem, targets, x0=x0, start=start, on_step=hook,
-               linear_solver=linear_solver, **ramp_kw)
+               linear_solver=linear_solver, **ramp_options)
     out.problem = problem
     return out
+
+
+def equibiaxial_problem(*, model: Any = "neo-Hookean", Jm: float = 97.2,
+                        size: tuple[float, float, float] = (4.0, 1.0, 4.0),
+                        elements: tuple[int, int, int] = (1, 1, 1), symmetry: str = "eighth",
+                        **options) -> PlateProblem:
+    """The equi-biaxial dead-load plate (dimensionless ``mu = eps = 1``).
+
+    Parameters
+    ----------
+    model, Jm
+        ``"neo-Hookean"``, ``"Gent"`` (with ``Jm``) or a material object.
+    size, elements, symmetry
+        Full plate ``(L1, H, L3)``, elements of the model, symmetry (see
+        :func:`~skfem_dielectric.mesh.plate_mesh`).  The state is homogeneous, so one
+        element suffices.
+    **options
+        :class:`~skfem_dielectric.plate.PlateProblem` options (``control``, ``coupling``,
+        ``field``, ``formulation``, ``kappa``, ``phi_element``, ``threads``, ...).
+    """
+    pm = plate_mesh(*size, *elements, symmetry=symmetry)
+    return PlateProblem(pm, make_material(model, Jm), loading="equibiaxial", **options)
+
+
+def keplinger_problem(*, model: Any = "neo-Hookean", Jm: float = 97.2,
+                      size: tuple[float, float, float] = (100.0, 1.0, 50.0),
+                      elements: tuple[int, int, int] = (40, 1, 20), symmetry: str = "eighth",
+                      grading: float = 1.0, **options) -> PlateProblem:
+    """The clamped uni-axial Keplinger plate (dimensionless ``mu = eps = 1``, mm).
+
+    A plate ``L1 x H x L3 = 100 x 1 x 50`` (mm) clamped on its short edges ``x1 = +-L1/2``;
+    the clamps have ``u2 = u3 = 0``, the moving clamp translates rigidly in ``x1`` (one
+    shared dof) under the resultant ``s mu A``.  With the default eighth model the symmetry
+    planes ``x1 = 0`` (both clamps equivalent), ``x2 = 0`` (antisymmetric ``phi``) and
+    ``x3 = 0`` are used.
+
+    Parameters
+    ----------
+    model, Jm
+        Material model.
+    size, elements, symmetry, grading
+        Plate ``(L1, H, L3)`` in mm, elements of the model ``(n1, n2, n3)``, symmetry and
+        x1-grading towards the clamp (see :func:`~skfem_dielectric.mesh.plate_mesh`).
+    **options
+        :class:`~skfem_dielectric.plate.PlateProblem` options.
+    """
+    pm = plate_mesh(*size, *elements, symmetry=symmetry, grading=grading)
+    return PlateProblem(pm, make_material(model, Jm), loading="uniaxial", **options)
 
 
 def equibiaxial_plate(s: float, D0: Sequence[float], *, model: Any = "neo-Hookean",
                       Jm: float = 97.2, size: tuple[float, float, float] = (4.0, 1.0, 4.0),
                       elements: tuple[int, int, int] = (1, 1, 1), symmetry: str = "eighth",
                       preload_steps: int = 4, control: str = "charge",
+                      coupling: str = "full", field: str = "electrostatic",
                       formulation: str = "mixed", kappa: float = math.inf,
                       phi_element: str = "Q2", linear_solver: str = "auto",
                       on_step: Callable[[StepResult], Any] | None = None,
@@ -112,18 +157,15 @@ def equibiaxial_plate(s: float, D0: Sequence[float], *, model: Any = "neo-Hookea
     D0
         Target values of the charge ramp (``D0 = sigma_F/sqrt(mu eps)``); under
         ``control="voltage"`` they are ``E0`` values.
-    model, Jm
-        ``"neo-Hookean"``, ``"Gent"`` (with ``Jm``) or a material object.
-    size, elements, symmetry
-        Full plate ``(L1, H, L3)``, elements of the model, symmetry (see
-        :func:`~skfem_dielectric.mesh.plate_mesh`).  The state is homogeneous, so one
-        element suffices.
+    model, Jm, size, elements, symmetry
+        See :func:`equibiaxial_problem`.
     preload_steps
         Number of equal pre-load targets.
-    control, formulation, kappa, phi_element
+    control, coupling, field, formulation, kappa, phi_element
         See :class:`~skfem_dielectric.plate.PlateProblem`.
     linear_solver
-        ``"auto"``, ``"superlu"`` or ``"pardiso"``.
+        ``"auto"``, ``"superlu"`` or ``"pardiso"`` (for ``coupling="maxwell"`` PARDISO is
+        its general LU).
     on_step, x0, start
         Callback and resume state, see the module docstring.
     rtol, max_cutbacks
@@ -135,43 +177,17 @@ def equibiaxial_plate(s: float, D0: Sequence[float], *, model: Any = "neo-Hookea
         ``steps[i].quantities["lam1"]`` is the stretch at the plate centre (equal to
         ``lam3``); compare with Eq. (loading_gent).
     """
-    s = _finite("s", s)
-    mat = make_material(model, Jm)
-    L1, H, L3 = size
-    pm = plate_mesh(L1, H, L3, *elements, symmetry=symmetry)
-    prob = PlateProblem(pm, mat, loading="equibiaxial", control=control,
-                        formulation=formulation, kappa=kappa, phi_element=phi_element)
-    targets = _targets(s, D0, preload_steps)
-    return _run(prob, targets, on_step=on_step, x0=x0, start=start, linear_solver=linear_solver,
-                phase_of=lambda ld: "preload" if ld[1] == 0 else "charge",
-                extra={"model": type(mat).__name__}, atol=0.0, rtol=rtol,
-                max_cutbacks=max_cutbacks)
-
-
-def keplinger_s(alpha: float, m: float = 0.150, g: float = 9.81, mu: float = 9833.07,
-                A: float = 50e-6) -> float:
-    """Dimensionless dead load ``s = alpha m g / (mu A)`` of the Keplinger plate (Sec. 5).
-
-    Parameters
-    ----------
-    alpha
-        Weight fraction (the paper uses 0.05, 0.3, 0.7, 1.0, 1.5).
-    m, g, mu, A
-        Mass [kg], gravity [m/s^2] (state it: 9.81 or 9.80665), shear modulus [Pa] and
-        reference cross-section [m^2] (50 mm x 1 mm).
-
-    Returns
-    -------
-    float
-        ``s``; e.g. ``keplinger_s(1.0) = 2.993`` with ``g = 9.81``.
-    """
-    for name, v in (("m", m), ("g", g), ("mu", mu), ("A", A)):
-        if not (math.isfinite(float(v)) and float(v) > 0):
-            raise ValueError(f"{name} must be a finite number > 0, got {v!r}")
-    alpha = _finite("alpha", alpha)
-    if alpha < 0:
-        raise ValueError(f"alpha must be >= 0, got {alpha}")
-    return alpha * m * g / (mu * A)
+    s = check_finite("s", s)
+    prob = equibiaxial_problem(model=model, Jm=Jm, size=size, elements=elements,
+                               symmetry=symmetry, control=control, coupling=coupling,
+                               field=field, formulation=formulation, kappa=kappa,
+                               phi_element=phi_element)
+    extra = {"model": type(prob.material).__name__}
+    if coupling == "maxwell":
+        extra["variant"] = f"maxwell-{field}"
+    return run_ramp(prob, preload_then_charge(s, D0, preload_steps), on_step=on_step, x0=x0,
+                    start=start, linear_solver=linear_solver, extra=extra, atol=0.0,
+                    rtol=rtol, max_cutbacks=max_cutbacks)
 
 
 def keplinger_plate(alpha: float | None = 1.0, D0: Sequence[float] = (1, 2, 3, 4, 5, 6), *,
@@ -180,6 +196,7 @@ def keplinger_plate(alpha: float | None = 1.0, D0: Sequence[float] = (1, 2, 3, 4
                     Jm: float = 97.2, size: tuple[float, float, float] = (100.0, 1.0, 50.0),
                     elements: tuple[int, int, int] = (40, 1, 20), symmetry: str = "eighth",
                     grading: float = 1.0, preload_steps: int = 3, control: str = "charge",
+                    coupling: str = "full", field: str = "electrostatic",
                     formulation: str = "mixed", kappa: float = math.inf,
                     phi_element: str = "Q2", linear_solver: str = "auto",
                     on_step: Callable[[StepResult], Any] | None = None,
@@ -189,30 +206,22 @@ def keplinger_plate(alpha: float | None = 1.0, D0: Sequence[float] = (1, 2, 3, 4
                     stop_on_instability: bool = False) -> RampResult:
     """The uni-axial Keplinger plate: weight on a rigid clamp, then the charge ramp.
 
-    A plate ``L1 x H x L3 = 100 x 1 x 50`` (mm) clamped on its short edges ``x1 = +-L1/2``;
-    the clamps have ``u2 = u3 = 0``, the moving clamp translates rigidly in ``x1`` (one
-    shared dof) under the resultant ``s mu A``.  With the default eighth model the symmetry
-    planes ``x1 = 0`` (both clamps equivalent), ``x2 = 0`` (antisymmetric ``phi``) and
-    ``x3 = 0`` are used.
-
     Parameters
     ----------
     alpha
-        Weight fraction; ``s = keplinger_s(alpha, m, g, mu, A)`` unless ``s`` is given.
+        Weight fraction; ``s = keplinger_s(alpha, g=g, m=m, mu=mu, A=A)`` unless ``s`` is
+        given.
     D0
         Target values of the charge ramp (``E0`` values under voltage control).
     s
         Dimensionless dead load; overrides ``alpha``.
     g, m, mu, A
         Physical data for ``s`` (``g`` default 9.81 m/s^2).
-    model, Jm
-        Material model (dimensionless, ``mu = eps = 1`` in the solve).
-    size, elements, symmetry, grading
-        Plate ``(L1, H, L3)`` in mm, elements of the model ``(n1, n2, n3)``, symmetry and
-        x1-grading towards the clamp (see :func:`~skfem_dielectric.mesh.plate_mesh`).
+    model, Jm, size, elements, symmetry, grading
+        See :func:`keplinger_problem`.
     preload_steps
         Number of pre-load targets (the ramp cuts back automatically if needed).
-    control, formulation, kappa, phi_element
+    control, coupling, field, formulation, kappa, phi_element
         See :class:`~skfem_dielectric.plate.PlateProblem`.
     linear_solver, threads
         Linear solver name and assembly threads.
@@ -220,7 +229,7 @@ def keplinger_plate(alpha: float | None = 1.0, D0: Sequence[float] = (1, 2, 3, 4
         Callback and resume state (see the module docstring).
     stop_on_instability
         Stop at the first step whose tangent inertia says unstable (PARDISO only; see
-        :func:`~skfem_dielectric.newton.ramp`): the discrete breakdown near the clamps.
+        :func:`~skfem_dielectric.ramp.ramp`): the discrete breakdown near the clamps.
     rtol, max_cutbacks, max_iter
         Newton tolerance, cut-back limit and Newton iterations per attempt (converged
         steps need <= 6 on the 40 x 20 eighth model up to D0 = 5, up to 9 right before the
@@ -236,16 +245,138 @@ def keplinger_plate(alpha: float | None = 1.0, D0: Sequence[float] = (1, 2, 3, 4
     if s is None:
         if alpha is None:
             raise ValueError("give alpha or s")
-        s = keplinger_s(alpha, m, g, mu, A)
-    s = _finite("s", s)
-    mat = make_material(model, Jm)
-    L1, H, L3 = size
-    pm = plate_mesh(L1, H, L3, *elements, symmetry=symmetry, grading=grading)
-    prob = PlateProblem(pm, mat, loading="uniaxial", control=control, formulation=formulation,
-                        kappa=kappa, phi_element=phi_element, threads=threads)
-    targets = _targets(s, D0, preload_steps)
-    return _run(prob, targets, on_step=on_step, x0=x0, start=start, linear_solver=linear_solver,
-                phase_of=lambda ld: "preload" if ld[1] == 0 else "charge",
-                extra={"alpha": alpha if alpha is not None else float("nan"), "g": g},
-                atol=0.0, rtol=rtol, max_cutbacks=max_cutbacks, max_iter=max_iter,
-                stop_on_instability=stop_on_instability)
+        s = keplinger_s(alpha, g=g, m=m, mu=mu, A=A)
+    s = check_finite("s", s)
+    prob = keplinger_problem(model=model, Jm=Jm, size=size, elements=elements,
+                             symmetry=symmetry, grading=grading, control=control,
+                             coupling=coupling, field=field, formulation=formulation,
+                             kappa=kappa, phi_element=phi_element, threads=threads)
+    extra = {"alpha": alpha if alpha is not None else float("nan"), "g": g}
+    if coupling == "maxwell":
+        extra["variant"] = f"maxwell-{field}"
+    return run_ramp(prob, preload_then_charge(s, D0, preload_steps), on_step=on_step, x0=x0,
+                    start=start, linear_solver=linear_solver, extra=extra, atol=0.0,
+                    rtol=rtol, max_cutbacks=max_cutbacks, max_iter=max_iter,
+                    stop_on_instability=stop_on_instability)
+
+
+def maxwell_equibiaxial(s: float, D0, *, field: str = "electrostatic", **options) -> RampResult:
+    """:func:`equibiaxial_plate` with ``coupling="maxwell"`` (charge control).
+
+    Returns
+    -------
+    RampResult
+        ``lam1`` at the centre follows Eq. (loading_gent) for either field.
+    """
+    return equibiaxial_plate(s, D0, coupling="maxwell", field=field, **options)
+
+
+def maxwell_keplinger(alpha: float | None = 1.0, D0=(1, 2, 3, 4, 5, 6), *,
+                      field: str = "electrostatic", max_cutbacks: int = 6,
+                      max_iter: int = 25, **options) -> RampResult:
+    """:func:`keplinger_plate` with ``coupling="maxwell"`` (charge control), with the
+    ramp's default Newton budget (6 cut-backs, 25 iterations).
+
+    Returns
+    -------
+    RampResult
+        Per step ``lam1`` at the centre, ``min_P33`` (total stress) on the centre line,
+        ``min_P33_clamp``, ``phase``, ``alpha``.
+    """
+    return keplinger_plate(alpha, D0, coupling="maxwell", field=field,
+                           max_cutbacks=max_cutbacks, max_iter=max_iter, **options)
+
+
+def membrane_ramp(problem: MembranePlate, s: float, D0, **ramp_options) -> RampResult:
+    """Pre-load ``s`` then charge (or voltage) ramp ``D0`` on a membrane problem.
+
+    Parameters
+    ----------
+    problem : MembranePlate
+        The discretised membrane.
+    s : float
+        Dimensionless dead load (nominal stress over ``mu``).
+    D0 : array_like
+        Target values of ``D0`` (charge control) or ``E0`` (voltage control); the
+        ramp goes from the unloaded state to ``(s, D0[0])`` (the pre-load when
+        ``D0[0] = 0``), then through the others in order.
+    **ramp_options
+        Passed to :func:`skfem_dielectric.ramp.ramp` (``linear_solver``,
+        ``on_step``, ``x0``/``start`` to resume, tolerances, ...).
+
+    Returns
+    -------
+    RampResult
+        One :class:`StepResult` per target with the quantities of
+        :meth:`MembranePlate.postprocess` (``lam1``, ``lam3``, ``min_P33``, ...);
+        ``result.problem`` is ``problem`` (for :mod:`skfem_dielectric.export`).
+    """
+    s = check_finite("s", s)
+    out = ramp(problem, [np.array([s, d]) for d in charge_targets(D0)], **ramp_options)
+    out.problem = problem
+    return out
+
+
+def membrane_keplinger(alpha: float = 1.0, D0=np.arange(0.0, 6.01, 0.5), material=None,
+                       n1: int = 40, n3: int = 20, L1: float = 100.0, L3: float = 50.0,
+                       H: float = 1.0, g: float = 9.81, **ramp_options) -> RampResult:
+    """Membrane model of the clamped uni-axial Keplinger plate under charge control.
+
+    Parameters
+    ----------
+    alpha : float
+        Weight factor, ``s = keplinger_s(alpha, g=g)`` (``m = 150 g``,
+        ``mu = 9833.07 Pa``, ``A = 50 mm^2``).
+    D0 : array_like
+        Charge targets after the pre-load (start with 0 to record it).
+    material : optional
+        Dielectric (default neo-Hookean, ``mu = eps = 1``: the results are
+        dimensionless).
+    n1, n3 : int
+        Q2 elements along the half-length and half-width.
+    L1, L3, H : float
+        Plate size (default 100 x 50 x 1, mm).
+    g : float
+        Gravity used in ``s``.
+    **ramp_options
+        Passed to :func:`skfem_dielectric.ramp.ramp`.
+
+    Returns
+    -------
+    RampResult
+        Per step ``lam1`` (centre), ``lam3``, ``min_P33`` along the centre line,
+        ``min_P33_clamp`` next to the clamp, ``lam1_mean``.
+    """
+    material = NeoHookeanDielectric(1.0, 1.0) if material is None else material
+    pb = MembranePlate(material, L1=L1, L3=L3, H=H, n1=n1, n3=n3, loading="clamped")
+    return membrane_ramp(pb, keplinger_s(alpha, g=g), D0, **ramp_options)
+
+
+def cross_section_ramp(problem: CrossSection, s1: float, s3: float, D0,
+                       **ramp_options) -> RampResult:
+    """Pre-load ``(s1, s3)`` then the charge (or voltage) ramp on a cross-section.
+
+    Parameters
+    ----------
+    problem : CrossSection
+        The discretised cross-section.
+    s1, s3 : float
+        Dimensionless nominal stresses along x1 and x3 (``s3`` is ignored when
+        ``lam3`` is prescribed). Equi-biaxial: ``s1 = s3 = s``; uni-axial:
+        ``s3 = 0``.
+    D0 : array_like
+        Targets of ``D0`` (or ``E0`` under voltage control).
+    **ramp_options
+        Passed to :func:`skfem_dielectric.ramp.ramp`.
+
+    Returns
+    -------
+    RampResult
+        Quantities of :meth:`CrossSection.postprocess` per step.
+    """
+    check_finite("s1", s1)
+    check_finite("s3", s3)
+    D0 = charge_targets(D0)
+    out = ramp(problem, [np.array([s1, s3, d]) for d in D0], **ramp_options)
+    out.problem = problem
+    return out

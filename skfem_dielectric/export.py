@@ -1,8 +1,9 @@
 """Export of ramp results for ParaView (meshio VTU series with a PVD index, or XDMF).
 
-Point data (at the mesh vertices, reference coordinates): ``displacement`` (vector),
-``potential``, ``pressure`` (the mixed multiplier ``p``; zero for the penalty form).
-Cell data (averages over each element's quadrature points): ``P33`` (second Piola
+Each model writes its own fields (:meth:`~skfem_dielectric.problem.Problem.step_mesh`);
+the 3D plate: point data (at the mesh vertices, reference coordinates) ``displacement``
+(vector), ``potential``, ``pressure`` (the mixed multiplier ``p``; zero for the penalty
+form), cell data (averages over each element's quadrature points) ``P33`` (second Piola
 ``S33/mu``), ``P11``, ``lam1``, ``lam2``, ``lam3`` (``|F e_i|``), ``J``.  In ParaView apply
 "Warp By Vector" with ``displacement`` to see the deformed plate.
 """
@@ -12,18 +13,21 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Any
 
+import meshio
 import numpy as np
+
+from .problem import Problem
 
 __all__ = ["step_mesh", "write_vtu_series", "write_xdmf"]
 
 
-def step_mesh(problem, x: np.ndarray, load: Any):
-    """meshio ``Mesh`` of one state of a :class:`~skfem_dielectric.plate.PlateProblem`.
+def step_mesh(problem: Problem, x: np.ndarray, load: Any):
+    """meshio ``Mesh`` of one state of a problem (its :meth:`~Problem.step_mesh`).
 
     Parameters
     ----------
     problem
-        The plate problem (``RampResult.problem``).
+        The problem (``RampResult.problem``).
     x, load
         Reduced state and its load (``StepResult.x``, ``StepResult.load``).
 
@@ -31,31 +35,7 @@ def step_mesh(problem, x: np.ndarray, load: Any):
     -------
     meshio.Mesh
     """
-    from skfem.io.meshio import to_meshio
-
-    if hasattr(problem, "step_mesh"):  # 2D variants (membrane, cross-section) export themselves
-        return problem.step_mesh(x, load)
-    xf = problem.full(x, load)
-    m = problem.plate.mesh
-    nv = m.p.shape[1]
-    # Q2 and Q1 scalar dofs are numbered vertices first (scikit-fem convention)
-    u = xf[: problem.n_u].reshape(-1, 3)[:nv]
-    phi = xf[problem.off_phi:][:nv]
-    p = xf[problem.off_p:problem.off_phi][:nv] if problem.n_p else np.zeros(nv)
-    mu = problem.material.mu
-    cell = {k: [] for k in ("P33", "P11", "lam1", "lam2", "lam3", "J")}
-    for sl in problem._chunks():
-        F, G, pq = problem._fields(xf, sl)
-        st = problem.stresses(F, G, pq)
-        lam = np.linalg.norm(F, axis=0)
-        cell["P33"].append((st["S"][2, 2] / mu).mean(axis=-1))
-        cell["P11"].append((st["S"][0, 0] / mu).mean(axis=-1))
-        for i in range(3):
-            cell[f"lam{i + 1}"].append(lam[i].mean(axis=-1))
-        cell["J"].append(st["J"].mean(axis=-1))
-    cell_data = {k: [np.concatenate(v)] for k, v in cell.items()}
-    return to_meshio(m, point_data={"displacement": u, "potential": phi, "pressure": p},
-                     cell_data=cell_data, encode_cell_data=False)
+    return problem.step_mesh(x, load)
 
 
 def write_vtu_series(result, directory: str | Path, prefix: str = "step",
@@ -80,8 +60,6 @@ def write_vtu_series(result, directory: str | Path, prefix: str = "step",
         The written VTU files followed by the PVD file.  The PVD "timestep" is the step
         index; each step's load is in the VTU field data ``load``.
     """
-    import meshio
-
     problem = problem if problem is not None else result.problem
     if problem is None:
         raise ValueError("problem is None: pass the PlateProblem that produced the result")
@@ -112,8 +90,6 @@ def write_xdmf(result, path: str | Path, problem=None) -> Path:
     are written inline (``data_format="XML"``): meshio's HDF5 variant needs ``h5py`` and
     writes the ``.h5`` file into the working directory.
     """
-    import meshio
-
     problem = problem if problem is not None else result.problem
     if problem is None:
         raise ValueError("problem is None: pass the PlateProblem that produced the result")

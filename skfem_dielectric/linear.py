@@ -12,6 +12,9 @@ Two implementations:
     scipy's SuperLU (``scipy.sparse.linalg.splu``) with a fill-reducing column ordering
     (``permc_spec``, default ``"MMD_AT_PLUS_A"`` which suits the structurally symmetric
     pattern).  No extra dependency.
+``PardisoLUSolver``
+    MKL PARDISO as a general (non-symmetric) LU, for the tangents of follower loads
+    (Maxwell-traction coupling); it reports no inertia.
 ``PardisoSolver``
     MKL PARDISO through ``pypardiso`` (the ``fast`` extra), used as a real symmetric
     indefinite solver (``mtype=-2``, upper triangle only) with the symbolic analysis done
@@ -25,14 +28,16 @@ Use :func:`get_linear_solver` to obtain one by name.
 
 from __future__ import annotations
 
+import copy
 import os
 
 import numpy as np
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
-__all__ = ["LinearSolver", "SuperLUSolver", "PardisoSolver", "get_linear_solver",
-           "pardiso_available", "new_pypardiso_solver"]
+__all__ = ["LinearSolver", "SuperLUSolver", "PardisoSolver", "PardisoLUSolver",
+           "get_linear_solver", "nonsymmetric_solver", "pardiso_available",
+           "new_pypardiso_solver"]
 
 
 class LinearSolver:
@@ -144,8 +149,6 @@ def new_pypardiso_solver(mtype: int = 11):
     -------
     pypardiso.PyPardisoSolver
     """
-    import copy
-
     _quiet_mkl_threads()
     import pypardiso  # lazy: optional dependency
     from pypardiso.scipy_aliases import pypardiso_solver as loaded
@@ -267,7 +270,30 @@ class PardisoSolver(LinearSolver):
             pass
 
 
-def get_linear_solver(name: str | LinearSolver = "auto", **options) -> LinearSolver:
+class PardisoLUSolver(LinearSolver):
+    """MKL PARDISO for non-symmetric tangents (``mtype = 11``, the whole matrix).
+
+    The symmetric-indefinite :class:`PardisoSolver` reads only the upper triangle, which is
+    wrong for the follower loads of the Maxwell-traction coupling; this one factorises the
+    whole matrix.  It reports no inertia (a non-symmetric matrix has no stability verdict).
+    """
+
+    name = "pardiso-lu"
+    inertia = None
+
+    def __init__(self):
+        self._ps = new_pypardiso_solver(11)
+
+    def solve(self, K: sp.spmatrix, b: np.ndarray) -> np.ndarray:
+        """Factorise ``K`` and solve ``K x = b``."""
+        A = sp.csr_matrix(K)
+        A.sort_indices()
+        self._ps.factorize(A)
+        return np.ascontiguousarray(self._ps.solve(A, np.asarray(b, dtype=float)))
+
+
+def get_linear_solver(name: str | LinearSolver = "auto", *, symmetric: bool = True,
+                      **options) -> LinearSolver:
     """Return a linear solver by name.
 
     Parameters
@@ -277,6 +303,9 @@ def get_linear_solver(name: str | LinearSolver = "auto", **options) -> LinearSol
         ``"auto"`` (PARDISO if importable, else SuperLU).  A :class:`LinearSolver`
         instance, or any object with ``solve(K, b)`` (and optionally ``resolve(b)`` and
         ``inertia``), is returned unchanged.
+    symmetric
+        Whether the matrices are symmetric; for ``symmetric=False`` PARDISO is the
+        general LU :class:`PardisoLUSolver` (see :func:`nonsymmetric_solver`).
     **options
         Passed to the solver's constructor.
 
@@ -289,6 +318,8 @@ def get_linear_solver(name: str | LinearSolver = "auto", **options) -> LinearSol
         return name                     # an instance (duck-typed: ``solve(K, b)``)
     if name == "auto":
         name = "pardiso" if pardiso_available() else "superlu"
+    if name == "pardiso" and not symmetric and pardiso_available():
+        return PardisoLUSolver(**options)
     if name == "superlu":
         return SuperLUSolver(**options)
     if name == "pardiso":
@@ -297,3 +328,20 @@ def get_linear_solver(name: str | LinearSolver = "auto", **options) -> LinearSol
                              "'skfem-dielectric[fast]')")
         return PardisoSolver(**options)
     raise ValueError(f"linear solver must be 'auto', 'superlu' or 'pardiso', got {name!r}")
+
+
+def nonsymmetric_solver(name: str | LinearSolver = "superlu") -> LinearSolver:
+    """Linear solver for non-symmetric tangents (Maxwell-traction coupling).
+
+    Parameters
+    ----------
+    name
+        ``"pardiso"``/``"auto"`` give :class:`PardisoLUSolver` (if ``pypardiso`` is
+        installed; ``"auto"`` falls back to SuperLU), ``"superlu"`` SuperLU; an instance is
+        returned unchanged.
+
+    Returns
+    -------
+    LinearSolver
+    """
+    return get_linear_solver(name, symmetric=False)

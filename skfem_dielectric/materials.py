@@ -35,25 +35,15 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Callable
+from typing import Any, Callable
 
 import numpy as np
 
+from .checks import check_positive
+from .kinematics import det_inv3
+
 __all__ = ["NeoHookeanDielectric", "GentDielectric", "IdealDielectric", "PointResponse",
-           "ideal_dielectric_response"]
-
-
-def _check_positive(name: str, value: float) -> float:
-    v = float(value)
-    if not (math.isfinite(v) and v > 0):
-        raise ValueError(f"{name} must be a finite number > 0, got {value!r}")
-    return v
-
-
-def _check_int(name: str, value) -> int:
-    if int(value) != value or int(value) < 1:
-        raise ValueError(f"{name} must be a positive integer, got {value!r}")
-    return int(value)
+           "ideal_dielectric_response", "dielectric_response", "make_material"]
 
 
 @dataclass(frozen=True)
@@ -72,8 +62,8 @@ class NeoHookeanDielectric:
     eps: float = 1.0
 
     def __post_init__(self):
-        _check_positive("mu", self.mu)
-        _check_positive("eps", self.eps)
+        check_positive("mu", self.mu)
+        check_positive("eps", self.eps)
 
     def energy_derivatives(self, I1: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """``(W, dW/dI1, d2W/dI1^2)`` at ``I1``."""
@@ -104,9 +94,9 @@ class GentDielectric:
     Jm: float = 97.2
 
     def __post_init__(self):
-        _check_positive("mu", self.mu)
-        _check_positive("eps", self.eps)
-        _check_positive("Jm", self.Jm)
+        check_positive("mu", self.mu)
+        check_positive("eps", self.eps)
+        check_positive("Jm", self.Jm)
 
     def energy_derivatives(self, I1: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """``(W, dW/dI1, d2W/dI1^2)`` at ``I1`` (``nan`` beyond the locking limit)."""
@@ -141,8 +131,8 @@ class IdealDielectric:
     eps: float = 1.0
 
     def __post_init__(self):
-        _check_positive("mu", self.mu)
-        _check_positive("eps", self.eps)
+        check_positive("mu", self.mu)
+        check_positive("eps", self.eps)
         for name in ("W", "dW", "d2W"):
             if not callable(getattr(self, name)):
                 raise ValueError(f"{name} must be callable, got {getattr(self, name)!r}")
@@ -172,8 +162,8 @@ class PointResponse:
     A_FF, A_FG, A_GG, A_Fp
         Second derivatives ``d2psi/dF_aK dF_bL`` ``(3,3,3,3,...)``,
         ``d2psi/dF_aK dG_L`` ``(3,3,3,...)``, ``d2psi/dG_K dG_L`` ``(3,3,...)`` and
-        ``d2psi/dF_aK dp = J Finv_Ka`` ``(3,3,...)``.  (The private ``_response`` used by
-        the assembly returns them points-first, in the layouts it documents.)
+        ``d2psi/dF_aK dp = J Finv_Ka`` ``(3,3,...)``.  (:func:`dielectric_response`, used
+        by the assembly, returns them points-first, in the layouts it documents.)
     A_pp
         ``-1/kappa`` (scalar).
     J
@@ -190,19 +180,6 @@ class PointResponse:
     A_Fp: np.ndarray
     A_pp: float
     J: np.ndarray
-
-
-def _det_inv(F: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Determinant and inverse of 3x3 matrices stored as ``F[a, K, ...]``."""
-    a, b, c = F[0, 0], F[0, 1], F[0, 2]
-    d, e, f = F[1, 0], F[1, 1], F[1, 2]
-    g, h, i = F[2, 0], F[2, 1], F[2, 2]
-    c00, c01, c02 = e * i - f * h, c * h - b * i, b * f - c * e
-    c10, c11, c12 = f * g - d * i, a * i - c * g, c * d - a * f
-    c20, c21, c22 = d * h - e * g, b * g - a * h, a * e - b * d
-    J = a * c00 + b * c10 + c * c20
-    inv = np.array([[c00, c01, c02], [c10, c11, c12], [c20, c21, c22]]) / J
-    return J, inv
 
 
 def _check_form(formulation: str, kappa: float) -> float:
@@ -229,10 +206,12 @@ def _points_first(T: np.ndarray, s: np.ndarray | None, nt: int) -> np.ndarray:
     return out
 
 
-def _response(material, F: np.ndarray, G: np.ndarray, p: np.ndarray | None, kappa: float,
+def dielectric_response(material, F: np.ndarray, G: np.ndarray, p: np.ndarray | None, kappa: float,
               formulation: str, need_tangent: bool, stress_free_reference: bool,
               weights: np.ndarray | None) -> PointResponse:
-    """Core of :func:`ideal_dielectric_response`: tensor-first ``F``, ``G``, ``psi``, ``P``,
+    """Core of :func:`ideal_dielectric_response` in the assembly layout.
+
+    Tensor-first ``F``, ``G``, ``psi``, ``P``,
     ``D_L``; the tangent (times ``weights``) in the assembly layout, point axes first:
     ``A_FF[..., K, a, b, L]``, ``A_FG[..., K, a, L]``, ``A_GG[..., K, L]``,
     ``A_Fp[..., K, a]``.
@@ -244,7 +223,7 @@ def _response(material, F: np.ndarray, G: np.ndarray, p: np.ndarray | None, kapp
     """
     kappa = _check_form(formulation, kappa)
     eps = material.eps
-    J, Finv = _det_inv(F)
+    J, Finv = det_inv3(F)
     I1 = (F * F).sum(axis=(0, 1))
     W, W1, W11 = material.energy_derivatives(I1)
     a = (Finv * G[:, None]).sum(axis=0)                  # F^-T G
@@ -359,7 +338,7 @@ def ideal_dielectric_response(material, F: np.ndarray, G: np.ndarray,
     tangent against finite differences of the stresses in ``tests/test_fe_materials.py``.
     """
     F = np.asarray(F, dtype=float)
-    r = _response(material, F, np.asarray(G, dtype=float), p, kappa, formulation, need_tangent,
+    r = dielectric_response(material, F, np.asarray(G, dtype=float), p, kappa, formulation, need_tangent,
                   stress_free_reference, None)
     if need_tangent:
         r.A_FF = np.moveaxis(r.A_FF, (-3, -4, -2, -1), (0, 1, 2, 3))
@@ -367,3 +346,25 @@ def ideal_dielectric_response(material, F: np.ndarray, G: np.ndarray,
         r.A_GG = np.moveaxis(r.A_GG, (-2, -1), (0, 1))
         r.A_Fp = np.moveaxis(r.A_Fp, (-1, -2), (0, 1))
     return r
+
+
+def make_material(model: Any = "neo-Hookean", Jm: float = 97.2):
+    """Dimensionless material (``mu = eps = 1``) from a model name or object.
+
+    Parameters
+    ----------
+    model
+        ``"neo-Hookean"``, ``"Gent"`` (with ``Jm``), or a material object
+        (``NeoHookeanDielectric``, ``GentDielectric``, ``IdealDielectric``) used as is.
+    Jm
+        Gent stiffening parameter.
+    """
+    if isinstance(model, (NeoHookeanDielectric, GentDielectric, IdealDielectric)):
+        return model
+    if isinstance(model, str):
+        key = model.lower().replace("-", "").replace("_", "").replace(" ", "")
+        if key in ("neohookean", "nh"):
+            return NeoHookeanDielectric(1.0, 1.0)
+        if key == "gent":
+            return GentDielectric(1.0, 1.0, Jm)
+    raise ValueError(f"model must be 'neo-Hookean', 'Gent' or a material object, got {model!r}")

@@ -1,150 +1,41 @@
 """2D membrane model of a thin incompressible dielectric plate (in-plane x1-x3).
 
-The plate of reference thickness ``H`` is described by its mid-surface, with
-coordinates ``(X1, X3)`` and in-plane displacement ``u = (u1, u3)``. Plane
-stress holds through the thickness; exact incompressibility gives the thickness
-stretch ``lam2 = 1/sqrt(det C) = 1/det F`` with ``F`` the 2x2 in-plane
-deformation gradient and ``C = F^T F``. The energy per reference area is
-
-* charge control (``D_L = sigma_F`` per reference area fixed, Eq. modelD)::
-
-      psi = H [ W(I1) + lam2^2 D_L^2 / (2 eps) ],   I1 = tr C + lam2^2
-
-* voltage control (``E_L = -V/H`` fixed, Eq. modelE)::
-
-      psi = H [ W(I1) - (eps/2) lam2^-2 E_L^2 ]
-
-so the model has the displacement as its only unknown, is exactly
-incompressible and has a symmetric tangent. On an equi-biaxial state
-``lam1 = lam3 = lam`` it reproduces Eq. (loading_gent); on a uni-axial state
-Eq. (DEuniax).
-
-This module holds the pointwise kernels (energy, first Piola stress, tangent)
-vectorised over trailing axes ``(..., nel, nqp)`` with the component axes first
-(scikit-fem convention ``F[i, j, ...]``).
+The quarter of a rectangular plate, described by its mid-surface: plane stress through
+the thickness, exact incompressibility (``lam2 = 1/det F``), the displacement as the only
+unknown.  Weak form and kernels: :mod:`skfem_dielectric.forms.membrane`.
 """
 
 from __future__ import annotations
 
 import numpy as np
+import scipy.sparse as sp
+import skfem as fe
+from skfem.io.meshio import to_meshio
 
-from .materials import _check_int, _check_positive
+from .assembly import DofReduction, ScatterMap
+from .checks import check_choice, check_count, check_positive
+from .forms.membrane import edge_maxwell_traction, membrane_kernel
+from .kinematics import det2, inv_t2
+from .mesh2d import BatchedVectorForm, point_gradients, quarter_quad_mesh
+from .problem import Layout, Problem
 
-__all__ = [
-    "membrane_kernel",
-    "MembranePlate",
-    "membrane_ramp",
-    "membrane_keplinger",
-]
+__all__ = ["MembranePlate", "CONTROLS", "COUPLINGS", "check_control_coupling"]
 
-
-def _det2(F: np.ndarray) -> np.ndarray:
-    return F[0, 0] * F[1, 1] - F[0, 1] * F[1, 0]
-
-
-def _invT2(F: np.ndarray, J: np.ndarray) -> np.ndarray:
-    """``F^-T`` of a field of 2x2 matrices."""
-    G = np.empty_like(F)
-    G[0, 0] = F[1, 1] / J
-    G[0, 1] = -F[1, 0] / J
-    G[1, 0] = -F[0, 1] / J
-    G[1, 1] = F[0, 0] / J
-    return G
+LOADINGS = ("equibiaxial", "uniaxial", "clamped")
+CONTROLS = ("charge", "voltage")
+COUPLINGS = ("full", "maxwell")
 
 
-def membrane_kernel(
-    F: np.ndarray,
-    material,
-    D_L: float = 0.0,
-    E_L: float | None = None,
-    H: float = 1.0,
-):
-    """Energy, stress and tangent of the incompressible dielectric membrane.
-
-    Parameters
-    ----------
-    F : ndarray, shape (2, 2, ...)
-        In-plane deformation gradient ``dx_a/dX_b`` (components x1, x3).
-    material : NeoHookeanDielectric, GentDielectric or IdealDielectric
-        Gives ``W(I1)`` and its derivatives (``energy_derivatives``) and ``eps``.
-    D_L : float or ndarray
-        Lagrangian electric displacement through the thickness (the surface
-        charge per reference area, charge control). Ignored when ``E_L`` is
-        given.
-    E_L : float or ndarray, optional
-        Lagrangian electric field through the thickness (voltage control).
-    H : float
-        Reference thickness (multiplies everything: energy per reference area).
-
-    Returns
-    -------
-    psi : ndarray, shape (...)
-        Energy per reference area.
-    P : ndarray, shape (2, 2, ...)
-        ``dpsi/dF`` (membrane first Piola force per reference length).
-    A : ndarray, shape (2, 2, 2, 2, ...)
-        ``d2psi/dF dF`` (symmetric in the pairs ``(ij) <-> (kl)``).
-
-    Notes
-    -----
-    With ``J = det F`` (so ``lam2 = 1/J``), ``I1 = |F|^2 + m(J)`` with
-    ``m = J^-2`` and the electric part ``g(J) = D_L^2 J^-2 / (2 eps)`` (charge)
-    or ``g(J) = -eps E_L^2 J^2 / 2`` (voltage). With ``G = F^-T``,
-    ``dJ/dF = J G`` and ``d2J/dF_ij dF_kl = J (G_ij G_kl - G_il G_kj)``;
-    the tangent of ``psi = W(I1) + g(J)`` follows by the chain rule.
-    Equi-biaxial: ``s = lam - lam^-5 - lam^-5 D0^2``, Eq. (loading_gent).
-    """
-    F = np.asarray(F, dtype=float)
-    eps = material.eps
-    J = _det2(F)
-    G = _invT2(F, J)
-    m, m1, m2 = J**-2, -2.0 * J**-3, 6.0 * J**-4
-    if E_L is None:
-        a = np.asarray(D_L, dtype=float) ** 2 / (2.0 * eps)
-        g, g1, g2 = a * J**-2, -2.0 * a * J**-3, 6.0 * a * J**-4
-    else:
-        b = eps * np.asarray(E_L, dtype=float) ** 2 / 2.0
-        g, g1, g2 = -b * J**2, -2.0 * b * J, -2.0 * b * np.ones_like(J)
-    I1 = np.einsum("ij...,ij...->...", F, F) + m
-    w, w1, w2 = material.energy_derivatives(I1)
-    dI1 = 2.0 * F + m1 * J * G
-    psi = H * (w + g)
-    P = H * (w1 * dI1 + g1 * J * G)
-    GG = np.einsum("ij...,kl...->ijkl...", G, G)
-    GGx = np.einsum("il...,kj...->ijkl...", G, G)
-    eye = np.eye(2)
-    II = np.einsum("ik,jl->ijkl", eye, eye).reshape((2, 2, 2, 2) + (1,) * J.ndim)
-    d2I1 = 2.0 * II + m2 * J**2 * GG + m1 * J * (GG - GGx)
-    A = H * (
-        w2 * np.einsum("ij...,kl...->ijkl...", dI1, dI1)
-        + w1 * d2I1
-        + g2 * J**2 * GG
-        + g1 * J * (GG - GGx)
-    )
-    return psi, P, A
-
-
-# --------------------------------------------------------------------------
-# finite elements
-# --------------------------------------------------------------------------
-
-_LOADINGS = ("equibiaxial", "uniaxial", "clamped")
-_CONTROLS = ("charge", "voltage")
-_COUPLINGS = ("full", "maxwell")
-
-
-def _check_control_coupling(control: str, coupling: str) -> None:
+def check_control_coupling(control: str, coupling: str) -> None:
     """Shared by the 2D models: known ``control``/``coupling``; Maxwell coupling needs charge."""
-    if control not in _CONTROLS:
-        raise ValueError(f"control must be one of {_CONTROLS}, got {control!r}")
-    if coupling not in _COUPLINGS:
-        raise ValueError(f"coupling must be one of {_COUPLINGS}, got {coupling!r}")
+    check_choice("control", control, CONTROLS)
+    check_choice("coupling", coupling, COUPLINGS)
     if coupling == "maxwell" and control != "charge":
         raise ValueError(f"coupling 'maxwell' needs control='charge', got {control!r}")
 
 
-class MembranePlate:
-    """Quarter of a rectangular dielectric membrane, a :class:`RampProblem`.
+class MembranePlate(Problem):
+    """Quarter of a rectangular dielectric membrane, a :class:`~skfem_dielectric.problem.Problem`.
 
     The mid-surface ``[0, L1/2] x [0, L3/2]`` (x1 along the load, x3 across;
     ``X1 = 0`` and ``X3 = 0`` are the symmetry lines through the plate centre)
@@ -174,7 +65,7 @@ class MembranePlate:
     coupling : {"full", "maxwell"}
         ``"full"``: the charge-controlled energy of :func:`membrane_kernel`;
         ``"maxwell"`` (charge control only): the purely elastic membrane loaded
-        by the Maxwell traction of :mod:`skfem_dielectric.maxwell` on its faces
+        by the Maxwell traction of :mod:`skfem_dielectric.forms.maxwell_traction` on its faces
         and edges (see Notes).
 
     Notes
@@ -200,19 +91,15 @@ class MembranePlate:
     def __init__(self, material, L1: float = 100.0, L3: float = 50.0, H: float = 1.0,
                  n1: int = 40, n3: int = 20, loading: str = "clamped",
                  control: str = "charge", coupling: str = "full"):
-        import skfem as fe
-
-        from .assembly import DofReduction, ScatterMap
-        from .mesh2d import BatchedVectorForm, point_gradients, quarter_quad_mesh
-
-        if loading not in _LOADINGS:
-            raise ValueError(f"loading must be one of {_LOADINGS}, got {loading!r}")
-        _check_control_coupling(control, coupling)
+        check_choice("loading", loading, LOADINGS)
+        check_control_coupling(control, coupling)
         self.coupling = coupling
+        self.symmetric = coupling == "full"
+        self.load_names = ("s", "D0") if control == "charge" else ("s", "E0")
         self.material = material
-        self.L1, self.L3, self.H = (_check_positive("L1", L1), _check_positive("L3", L3),
-                                    _check_positive("H", H))
-        self.n1, self.n3 = _check_int("n1", n1), _check_int("n3", n3)
+        self.L1, self.L3, self.H = (check_positive("L1", L1), check_positive("L3", L3),
+                                    check_positive("H", H))
+        self.n1, self.n3 = check_count("n1", n1), check_count("n3", n3)
         self.loading, self.control = loading, control
         a1, a3 = self.L1 / 2, self.L3 / 2
         mesh = quarter_quad_mesh(a1, a3, self.n1, self.n3,
@@ -272,17 +159,15 @@ class MembranePlate:
         self._probe_line = point_gradients(self.basis, pts_c)
         self._probe_clamp = point_gradients(self.basis, pts_k)
 
-    # -- RampProblem ---------------------------------------------------------
+    # -- Problem contract ----------------------------------------------------
     @property
-    def ndofs(self) -> int:
-        """Number of reduced unknowns."""
-        return self.red.n
+    def layout(self) -> Layout:
+        """One block ``u`` (the clamp unknown included), no multipliers."""
+        return Layout.single(self.red.n)
 
     @property
     def T(self):
         """Sparse prolongation ``u_full = T x`` (all prescribed values are zero)."""
-        import scipy.sparse as sp
-
         idx = self.red.index
         rows = np.flatnonzero(idx >= 0)
         return sp.csr_matrix((np.ones(rows.size), (rows, idx[rows])),
@@ -309,17 +194,12 @@ class MembranePlate:
         m = self._mx
         F = np.einsum("ae,aijeq->ijeq", u[m["dofs"]], m["G"], optimize=True)
         F = F + np.eye(2)[:, :, None, None]
-        J = _det2(F)
-        G = _invT2(F, J)
-        g = np.einsum("iM...,M...->i...", G, m["N"])
         c = self.H * sigma**2 / (2.0 * self.material.eps) * m["dx"]
-        t = c * J**-2 * g
+        t, dt = edge_maxwell_traction(F, m["N"], c, need_tangent)
         re = -np.einsum("ieq,aieq->ea", t, m["V"], optimize=True)
         r = m["scatter"].vector(re)
         if not need_tangent:
             return None, r
-        dt = -c * J**-2 * (2.0 * np.einsum("kl...,i...->ikl...", G, g)
-                           + np.einsum("il...,k...->ikl...", G, g))
         Ke = -np.einsum("aieq,ikleq,bkleq->eab", m["V"], dt, m["G"], optimize=True)
         return m["scatter"].matrix(Ke), r
 
@@ -362,8 +242,8 @@ class MembranePlate:
         G, dofs = probe
         F = np.einsum("pn,pijn->ijn", u[dofs], G) + np.eye(2)[:, :, None]
         _, P, _ = membrane_kernel(F, self.material, H=self.H, **el)
-        J = _det2(F)
-        Finv = np.swapaxes(_invT2(F, J), 0, 1)
+        J = det2(F)
+        Finv = np.swapaxes(inv_t2(F, J), 0, 1)
         S = np.einsum("iK...,Kj...->ij...", Finv, P / self.H)  # 2nd Piola = F^-1 P
         return F, S
 
@@ -379,7 +259,7 @@ class MembranePlate:
         _, el = self._electric(load)
         F, S = self._probe(self.full(x), self._probe_line, el)
         return {"x1": self.x_line.copy(), "lam1": F[0, 0], "lam3": F[1, 1],
-                "lam2": 1.0 / _det2(F), "P33": S[1, 1] / self.material.mu}
+                "lam2": 1.0 / det2(F), "P33": S[1, 1] / self.material.mu}
 
     def step_mesh(self, x: np.ndarray, load):
         """meshio ``Mesh`` of a state (used by :mod:`skfem_dielectric.export`).
@@ -388,8 +268,6 @@ class MembranePlate:
         cell data (element averages) ``P33``, ``P11`` (second Piola over ``mu``),
         ``lam1``, ``lam2``, ``lam3``.
         """
-        from skfem.io.meshio import to_meshio
-
         _, el = self._electric(load)
         u = self.full(x)
         nv = self.mesh.p.shape[1]
@@ -397,8 +275,8 @@ class MembranePlate:
         disp = np.column_stack([uv, np.zeros(nv)])
         F = self.form.grad(u) + np.eye(2)[:, :, None, None]
         _, P, _ = membrane_kernel(F, self.material, H=self.H, **el)
-        J = _det2(F)
-        Finv = np.swapaxes(_invT2(F, J), 0, 1)
+        J = det2(F)
+        Finv = np.swapaxes(inv_t2(F, J), 0, 1)
         S = np.einsum("iK...,Kj...->ij...", Finv, P / self.H) / self.material.mu
         cell = {"P33": S[1, 1], "P11": S[0, 0], "lam1": F[0, 0], "lam2": 1.0 / J,
                 "lam3": F[1, 1]}
@@ -426,7 +304,7 @@ class MembranePlate:
         out = {
             "lam1": float(F[0, 0, 0]),
             "lam3": float(F[1, 1, 0]),
-            "lam2": float(1.0 / _det2(F)[0]),
+            "lam2": float(1.0 / det2(F)[0]),
             "lam1_mean": (float(1.0 + x[self.tied_index] / (self.L1 / 2))
                           if self.tied_index is not None else float("nan")),
             "min_P33": float(P33[i]),
@@ -435,88 +313,3 @@ class MembranePlate:
             "x3_min_P33_clamp": float(self.x_clamp[k]),
         }
         return out
-
-
-def _ramp_targets(s, D0) -> list:
-    s = float(s)
-    if not np.isfinite(s):
-        raise ValueError(f"s must be finite, got {s}")
-    return [np.array([s, d]) for d in _D0_targets(D0)]
-
-
-def _D0_targets(D0) -> np.ndarray:
-    """``D0`` (or ``E0``) ramp targets as a non-empty 1-D array of finite floats."""
-    D0 = np.atleast_1d(np.asarray(D0, dtype=float))
-    if D0.ndim != 1 or D0.size == 0 or not np.all(np.isfinite(D0)):
-        raise ValueError(f"D0 must be a non-empty 1-D array of finite values, got {D0}")
-    return D0
-
-
-def membrane_ramp(problem: MembranePlate, s: float, D0, **ramp_options):
-    """Pre-load ``s`` then charge (or voltage) ramp ``D0`` on a membrane problem.
-
-    Parameters
-    ----------
-    problem : MembranePlate
-        The discretised membrane.
-    s : float
-        Dimensionless dead load (nominal stress over ``mu``).
-    D0 : array_like
-        Target values of ``D0`` (charge control) or ``E0`` (voltage control); the
-        ramp goes from the unloaded state to ``(s, D0[0])`` (the pre-load when
-        ``D0[0] = 0``), then through the others in order.
-    **ramp_options
-        Passed to :func:`skfem_dielectric.newton.ramp` (``linear_solver``,
-        ``on_step``, ``x0``/``start`` to resume, tolerances, ...).
-
-    Returns
-    -------
-    RampResult
-        One :class:`StepResult` per target with the quantities of
-        :meth:`MembranePlate.postprocess` (``lam1``, ``lam3``, ``min_P33``, ...);
-        ``result.problem`` is ``problem`` (for :mod:`skfem_dielectric.export`).
-    """
-    from .newton import ramp
-
-    out = ramp(problem, _ramp_targets(s, D0), **ramp_options)
-    out.problem = problem  # as the 3D drivers: lets skfem_dielectric.export write it
-    return out
-
-
-def membrane_keplinger(alpha: float = 1.0, D0=np.arange(0.0, 6.01, 0.5), material=None,
-                       n1: int = 40, n3: int = 20, L1: float = 100.0, L3: float = 50.0,
-                       H: float = 1.0, g: float = 9.81, **ramp_options):
-    """Membrane model of the clamped uni-axial Keplinger plate under charge control.
-
-    Parameters
-    ----------
-    alpha : float
-        Weight factor, ``s = alpha m g/(mu A)`` with ``m = 150 g``,
-        ``mu = 9833.07 Pa``, ``A = 50 mm^2``
-        (:func:`skfem_dielectric.drivers.keplinger_s`).
-    D0 : array_like
-        Charge targets after the pre-load (start with 0 to record it).
-    material : optional
-        Dielectric (default neo-Hookean, ``mu = eps = 1``: the results are
-        dimensionless).
-    n1, n3 : int
-        Q2 elements along the half-length and half-width.
-    L1, L3, H : float
-        Plate size (default 100 x 50 x 1, mm).
-    g : float
-        Gravity used in ``s``.
-    **ramp_options
-        Passed to :func:`skfem_dielectric.newton.ramp`.
-
-    Returns
-    -------
-    RampResult
-        Per step ``lam1`` (centre), ``lam3``, ``min_P33`` along the centre line,
-        ``min_P33_clamp`` next to the clamp, ``lam1_mean``.
-    """
-    from .drivers import keplinger_s
-    from .materials import NeoHookeanDielectric
-
-    material = NeoHookeanDielectric(1.0, 1.0) if material is None else material
-    pb = MembranePlate(material, L1=L1, L3=L3, H=H, n1=n1, n3=n3, loading="clamped")
-    return membrane_ramp(pb, keplinger_s(alpha, g=g), D0, **ramp_options)

@@ -19,12 +19,13 @@ Boundary names (present when the corresponding face exists):
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 from typing import Sequence
 
 import numpy as np
 from skfem import MeshHex
+
+from .checks import check_count, check_positive
 
 __all__ = ["PlateMesh", "plate_mesh", "SYMMETRIES"]
 
@@ -79,19 +80,6 @@ class PlateMesh:
         return self.mesh.boundaries[name]
 
 
-def _check_size(name: str, value: float) -> float:
-    v = float(value)
-    if not (math.isfinite(v) and v > 0):
-        raise ValueError(f"{name} must be a finite number > 0, got {value!r}")
-    return v
-
-
-def _check_count(name: str, value: int) -> int:
-    if int(value) != value or int(value) < 1:
-        raise ValueError(f"{name} must be an integer >= 1, got {value!r}")
-    return int(value)
-
-
 def plate_mesh(L1: float, H: float, L3: float, n1: int, n2: int, n3: int,
                symmetry: str | Sequence[int] = "eighth",
                grading: float = 1.0) -> PlateMesh:
@@ -119,9 +107,9 @@ def plate_mesh(L1: float, H: float, L3: float, n1: int, n2: int, n3: int,
     ValueError
         For non-positive sizes, counts or grading, or an unknown symmetry.
     """
-    L1, H, L3 = _check_size("L1", L1), _check_size("H", H), _check_size("L3", L3)
-    n1, n2, n3 = _check_count("n1", n1), _check_count("n2", n2), _check_count("n3", n3)
-    grading = _check_size("grading", grading)
+    L1, H, L3 = check_positive("L1", L1), check_positive("H", H), check_positive("L3", L3)
+    n1, n2, n3 = check_count("n1", n1), check_count("n2", n2), check_count("n3", n3)
+    grading = check_positive("grading", grading)
     if isinstance(symmetry, str):
         if symmetry not in SYMMETRIES:
             raise ValueError(f"symmetry must be one of {tuple(SYMMETRIES)} or a tuple of axes, "

@@ -10,6 +10,7 @@ the scatter into the reduced sparse system is the shared
 from __future__ import annotations
 
 import numpy as np
+import skfem as fe
 
 __all__ = ["BatchedVectorForm", "point_gradients", "quarter_quad_mesh"]
 
@@ -95,8 +96,6 @@ def quarter_quad_mesh(a1: float, a2: float, n1: int, n2: int, names: tuple[str, 
     -------
     skfem.MeshQuad
     """
-    import skfem as fe
-
     tol = 1e-9 * max(a1, a2)
     mesh = fe.MeshQuad.init_tensor(np.linspace(0, a1, n1 + 1), np.linspace(0, a2, n2 + 1))
     x0, y0, x1, y1 = names

@@ -1,9 +1,9 @@
-"""Tests of the Maxwell-traction coupling (skfem_dielectric.maxwell)."""
+"""Tests of the Maxwell-traction coupling (skfem_dielectric.forms.maxwell_traction)."""
 
 import numpy as np
 import pytest
 
-from skfem_dielectric.maxwell import maxwell_stress, maxwell_traction
+from skfem_dielectric import maxwell_stress, maxwell_traction, maxwell_traction_field
 
 EPS = 0.8
 
@@ -71,7 +71,7 @@ def test_homogeneous_plate_reproduces_loading_curve(lam1, lam3):
 # --------------------------------------------------------------------------
 from scipy.optimize import brentq  # noqa: E402
 
-from skfem_dielectric.cross_section import CrossSection, cross_section_ramp  # noqa: E402
+from skfem_dielectric import CrossSection, cross_section_ramp  # noqa: E402
 from skfem_dielectric.materials import GentDielectric, NeoHookeanDielectric  # noqa: E402
 
 
@@ -130,7 +130,7 @@ def test_cross_section_maxwell_bad_input():
 # --------------------------------------------------------------------------
 # 2D membrane with Maxwell traction
 # --------------------------------------------------------------------------
-from skfem_dielectric.membrane import MembranePlate, membrane_ramp  # noqa: E402
+from skfem_dielectric import MembranePlate, membrane_ramp  # noqa: E402
 
 
 @pytest.mark.parametrize("loading, s", [("equibiaxial", 1.5), ("uniaxial", 2.993)])
@@ -185,7 +185,6 @@ def test_membrane_edge_traction_equals_3d_kernel():
 
 
 def test_field_traction_matches_tau_m_and_finite_differences():
-    from skfem_dielectric.maxwell import maxwell_traction_field
 
     rng = np.random.default_rng(4)
     F = np.eye(3)[:, :, None] + 0.3 * rng.standard_normal((3, 3, 6))

@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 
 from skfem_dielectric.materials import GentDielectric, NeoHookeanDielectric
-from skfem_dielectric.membrane import membrane_kernel
+from skfem_dielectric import membrane_kernel
 
 MU, EPS, JM = 1.3, 0.7, 20.0
 
@@ -68,8 +68,7 @@ def test_voltage_control_equibiaxial():
 # --------------------------------------------------------------------------
 from scipy.optimize import brentq  # noqa: E402
 
-from skfem_dielectric.membrane import MembranePlate, membrane_ramp  # noqa: E402
-from skfem_dielectric.newton import ramp  # noqa: E402
+from skfem_dielectric import MembranePlate, membrane_keplinger, membrane_ramp, ramp  # noqa: E402
 
 
 def _equibiaxial_lam(D0, s, Jm=np.inf):
@@ -157,7 +156,6 @@ def test_bad_input_raises(kw, name):
 
 
 def test_bad_loads_raise():
-    from skfem_dielectric.membrane import membrane_keplinger
 
     pb = MembranePlate(NeoHookeanDielectric(MU, EPS), n1=1, n3=1)
     with pytest.raises(ValueError, match="s must be finite"):

@@ -7,13 +7,14 @@ import pytest
 import scipy.sparse as sp
 
 from skfem_dielectric.linear import get_linear_solver, pardiso_available
-from skfem_dielectric.newton import newton, ramp
+from skfem_dielectric import Layout, Problem, RampResult, StepResult, newton, ramp
 
 
-class Cubic:
+class Cubic(Problem):
     """r_i(x) = x_i^3 + x_i - t c_i  (decoupled cubics, root by Cardano)."""
 
     c = np.array([1.0, 2.0, 5.0])
+    layout = Layout.single(3)
 
     def initial_state(self):
         return np.zeros(3)
@@ -60,8 +61,10 @@ def test_ramp_resume_is_bitwise_identical(solver):
     np.testing.assert_allclose(part.steps[-1].x, full.steps[-1].x, rtol=1e-14)
 
 
-class NoRootBeyondOne:
+class NoRootBeyondOne(Problem):
     """r(x) = x^2 + (t - 1): real roots only while t <= 1; ramp must stop at t = 1."""
+
+    layout = Layout.single(1)
 
     def initial_state(self):
         return np.array([2.0])
@@ -101,7 +104,6 @@ def test_bad_inputs():
 def test_ramp_column_unknown_name_is_a_clear_error():
     # A quantity name that the problem does not post-process must name itself and the
     # available names (a KeyError deep in a list comprehension helps nobody).
-    from skfem_dielectric.newton import RampResult, StepResult
 
     st = StepResult(load=np.array([1.0]), converged=True, iterations=2, substeps=1, cutbacks=0,
                     residual_norms=[[1.0, 1e-12]], x=np.zeros(1), quantities={"lam1": 1.5})
@@ -128,11 +130,12 @@ class DenseInertiaSolver:
         return np.linalg.solve(self._A, b)
 
 
-class SoftensAt:
+class SoftensAt(Problem):
     """x1^3 + x1 = t (always stiff) and (1 - t/t_c) x2 = 0: the trivial branch x2 = 0 of
     the second dof loses stability (negative stiffness) beyond t_c, Newton still converges."""
 
     t_c = 2.5
+    layout = Layout.single(2)
 
     def initial_state(self):
         return np.zeros(2)

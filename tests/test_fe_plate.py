@@ -49,7 +49,7 @@ def test_equibiaxial_mixed_matches_closed_form(model, s):
     for st in res.steps:
         lam_ref = lam_closed_form(st.load[1], st.load[0], model)
         # mixed formulation, homogeneous state: exact up to the Newton tolerance
-        # (rtol 1e-11 on the residual), far below the 1e-8 the issue demands
+        # (rtol 1e-11 on the residual), far below the required 1e-8
         assert abs(st["lam1"] / lam_ref - 1) < 1e-8
         assert abs(st["lam3"] / lam_ref - 1) < 1e-8
         assert abs(st["lam2"] * lam_ref**2 - 1) < 1e-8      # incompressibility

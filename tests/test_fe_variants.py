@@ -11,9 +11,17 @@ import pytest
 from scipy.optimize import brentq
 
 from skfem_dielectric.materials import GentDielectric, NeoHookeanDielectric
-from skfem_dielectric.maxwell import MaxwellPlate, maxwell_equibiaxial, nonsymmetric_solver
+from skfem_dielectric import (CrossSection, MembranePlate, PlateProblem, cross_section_ramp,
+                              keplinger_plate, maxwell_equibiaxial, maxwell_keplinger,
+                              membrane_keplinger, membrane_ramp, nonsymmetric_solver,
+                              pardiso_available, write_vtu_series)
 from skfem_dielectric.mesh import plate_mesh
-from skfem_dielectric.newton import ramp
+from skfem_dielectric import ramp
+
+
+def maxwell_plate(plate, material, **options):
+    """The 3D plate with the Maxwell-traction coupling."""
+    return PlateProblem(plate, material, coupling="maxwell", **options)
 
 MU, EPS = 1.3, 0.7
 
@@ -48,7 +56,7 @@ def test_maxwell_3d_equibiaxial_matches_closed_form(field, s):
 @pytest.mark.parametrize("field", ["electrostatic", "local"])
 def test_maxwell_3d_uniaxial_matches_closed_form(field):
     s = 2.5
-    pb = MaxwellPlate(plate_mesh(4.0, 1.0, 4.0, 1, 1, 1), NeoHookeanDielectric(MU, EPS),
+    pb = maxwell_plate(plate_mesh(4.0, 1.0, 4.0, 1, 1, 1), NeoHookeanDielectric(MU, EPS),
                       loading="uniaxial-free", field=field)
     res = ramp(pb, [(s / 2, 0.0), (s, 0.0), (s, 2.0), (s, 4.0), (s, 6.0)], atol=0.0,
                rtol=1e-11)
@@ -62,7 +70,7 @@ def test_maxwell_3d_uniaxial_matches_closed_form(field):
 
 @pytest.mark.parametrize("field", ["electrostatic", "local"])
 def test_maxwell_3d_tangent_matches_finite_differences(field, assert_tangent_columns):
-    pb = MaxwellPlate(plate_mesh(4.0, 1.0, 2.0, 2, 1, 1), GentDielectric(MU, EPS, 20.0),
+    pb = maxwell_plate(plate_mesh(4.0, 1.0, 2.0, 2, 1, 1), GentDielectric(MU, EPS, 20.0),
                       loading="uniaxial", field=field)
     rng = np.random.default_rng(8)
     x = 0.01 * rng.standard_normal(pb.red.n)
@@ -79,11 +87,11 @@ def test_maxwell_bad_input():
     pm = plate_mesh(4.0, 1.0, 4.0, 1, 1, 1)
     mat = NeoHookeanDielectric(1.0, 1.0)
     with pytest.raises(ValueError, match="field"):
-        MaxwellPlate(pm, mat, field="nonlocal")
+        maxwell_plate(pm, mat, field="nonlocal")
     with pytest.raises(ValueError, match="control"):
-        MaxwellPlate(pm, mat, control="voltage")
+        maxwell_plate(pm, mat, control="voltage")
     with pytest.raises(ValueError, match="formulation"):
-        MaxwellPlate(pm, mat, formulation="penalty", kappa=1e3)
+        maxwell_plate(pm, mat, formulation="penalty", kappa=1e3)
     with pytest.raises(ValueError, match="linear solver"):
         nonsymmetric_solver("umfpack")
 
@@ -97,7 +105,6 @@ KEPLINGER_D0 = [0.5, 1.0, 1.5, 2.0, 2.5, 3.0, 4.0, 5.0, 6.0]
 
 @pytest.fixture(scope="module")
 def coupled_keplinger():
-    from skfem_dielectric.drivers import keplinger_plate
 
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", RuntimeWarning)
@@ -118,14 +125,13 @@ def _breakdown_D0(steps):
 
 @pytest.mark.slow
 def test_keplinger_membrane_matches_coupled_3d(coupled_keplinger):
-    from skfem_dielectric.membrane import membrane_keplinger
 
     mem = _charge_steps(membrane_keplinger(1.0, KEPLINGER_D0, n1=KEPLINGER_MESH[0],
                                            n3=KEPLINGER_MESH[2]))
     cpl = _charge_steps(coupled_keplinger)
     assert set(cpl) == set(mem)
     for d, st in cpl.items():
-        # issue 5: the plane-stress membrane and the 3D plate agree on the centre
+        # the plane-stress membrane and the 3D plate agree on the centre
         # stretch within 0.1 % (thin plate H/L1 = 0.01; the 3D effects are local to the
         # clamps); measured ~5e-6 on this mesh
         assert abs(mem[d]["lam1"] / st["lam1"] - 1) < 1e-3, d
@@ -133,7 +139,6 @@ def test_keplinger_membrane_matches_coupled_3d(coupled_keplinger):
 
 @pytest.mark.slow
 def test_keplinger_maxwell_matches_coupled_3d_up_to_breakdown(coupled_keplinger):
-    from skfem_dielectric.maxwell import maxwell_keplinger
 
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", RuntimeWarning)
@@ -146,7 +151,7 @@ def test_keplinger_maxwell_matches_coupled_3d_up_to_breakdown(coupled_keplinger)
     compared = [d for d in cpl if d <= D0b]
     assert len(compared) >= 4
     for d in compared:
-        # issue 5: lam1 within 0.1 %, min P33 within 5 % of mu up to the breakdown; the
+        # lam1 within 0.1 %, min P33 within 5 % of mu up to the breakdown; the
         # two discretise the same equations (Div tau_m = 0 for the solved field)
         assert abs(mx[d]["lam1"] / cpl[d]["lam1"] - 1) < 1e-3, d
         assert abs(mx[d]["min_P33"] - cpl[d]["min_P33"]) < 0.05, d
@@ -157,9 +162,6 @@ def test_export_of_the_2d_variants(tmp_path):
     post-processed ones (homogeneous equi-biaxial state: P33 = s/lam in every cell)."""
     import meshio
 
-    from skfem_dielectric.cross_section import CrossSection, cross_section_ramp
-    from skfem_dielectric.export import write_vtu_series
-    from skfem_dielectric.membrane import MembranePlate, membrane_ramp
 
     s = 1.5
     for name, res in (
@@ -182,11 +184,10 @@ def test_export_of_the_2d_variants(tmp_path):
 
 def test_nonsymmetric_pardiso_solves_the_maxwell_tangent():
     """PARDISO LU (mtype 11) on the non-symmetric tangent equals SuperLU."""
-    from skfem_dielectric.linear import pardiso_available
 
     if not pardiso_available():
         pytest.skip("pypardiso not installed")
-    pb = MaxwellPlate(plate_mesh(4.0, 1.0, 2.0, 2, 1, 1), NeoHookeanDielectric(MU, EPS),
+    pb = maxwell_plate(plate_mesh(4.0, 1.0, 2.0, 2, 1, 1), NeoHookeanDielectric(MU, EPS),
                       loading="uniaxial")
     x = 0.01 * np.random.default_rng(9).standard_normal(pb.red.n)
     K, r = pb.assemble(x, (1.0, 2.0))

@@ -131,7 +131,7 @@ class _Plate:
     """
 
     def __init__(self, spec):
-        from skfem_dielectric.drivers import make_material
+        from skfem_dielectric.materials import make_material
         from skfem_dielectric.mesh import plate_mesh
         from skfem_dielectric.plate import PlateProblem
 
@@ -146,12 +146,10 @@ class _Plate:
         else:
             raise ValueError(f"the 3D plate has no geometry {spec.geometry!r}")
         if spec.variant == "maxwell":
-            from skfem_dielectric.maxwell import MaxwellPlate
-
             # Maxwell traction with the field of the potential solved on the deformed body
             # (the variant that discretises the fully coupled equations; docs/fe_variants.md)
-            self.problem = MaxwellPlate(pm, make_material(spec.model), loading=spec.geometry,
-                                        field="electrostatic")
+            self.problem = PlateProblem(pm, make_material(spec.model), loading=spec.geometry,
+                                        coupling="maxwell", field="electrostatic")
         else:
             self.problem = PlateProblem(pm, make_material(spec.model), loading=spec.geometry)
         self.maxwell = spec.variant == "maxwell"
@@ -245,7 +243,7 @@ def run_fe(spec, start, state, on_step, linear_solver="superlu"):
     -------
     RunOutcome
     """
-    from skfem_dielectric.newton import ramp
+    from skfem_dielectric.ramp import ramp
 
     from .sweep import RunOutcome
 
@@ -253,7 +251,7 @@ def run_fe(spec, start, state, on_step, linear_solver="superlu"):
         # the Maxwell follower load has a non-symmetric tangent, which the symmetric-
         # indefinite PARDISO set-up (upper triangle only) cannot factorise: SuperLU, or
         # PARDISO as a general LU (mtype 11) when PARDISO is asked for
-        from skfem_dielectric.maxwell import nonsymmetric_solver
+        from skfem_dielectric.linear import nonsymmetric_solver
 
         linear_solver = nonsymmetric_solver(linear_solver)
     wrap = build_problem(spec)

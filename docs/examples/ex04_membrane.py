@@ -6,7 +6,7 @@ a fixed clamp and carries a weight on a rigid lower clamp, ``s = alpha m g/(mu A
 with ``alpha = 1`` (``s = 2.993``). Charges sprayed on its faces (``D0 = D_L /
 sqrt(mu eps)`` per reference area) make it expand.
 
-The 2D membrane model (:class:`skfem_dielectric.membrane.MembranePlate`) keeps
+The 2D membrane model (:class:`skfem_dielectric.MembranePlate`) keeps
 only the in-plane displacement ``(u1, u3)``: with ``F`` the 2x2 in-plane
 deformation gradient, exact incompressibility gives the thickness stretch
 ``lam2 = 1/det F`` and the energy per reference area is
@@ -24,11 +24,9 @@ breakdown indicator (Sec. 6).
 
 import numpy as np
 
-from skfem_dielectric.materials import NeoHookeanDielectric
-from skfem_dielectric.drivers import keplinger_s
-from skfem_dielectric.membrane import MembranePlate, membrane_ramp
+from skfem_dielectric import MembranePlate, NeoHookeanDielectric, keplinger_s, membrane_ramp
 
-s = keplinger_s(alpha=1.0)  # 2.993
+s = keplinger_s(alpha=1.0, g=9.81)  # 2.993
 plate = MembranePlate(NeoHookeanDielectric(mu=1.0, eps=1.0), L1=100.0, L3=50.0, H=1.0,
                       n1=16, n3=8, loading="clamped")
 D0 = np.arange(0.0, 6.01, 1.0)

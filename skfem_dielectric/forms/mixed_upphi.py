@@ -1,0 +1,323 @@
+"""Mixed u-p-phi weak form of the incompressible ideal dielectric on hexahedra.
+
+Energy (per reference volume; :mod:`skfem_dielectric.materials`)::
+
+    psi(F, p, G) = W(I1) + p (J - 1) - p^2/(2 kappa) - eps/2 J G.C^-1 G - mu0 ln J,
+    G = Grad phi = -E_L,   F = I + Grad u,
+
+the paper's Eq. (modelE) (times ``J``, which is 1 in the continuum).  The weak form is the
+stationarity of ``Pi = int_V psi dV - (external work)``::
+
+    int_V P : Grad v dV                 = f_u(v)     for all v   (equilibrium)
+    int_V (J - 1 - p/kappa) q dV        = 0          for all q   (incompressibility)
+    int_V D_L . Grad w dV               = f_phi(w)   for all w   (Gauss: Div D_L = 0),
+
+``P = dpsi/dF``, ``D_L = dpsi/dG``; the right-hand sides (dead tractions, the charges
+``-int sigma_F w dA``) belong to the model.  Its linearisation is the symmetric
+saddle-point tangent ``[[K_uu, K_up, K_uf], [K_pu, K_pp, 0], [K_fu, 0, K_ff]]`` with
+``K_ff`` negative definite.  Under the Maxwell-traction coupling with the electrostatic
+field (``elastic_volume=True``) the equilibrium rows carry only the elastic stress
+(``G = 0`` in ``P``), the Gauss rows keep ``D_L(F, G)``: the ``u``-``phi`` block vanishes and
+the field acts through the boundary (:mod:`skfem_dielectric.forms.maxwell_traction`).
+
+Discretisation (Taylor-Hood, locking-free): ``u`` continuous Q2 (``ElementHex2`` per
+component), ``p`` continuous Q1, ``phi`` Q2 (default) or Q1; 27 Gauss points per element
+(``intorder=4``).  Everything is computed with batched numpy over (element, quadrature
+point) arrays and scattered through precomputed positions
+(:class:`~skfem_dielectric.assembly.ScatterMap`), in element chunks assembled by worker
+threads.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+from concurrent.futures import ThreadPoolExecutor
+
+import numpy as np
+from skfem import Basis, ElementHex1, ElementHex2
+
+from ..assembly import DofReduction, ScatterMap
+from ..materials import dielectric_response
+
+__all__ = ["MixedUPPhiForm"]
+
+
+class MixedUPPhiForm:
+    """Volume terms of the mixed u-p-phi plate on a hexahedral mesh.
+
+    Parameters
+    ----------
+    mesh
+        scikit-fem ``MeshHex``.
+    material
+        Ideal dielectric (``mu``, ``eps``, ``energy_derivatives``).
+    formulation, kappa
+        ``"mixed"`` (u-p-phi) or ``"penalty"`` (u-phi with ``kappa (J-1)^2/2``).
+    phi_element
+        ``"Q2"`` or ``"Q1"``.
+    intorder, chunk, threads
+        Quadrature order, elements per batch, worker threads.
+    elastic_volume
+        Equilibrium rows with the elastic stress only (Maxwell-traction coupling).
+
+    Notes
+    -----
+    Full dof layout: ``[u (3 N2, node-major), p (N1, mixed only), phi (Nphi)]`` with offsets
+    ``off_p`` and ``off_phi``.  :meth:`bind` attaches the dof reduction of the model
+    (constraints), after which :meth:`assemble` and :meth:`residual` work on reduced
+    vectors.
+    """
+
+    def __init__(self, mesh, material, *, formulation: str = "mixed", kappa: float = math.inf,
+                 phi_element: str = "Q2", intorder: int = 4, chunk: int = 1500,
+                 threads: int | None = None, elastic_volume: bool = False):
+        self.material, self.formulation, self.kappa = material, formulation, kappa
+        self.elastic_volume = elastic_volume
+        self.chunk = int(chunk)
+        self.threads = max(1, int(min(2, os.cpu_count() or 1) if threads is None else threads))
+        self._pool = None
+        self.b2 = Basis(mesh, ElementHex2(), intorder=intorder)
+        self.b1 = Basis(mesh, ElementHex1(), intorder=intorder)
+        self.bphi = self.b2 if phi_element == "Q2" else self.b1
+        nel, nq = self.b2.nelems, self.b2.X.shape[1]
+        self.nel, self.nq = nel, nq
+        self.dN = np.ascontiguousarray(np.moveaxis(
+            np.array([f[0].grad for f in self.b2.basis]), (0, 1), (2, 3)))   # (e,q,i,K)
+        self.N1 = np.ascontiguousarray(np.moveaxis(
+            np.array([np.array(f[0]) for f in self.b1.basis]), 0, 2))           # (e,q,k)
+        dNphi = self.dN if phi_element == "Q2" else np.ascontiguousarray(np.moveaxis(
+            np.array([f[0].grad for f in self.b1.basis]), (0, 1), (2, 3)))
+        self.w = np.asarray(self.b2.dx)                                       # (e,q)
+        # matmul-friendly layouts of the shape-function gradients (computed once)
+        self.dNt = np.ascontiguousarray(self.dN.transpose(0, 1, 3, 2))       # (e,q,K,i)
+        self.dNi = np.ascontiguousarray(self.dN.transpose(0, 2, 1, 3)).reshape(nel, 27, nq * 3)
+        self.dNphit = np.ascontiguousarray(dNphi.transpose(0, 1, 3, 2))
+        self.dNphii = np.ascontiguousarray(dNphi.transpose(0, 2, 1, 3)).reshape(
+            nel, dNphi.shape[2], nq * 3)
+        N2 = self.b2.N
+        self.n_u = 3 * N2
+        self.n_p = self.b1.N if formulation == "mixed" else 0
+        self.off_p = self.n_u
+        self.off_phi = self.n_u + self.n_p
+        self.n_phi = self.bphi.N
+        self.n_full = self.off_phi + self.n_phi
+        e2 = self.b2.element_dofs.T                                            # (e, 27)
+        eu = (3 * e2[:, :, None] + np.arange(3)).reshape(nel, -1)
+        parts = [eu] + ([self.off_p + self.b1.element_dofs.T] if self.n_p else [])
+        parts.append(self.off_phi + self.bphi.element_dofs.T)
+        self.edofs = np.concatenate(parts, axis=1)
+        self.m_u, self.m_p = eu.shape[1], (8 if self.n_p else 0)
+        self.m_phi = self.bphi.element_dofs.shape[0]
+        self.red: DofReduction | None = None
+
+    @property
+    def fields(self) -> dict[str, slice]:
+        """Full-dof ranges of the field blocks ``u``, ``p`` (mixed only), ``phi``."""
+        out = {"u": slice(0, self.n_u)}
+        if self.n_p:
+            out["p"] = slice(self.off_p, self.off_phi)
+        out["phi"] = slice(self.off_phi, self.n_full)
+        return out
+
+    def bind(self, red: DofReduction) -> None:
+        """Attach the model's dof reduction: sparsity pattern and scatter positions."""
+        self.red = red
+        self.scatter = ScatterMap(red.index[self.edofs], red.n)
+        self._block_pos = self._block_positions()
+        self._pos_cache: dict[tuple[int, int], np.ndarray] = {}
+        self._work: dict[tuple[int, int, int], np.ndarray] = {}
+
+    # ------------------------------------------------------------------ layout
+    def _block_positions(self) -> dict[str, np.ndarray]:
+        """Scatter positions of the tangent blocks in the layouts `_element_blocks` uses."""
+        red = self.red.index[self.edofs]
+        mu_, mp = self.m_u, self.m_p
+        U = red[:, :mu_].reshape(self.nel, 27, 3)                 # (e, i, a)
+        Ph = red[:, mu_ + mp:]                                    # (e, j)
+        sc = self.scatter
+        pos = {
+            "uu": sc.positions(U[:, :, :, None, None], U.transpose(0, 2, 1)[:, None, None]),
+            "uf": sc.positions(U[:, :, :, None], Ph[:, None, None, :]),
+            "fu": sc.positions(Ph[:, None, None, :], U[:, :, :, None]),
+            "ff": sc.positions(Ph[:, :, None], Ph[:, None, :]),
+        }
+        if mp:
+            Pd = red[:, mu_:mu_ + mp]
+            pos["up"] = sc.positions(U[:, :, :, None], Pd[:, None, None, :])
+            pos["pu"] = sc.positions(Pd[:, None, None, :], U[:, :, :, None])
+            pos["pp"] = sc.positions(Pd[:, :, None], Pd[:, None, :])
+        return pos
+
+    def _block_sizes(self) -> list[tuple[str, int]]:
+        mp, mf = self.m_p, self.m_phi
+        sizes = [("uu", 81 * 81), ("uf", 81 * mf), ("fu", 81 * mf), ("ff", mf * mf)]
+        if mp:
+            sizes += [("up", 81 * mp), ("pu", 81 * mp)]
+            if math.isfinite(self.kappa) and self.formulation == "mixed":
+                sizes.append(("pp", mp * mp))
+        return sizes
+
+    def _chunk_positions(self, sl) -> np.ndarray:
+        """Flat scatter positions of a chunk's block buffer (cached per chunk)."""
+        key = (sl.start, sl.stop)
+        pos = self._pos_cache.get(key)
+        if pos is None:
+            P = self._block_pos
+            # intp: np.bincount would otherwise convert the int32 positions on every call
+            pos = np.concatenate([P[name][sl].ravel() for name, _ in self._block_sizes()]
+                                 ).astype(np.intp)
+            self._pos_cache[key] = pos
+        return pos
+
+    def chunks(self):
+        """Element slices of the batches (at least one per worker thread)."""
+        n = max(1, -(-self.nel // self.chunk))
+        if self.threads > 1:
+            n = max(n, self.threads)
+        bounds = np.linspace(0, self.nel, n + 1).round().astype(int)
+        for a, b in zip(bounds[:-1], bounds[1:]):
+            if b > a:
+                yield slice(int(a), int(b))
+
+    # ------------------------------------------------------------- kinematics
+    def quadrature_fields(self, xf: np.ndarray, sl: slice):
+        """``F[a, K, e, q]``, ``Grad phi[K, e, q]`` and ``p[e, q]`` (``None`` for the
+        penalty) of the elements ``sl`` from the full dof vector ``xf``."""
+        ed = self.edofs[sl]
+        ne = ed.shape[0]
+        nq = self.nq
+        # one (nq*3 x 27) @ (27 x 3) product per element, not one tiny one per point
+        ue = xf[ed[:, : self.m_u]].reshape(ne, 27, 3)
+        FT = (self.dNt[sl].reshape(ne, nq * 3, 27) @ ue).reshape(ne, nq, 3, 3)  # (e, q, K, a)
+        F = np.ascontiguousarray(FT.transpose(3, 2, 0, 1))                    # (a, K, e, q)
+        F[0, 0] += 1.0
+        F[1, 1] += 1.0
+        F[2, 2] += 1.0
+        phie = xf[ed[:, self.m_u + self.m_p:]]
+        mf = phie.shape[1]
+        G = np.ascontiguousarray((self.dNphit[sl].reshape(ne, nq * 3, mf) @ phie[:, :, None])
+                                 .reshape(ne, nq, 3).transpose(2, 0, 1))
+        p = None
+        if self.m_p:
+            pe = xf[ed[:, self.m_u: self.m_u + self.m_p]]
+            p = np.einsum("ek,eqk->eq", pe, self.N1[sl])
+        return F, G, p
+
+    def _response(self, xf, sl, need_tangent=True):
+        """Material response of the elements ``sl``: tensor-first stresses, the tangent
+        times the quadrature weights in the points-first layout `_element_blocks` uses."""
+        F, G, p = self.quadrature_fields(xf, sl)
+        w = self.w[sl] if need_tangent else None
+        r = dielectric_response(self.material, F, G, p, self.kappa, self.formulation,
+                                need_tangent, True, w)
+        if self.elastic_volume:   # equilibrium rows: elastic stress, Gauss rows: D_L(F, G)
+            r0 = dielectric_response(self.material, F, np.zeros_like(G), p, self.kappa,
+                                     self.formulation, need_tangent, True, w)
+            r.P = r0.P
+            if need_tangent:
+                r.A_FF = r0.A_FF
+        return r
+
+    # --------------------------------------------------------------- element arrays
+    def _element_residual(self, r, sl):
+        w = self.w[sl]
+        ne, nq = w.shape
+        P = np.moveaxis(r.P * w, (2, 3), (0, 1)).transpose(0, 1, 3, 2)        # e q K a
+        ru = (self.dNi[sl] @ np.ascontiguousarray(P).reshape(ne, nq * 3, 3)).reshape(ne, -1)
+        parts = [ru]
+        if self.m_p:
+            parts.append(np.einsum("eqk,eq->ek", self.N1[sl], r.dpsi_dp * w))
+        D = np.ascontiguousarray(np.moveaxis(r.D_L * w, 0, 2)).reshape(ne, nq * 3, 1)
+        parts.append((self.dNphii[sl] @ D)[:, :, 0])
+        return np.concatenate(parts, axis=1)
+
+    def _element_blocks(self, r, sl) -> np.ndarray:
+        """Tangent blocks of a chunk written into one flat buffer (layouts need no
+        transposes; the matmuls write in place), ordered as `_chunk_positions`."""
+        w = self.w[sl]
+        ne, nq = w.shape
+        mp, mf = self.m_p, self.m_phi
+        dNi, dNt = self.dNi[sl], self.dNt[sl]
+        dNphii, dNphit = self.dNphii[sl], self.dNphit[sl]
+        sizes = self._block_sizes()
+        # the buffer is reused across calls (one per chunk: no page faults of a fresh large
+        # array on every call); it is consumed by the scatter before the next call
+        size = ne * sum(n for _, n in sizes)
+        key = (sl.start, sl.stop, size)
+        buf = self._work.get(key)
+        if buf is None:
+            buf = self._work[key] = np.empty(size)
+        views, o = {}, 0
+        for name, n in sizes:
+            views[name] = buf[o: o + ne * n]
+            o += ne * n
+        uu = views["uu"].reshape(ne, 27, 243)
+        uf = views["uf"].reshape(ne, 27, 3 * mf)
+        # u-u, layout (e, i, a, b, j), and u-phi, layout (e, i, a, j), in sub-batches of
+        # elements so that the large temporaries stay small (cache, no page faults)
+        for a in range(0, ne, 32):
+            b = min(a + 32, ne)
+            nb = b - a
+            A = r.A_FF[a:b].reshape(nb, nq, 27, 3)                        # e q (K a b) L
+            V = (A @ dNt[a:b]).reshape(nb, nq * 3, 9 * 27)
+            np.matmul(dNi[a:b], V, out=uu[a:b])
+            A = r.A_FG[a:b].reshape(nb, nq, 9, 3)                          # e q (K a) L
+            np.matmul(dNi[a:b], (A @ dNphit[a:b]).reshape(nb, nq * 3, 3 * mf), out=uf[a:b])
+        views["fu"][:] = views["uf"]
+        if self.elastic_volume:    # the equilibrium rows do not depend on phi
+            views["uf"][:] = 0.0
+        # phi-phi
+        np.matmul(dNphii, (r.A_GG @ dNphit).reshape(ne, nq * 3, mf),
+                  out=views["ff"].reshape(ne, mf, mf))
+        if mp:
+            A = r.A_Fp                                                     # e q K a
+            V = (A[..., None] * self.N1[sl][:, :, None, None, :]).reshape(ne, nq * 3, 3 * mp)
+            np.matmul(dNi, V, out=views["up"].reshape(ne, 27, 3 * mp))
+            views["pu"][:] = views["up"]
+            if "pp" in views:
+                views["pp"][:] = (r.A_pp * np.einsum("eqk,eql,eq->ekl", self.N1[sl],
+                                                     self.N1[sl], w)).ravel()
+        return buf
+
+    def _assemble_chunk(self, xf, sl):
+        r = self._response(xf, sl)
+        data = np.bincount(self._chunk_positions(sl), weights=self._element_blocks(r, sl),
+                           minlength=self.scatter.nnz + 1)[: self.scatter.nnz]
+        re = self._element_residual(r, sl)
+        return data, np.bincount(self.edofs[sl].ravel(), weights=re.ravel(),
+                                 minlength=self.n_full)
+
+    # ------------------------------------------------------------------ assembly
+    def assemble(self, xf: np.ndarray):
+        """CSR data of the reduced tangent and the *full* internal force vector at the full
+        dof vector ``xf`` (element chunks in ``threads`` worker threads; numpy releases the
+        GIL in the batched matmuls)."""
+        chunks = list(self.chunks())
+        if self.threads > 1 and len(chunks) > 1:
+            if self._pool is None:
+                self._pool = ThreadPoolExecutor(self.threads)
+            parts = list(self._pool.map(lambda sl: self._assemble_chunk(xf, sl), chunks))
+        else:
+            parts = [self._assemble_chunk(xf, sl) for sl in chunks]
+        data = parts[0][0]
+        rf = parts[0][1]
+        for d, r in parts[1:]:
+            if self._pool is not None:     # the sum of the 47 MB data arrays, in threads
+                cuts = np.linspace(0, data.size, self.threads + 1).astype(int)
+                list(self._pool.map(lambda ab: np.add(data[ab[0]:ab[1]], d[ab[0]:ab[1]],
+                                                      out=data[ab[0]:ab[1]]),
+                                    zip(cuts[:-1], cuts[1:])))
+            else:
+                data += d
+            rf += r
+        return data, rf
+
+    def residual(self, xf: np.ndarray) -> np.ndarray:
+        """Full internal force vector only (cheaper; the line search)."""
+        rf = np.zeros(self.n_full)
+        for sl in self.chunks():
+            re = self._element_residual(self._response(xf, sl, need_tangent=False), sl)
+            rf += np.bincount(self.edofs[sl].ravel(), weights=re.ravel(),
+                              minlength=self.n_full)
+        return rf

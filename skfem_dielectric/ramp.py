@@ -1,0 +1,299 @@
+"""Load ramp with adaptive cut-back for any :class:`~skfem_dielectric.problem.Problem`.
+
+:func:`ramp` drives a problem through a list of target loads.  A load is a float or a 1-D
+array (e.g. ``(s, D0)``); between two consecutive targets the load is interpolated linearly
+and sub-stepped adaptively: a sub-step whose Newton iteration fails is halved (cut-back) up
+to ``max_cutbacks`` times, and after a success the sub-step doubles again (never beyond the
+target).  Every target starts from the full interval, so a target's solution depends only on
+the state at the previous target: resuming a ramp with ``x0=step.x, start=step.load`` gives
+bit-for-bit the same subsequent steps as the uninterrupted run (for a deterministic linear
+solver such as SuperLU).
+
+After each converged target, ``problem.postprocess(x, load)`` gives a dict of quantities
+stored in the :class:`StepResult`, together with ``stable``, the verdict of
+``problem.stability(inertia)`` (``True``/``False``/``None``); then ``on_step(step)`` is
+called (the validation harness writes CSV rows and saves states there).  A target that
+cannot be reached ends the ramp: ``RampResult.converged=False``, ``reason``, ``failed_at``
+(the load of the failed sub-step), a ``RuntimeWarning`` is issued and all converged steps
+are kept; the furthest converged sub-step towards the failed target is appended as a step
+with ``target_reached=False``.
+"""
+
+from __future__ import annotations
+
+import time
+import warnings
+from dataclasses import dataclass, field
+from typing import Any, Callable, Sequence
+
+import numpy as np
+
+from .linear import LinearSolver, get_linear_solver
+from .newton import newton
+from .problem import Problem
+
+__all__ = ["StepResult", "RampResult", "ramp"]
+
+
+@dataclass
+class StepResult:
+    """One converged (or the failed) target load of a ramp.
+
+    Attributes
+    ----------
+    load
+        The target load (float or array, as given to :func:`ramp`).
+    converged
+        True for every step stored in ``RampResult.steps``.
+    iterations
+        Newton iterations summed over the sub-steps that reached this target.
+    substeps
+        Number of converged sub-steps used (1 = reached in one step).
+    cutbacks
+        Number of failed sub-steps that were halved.
+    residual_norms
+        Residual history of each converged sub-step (list of lists).
+    x
+        Reduced solution vector (pass it as ``x0`` to resume a ramp).
+    quantities
+        Post-processed values from ``problem.postprocess`` (e.g. ``lam1``, ``min_P33``).
+    assembly_seconds, solve_seconds
+        Total wall time spent in assembly and linear solves for this target.
+    inertia
+        Inertia of the last factorised tangent of this step if the linear solver reports it
+        (PARDISO), else ``None``.
+    target_reached
+        False for the last step of a ramp that stopped: the furthest converged sub-step on
+        the way to the target that could not be reached (its ``load`` is intermediate).
+    """
+
+    load: Any
+    converged: bool
+    iterations: int
+    substeps: int
+    cutbacks: int
+    residual_norms: list[list[float]]
+    x: np.ndarray
+    quantities: dict[str, Any] = field(default_factory=dict)
+    assembly_seconds: float = 0.0
+    solve_seconds: float = 0.0
+    inertia: tuple[int, int, int] | None = None
+    target_reached: bool = True
+
+    def __getitem__(self, key: str) -> Any:
+        return self.quantities[key]
+
+
+@dataclass
+class RampResult:
+    """Outcome of a load ramp.
+
+    Attributes
+    ----------
+    steps
+        Converged target steps, in order (the starting state is not included).
+    converged
+        True if every target was reached.
+    reason
+        Empty if converged, else why the ramp stopped.
+    failed_at
+        Load of the sub-step that could not be solved (``None`` if converged).
+    wall_seconds
+        Total wall time of the ramp.
+    problem
+        The problem that was solved (set by the high-level drivers; use it to evaluate or
+        export the stored states), else ``None``.
+    iterations_total, assembly_calls, assembly_seconds, solve_seconds
+        Totals over *all* Newton attempts of the ramp, including failed sub-steps and
+        line-search evaluations (the per-step values count only converged targets).
+    assembly_times, solve_times
+        Wall time of every assembly call and every linear solve, in order (for medians
+        and profiles; their sums are ``assembly_seconds`` and ``solve_seconds``).
+    unstable_at
+        With ``stop_on_instability``: load of the converged (sub-)step whose tangent was
+        judged unstable, where the ramp stopped (``None`` otherwise).
+    """
+
+    steps: list[StepResult]
+    converged: bool
+    reason: str = ""
+    failed_at: Any = None
+    wall_seconds: float = 0.0
+    problem: Any = None
+    iterations_total: int = 0
+    assembly_calls: int = 0
+    assembly_seconds: float = 0.0
+    solve_seconds: float = 0.0
+    assembly_times: list[float] = field(default_factory=list)
+    solve_times: list[float] = field(default_factory=list)
+    unstable_at: Any = None
+
+    def column(self, name: str) -> np.ndarray:
+        """Array of quantity ``name`` over the converged steps (``"load"`` and
+        ``"iterations"`` are also accepted)."""
+        if name == "load":
+            return np.array([st.load for st in self.steps], dtype=float)
+        if name == "iterations":
+            return np.array([st.iterations for st in self.steps], dtype=int)
+        known = set().union(*(st.quantities for st in self.steps)) if self.steps else set()
+        if name not in known:
+            raise ValueError(
+                f"name must be 'load', 'iterations' or a post-processed quantity "
+                f"{sorted(known)}, got {name!r}")
+        return np.array([st.quantities[name] for st in self.steps])
+
+    @property
+    def x(self) -> np.ndarray | None:
+        """Reduced solution vector of the last converged step (``None`` if none)."""
+        return self.steps[-1].x if self.steps else None
+
+
+def _as_load(load: Any) -> Any:
+    arr = np.asarray(load, dtype=float)
+    if not np.all(np.isfinite(arr)):
+        raise ValueError(f"loads must be finite, got {load!r}")
+    return float(arr) if arr.ndim == 0 else arr.copy()
+
+
+def ramp(problem: Problem, loads: Sequence[Any], *, x0: np.ndarray | None = None,
+         start: Any = None, on_step: Callable[[StepResult], Any] | None = None,
+         linear_solver: str | LinearSolver = "superlu", max_cutbacks: int = 6,
+         atol: float = 1e-10, rtol: float = 1e-10, max_iter: int = 25,
+         line_search: bool = True, stop_on_instability: bool = False) -> RampResult:
+    """Run ``problem`` through the target ``loads`` with adaptive sub-stepping.
+
+    Parameters
+    ----------
+    problem
+        A :class:`~skfem_dielectric.problem.Problem`.
+    loads
+        Target loads in order (floats or equal-length 1-D arrays); each is reached and
+        post-processed.  Loads must be finite.
+    x0, start
+        State to start from: the reduced vector and its load.  Default:
+        ``problem.initial_state()`` at zero load.  To resume a ramp pass ``x0=step.x`` and
+        ``start=step.load`` of a saved :class:`StepResult` and the remaining loads.
+    on_step
+        Called as ``on_step(step)`` after every converged target.
+    linear_solver
+        Name or instance (see :func:`skfem_dielectric.linear.get_linear_solver`; a name
+        gives a non-symmetric solver for a problem whose ``symmetric`` is False); one
+        instance is used for the whole ramp.
+    max_cutbacks
+        How many times a failing sub-step may be halved before the ramp stops.
+    atol, rtol, max_iter, line_search
+        Newton settings (see :func:`newton`); ``rtol`` is relative to
+        ``problem.residual_scale(load)``, or to the first residual of each sub-step
+        where that is ``None``.
+    stop_on_instability
+        Stop at the first converged sub-step that ``problem.stability(inertia)`` judges
+        unstable (needs a solver that reports the inertia, i.e. PARDISO; otherwise the
+        verdict is ``None`` and the ramp goes on, with one ``RuntimeWarning``).  That step is kept (``target_reached``
+        False if it is intermediate) and its load is ``unstable_at``.  A load-controlled
+        Newton cannot follow the path through such a point, so without this option the
+        ramp spends its cut-backs trying (see ``docs/fe.md``, breakdown).
+
+    Returns
+    -------
+    RampResult
+        Never raises on non-convergence; warns (``RuntimeWarning``) when it stops early.
+    """
+    if not isinstance(problem, Problem):
+        raise ValueError("problem must be a skfem_dielectric.Problem (see "
+                         f"skfem_dielectric.problem), got {type(problem).__name__}")
+    t_start = time.perf_counter()
+    solver = get_linear_solver(linear_solver, symmetric=problem.symmetric)
+    targets = [_as_load(ld) for ld in loads]
+    x = np.array(problem.initial_state() if x0 is None else x0, dtype=float, copy=True)
+    if start is None:
+        cur = 0.0 * np.asarray(targets[0], dtype=float) if targets else 0.0
+        cur = _as_load(cur)
+    else:
+        cur = _as_load(start)
+    no_verdict_warned = False
+    out = RampResult(steps=[], converged=True)
+
+    def record(load, target_reached):
+        """Keep the converged state ``x`` at ``load`` as a step (post-processed, with the
+        stability verdict of its last tangent) and report it to ``on_step``."""
+        step = StepResult(load=load, converged=True, iterations=iters, substeps=subs,
+                          cutbacks=cuts, residual_norms=hist, x=x.copy(),
+                          assembly_seconds=t_asm, solve_seconds=t_sol, inertia=inertia,
+                          target_reached=target_reached)
+        step.quantities = dict(problem.postprocess(x, load))
+        step.quantities.setdefault("stable", problem.stability(inertia))
+        out.steps.append(step)
+        if on_step is not None:
+            on_step(step)
+
+    for target in targets:
+        a, b = np.asarray(cur, dtype=float), np.asarray(target, dtype=float)
+        frac, dfrac = 0.0, 1.0
+        iters = subs = cuts = 0
+        inertia = None
+        hist: list[list[float]] = []
+        t_asm = t_sol = 0.0
+        failed = ""
+        unstable = None
+        while frac < 1.0:
+            f_new = min(1.0, frac + dfrac)
+            load = _as_load(b if f_new >= 1.0 else a + f_new * (b - a))
+            scale = problem.residual_scale(load)
+            nr = newton(lambda xx: problem.assemble(xx, load), x,
+                        residual=lambda xx: problem.residual(xx, load),
+                        linear_solver=solver, atol=atol, rtol=rtol, scale=scale,
+                        max_iter=max_iter, line_search=line_search)
+            iters += nr.iterations
+            t_asm += sum(nr.assembly_seconds)
+            t_sol += sum(nr.solve_seconds)
+            out.iterations_total += nr.iterations
+            out.assembly_calls += len(nr.assembly_seconds)
+            out.assembly_seconds += sum(nr.assembly_seconds)
+            out.solve_seconds += sum(nr.solve_seconds)
+            out.assembly_times.extend(nr.assembly_seconds)
+            out.solve_times.extend(nr.solve_seconds)
+            if nr.converged:
+                x = nr.x
+                inertia = nr.inertia
+                frac = f_new
+                subs += 1
+                hist.append(nr.residual_norms)
+                dfrac = min(2.0 * dfrac, 1.0)
+                if stop_on_instability:
+                    verdict = problem.stability(inertia)
+                    if verdict is False:
+                        unstable = load
+                        break
+                    if verdict is None and not no_verdict_warned:
+                        no_verdict_warned = True
+                        warnings.warn("stop_on_instability has no effect: the linear solver "
+                                      "reports no inertia, so there is no stability verdict "
+                                      "(use linear_solver='pardiso')", RuntimeWarning,
+                                      stacklevel=2)
+            else:
+                cuts += 1
+                if cuts > max_cutbacks:
+                    failed = nr.reason
+                    out.failed_at = load
+                    break
+                dfrac *= 0.5
+        if unstable is not None:
+            record(unstable, frac >= 1.0)
+            out.converged = False
+            out.unstable_at = unstable
+            out.reason = (f"stability lost at load {unstable!r} (inertia of the tangent: "
+                          f"{inertia}); stopped on request (stop_on_instability)")
+            warnings.warn(out.reason, RuntimeWarning, stacklevel=2)
+            break
+        if failed:
+            if frac > 0.0:   # keep the furthest converged sub-step towards the target
+                record(_as_load(b if frac >= 1.0 else a + frac * (b - a)), False)
+            out.converged = False
+            out.reason = (f"target load {target!r} not reached after {max_cutbacks} "
+                          f"cut-backs; last Newton failure: {failed}")
+            warnings.warn(out.reason, RuntimeWarning, stacklevel=2)
+            break
+        cur = target
+        record(target, True)
+    out.wall_seconds = time.perf_counter() - t_start
+    return out
