@@ -328,7 +328,7 @@ class PlateProblem(Problem):
         Maxwell traction by central differences (:meth:`Problem.load_vector`)."""
         if self.control == "voltage" or self.boundary is not None:
             return super().load_vector(x, load, h)
-        return -self.red.reduce(np.stack([self.f_s, -self.q_D0], axis=1))
+        return np.stack([-self.red.reduce(self.f_s), self.red.reduce(self.q_D0)], axis=1)
 
     # ------------------------------------------------------------ post-processing
     def evaluate(self, x: np.ndarray, load, points: np.ndarray) -> dict[str, np.ndarray]:
