@@ -31,12 +31,12 @@ from .homogeneous import (
     _derivs,
     _equibiaxial_limits,
     _out,
-    _rtsafe,
     _uniaxial_x,
     _uniaxial_xlock,
     equibiaxial_lam,
     uniaxial_lam1,
 )
+from ._roots import golden_section_max, illinois, rtsafe, scan_first_up
 from .models import NeoHookean, as_model
 
 __all__ = [
@@ -524,7 +524,7 @@ def _uniaxial_locus_x(lam1, model):
             l2 = lam1[i] ** 2
             return l2 * x**3 - 3 * x - l2, 3 * l2 * x**2 - 3.0
 
-        x = _rtsafe(f, np.zeros(n), 1.0 + 3.0 / lam1**2, 1.0 + 3.0 / lam1**2)
+        x = rtsafe(f, np.zeros(n), 1.0 + 3.0 / lam1**2, 1.0 + 3.0 / lam1**2)
         with np.errstate(invalid="ignore"):
             return np.where(lam1**2 * x**2 >= 1.0, x, np.nan)
     _derivs(model, lam1**2 + 2.0 / lam1, "lam1", lam1)
@@ -546,42 +546,9 @@ def _uniaxial_locus_x(lam1, model):
     k = np.argmax(change, axis=1)
     x = np.full(n, np.nan)
     r = np.flatnonzero(has)
-    x[r] = _bisect(lambda xv, i: _uniaxial_path_detK(lam1[r[i]], xv, model)[0],
+    x[r] = illinois(lambda xv, i: _uniaxial_path_detK(lam1[r[i]], xv, model)[0],
                    xs[r, k[r]], xs[r, k[r] + 1])
     return x
-
-
-def _bisect(fun, a, b, maxiter=100):
-    """Vectorised Illinois (modified regula falsi) root finder; ``fun(a) > 0 >= fun(b)``
-    on entry. Superlinear, derivative free, keeps the bracket; converged problems drop
-    out of the sweep."""
-    a, b = np.array(a, dtype=float), np.array(b, dtype=float)
-    n = a.size
-    out = np.full(n, np.nan)
-    idx = np.arange(n)
-    fa, fb = fun(a, idx), fun(b, idx)
-    side = np.zeros(n)
-    for _ in range(maxiter):
-        if idx.size == 0:
-            break
-        with np.errstate(divide="ignore", invalid="ignore"):
-            c = b - fb * (b - a) / (fb - fa)
-        bad = ~np.isfinite(c) | ((c - a) * (c - b) >= 0)
-        c = np.where(bad, 0.5 * (a + b), c)
-        fc = fun(c, idx)
-        pos = fc > 0
-        # Illinois: halve the value kept twice in a row on the same side
-        fa_new = np.where(pos, fc, np.where(side == -1, 0.5 * fa, fa))
-        fb_new = np.where(pos, np.where(side == 1, 0.5 * fb, fb), fc)
-        a, b = np.where(pos, c, a), np.where(pos, b, c)
-        fa, fb = fa_new, fb_new
-        side = np.where(pos, 1, -1)
-        conv = (np.abs(b - a) <= 4 * np.finfo(float).eps * np.abs(c)) | (fc == 0) | ~np.isfinite(fc)
-        out[idx[conv]] = c[conv]
-        keep = ~conv
-        idx, a, b, fa, fb, side = idx[keep], a[keep], b[keep], fa[keep], fb[keep], side[keep]
-    out[idx] = 0.5 * (a + b)
-    return out
 
 
 def _locus_inputs(lam1, model):
@@ -674,23 +641,6 @@ def _equi_F(lam, s, model):
     return 2 * dW * (lam**6 - 1.0) - lam**5 * s - lam**6 * m / 6.0
 
 
-def _scan_first_up(F, lo, hi, n=256):
-    """First sign change ``F < 0 -> F >= 0`` on a grid from ``lo`` to ``hi`` (rows); bisection."""
-    t = np.linspace(0.0, 1.0, n + 1)[1:]
-    grid = lo[:, None] + (hi - lo)[:, None] * t[None, :]
-    Fv = F(grid, np.repeat(np.arange(lo.size), n).reshape(grid.shape))
-    prev = np.concatenate([np.full((lo.size, 1), -1.0), Fv[:, :-1]], axis=1)
-    change = (prev < 0) & (Fv >= 0)
-    has = change.any(axis=1)
-    k = np.argmax(change, axis=1)
-    out = np.full(lo.size, np.nan)
-    r = np.flatnonzero(has)
-    a = np.where(k[r] > 0, grid[r, np.maximum(k[r] - 1, 0)], lo[r])
-    b = grid[r, k[r]]
-    out[r] = _bisect(lambda x, i: -F(x, r[i]), a, b)
-    return out
-
-
 def max_E0(s, model=None, loading: str = "equibiaxial"):
     """Maximum of ``E0`` along the loading curve of fixed dead load ``s``.
 
@@ -744,11 +694,11 @@ def max_E0(s, model=None, loading: str = "equibiaxial"):
                 return 2 * x**6 - 3 * sf[i] * x**5 - 8.0, 12 * x**5 - 15 * sf[i] * x**4
 
             hi = 1.5 * np.abs(sf) + 2.0
-            lam = _rtsafe(f, lam0, hi, hi)
+            lam = rtsafe(f, lam0, hi, hi)
         else:
             lo_lim, hi_lim = _equibiaxial_limits(model)
             top = np.full(sf.size, hi_lim * (1 - 1e-9)) if np.isfinite(hi_lim) else 64.0 * lam0
-            lam = _scan_first_up(lambda x, i: _equi_F(x, sf[i], model), lam0, top)
+            lam = scan_first_up(lambda x, i: _equi_F(x, sf[i], model), lam0, top)
         good = np.isfinite(lam)
         lg = np.where(good, lam, 1.0)
         _, dW, _ = _equi_elastic(lg, model)
@@ -763,7 +713,7 @@ def max_E0(s, model=None, loading: str = "equibiaxial"):
             return 4 * x - 3 * sf[i] - x**4 * u**3, 4 - 4 * x**3 * u**3 - 3 * x**4 * u**2
 
         hi = np.maximum(sf, 0.0) + 2.0 + np.abs(sf)
-        lam1 = _rtsafe(G, hi, l10, hi)
+        lam1 = rtsafe(G, hi, l10, hi)
     else:
         I1max = model.I1_max()
         if np.isfinite(I1max):
@@ -782,7 +732,7 @@ def max_E0(s, model=None, loading: str = "equibiaxial"):
             out[g] = -_uniaxial_path_detK(xf[g], xx[g], model)[0]
             return out.reshape(shp)
 
-        lam1 = _scan_first_up(F, l10, top)
+        lam1 = scan_first_up(F, l10, top)
     lam1g = np.where(np.isfinite(lam1), lam1, 1.0)
     x = _uniaxial_x(lam1g, sf, model)
     x = np.where(np.isfinite(lam1), x, np.nan)
@@ -856,16 +806,5 @@ def no_maximum_threshold(model=None, loading: str = "equibiaxial") -> float:
         return float("inf")
     # golden-section refinement around the grid maximum (a scalar problem)
     a, b = grid[max(k - 1, 0)], grid[min(k + 1, grid.size - 1)]
-    g = (np.sqrt(5.0) - 1.0) / 2.0
-    c, d = b - g * (b - a), a + g * (b - a)
-    fc, fd = S(np.array([c]))[0], S(np.array([d]))[0]
-    for _ in range(80):
-        if fc > fd:
-            b, d, fd = d, c, fc
-            c = b - g * (b - a)
-            fc = S(np.array([c]))[0]
-        else:
-            a, c, fc = c, d, fd
-            d = a + g * (b - a)
-            fd = S(np.array([d]))[0]
+    fc, fd = golden_section_max(lambda x: S(np.array([x]))[0], a, b)
     return float(max(fc, fd, vals[k]))

@@ -33,6 +33,7 @@ from __future__ import annotations
 import numpy as np
 
 from ._checks import as_array, broadcast, check_finite, check_positive
+from ._roots import expand_bracket, rtsafe
 from .models import Gent, Model, NeoHookean, as_model
 
 __all__ = [
@@ -77,79 +78,6 @@ def _derivs(model: Model, I1: np.ndarray, name: str, value):
 def _out(x: np.ndarray):
     """Return a Python-friendly result: 0-d arrays become numpy floats."""
     return x[()] if isinstance(x, np.ndarray) and x.ndim == 0 else x
-
-
-def _rtsafe(fun, a, b, x0=None, *, rtol=4 * _EPS, maxiter=200):
-    """Vectorised safeguarded Newton (bisection fallback) on brackets.
-
-    ``fun(x, idx) -> (f, df)`` evaluates the function and its derivative at the
-    points ``x`` belonging to the problems ``idx`` (integer indices). On entry
-    ``f(a) <= 0 <= f(b)`` must hold for every problem (``a`` may exceed ``b``).
-    Only unconverged problems are evaluated in each sweep; there is no loop over
-    points. ``x0`` is an optional first guess (used where it lies inside the bracket).
-    """
-    a = np.array(a, dtype=float).ravel()
-    b = np.array(b, dtype=float).ravel()
-    n = a.size
-    out = np.full(n, np.nan)
-    active = np.arange(n)
-    x = 0.5 * (a + b)
-    if x0 is not None:
-        x0 = np.broadcast_to(np.asarray(x0, dtype=float).ravel(), x.shape)
-        inside = np.isfinite(x0) & ((x0 - a) * (x0 - b) < 0)
-        x = np.where(inside, x0, x)
-    for it in range(maxiter):
-        if active.size == 0:
-            break
-        f, df = fun(x, active)
-        neg = f < 0
-        a = np.where(neg, x, a)
-        b = np.where(neg, b, x)
-        with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
-            step = f / df
-        xn = x - step
-        # Newton inside the (closed) bracket, else bisection; every 16th sweep bisects
-        # to break a possible Newton cycle
-        newton = (xn - a) * (xn - b) <= 0  # False for nan/inf
-        if it % 16 == 15:
-            newton[:] = False
-        xn = np.where(newton, xn, 0.5 * (a + b))
-        ax = np.abs(x)
-        # a Newton step of relative size 1e-9 leaves an error of order 1e-18 (quadratic
-        # convergence; f == 0 gives step 0); bisection stops when the bracket is a few
-        # ulps wide (checked every 4th sweep: bisection needs ~50 sweeps anyway)
-        conv = newton & (np.abs(step) <= 1e-9 * ax)
-        if it % 4 == 3:
-            conv |= np.abs(b - a) <= rtol * ax
-        if np.any(conv):
-            out[active[conv]] = xn[conv]
-            keep = ~conv
-            active, x, a, b = active[keep], xn[keep], a[keep], b[keep]
-        else:
-            x = xn
-    out[active] = x  # bracket has shrunk for maxiter sweeps: accept
-    return out
-
-
-def _expand(fun_sign, start, limit, want, maxsteps=80):
-    """Vectorised search from ``start`` toward ``limit`` for a point where
-    ``fun_sign(x, idx)`` has the sign ``want`` (+1 or -1). Returns nan where none."""
-    start = np.asarray(start, dtype=float)
-    limit = np.broadcast_to(np.asarray(limit, dtype=float), start.shape)
-    found = np.full(start.shape, np.nan)
-    active = np.arange(start.size)
-    for k in range(1, maxsteps + 1):
-        if active.size == 0:
-            break
-        lim, st = limit[active], start[active]
-        fin = np.isfinite(lim)
-        x = st * 2.0**k
-        x[fin] = lim[fin] + (st[fin] - lim[fin]) * 2.0 ** (-k)
-        f = fun_sign(x, active)
-        hit = np.sign(f) == want
-        found[active[hit]] = x[hit]
-        active = active[~hit]
-    return found
 
 
 def _sqrt_branch(D2, scale):
@@ -584,7 +512,7 @@ def equibiaxial_lam(D0, s=0.0, model=None):
         c6 = (1.0 + q) ** (1.0 / 6.0)
         lo = ((1.0 + q) / (c6 + np.maximum(-s, 0.0))) ** 0.2
         hi = c6 + np.maximum(s, 0.0)
-        lam = _rtsafe(h, lo, hi, 0.5 * s + np.sqrt(0.25 * s**2 + c6**2))
+        lam = rtsafe(h, lo, hi, 0.5 * s + np.sqrt(0.25 * s**2 + c6**2))
         return _out(lam.reshape(shape))
     if type(model) is Gent:
         # 2W' >= 1 (W'' >= 0, 2W'(3) = 1): h_Gent >= h_nH for lam >= 1 and <= for lam <= 1,
@@ -595,21 +523,21 @@ def equibiaxial_lam(D0, s=0.0, model=None):
                                            lo_lim * (1 + 1e-12)))
         hi = np.where(up, np.minimum(c6 + np.maximum(s, 0.0), hi_lim * (1 - 1e-12)), 1.0)
         # first guess: the neo-Hookean estimate used above (exact for nH at s = 0)
-        lam = _rtsafe(h, lo, hi, 0.5 * s + np.sqrt(0.25 * s**2 + c6**2))
+        lam = rtsafe(h, lo, hi, 0.5 * s + np.sqrt(0.25 * s**2 + c6**2))
         return _out(lam.reshape(shape))
     one = np.ones(q.size)
     f1 = h(one, np.arange(q.size))[0]
     lo = np.where(f1 <= 0, one, np.nan)
     hi = np.where(f1 >= 0, one, np.nan)
     need_lo, need_hi = np.flatnonzero(np.isnan(lo)), np.flatnonzero(np.isnan(hi))
-    lo[need_lo] = _expand(lambda x, i: h(x, need_lo[i])[0], one[need_lo], lo_lim, -1)
-    hi[need_hi] = _expand(lambda x, i: h(x, need_hi[i])[0], one[need_hi], hi_lim, +1)
+    lo[need_lo] = expand_bracket(lambda x, i: h(x, need_lo[i])[0], one[need_lo], lo_lim, -1)
+    hi[need_hi] = expand_bracket(lambda x, i: h(x, need_hi[i])[0], one[need_hi], hi_lim, +1)
     ok = np.flatnonzero(np.isfinite(lo) & np.isfinite(hi))
     # first guess: exact for neo-Hookean at s = 0, an upper estimate for s > 0
     u2 = (1.0 + q[ok]) ** (1.0 / 3.0)
     x0 = 0.5 * s[ok] + np.sqrt(0.25 * s[ok] ** 2 + u2)
     lam = np.full(q.size, np.nan)
-    lam[ok] = _rtsafe(lambda x, i: h(x, ok[i]), lo[ok], hi[ok], x0)
+    lam[ok] = rtsafe(lambda x, i: h(x, ok[i]), lo[ok], hi[ok], x0)
     return _out(lam.reshape(shape))
 
 
@@ -683,7 +611,7 @@ def _uniaxial_x(lam1, s, model):
     # (a) s > 0 and the lock does not cut in: root in [x_lo, lam1^2], f(lam1^2) = -s < 0
     A = np.flatnonzero(pos & (lam1**2 > x_lo) & (x_lock > lam1**2) & (f_lo >= 0))
     if A.size:
-        x[A] = _rtsafe(lambda xv, i: g(xv, A[i]), lam1[A] ** 2, x_lo[A], x0[A])
+        x[A] = rtsafe(lambda xv, i: g(xv, A[i]), lam1[A] ** 2, x_lo[A], x0[A])
     # (b) s <= 0: root at or beyond max(x_lo, lam1^2), where f decreases to -inf;
     #     f(lam1^2) = -s exactly (avoid evaluating the rounding of lam1 - lam1^2/lam1)
     start = np.maximum(x_lo, lam1**2)
@@ -693,10 +621,10 @@ def _uniaxial_x(lam1, s, model):
     x[zero] = start[zero]
     B = B[s[B] < 0]
     if B.size:
-        hi = _expand(lambda xv, i: g(xv, B[i])[0], start[B], x_lock[B], -1)
+        hi = expand_bracket(lambda xv, i: g(xv, B[i])[0], start[B], x_lock[B], -1)
         okB = np.isfinite(hi)
         Bk = B[okB]
-        x[Bk] = _rtsafe(lambda xv, i: g(xv, Bk[i]), hi[okB], start[Bk], x0[Bk])
+        x[Bk] = rtsafe(lambda xv, i: g(xv, Bk[i]), hi[okB], start[Bk], x0[Bk])
     # (c) s > 0 and the Gent lock cuts in before lam1^2: f -> +inf at the lock and f may
     #     dip below 0 and rise again; take the first sign change of a scan from x_lo
     #     (the state with the smallest D0), refined by safeguarded Newton
@@ -721,7 +649,7 @@ def _uniaxial_x(lam1, s, model):
         left, right = xs[r, k], xs[r, k + 1]
         neg_left = fs[r, k] < 0
         a, b = np.where(neg_left, left, right), np.where(neg_left, right, left)
-        x[Ck] = _rtsafe(lambda xv, i: g(xv, Ck[i]), a, b)
+        x[Ck] = rtsafe(lambda xv, i: g(xv, Ck[i]), a, b)
     return x
 
 
@@ -882,6 +810,20 @@ def _uniaxial_cubic_root(c, sig):
     return l
 
 
+def _gent_xi_residual(xi, t, sb, Jm):
+    """``R(xi)`` of :func:`_uniaxial_lam1_gent` and ``dR/dxi`` (``t = D0^2``, ``sb = s``)."""
+    c = np.sqrt(1.0 + t * xi)
+    sig = sb * xi
+    l = _uniaxial_cubic_root(c, sig)
+    ic, il = 1.0 / c, 1.0 / l
+    w = (c + ic) * il
+    f = l * l + w - 3.0 - Jm * (1.0 - xi)
+    # d/dxi by implicit differentiation of the cubic: (3l^2 - 2 sig l) l' = c' + s l^2
+    dc = 0.5 * t * ic
+    dl = (dc + sb * l * l) / (l * (3.0 * l - 2.0 * sig))
+    return f, (2.0 * l - w * il) * dl + (1.0 - ic * ic) * dc * il + Jm
+
+
 def _uniaxial_lam1_gent(q, s, Jm, block=1 << 14, maxiter=100):
     """Gent ``lam1(D0; s)`` on flat arrays (``q = D0^2``); see :func:`uniaxial_lam1`.
 
@@ -893,9 +835,10 @@ def _uniaxial_lam1_gent(q, s, Jm, block=1 << 14, maxiter=100):
     ``R(0) = -Jm < 0 <= R(1) = I1_nH - 3``, every ``xi`` in ``[0, 1]`` gives a real
     state, and each root is an equilibrium, which is unique (``omega*`` is strictly
     convex on the convex set ``I1 < 3 + Jm``): ``[0, 1]`` brackets exactly one root.
-    Safeguarded Newton (bisection fallback) from ``xi = 1`` (the neo-Hookean state),
-    vectorised and run in cache-sized blocks; the final ``lam1`` gets one Newton
-    polish on the cubic.
+    Safeguarded Newton (:func:`~analytic._roots.rtsafe`, bisection fallback) from the
+    upper bound of ``xi`` (``xi = 1``, the neo-Hookean state, unless a bound below
+    applies), bracket width checked every sweep, run in cache-sized blocks; the final
+    ``lam1`` gets one Newton polish on the cubic.
     """
     n = q.size
     out = np.empty(n)
@@ -912,35 +855,8 @@ def _uniaxial_lam1_gent(q, s, Jm, block=1 << 14, maxiter=100):
             with np.errstate(divide="ignore"):
                 hi = np.minimum(1.0, (cmax * cmax - 1.0) / t)
                 hi = np.minimum(hi, np.where(sb > 0, np.sqrt(3.0 + Jm), 0.25 * cmax * (3.0 + Jm) ** 2) / np.abs(sb))
-            lo = np.zeros(m)
-            xi = hi.copy()
-            conv = np.zeros(m, dtype=bool)
-            for it in range(maxiter):
-                c = np.sqrt(1.0 + t * xi)
-                sig = sb * xi
-                l = _uniaxial_cubic_root(c, sig)
-                ic, il = 1.0 / c, 1.0 / l
-                w = (c + ic) * il
-                f = l * l + w - 3.0 - Jm * (1.0 - xi)
-                # d/dxi by implicit differentiation of the cubic: (3l^2 - 2 sig l) l' = c' + s l^2
-                dc = 0.5 * t * ic
-                dl = (dc + sb * l * l) / (l * (3.0 * l - 2.0 * sig))
-                df = (2.0 * l - w * il) * dl + (1.0 - ic * ic) * dc * il + Jm
-                neg = f < 0
-                lo = np.where(neg, xi, lo)
-                hi = np.where(neg, hi, xi)
-                step = f / df
-                xn = xi - step
-                # Newton inside the closed bracket, else bisection; every 16th sweep bisects
-                newton = (xn >= lo) & (xn <= hi) if it % 16 != 15 else np.zeros(m, dtype=bool)
-                xn = np.where(newton, xn, 0.5 * (lo + hi))
-                # a Newton step of relative size 1e-9 leaves an error ~1e-18 (quadratic
-                # convergence); a bisected bracket a few ulps wide also stops
-                done = (newton & (np.abs(step) <= 1e-9 * xi)) | (hi - lo <= 4 * _EPS * xi)
-                xi = np.where(conv, xi, xn)
-                conv |= done
-                if conv.all():
-                    break
+            xi = rtsafe(lambda x, i: _gent_xi_residual(x, t[i], sb[i], Jm), np.zeros(m), hi, hi,
+                        maxiter=maxiter, start_on_bracket=True, width_every=1)
             c = np.sqrt(1.0 + t * xi)
             sig = sb * xi
             l = _uniaxial_cubic_root(c, sig)
@@ -966,7 +882,7 @@ def _uniaxial_lam1_nh(c, s):
     def q(l1, i):
         return l1**2 * (l1 - s[i]) - c[i], l1 * (3 * l1 - 2 * s[i])
 
-    return _rtsafe(q, lo, hi)
+    return rtsafe(q, lo, hi)
 
 
 def uniaxial_lam1(D0, s=0.0, model=None):

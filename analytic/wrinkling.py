@@ -47,6 +47,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ._checks import as_array, broadcast, check_choice, check_positive
+from ._roots import brent, first_root_on_scan
 from .models import Model, as_model
 from .stroh import _coefficients_fast, _exponents_from_coefficients, _stroh_N, stroh_coefficients
 
@@ -363,8 +364,6 @@ def surface_instability_stretch(model: Model | None = None, loading: str = "equi
     >>> round(surface_instability_stretch(), 5), round(surface_instability_stretch(loading="uniaxial"), 5)
     (0.66614, 0.44375)
     """
-    from scipy.optimize import brentq  # lazy: keeps `import analytic` light
-
     check_choice("loading", loading, ("equibiaxial", "uniaxial"))
     model = as_model(model)
 
@@ -380,7 +379,7 @@ def surface_instability_stretch(model: Model | None = None, loading: str = "equi
         if not I1 < model.I1_max():
             return np.nan
         if C_of(lo) <= 0:
-            return float(brentq(C_of, lo, hi, xtol=1e-15, rtol=1e-15, maxiter=200))
+            return float(brent(C_of, lo, hi, xtol=1e-15, rtol=1e-15, maxiter=200))
         hi = lo
     return np.nan
 
@@ -594,62 +593,6 @@ def _search_bound(lam1, lam3, model, direction):
     return 2.0 * (lam_in / lam2 + 2.0) * np.sqrt(2.0 * W1)
 
 
-def _first_root(scan, gfun, hi, n_scan=64, rtol=1e-14):
-    """Smallest root in ``[0, hi]`` of a function of ``D0``, per point (vectorised).
-
-    ``scan(t)`` returns the function at ``D0 = hi * t`` for all points, shape
-    ``(n, len(t))``; ``gfun(idx, D0)`` returns it for the points ``idx`` at
-    ``D0`` of shape ``(len(idx), 1)``. Scan on ``n_scan`` intervals, then
-    Illinois regula falsi on the first sign change; ``nan`` if none.
-    """
-    n = hi.shape[0]
-    idx = np.arange(n)
-    t = np.linspace(0.0, 1.0, n_scan + 1)
-    D = hi[:, None] * t[None, :]
-    g = scan(t)
-    s = np.sign(g)
-    change = (s[:, :-1] * s[:, 1:] <= 0) & np.isfinite(g[:, :-1]) & np.isfinite(g[:, 1:])
-    has = change.any(axis=1)
-    j = np.argmax(change, axis=1)
-    out = np.full(n, np.nan)
-    if not has.any():
-        return out
-    ii = idx[has]
-    lo, up = D[ii, j[has]], D[ii, j[has] + 1]
-    glo, gup = g[ii, j[has]], g[ii, j[has] + 1]
-    exact = glo == 0
-    tol = rtol * np.maximum(hi[ii], 1.0)
-    # Illinois (modified regula falsi), with a bisection step whenever the
-    # bracket fails to halve; vectorised, converged points are frozen
-    side = np.zeros(ii.size, dtype=int)
-    active = ~exact & (up - lo > tol)
-    for _ in range(100):
-        if not active.any():
-            break
-        k = np.flatnonzero(active)
-        width = up[k] - lo[k]
-        with np.errstate(invalid="ignore", divide="ignore"):
-            x = up[k] - gup[k] * width / (gup[k] - glo[k])
-        bisect = ~np.isfinite(x) | (x <= lo[k]) | (x >= up[k]) | (np.abs(side[k]) >= 3)
-        x = np.where(bisect, 0.5 * (lo[k] + up[k]), x)
-        side[k] = np.where(bisect, 0, side[k])
-        gx = gfun(ii[k], x[:, None])[:, 0]
-        left = np.sign(gx) * np.sign(glo[k]) <= 0  # root in [lo, x]
-        # Illinois: halve the function value at the end that is kept
-        up[k] = np.where(left, x, up[k])
-        gup[k] = np.where(left, gx, np.where(side[k] < 0, 0.5 * gup[k], gup[k]))
-        lo[k] = np.where(left, lo[k], x)
-        glo[k] = np.where(left, np.where(side[k] > 0, 0.5 * glo[k], glo[k]), gx)
-        side[k] = np.where(left, np.where(side[k] > 0, side[k] + 1, 1), np.where(side[k] < 0, side[k] - 1, -1))
-        done = (up[k] - lo[k] <= tol[k]) | (gx == 0)
-        hit0 = gx == 0
-        lo[k] = np.where(hit0, x, lo[k])
-        up[k] = np.where(hit0, x, up[k])
-        active[k] = ~done
-    out[ii] = np.where(exact, D[ii, j[has]], 0.5 * (lo + up))
-    return out
-
-
 def thick_limit_D0_numeric(
     lam1, lam3, model: Model | None = None, direction: str = "parallel", control: str = "charge"
 ):
@@ -766,7 +709,7 @@ def critical_D0_biaxial(
         Z, M, _ = _decaying(a, b, c, d)
         return _g_from(Z, M, khf[idx][:, None], mode, control)
 
-    out = _first_root(scan, gfun, hif)
+    out = first_root_on_scan(scan, gfun, hif)
     return _ret(out.reshape(shape))
 
 
