@@ -27,16 +27,9 @@ from __future__ import annotations
 import numpy as np
 
 from ._checks import as_array, broadcast, check_choice, check_finite, check_positive
-from .homogeneous import (
-    _derivs,
-    _equibiaxial_limits,
-    _out,
-    _uniaxial_x,
-    _uniaxial_xlock,
-    equibiaxial_lam,
-    uniaxial_lam1,
-)
+from ._loading import equibiaxial_limits, model_derivs, uniaxial_x, uniaxial_xlock
 from ._roots import golden_section_max, illinois, rtsafe, scan_first_up
+from .homogeneous import _out, equibiaxial_lam, uniaxial_lam1
 from .models import NeoHookean, as_model
 
 __all__ = [
@@ -119,7 +112,7 @@ def omega_star(lam1, lam3, D0, model=None):
     model = as_model(model)
     lam1, lam3, D0 = _stretches(lam1, lam3, "D0", D0)
     I1 = lam1**2 + lam3**2 + 1.0 / (lam1 * lam3) ** 2
-    _derivs(model, I1, "lam1", lam1)
+    model_derivs(model, I1, "lam1", lam1)
     return _out(model.W(I1) + 0.5 * D0**2 / (lam1 * lam3) ** 2)
 
 
@@ -140,7 +133,7 @@ def omega(lam1, lam3, E0, model=None):
     model = as_model(model)
     lam1, lam3, E0 = _stretches(lam1, lam3, "E0", E0)
     I1 = lam1**2 + lam3**2 + 1.0 / (lam1 * lam3) ** 2
-    _derivs(model, I1, "lam1", lam1)
+    model_derivs(model, I1, "lam1", lam1)
     return _out(model.W(I1) - 0.5 * E0**2 * (lam1 * lam3) ** 2)
 
 
@@ -177,7 +170,7 @@ def _elastic(lam1, lam3, model, name="lam1"):
     ra, rb = 1.0 / a, 1.0 / b
     e = (ra * rb) ** 2
     I1 = a * a + b * b + e
-    dW, d2W = _derivs(model, I1, name, lam1)
+    dW, d2W = model_derivs(model, I1, name, lam1)
     Ia, Ib = 2 * (a - e * ra), 2 * (b - e * rb)
     k11 = d2W * Ia * Ia + dW * (2 + 6 * e * ra * ra)
     k33 = d2W * Ib * Ib + dW * (2 + 6 * e * rb * rb)
@@ -269,7 +262,7 @@ def _equi_elastic(lam, model):
     r = 1.0 / lam
     r4 = (r * r) ** 2
     I1 = 2 * lam * lam + r4
-    dW, d2W = _derivs(model, I1, "lam", lam)
+    dW, d2W = model_derivs(model, I1, "lam", lam)
     I1p, I1pp = 4 * (lam - r4 * r), 4 + 20 * r4 * r * r
     return d2W * I1p**2 + dW * I1pp, dW, d2W
 
@@ -527,11 +520,11 @@ def _uniaxial_locus_x(lam1, model):
         x = rtsafe(f, np.zeros(n), 1.0 + 3.0 / lam1**2, 1.0 + 3.0 / lam1**2)
         with np.errstate(invalid="ignore"):
             return np.where(lam1**2 * x**2 >= 1.0, x, np.nan)
-    _derivs(model, lam1**2 + 2.0 / lam1, "lam1", lam1)
+    model_derivs(model, lam1**2 + 2.0 / lam1, "lam1", lam1)
     if n > _CHUNK:  # bound the memory of the scan grid (a loop over blocks, not points)
         return np.concatenate([_uniaxial_locus_x(lam1[k:k + _CHUNK], model) for k in range(0, n, _CHUNK)])
     x_lo = 1.0 / lam1
-    x_top = _uniaxial_xlock(lam1, model.I1_max())
+    x_top = uniaxial_xlock(lam1, model.I1_max())
     x_top = np.where(np.isfinite(x_top), x_top, 64.0 * (x_lo + 3.0 / lam1**2 + 1.0))
     t = np.concatenate([np.linspace(0.0, 0.97, 48), 1.0 - 0.03 * 2.0 ** -np.arange(1, 16)])
     xs = x_lo[:, None] + (x_top - x_lo)[:, None] * t[None, :]
@@ -696,7 +689,7 @@ def max_E0(s, model=None, loading: str = "equibiaxial"):
             hi = 1.5 * np.abs(sf) + 2.0
             lam = rtsafe(f, lam0, hi, hi)
         else:
-            lo_lim, hi_lim = _equibiaxial_limits(model)
+            lo_lim, hi_lim = equibiaxial_limits(model)
             top = np.full(sf.size, hi_lim * (1 - 1e-9)) if np.isfinite(hi_lim) else 64.0 * lam0
             lam = scan_first_up(lambda x, i: _equi_F(x, sf[i], model), lam0, top)
         good = np.isfinite(lam)
@@ -726,7 +719,7 @@ def max_E0(s, model=None, loading: str = "equibiaxial"):
         def F(x, i):
             shp = x.shape
             xf, sv = x.ravel(), sf[np.broadcast_to(i, shp).ravel()]
-            xx = _uniaxial_x(xf, sv, model)
+            xx = uniaxial_x(xf, sv, model)
             out = np.full(xf.size, -np.inf)  # off the branch (lock reached): no maximum here
             g = np.isfinite(xx)
             out[g] = -_uniaxial_path_detK(xf[g], xx[g], model)[0]
@@ -734,7 +727,7 @@ def max_E0(s, model=None, loading: str = "equibiaxial"):
 
         lam1 = scan_first_up(F, l10, top)
     lam1g = np.where(np.isfinite(lam1), lam1, 1.0)
-    x = _uniaxial_x(lam1g, sf, model)
+    x = uniaxial_x(lam1g, sf, model)
     x = np.where(np.isfinite(lam1), x, np.nan)
     with np.errstate(invalid="ignore"):
         I1 = lam1g**2 + x + 1.0 / (lam1g**2 * x)
@@ -782,7 +775,7 @@ def no_maximum_threshold(model=None, loading: str = "equibiaxial") -> float:
         return float("inf")
     I1max = model.I1_max()
     if loading == "equibiaxial":
-        lo_lim, hi_lim = _equibiaxial_limits(model)
+        lo_lim, hi_lim = equibiaxial_limits(model)
         top = hi_lim * (1 - 1e-9) if np.isfinite(hi_lim) else 1e3
 
         def S(lam):

@@ -45,11 +45,13 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+from scipy.linalg import schur
 
 from ._checks import as_array, broadcast, check_choice, check_positive
 from ._roots import brent, first_root_on_scan
+from ._stroh_core import coefficients_fast, exponents_from_coefficients, stroh_N
 from .models import Model, as_model
-from .stroh import _coefficients_fast, _exponents_from_coefficients, _stroh_N, stroh_coefficients
+from .stroh import stroh_coefficients
 
 __all__ = [
     "thin_plate_factors",
@@ -412,7 +414,7 @@ def _decaying(a, b, c, d):
     ``nan`` where strong ellipticity fails (an exponent with ``Re p <= 0``).
     """
     K = _real_K(a, b, c, d)
-    p2, p3 = _exponents_from_coefficients(a, b, c, d)
+    p2, p3 = exponents_from_coefficients(a, b, c, d)
     bad = (np.real(p2) <= 1e-12) | (np.real(p3) <= 1e-12) | ~np.isfinite(p2) | ~np.isfinite(p3)
     p2 = np.where(bad, 1.0, p2)
     p3 = np.where(bad, 1.0, p3)
@@ -501,9 +503,7 @@ def surface_impedance(
     if method == "projector":
         Z, _, _ = _decaying(a, b, c, d)
         return _impedance_from_Z(Z)
-    from scipy.linalg import schur
-
-    N = _stroh_N(a, b, c, d)
+    N = stroh_N(a, b, c, d)
     flat = N.reshape(-1, 6, 6)
     out = np.empty((flat.shape[0], 3, 3), dtype=complex)
     for i, Ni in enumerate(flat):
@@ -700,12 +700,12 @@ def critical_D0_biaxial(
 
     def scan(t):
         Du = uniq[:, 2:3] * t[None, :]
-        a, b, c, d = _coefficients_fast(uniq[:, 0:1], uniq[:, 1:2], Du, model, direction)
+        a, b, c, d = coefficients_fast(uniq[:, 0:1], uniq[:, 1:2], Du, model, direction)
         Z, M, _ = _decaying(a, b, c, d)
         return _g_from(Z[inv], M[inv], khf[:, None], mode, control)
 
     def gfun(idx, D0):
-        a, b, c, d = _coefficients_fast(l1[idx][:, None], l3[idx][:, None], D0, model, direction)
+        a, b, c, d = coefficients_fast(l1[idx][:, None], l3[idx][:, None], D0, model, direction)
         Z, M, _ = _decaying(a, b, c, d)
         return _g_from(Z, M, khf[idx][:, None], mode, control)
 
