@@ -4,6 +4,14 @@ Implements the homogeneous theory of Conroy Broderick, Righi, Destrade & Ogden,
 "Stability analysis of charge-controlled soft dielectric plates": loading curves,
 Hessian criteria and Stroh-formalism wrinkling. Everything is dimensionless
 (``mu = eps = 1``); see :mod:`analytic.units` for SI conversions.
+
+Return convention: the functions broadcast their number arguments. When all of
+them are scalars, each result is a Python ``float`` (``bool`` for the stability
+verdicts, ``complex`` for the Stroh exponents) and several results are a tuple of
+such numbers; otherwise each result is an ``ndarray`` of the broadcast shape.
+Matrix results (Hessians, moduli, Stroh matrix, surface impedance) are always
+arrays, of the broadcast shape followed by the matrix axes. The methods ``W``,
+``dW`` and ``d2W`` of the models are array kernels and return arrays.
 """
 
 from .models import Gent, Model, NeoHookean, UserModel, as_model

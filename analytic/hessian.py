@@ -28,8 +28,9 @@ import numpy as np
 
 from ._checks import as_array, broadcast, check_choice, check_finite, check_positive
 from ._loading import equibiaxial_limits, model_derivs, uniaxial_x, uniaxial_xlock
+from ._output import scalar_or_array
 from ._roots import golden_section_max, illinois, rtsafe, scan_first_up
-from .homogeneous import _out, equibiaxial_lam, uniaxial_lam1
+from .homogeneous import equibiaxial_lam, uniaxial_lam1
 from .models import NeoHookean, as_model
 
 __all__ = [
@@ -83,7 +84,7 @@ def invariant_I1(lam1, lam3):
     lam1 = check_positive("lam1", lam1)
     lam3 = check_positive("lam3", lam3)
     lam1, lam3 = broadcast(lam1=lam1, lam3=lam3)
-    return _out(lam1**2 + lam3**2 + 1.0 / (lam1 * lam3) ** 2)
+    return scalar_or_array(lam1**2 + lam3**2 + 1.0 / (lam1 * lam3) ** 2)
 
 
 def omega_star(lam1, lam3, D0, model=None):
@@ -113,7 +114,7 @@ def omega_star(lam1, lam3, D0, model=None):
     lam1, lam3, D0 = _stretches(lam1, lam3, "D0", D0)
     I1 = lam1**2 + lam3**2 + 1.0 / (lam1 * lam3) ** 2
     model_derivs(model, I1, "lam1", lam1)
-    return _out(model.W(I1) + 0.5 * D0**2 / (lam1 * lam3) ** 2)
+    return scalar_or_array(model.W(I1) + 0.5 * D0**2 / (lam1 * lam3) ** 2)
 
 
 def omega(lam1, lam3, E0, model=None):
@@ -134,7 +135,7 @@ def omega(lam1, lam3, E0, model=None):
     lam1, lam3, E0 = _stretches(lam1, lam3, "E0", E0)
     I1 = lam1**2 + lam3**2 + 1.0 / (lam1 * lam3) ** 2
     model_derivs(model, I1, "lam1", lam1)
-    return _out(model.W(I1) - 0.5 * E0**2 * (lam1 * lam3) ** 2)
+    return scalar_or_array(model.W(I1) - 0.5 * E0**2 * (lam1 * lam3) ** 2)
 
 
 def equibiaxial_omega_star(lam, D0, model=None):
@@ -224,7 +225,7 @@ def hessian_omega_star(lam1, lam3, D0, model=None):
     h33 = k33 + 3 * q * e * rb * rb
     h13 = k13 + 2 * q * e * ra * rb
     h1D, h3D = -2 * D0 * e * ra, -2 * D0 * e * rb
-    return _stack([[h11, h13, h1D], [h13, h33, h3D], [h1D, h3D, e]])
+    return scalar_or_array(_stack([[h11, h13, h1D], [h13, h33, h3D], [h1D, h3D, e]]))
 
 
 def hessian_omega(lam1, lam3, E0, model=None):
@@ -255,7 +256,7 @@ def hessian_omega(lam1, lam3, E0, model=None):
     h33 = k33 - lam1**2 * q
     h13 = k13 - 2 * lam1 * lam3 * q
     h1E, h3E = -2 * lam1 * lam3**2 * E0, -2 * lam1**2 * lam3 * E0
-    return _stack([[h11, h13, h1E], [h13, h33, h3E], [h1E, h3E, -(lam1 * lam3) ** 2]])
+    return scalar_or_array(_stack([[h11, h13, h1E], [h13, h33, h3E], [h1E, h3E, -(lam1 * lam3) ** 2]]))
 
 
 def _equi_elastic(lam, model):
@@ -294,7 +295,7 @@ def equibiaxial_hessian_omega_star(lam, D0, model=None):
     m, _, _ = _equi_elastic(lam, model)
     r = 1.0 / lam
     r4 = (r * r) ** 2
-    return _stack([[m + 10 * r4 * r * r * D0**2, -4 * r4 * r * D0], [-4 * r4 * r * D0, r4]])
+    return scalar_or_array(_stack([[m + 10 * r4 * r * r * D0**2, -4 * r4 * r * D0], [-4 * r4 * r * D0, r4]]))
 
 
 def equibiaxial_hessian_omega(lam, E0, model=None):
@@ -320,7 +321,7 @@ def equibiaxial_hessian_omega(lam, E0, model=None):
     E0 = as_array("E0", E0)
     lam, E0 = broadcast(lam=lam, E0=E0)
     m, _, _ = _equi_elastic(lam, model)
-    return _stack([[m - 6 * lam**2 * E0**2, -4 * lam**3 * E0], [-4 * lam**3 * E0, -(lam**4)]])
+    return scalar_or_array(_stack([[m - 6 * lam**2 * E0**2, -4 * lam**3 * E0], [-4 * lam**3 * E0, -(lam**4)]]))
 
 
 def leading_minors(H):
@@ -346,7 +347,7 @@ def leading_minors(H):
     if H.ndim < 2 or H.shape[-1] != H.shape[-2]:
         raise ValueError(f"H must have shape (..., n, n), got shape {H.shape}")
     n = H.shape[-1]
-    return np.stack([np.linalg.det(H[..., :k, :k]) for k in range(1, n + 1)], axis=-1)
+    return scalar_or_array(np.stack([np.linalg.det(H[..., :k, :k]) for k in range(1, n + 1)], axis=-1))
 
 
 def _posdef2(h11, h12, h22):
@@ -399,7 +400,7 @@ def stability_verdict(lam1, lam3, D0, model=None, control: str = "charge"):
     else:
         lam1, lam3, D0 = _stretches(lam1, lam3, "D0", D0)
         H = hessian_omega(lam1, lam3, D0 / (lam1 * lam3) ** 2, model)
-    return _out(_posdef2(H[..., 0, 0], H[..., 0, 1], H[..., 1, 1]))
+    return scalar_or_array(_posdef2(H[..., 0, 0], H[..., 0, 1], H[..., 1, 1]))
 
 
 def equibiaxial_stability_verdict(lam, D0, model=None, control: str = "charge"):
@@ -430,7 +431,7 @@ def equibiaxial_stability_verdict(lam, D0, model=None, control: str = "charge"):
         D0 = as_array("D0", D0)
         lam, D0 = broadcast(lam=lam, D0=D0)
         H = equibiaxial_hessian_omega(lam, D0 / lam**4, model)
-    return _out(H[..., 0, 0] > 0)
+    return scalar_or_array(H[..., 0, 0] > 0)
 
 
 # ----------------------------------------------------------------------------
@@ -470,7 +471,7 @@ def voltage_limit_D0(lam, model=None):
     m, _, _ = _equi_elastic(lam, model)
     D2 = lam**6 * m / 6.0
     with np.errstate(invalid="ignore"):
-        return _out(np.where(D2 >= 0, np.sqrt(np.abs(D2)), np.nan))
+        return scalar_or_array(np.where(D2 >= 0, np.sqrt(np.abs(D2)), np.nan))
 
 
 def voltage_limit_E0(lam, model=None):
@@ -487,7 +488,7 @@ def voltage_limit_E0(lam, model=None):
     """
     D0 = voltage_limit_D0(lam, model)
     lam = check_positive("lam", lam)
-    return _out(np.asarray(D0) / lam**4)
+    return scalar_or_array(np.asarray(D0) / lam**4)
 
 
 def _uniaxial_path_detK(lam1, x, model):
@@ -582,7 +583,7 @@ def uniaxial_voltage_limit_lam3(lam1, model=None):
     True
     """
     lam1, model = _locus_inputs(lam1, model)
-    return _out(np.sqrt(_uniaxial_locus_x(lam1.ravel(), model)).reshape(lam1.shape))
+    return scalar_or_array(np.sqrt(_uniaxial_locus_x(lam1.ravel(), model)).reshape(lam1.shape))
 
 
 def uniaxial_voltage_limit_D0(lam1, model=None):
@@ -604,7 +605,7 @@ def uniaxial_voltage_limit_D0(lam1, model=None):
     g = np.isfinite(x)
     dW = model.dW(l1[g] ** 2 + x[g] + 1.0 / (l1[g] ** 2 * x[g]))
     D0[g] = np.sqrt(np.maximum(2 * dW * (l1[g] ** 2 * x[g] ** 2 - 1.0), 0.0))
-    return _out(D0.reshape(lam1.shape))
+    return scalar_or_array(D0.reshape(lam1.shape))
 
 
 def uniaxial_voltage_limit_E0(lam1, model=None):
@@ -622,7 +623,7 @@ def uniaxial_voltage_limit_E0(lam1, model=None):
     l1 = lam1.ravel()
     x = _uniaxial_locus_x(l1, model)
     D0 = np.asarray(uniaxial_voltage_limit_D0(l1, model))
-    return _out((D0 / (l1**2 * x)).reshape(lam1.shape))
+    return scalar_or_array((D0 / (l1**2 * x)).reshape(lam1.shape))
 
 
 # ----------------------------------------------------------------------------
@@ -697,7 +698,7 @@ def max_E0(s, model=None, loading: str = "equibiaxial"):
         _, dW, _ = _equi_elastic(lg, model)
         D2 = 2 * dW * (lg**6 - 1.0) - lg**5 * sf  # on the loading curve
         E0 = np.where(good, np.sqrt(np.abs(D2)) / lg**4, np.nan)
-        return _out(lam.reshape(shape)), _out(E0.reshape(shape))
+        return scalar_or_array(lam.reshape(shape), E0.reshape(shape))
     # uni-axial
     l10 = np.asarray(uniaxial_lam1(0.0 * sf, sf, model)).ravel()
     if nh:
@@ -734,7 +735,7 @@ def max_E0(s, model=None, loading: str = "equibiaxial"):
         dW = model.dW(np.where(np.isfinite(I1), I1, 3.0))
         E0 = np.sqrt(2 * dW * (lam1g**2 * x**2 - 1.0)) / (lam1g**2 * x)
     E0 = np.where(np.isfinite(lam1), E0, np.nan)
-    return _out(lam1.reshape(shape)), _out(E0.reshape(shape))
+    return scalar_or_array(lam1.reshape(shape), E0.reshape(shape))
 
 
 def no_maximum_threshold(model=None, loading: str = "equibiaxial") -> float:

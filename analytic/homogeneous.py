@@ -34,6 +34,7 @@ import numpy as np
 
 from ._checks import as_array, broadcast, check_finite, check_positive
 from ._loading import equibiaxial_limits, model_derivs, sqrt_branch, uniaxial_x
+from ._output import scalar_or_array
 from ._roots import expand_bracket, rtsafe
 from .models import Gent, NeoHookean, as_model
 
@@ -55,11 +56,6 @@ __all__ = [
 # ----------------------------------------------------------------------------
 # private helpers
 # ----------------------------------------------------------------------------
-def _out(x: np.ndarray):
-    """Return a Python-friendly result: 0-d arrays become numpy floats."""
-    return x[()] if isinstance(x, np.ndarray) and x.ndim == 0 else x
-
-
 def _I1(lam1, lam3):
     return lam1 * lam1 + lam3 * lam3 + 1.0 / (lam1 * lam3) ** 2
 
@@ -106,7 +102,7 @@ def biaxial_stress(lam1, lam3, D0, model=None):
     e = lam1**-2 * lam3**-2
     t1 = 2 * dW * (lam1 - e / lam1) - e / lam1 * D0**2
     t3 = 2 * dW * (lam3 - e / lam3) - e / lam3 * D0**2
-    return _out(t1), _out(t3)
+    return scalar_or_array(t1, t3)
 
 
 def biaxial_E0(lam1, lam3, D0):
@@ -122,7 +118,7 @@ def biaxial_E0(lam1, lam3, D0):
     lam3 = check_positive("lam3", lam3)
     D0 = as_array("D0", D0)
     lam1, lam3, D0 = broadcast(lam1=lam1, lam3=lam3, D0=D0)
-    return _out(D0 / (lam1**2 * lam3**2))
+    return scalar_or_array(D0 / (lam1**2 * lam3**2))
 
 
 def _biaxial_core(s1, s3, q, model, start=None, maxiter=100):
@@ -262,7 +258,7 @@ def biaxial_stretches(s1, s3, D0, model=None, *, maxiter: int = 100):
     shape = s1.shape
     s1, s3, q = s1.ravel(), s3.ravel(), D0.ravel() ** 2
     la, lb = _biaxial_core(s1, s3, q, model, None, maxiter)
-    return _out(la.reshape(shape)), _out(lb.reshape(shape))
+    return scalar_or_array(la.reshape(shape), lb.reshape(shape))
 
 
 # ----------------------------------------------------------------------------
@@ -300,7 +296,7 @@ def equibiaxial_s(lam, D0, model=None):
     D0 = as_array("D0", D0)
     lam, D0 = broadcast(lam=lam, D0=D0)
     dW, _ = model_derivs(model, 2 * lam**2 + lam**-4, "lam", lam)
-    return _out(2 * dW * (lam - lam**-5) - lam**-5 * D0**2)
+    return scalar_or_array(2 * dW * (lam - lam**-5) - lam**-5 * D0**2)
 
 
 def equibiaxial_s_E0(lam, E0, model=None):
@@ -321,7 +317,7 @@ def equibiaxial_s_E0(lam, E0, model=None):
     E0 = as_array("E0", E0)
     lam, E0 = broadcast(lam=lam, E0=E0)
     dW, _ = model_derivs(model, 2 * lam**2 + lam**-4, "lam", lam)
-    return _out(2 * dW * (lam - lam**-5) - lam**3 * E0**2)
+    return scalar_or_array(2 * dW * (lam - lam**-5) - lam**3 * E0**2)
 
 
 def equibiaxial_D0(lam, s=0.0, model=None):
@@ -373,7 +369,7 @@ def equibiaxial_D0(lam, s=0.0, model=None):
         dW, _ = model_derivs(model, 2 * lam**2 + lam**-4, "lam", lam)
         D2 = 2 * dW * (lam**6 - 1.0) - lam**5 * s
         scale = 2 * dW * (lam**6 + 1.0) + np.abs(lam**5 * s)
-    return _out(sqrt_branch(D2, scale))
+    return scalar_or_array(sqrt_branch(D2, scale))
 
 
 def equibiaxial_E0(lam, s=0.0, model=None):
@@ -396,7 +392,7 @@ def equibiaxial_E0(lam, s=0.0, model=None):
     """
     D0 = equibiaxial_D0(lam, s, model)
     lam = np.broadcast_to(check_positive("lam", lam), np.shape(D0))
-    return _out(np.asarray(D0) / lam**4)
+    return scalar_or_array(np.asarray(D0) / lam**4)
 
 
 def equibiaxial_lam(D0, s=0.0, model=None):
@@ -463,7 +459,7 @@ def equibiaxial_lam(D0, s=0.0, model=None):
         lo = ((1.0 + q) / (c6 + np.maximum(-s, 0.0))) ** 0.2
         hi = c6 + np.maximum(s, 0.0)
         lam = rtsafe(h, lo, hi, 0.5 * s + np.sqrt(0.25 * s**2 + c6**2))
-        return _out(lam.reshape(shape))
+        return scalar_or_array(lam.reshape(shape))
     if type(model) is Gent:
         # 2W' >= 1 (W'' >= 0, 2W'(3) = 1): h_Gent >= h_nH for lam >= 1 and <= for lam <= 1,
         # so the root lies between 1 and the explicit neo-Hookean bounds (see nh above)
@@ -474,7 +470,7 @@ def equibiaxial_lam(D0, s=0.0, model=None):
         hi = np.where(up, np.minimum(c6 + np.maximum(s, 0.0), hi_lim * (1 - 1e-12)), 1.0)
         # first guess: the neo-Hookean estimate used above (exact for nH at s = 0)
         lam = rtsafe(h, lo, hi, 0.5 * s + np.sqrt(0.25 * s**2 + c6**2))
-        return _out(lam.reshape(shape))
+        return scalar_or_array(lam.reshape(shape))
     one = np.ones(q.size)
     f1 = h(one, np.arange(q.size))[0]
     lo = np.where(f1 <= 0, one, np.nan)
@@ -488,7 +484,7 @@ def equibiaxial_lam(D0, s=0.0, model=None):
     x0 = 0.5 * s[ok] + np.sqrt(0.25 * s[ok] ** 2 + u2)
     lam = np.full(q.size, np.nan)
     lam[ok] = rtsafe(lambda x, i: h(x, ok[i]), lo[ok], hi[ok], x0)
-    return _out(lam.reshape(shape))
+    return scalar_or_array(lam.reshape(shape))
 
 
 # ----------------------------------------------------------------------------
@@ -541,7 +537,7 @@ def uniaxial_lam3(lam1, s=0.0, model=None):
     """
     lam1, s, model = _uniaxial_inputs(lam1, s, model)
     x = uniaxial_x(lam1.ravel(), s.ravel(), model).reshape(lam1.shape)
-    return _out(np.sqrt(x))
+    return scalar_or_array(np.sqrt(x))
 
 
 def uniaxial_D0(lam1, s=0.0, model=None):
@@ -585,7 +581,7 @@ def uniaxial_D0(lam1, s=0.0, model=None):
         xg, lg = x[good], l1[good]
         dW = model.dW(lg**2 + xg + 1.0 / (lg**2 * xg))
         D0[good] = np.nan_to_num(sqrt_branch(2 * dW * (lg**2 * xg**2 - 1.0), 2 * dW * (lg**2 * xg**2 + 1.0)))
-    return _out(D0.reshape(lam1.shape))
+    return scalar_or_array(D0.reshape(lam1.shape))
 
 
 def uniaxial_E0(lam1, s=0.0, model=None):
@@ -616,7 +612,7 @@ def uniaxial_E0(lam1, s=0.0, model=None):
         xg, lg = x[good], l1[good]
         dW = model.dW(lg**2 + xg + 1.0 / (lg**2 * xg))
         E0[good] = np.nan_to_num(sqrt_branch(2 * dW * (lg**2 * xg**2 - 1.0), 2 * dW * (lg**2 * xg**2 + 1.0))) / (lg**2 * xg)
-    return _out(E0.reshape(lam1.shape))
+    return scalar_or_array(E0.reshape(lam1.shape))
 
 
 def _uniaxial_cubic_root(c, sig):
@@ -771,8 +767,8 @@ def uniaxial_lam1(D0, s=0.0, model=None):
     shape = D0.shape
     D0f, sf = D0.ravel(), s.ravel()
     if type(model) is Gent:
-        return _out(_uniaxial_lam1_gent(D0f**2, sf, model.Jm).reshape(shape))
+        return scalar_or_array(_uniaxial_lam1_gent(D0f**2, sf, model.Jm).reshape(shape))
     l1 = _uniaxial_lam1_nh(np.sqrt(1.0 + D0f**2), sf)
     if isinstance(model, NeoHookean):
-        return _out(l1.reshape(shape))
-    return _out(_uniaxial_lam1_biaxial(D0f, sf, model, l1).reshape(shape))
+        return scalar_or_array(l1.reshape(shape))
+    return scalar_or_array(_uniaxial_lam1_biaxial(D0f, sf, model, l1).reshape(shape))

@@ -36,8 +36,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from ._checks import as_array, broadcast, check_choice, check_positive
-from ._stroh_core import exponents_from_coefficients, stroh_N
+from ._output import scalar_or_array
+from ._stroh_core import coefficients, exponents_from_coefficients, moduli, stroh_N
 from .models import Model, as_model
 
 __all__ = [
@@ -46,23 +46,6 @@ __all__ = [
     "stroh_matrix",
     "stroh_exponents",
 ]
-
-_DIRECTIONS = ("parallel", "perpendicular")
-
-
-def _state(lam1, lam3, D0, model):
-    """Validated, broadcast ``(lam1, lam2, lam3, D0, W1, W11)``."""
-    model = as_model(model)
-    lam1 = check_positive("lam1", lam1)
-    lam3 = check_positive("lam3", lam3)
-    D0 = as_array("D0", D0)
-    if np.any(~np.isfinite(D0)):
-        raise ValueError(f"D0 must be finite, got {D0}")
-    lam1, lam3, D0 = broadcast(lam1=lam1, lam3=lam3, D0=D0)
-    lam2 = 1.0 / (lam1 * lam3)
-    I1 = lam1**2 + lam2**2 + lam3**2
-    return lam1, lam2, lam3, D0, model.dW(I1), model.d2W(I1)
-
 
 def electroelastic_moduli(lam1, lam3, D0, model: Model | None = None):
     """Push-forward electroelastic moduli of a biaxially stretched charged plate.
@@ -102,27 +85,7 @@ def electroelastic_moduli(lam1, lam3, D0, model: Model | None = None):
     >>> round(float(A0[0, 1, 1, 0]), 12), round(float(p - A0[1, 0, 1, 0] + A0[1, 0, 0, 1]), 12)
     (-0.120563271605, 0.0)
     """
-    lam1, lam2, lam3, D0, W1, W11 = _state(lam1, lam3, D0, model)
-    shape = lam1.shape
-    bdiag = np.stack([lam1**2, lam2**2, lam3**2], axis=-1)  # (..., 3)
-    E2 = lam2 * D0
-    E = np.zeros(shape + (3,))
-    E[..., 1] = E2
-    eye = np.eye(3)
-    b = bdiag[..., :, None] * eye  # (..., 3, 3)
-    W1e = W1[..., None, None, None, None]
-    W11e = W11[..., None, None, None, None]
-    A0 = (
-        2.0 * W1e * np.einsum("ij,...pq->...piqj", eye, b)
-        + 4.0 * W11e * np.einsum("...pi,...qj->...piqj", b, b)
-        - np.einsum("iq,...p,...j->...piqj", eye, E, E)
-        - np.einsum("jp,...i,...q->...piqj", eye, E, E)
-        - np.einsum("pq,...i,...j->...piqj", eye, E, E)
-    )
-    AA0 = np.einsum("ik,...p->...pik", eye, E) + np.einsum("pk,...i->...pik", eye, E)
-    Ae0 = -np.broadcast_to(eye, shape + (3, 3)).copy()
-    p = 2.0 * W1 * lam2**2 + E2**2
-    return A0, AA0, Ae0, p
+    return scalar_or_array(*moduli(lam1, lam3, D0, model))
 
 
 def stroh_coefficients(lam1, lam3, D0, model: Model | None = None, direction: str = "parallel"):
@@ -162,15 +125,7 @@ def stroh_coefficients(lam1, lam3, D0, model: Model | None = None, direction: st
     >>> [round(float(x), 12) for x in stroh_coefficients(1.0, 1.0, 0.0)]
     [1.0, 1.0, 1.0, 0.0]
     """
-    check_choice("direction", direction, _DIRECTIONS)
-    A0, AA0, _, _ = electroelastic_moduli(lam1, lam3, D0, model)
-    m = 0 if direction == "parallel" else 2
-    n = 1
-    a = A0[..., m, n, m, n]
-    c = A0[..., n, m, n, m]
-    b = 0.5 * (A0[..., m, m, m, m] + A0[..., n, n, n, n] - 2.0 * A0[..., m, m, n, n] - 2.0 * A0[..., m, n, n, m])
-    d = AA0[..., m, n, m]
-    return a, b, c, d
+    return scalar_or_array(*coefficients(lam1, lam3, D0, model, direction))
 
 
 def stroh_matrix(lam1, lam3, D0, model: Model | None = None, direction: str = "parallel"):
@@ -209,8 +164,7 @@ def stroh_matrix(lam1, lam3, D0, model: Model | None = None, direction: str = "p
     >>> bool(np.allclose(J @ N, (J @ N).T))
     True
     """
-    a, b, c, d = stroh_coefficients(lam1, lam3, D0, model, direction)
-    return stroh_N(a, b, c, d)
+    return scalar_or_array(stroh_N(*coefficients(lam1, lam3, D0, model, direction)))
 
 
 def stroh_exponents(lam1, lam3, D0, model: Model | None = None, direction: str = "parallel"):
@@ -245,6 +199,5 @@ def stroh_exponents(lam1, lam3, D0, model: Model | None = None, direction: str =
     >>> [round(complex(x).real, 12) for x in stroh_exponents(0.9, 0.9, 0.4)]
     [1.0, 0.729, 1.0]
     """
-    a, b, c, d = stroh_coefficients(lam1, lam3, D0, model, direction)
-    p2, p3 = exponents_from_coefficients(a, b, c, d)
-    return np.ones_like(p2), p2, p3
+    p2, p3 = exponents_from_coefficients(*coefficients(lam1, lam3, D0, model, direction))
+    return scalar_or_array(np.ones_like(p2), p2, p3)

@@ -48,10 +48,10 @@ import numpy as np
 from scipy.linalg import schur
 
 from ._checks import as_array, broadcast, check_choice, check_positive
+from ._output import scalar_or_array
 from ._roots import brent, first_root_on_scan
-from ._stroh_core import coefficients_fast, exponents_from_coefficients, stroh_N
+from ._stroh_core import coefficients, coefficients_fast, exponents_from_coefficients, stroh_N
 from .models import Model, as_model
-from .stroh import stroh_coefficients
 
 __all__ = [
     "thin_plate_factors",
@@ -100,12 +100,6 @@ def _sqrt_or_nan(x):
     return out
 
 
-def _ret(x):
-    """0-d arrays to float, otherwise the array."""
-    x = np.asarray(x)
-    return float(x) if x.ndim == 0 else x
-
-
 # ---------------------------------------------------------------------------
 # thin-plate limit
 # ---------------------------------------------------------------------------
@@ -137,8 +131,8 @@ def thin_plate_factors(lam1, lam3, D0, model: Model | None = None, direction: st
     [0.0, 2.0, 1.0]
     """
     check_choice("direction", direction, _DIRECTIONS)
-    a, b, c, d = stroh_coefficients(lam1, lam3, D0, model, direction)
-    return a - c, b + c + 2.0 * d**2, d**2 + c
+    a, b, c, d = coefficients(lam1, lam3, D0, model, direction)
+    return scalar_or_array(a - c, b + c + 2.0 * d**2, d**2 + c)
 
 
 def thin_limit_D0(lam, model: Model | None = None):
@@ -215,7 +209,7 @@ def thin_limit_D0_uniaxial(lam1, lam3, model: Model | None = None, direction: st
     lam1, lam3 = broadcast(lam1=lam1, lam3=lam3)
     lam_in, lam2 = _in_plane(lam1, lam3, direction)
     W1, _ = _W_derivs(lam1, lam3, model)
-    return _ret(_sqrt_or_nan(2.0 * W1 * ((lam_in / lam2) ** 2 - 1.0)))
+    return scalar_or_array(_sqrt_or_nan(2.0 * W1 * ((lam_in / lam2) ** 2 - 1.0)))
 
 
 # ---------------------------------------------------------------------------
@@ -300,7 +294,7 @@ def thick_limit_D0_uniaxial(
         x = _positive_root(B, C)
     else:
         x = np.where(C >= 0, C / (2.0 * W1 * S), np.nan)
-    return _ret(_sqrt_or_nan(x))
+    return scalar_or_array(_sqrt_or_nan(x))
 
 
 def thick_limit_D0(lam, model: Model | None = None, control: str = "charge"):
@@ -499,10 +493,10 @@ def surface_impedance(
     True
     """
     check_choice("method", method, ("projector", "schur"))
-    a, b, c, d = stroh_coefficients(lam1, lam3, D0, model, direction)
+    a, b, c, d = coefficients(lam1, lam3, D0, model, direction)
     if method == "projector":
         Z, _, _ = _decaying(a, b, c, d)
-        return _impedance_from_Z(Z)
+        return scalar_or_array(_impedance_from_Z(Z))
     N = stroh_N(a, b, c, d)
     flat = N.reshape(-1, 6, 6)
     out = np.empty((flat.shape[0], 3, 3), dtype=complex)
@@ -513,7 +507,7 @@ def surface_impedance(
             continue
         A, Bm = Q[:3, :3], Q[3:, :3]
         out[i] = 1j * np.linalg.solve(A.T, Bm.T).T
-    return out.reshape(N.shape[:-2] + (3, 3))
+    return scalar_or_array(out.reshape(N.shape[:-2] + (3, 3)))
 
 
 def dispersion_function(
@@ -577,10 +571,10 @@ def dispersion_function(
     kh = as_array("kh", kh)
     if np.any(kh <= 0):
         raise ValueError(f"kh must be > 0, got {kh}")
-    a, b, c, d = stroh_coefficients(lam1, lam3, D0, model, direction)
+    a, b, c, d = coefficients(lam1, lam3, D0, model, direction)
     a, b, c, d, kh = broadcast(a=a, b=b, c=c, d=d, kh=kh)
     Z, M, _ = _decaying(a, b, c, d)
-    return _ret(_g_from(Z, M, kh, mode, control))
+    return scalar_or_array(_g_from(Z, M, kh, mode, control))
 
 
 # ---------------------------------------------------------------------------
@@ -710,7 +704,7 @@ def critical_D0_biaxial(
         return _g_from(Z, M, khf[idx][:, None], mode, control)
 
     out = first_root_on_scan(scan, gfun, hif)
-    return _ret(out.reshape(shape))
+    return scalar_or_array(out.reshape(shape))
 
 
 def _g_from(Z, M, kh, mode, control):
