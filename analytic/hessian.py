@@ -572,7 +572,8 @@ def uniaxial_voltage_limit_lam3(lam1, model=None):
     ``det H* = lam1^-2 lam3^-2 det K``, ``K`` the mechanical block of ``H``.
     Neo-Hookean: the paper's ``det H* = 4 lam1^-6 lam3^-6 (3 lam3^2 + lam1^2 -
     lam1^2 lam3^6)`` (Sec. 5), a cubic in ``lam3^2``. That printed formula holds
-    on the loading path only (DESIGN.md §3, item 4). Other models: the first
+    on the loading path only (after substituting ``D0^2 = lam1^2 lam3^4 - 1``), not
+    for arbitrary ``(lam1, lam3, D0)``. Other models: the first
     sign change of ``det K`` as ``D0`` grows from 0 at fixed ``lam1``
     (vectorised scan and bisection).
 

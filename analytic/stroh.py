@@ -6,7 +6,7 @@ Section 4 of the paper linearises the equations of an ideal dielectric
 ``E2`` through its thickness ``x2``. Everything here is dimensionless
 (``mu = eps = 1``): the true field is ``E2 = lam2 D0``.
 
-Moduli (push-forward of ``Omega``, DESIGN.md §3)::
+Moduli (push-forward of ``Omega``)::
 
     A0_piqj = 2 W1 delta_ij b_pq + 4 W11 b_pi b_qj
               - (delta_iq E_p E_j + delta_jp E_i E_q + delta_pq E_i E_j)
@@ -72,7 +72,7 @@ def electroelastic_moduli(lam1, lam3, D0, model: Model | None = None):
 
     Notes
     -----
-    Push-forward of ``Omega = W(I1) - eps I5/2`` (Eq. modelE), DESIGN.md §3. The
+    Push-forward of ``Omega = W(I1) - eps I5/2`` (Eq. modelE). The
     incremental constitutive law is ``T0_pi = A0_piqj u_{j,q} + p u_{p,i} - pdot
     delta_pi + AA0_pik EL0_k`` and ``DL0_k = -AA0_qjk u_{j,q} - Ae0_km EL0_m``.
     The paper's listed components (Section 4) are an alternative set; this
@@ -152,8 +152,9 @@ def stroh_matrix(lam1, lam3, D0, model: Model | None = None, direction: str = "p
     Notes
     -----
     Uses the corrected Eq. (con-eqns), ``D_L02 = 2 d u_{1,1} - phi_{,2}``
-    (DESIGN.md §3.1), and ``N3_11 = -2(b + c) - 4 d^2`` in scaled quantities
-    (DESIGN.md §3.3). ``J N`` is symmetric with ``J = [[0, I], [I, 0]]``.
+    (printed ``phi_{,1}``), and ``N3_11 = -2(b + c) - 4 d^2`` in scaled quantities
+    (the printed ``-2(b + c)`` means the barred, scaled ``b`` and ``c``). ``J N`` is
+    symmetric with ``J = [[0, I], [I, 0]]``.
 
     Examples
     --------

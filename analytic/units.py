@@ -102,7 +102,7 @@ class Plate:
 KEPLINGER_PLATE = Plate(length=0.100, width=0.050, thickness=0.001, mu=9833.07)
 #: Attached mass in kg (Sec. 6).
 KEPLINGER_MASS = 0.150
-#: Load fractions ``alpha`` of the weight used for the uni-axial cases (DESIGN.md §2).
+#: Load fractions ``alpha`` of the weight used for the uni-axial cases (Sec. 6).
 KEPLINGER_ALPHAS = (0.05, 0.3, 0.7, 1.0, 1.5)
 
 
@@ -260,8 +260,8 @@ def keplinger_s(alpha, *, g: float, plate: Plate = KEPLINGER_PLATE, mass: float 
     Parameters
     ----------
     alpha : array_like
-        Fraction(s) of the 150 g weight (>= 0); DESIGN.md uses
-        ``(0.05, 0.3, 0.7, 1.0, 1.5)``.
+        Fraction(s) of the 150 g weight (>= 0); the uni-axial cases use
+        :data:`KEPLINGER_ALPHAS` ``= (0.05, 0.3, 0.7, 1.0, 1.5)``.
     g : float
         Gravitational acceleration in m/s^2, keyword only and required.
     plate : Plate

@@ -193,8 +193,8 @@ def thin_limit_D0_uniaxial(lam1, lam3, model: Model | None = None, direction: st
     Eq. (thin-uni-axial): ``D0^2 = lam1^4 lam3^2 - 1`` for neo-Hookean parallel
     wrinkles. For perpendicular wrinkles ``D0^2 = 2 W' (lam1^2 lam3^4 - 1)``
     coincides with the ``t3 = 0`` condition of the uni-axial loading curve for
-    every ``s`` (DESIGN.md §3.5): perpendicular long waves are marginal on every
-    uni-axial path.
+    every ``s``, not only for ``s = 0``: perpendicular long waves are marginal on
+    every uni-axial path.
 
     Examples
     --------
@@ -765,8 +765,10 @@ def critical_D0(
     -----
     Beyond the paper. Tends to :func:`thin_limit_D0` (Eq. antisym_thin) as
     ``kh -> 0`` (antisymmetric modes) and to :func:`thick_limit_D0`
-    (Eq. short-wave) as ``kh -> inf``. Uses the corrected Eq. (con-eqns)
-    (DESIGN.md §3.1). Numerically stable for every ``kh`` (module notes).
+    (Eq. short-wave) as ``kh -> inf``. Uses Eq. (con-eqns) with its last relation
+    corrected to ``D_L02 = 2 d u_{1,1} - phi_{,2}`` (printed ``phi_{,1}``; the printed
+    Stroh matrix is consistent with ``phi_{,2}``). Numerically stable for every ``kh``
+    (module notes).
 
     Examples
     --------
