@@ -575,7 +575,7 @@ def uniaxial_voltage_limit_lam3(lam1, model=None):
     on the loading path only (after substituting ``D0^2 = lam1^2 lam3^4 - 1``), not
     for arbitrary ``(lam1, lam3, D0)``. Other models: the first
     sign change of ``det K`` as ``D0`` grows from 0 at fixed ``lam1``
-    (vectorised scan and bisection).
+    (vectorised scan and Illinois regula falsi).
 
     Examples
     --------
@@ -664,7 +664,7 @@ def max_E0(s, model=None, loading: str = "equibiaxial"):
     ``s = 0``, ``lam = 2^(1/3)`` and ``E0 = sqrt(3)/2^(4/3)``. Neo-Hookean
     uni-axial: root of ``4 lam1 - 3 s - lam1^4 (lam1 - s)^3 = 0``. Other
     models: first sign change on a 256-point scan from the ``D0 = 0`` state,
-    refined by bisection.
+    refined by Illinois regula falsi.
 
     Examples
     --------

@@ -38,7 +38,7 @@ import numpy as np
 
 from ._output import scalar_or_array
 from ._stroh_core import coefficients, exponents_from_coefficients, moduli, stroh_N
-from .models import Model, as_model
+from .models import Model
 
 __all__ = [
     "electroelastic_moduli",
