@@ -27,16 +27,10 @@ from __future__ import annotations
 import numpy as np
 
 from ._checks import as_array, broadcast, check_choice, check_finite, check_positive
-from .homogeneous import (
-    _derivs,
-    _equibiaxial_limits,
-    _out,
-    _rtsafe,
-    _uniaxial_x,
-    _uniaxial_xlock,
-    equibiaxial_lam,
-    uniaxial_lam1,
-)
+from ._loading import equibiaxial_limits, model_derivs, uniaxial_x, uniaxial_xlock
+from ._output import scalar_or_array
+from ._roots import golden_section_max, illinois, rtsafe, scan_first_up
+from .homogeneous import equibiaxial_lam, uniaxial_lam1
 from .models import NeoHookean, as_model
 
 __all__ = [
@@ -90,7 +84,7 @@ def invariant_I1(lam1, lam3):
     lam1 = check_positive("lam1", lam1)
     lam3 = check_positive("lam3", lam3)
     lam1, lam3 = broadcast(lam1=lam1, lam3=lam3)
-    return _out(lam1**2 + lam3**2 + 1.0 / (lam1 * lam3) ** 2)
+    return scalar_or_array(lam1**2 + lam3**2 + 1.0 / (lam1 * lam3) ** 2)
 
 
 def omega_star(lam1, lam3, D0, model=None):
@@ -119,8 +113,8 @@ def omega_star(lam1, lam3, D0, model=None):
     model = as_model(model)
     lam1, lam3, D0 = _stretches(lam1, lam3, "D0", D0)
     I1 = lam1**2 + lam3**2 + 1.0 / (lam1 * lam3) ** 2
-    _derivs(model, I1, "lam1", lam1)
-    return _out(model.W(I1) + 0.5 * D0**2 / (lam1 * lam3) ** 2)
+    model_derivs(model, I1, "lam1", lam1)
+    return scalar_or_array(model.W(I1) + 0.5 * D0**2 / (lam1 * lam3) ** 2)
 
 
 def omega(lam1, lam3, E0, model=None):
@@ -140,8 +134,8 @@ def omega(lam1, lam3, E0, model=None):
     model = as_model(model)
     lam1, lam3, E0 = _stretches(lam1, lam3, "E0", E0)
     I1 = lam1**2 + lam3**2 + 1.0 / (lam1 * lam3) ** 2
-    _derivs(model, I1, "lam1", lam1)
-    return _out(model.W(I1) - 0.5 * E0**2 * (lam1 * lam3) ** 2)
+    model_derivs(model, I1, "lam1", lam1)
+    return scalar_or_array(model.W(I1) - 0.5 * E0**2 * (lam1 * lam3) ** 2)
 
 
 def equibiaxial_omega_star(lam, D0, model=None):
@@ -177,7 +171,7 @@ def _elastic(lam1, lam3, model, name="lam1"):
     ra, rb = 1.0 / a, 1.0 / b
     e = (ra * rb) ** 2
     I1 = a * a + b * b + e
-    dW, d2W = _derivs(model, I1, name, lam1)
+    dW, d2W = model_derivs(model, I1, name, lam1)
     Ia, Ib = 2 * (a - e * ra), 2 * (b - e * rb)
     k11 = d2W * Ia * Ia + dW * (2 + 6 * e * ra * ra)
     k33 = d2W * Ib * Ib + dW * (2 + 6 * e * rb * rb)
@@ -231,7 +225,7 @@ def hessian_omega_star(lam1, lam3, D0, model=None):
     h33 = k33 + 3 * q * e * rb * rb
     h13 = k13 + 2 * q * e * ra * rb
     h1D, h3D = -2 * D0 * e * ra, -2 * D0 * e * rb
-    return _stack([[h11, h13, h1D], [h13, h33, h3D], [h1D, h3D, e]])
+    return scalar_or_array(_stack([[h11, h13, h1D], [h13, h33, h3D], [h1D, h3D, e]]))
 
 
 def hessian_omega(lam1, lam3, E0, model=None):
@@ -262,14 +256,14 @@ def hessian_omega(lam1, lam3, E0, model=None):
     h33 = k33 - lam1**2 * q
     h13 = k13 - 2 * lam1 * lam3 * q
     h1E, h3E = -2 * lam1 * lam3**2 * E0, -2 * lam1**2 * lam3 * E0
-    return _stack([[h11, h13, h1E], [h13, h33, h3E], [h1E, h3E, -(lam1 * lam3) ** 2]])
+    return scalar_or_array(_stack([[h11, h13, h1E], [h13, h33, h3E], [h1E, h3E, -(lam1 * lam3) ** 2]]))
 
 
 def _equi_elastic(lam, model):
     r = 1.0 / lam
     r4 = (r * r) ** 2
     I1 = 2 * lam * lam + r4
-    dW, d2W = _derivs(model, I1, "lam", lam)
+    dW, d2W = model_derivs(model, I1, "lam", lam)
     I1p, I1pp = 4 * (lam - r4 * r), 4 + 20 * r4 * r * r
     return d2W * I1p**2 + dW * I1pp, dW, d2W
 
@@ -301,7 +295,7 @@ def equibiaxial_hessian_omega_star(lam, D0, model=None):
     m, _, _ = _equi_elastic(lam, model)
     r = 1.0 / lam
     r4 = (r * r) ** 2
-    return _stack([[m + 10 * r4 * r * r * D0**2, -4 * r4 * r * D0], [-4 * r4 * r * D0, r4]])
+    return scalar_or_array(_stack([[m + 10 * r4 * r * r * D0**2, -4 * r4 * r * D0], [-4 * r4 * r * D0, r4]]))
 
 
 def equibiaxial_hessian_omega(lam, E0, model=None):
@@ -327,7 +321,7 @@ def equibiaxial_hessian_omega(lam, E0, model=None):
     E0 = as_array("E0", E0)
     lam, E0 = broadcast(lam=lam, E0=E0)
     m, _, _ = _equi_elastic(lam, model)
-    return _stack([[m - 6 * lam**2 * E0**2, -4 * lam**3 * E0], [-4 * lam**3 * E0, -(lam**4)]])
+    return scalar_or_array(_stack([[m - 6 * lam**2 * E0**2, -4 * lam**3 * E0], [-4 * lam**3 * E0, -(lam**4)]]))
 
 
 def leading_minors(H):
@@ -353,7 +347,7 @@ def leading_minors(H):
     if H.ndim < 2 or H.shape[-1] != H.shape[-2]:
         raise ValueError(f"H must have shape (..., n, n), got shape {H.shape}")
     n = H.shape[-1]
-    return np.stack([np.linalg.det(H[..., :k, :k]) for k in range(1, n + 1)], axis=-1)
+    return scalar_or_array(np.stack([np.linalg.det(H[..., :k, :k]) for k in range(1, n + 1)], axis=-1))
 
 
 def _posdef2(h11, h12, h22):
@@ -406,7 +400,7 @@ def stability_verdict(lam1, lam3, D0, model=None, control: str = "charge"):
     else:
         lam1, lam3, D0 = _stretches(lam1, lam3, "D0", D0)
         H = hessian_omega(lam1, lam3, D0 / (lam1 * lam3) ** 2, model)
-    return _out(_posdef2(H[..., 0, 0], H[..., 0, 1], H[..., 1, 1]))
+    return scalar_or_array(_posdef2(H[..., 0, 0], H[..., 0, 1], H[..., 1, 1]))
 
 
 def equibiaxial_stability_verdict(lam, D0, model=None, control: str = "charge"):
@@ -437,7 +431,7 @@ def equibiaxial_stability_verdict(lam, D0, model=None, control: str = "charge"):
         D0 = as_array("D0", D0)
         lam, D0 = broadcast(lam=lam, D0=D0)
         H = equibiaxial_hessian_omega(lam, D0 / lam**4, model)
-    return _out(H[..., 0, 0] > 0)
+    return scalar_or_array(H[..., 0, 0] > 0)
 
 
 # ----------------------------------------------------------------------------
@@ -477,7 +471,7 @@ def voltage_limit_D0(lam, model=None):
     m, _, _ = _equi_elastic(lam, model)
     D2 = lam**6 * m / 6.0
     with np.errstate(invalid="ignore"):
-        return _out(np.where(D2 >= 0, np.sqrt(np.abs(D2)), np.nan))
+        return scalar_or_array(np.where(D2 >= 0, np.sqrt(np.abs(D2)), np.nan))
 
 
 def voltage_limit_E0(lam, model=None):
@@ -494,7 +488,7 @@ def voltage_limit_E0(lam, model=None):
     """
     D0 = voltage_limit_D0(lam, model)
     lam = check_positive("lam", lam)
-    return _out(np.asarray(D0) / lam**4)
+    return scalar_or_array(np.asarray(D0) / lam**4)
 
 
 def _uniaxial_path_detK(lam1, x, model):
@@ -524,14 +518,14 @@ def _uniaxial_locus_x(lam1, model):
             l2 = lam1[i] ** 2
             return l2 * x**3 - 3 * x - l2, 3 * l2 * x**2 - 3.0
 
-        x = _rtsafe(f, np.zeros(n), 1.0 + 3.0 / lam1**2, 1.0 + 3.0 / lam1**2)
+        x = rtsafe(f, np.zeros(n), 1.0 + 3.0 / lam1**2, 1.0 + 3.0 / lam1**2)
         with np.errstate(invalid="ignore"):
             return np.where(lam1**2 * x**2 >= 1.0, x, np.nan)
-    _derivs(model, lam1**2 + 2.0 / lam1, "lam1", lam1)
+    model_derivs(model, lam1**2 + 2.0 / lam1, "lam1", lam1)
     if n > _CHUNK:  # bound the memory of the scan grid (a loop over blocks, not points)
         return np.concatenate([_uniaxial_locus_x(lam1[k:k + _CHUNK], model) for k in range(0, n, _CHUNK)])
     x_lo = 1.0 / lam1
-    x_top = _uniaxial_xlock(lam1, model.I1_max())
+    x_top = uniaxial_xlock(lam1, model.I1_max())
     x_top = np.where(np.isfinite(x_top), x_top, 64.0 * (x_lo + 3.0 / lam1**2 + 1.0))
     t = np.concatenate([np.linspace(0.0, 0.97, 48), 1.0 - 0.03 * 2.0 ** -np.arange(1, 16)])
     xs = x_lo[:, None] + (x_top - x_lo)[:, None] * t[None, :]
@@ -546,42 +540,9 @@ def _uniaxial_locus_x(lam1, model):
     k = np.argmax(change, axis=1)
     x = np.full(n, np.nan)
     r = np.flatnonzero(has)
-    x[r] = _bisect(lambda xv, i: _uniaxial_path_detK(lam1[r[i]], xv, model)[0],
+    x[r] = illinois(lambda xv, i: _uniaxial_path_detK(lam1[r[i]], xv, model)[0],
                    xs[r, k[r]], xs[r, k[r] + 1])
     return x
-
-
-def _bisect(fun, a, b, maxiter=100):
-    """Vectorised Illinois (modified regula falsi) root finder; ``fun(a) > 0 >= fun(b)``
-    on entry. Superlinear, derivative free, keeps the bracket; converged problems drop
-    out of the sweep."""
-    a, b = np.array(a, dtype=float), np.array(b, dtype=float)
-    n = a.size
-    out = np.full(n, np.nan)
-    idx = np.arange(n)
-    fa, fb = fun(a, idx), fun(b, idx)
-    side = np.zeros(n)
-    for _ in range(maxiter):
-        if idx.size == 0:
-            break
-        with np.errstate(divide="ignore", invalid="ignore"):
-            c = b - fb * (b - a) / (fb - fa)
-        bad = ~np.isfinite(c) | ((c - a) * (c - b) >= 0)
-        c = np.where(bad, 0.5 * (a + b), c)
-        fc = fun(c, idx)
-        pos = fc > 0
-        # Illinois: halve the value kept twice in a row on the same side
-        fa_new = np.where(pos, fc, np.where(side == -1, 0.5 * fa, fa))
-        fb_new = np.where(pos, np.where(side == 1, 0.5 * fb, fb), fc)
-        a, b = np.where(pos, c, a), np.where(pos, b, c)
-        fa, fb = fa_new, fb_new
-        side = np.where(pos, 1, -1)
-        conv = (np.abs(b - a) <= 4 * np.finfo(float).eps * np.abs(c)) | (fc == 0) | ~np.isfinite(fc)
-        out[idx[conv]] = c[conv]
-        keep = ~conv
-        idx, a, b, fa, fb, side = idx[keep], a[keep], b[keep], fa[keep], fb[keep], side[keep]
-    out[idx] = 0.5 * (a + b)
-    return out
 
 
 def _locus_inputs(lam1, model):
@@ -611,9 +572,10 @@ def uniaxial_voltage_limit_lam3(lam1, model=None):
     ``det H* = lam1^-2 lam3^-2 det K``, ``K`` the mechanical block of ``H``.
     Neo-Hookean: the paper's ``det H* = 4 lam1^-6 lam3^-6 (3 lam3^2 + lam1^2 -
     lam1^2 lam3^6)`` (Sec. 5), a cubic in ``lam3^2``. That printed formula holds
-    on the loading path only (DESIGN.md §3, item 4). Other models: the first
+    on the loading path only (after substituting ``D0^2 = lam1^2 lam3^4 - 1``), not
+    for arbitrary ``(lam1, lam3, D0)``. Other models: the first
     sign change of ``det K`` as ``D0`` grows from 0 at fixed ``lam1``
-    (vectorised scan and bisection).
+    (vectorised scan and Illinois regula falsi).
 
     Examples
     --------
@@ -622,7 +584,7 @@ def uniaxial_voltage_limit_lam3(lam1, model=None):
     True
     """
     lam1, model = _locus_inputs(lam1, model)
-    return _out(np.sqrt(_uniaxial_locus_x(lam1.ravel(), model)).reshape(lam1.shape))
+    return scalar_or_array(np.sqrt(_uniaxial_locus_x(lam1.ravel(), model)).reshape(lam1.shape))
 
 
 def uniaxial_voltage_limit_D0(lam1, model=None):
@@ -644,7 +606,7 @@ def uniaxial_voltage_limit_D0(lam1, model=None):
     g = np.isfinite(x)
     dW = model.dW(l1[g] ** 2 + x[g] + 1.0 / (l1[g] ** 2 * x[g]))
     D0[g] = np.sqrt(np.maximum(2 * dW * (l1[g] ** 2 * x[g] ** 2 - 1.0), 0.0))
-    return _out(D0.reshape(lam1.shape))
+    return scalar_or_array(D0.reshape(lam1.shape))
 
 
 def uniaxial_voltage_limit_E0(lam1, model=None):
@@ -662,7 +624,7 @@ def uniaxial_voltage_limit_E0(lam1, model=None):
     l1 = lam1.ravel()
     x = _uniaxial_locus_x(l1, model)
     D0 = np.asarray(uniaxial_voltage_limit_D0(l1, model))
-    return _out((D0 / (l1**2 * x)).reshape(lam1.shape))
+    return scalar_or_array((D0 / (l1**2 * x)).reshape(lam1.shape))
 
 
 # ----------------------------------------------------------------------------
@@ -672,23 +634,6 @@ def _equi_F(lam, s, model):
     """``D0^2(curve) - D0^2(locus)`` on the equi-biaxial curve of load ``s``."""
     m, dW, _ = _equi_elastic(lam, model)
     return 2 * dW * (lam**6 - 1.0) - lam**5 * s - lam**6 * m / 6.0
-
-
-def _scan_first_up(F, lo, hi, n=256):
-    """First sign change ``F < 0 -> F >= 0`` on a grid from ``lo`` to ``hi`` (rows); bisection."""
-    t = np.linspace(0.0, 1.0, n + 1)[1:]
-    grid = lo[:, None] + (hi - lo)[:, None] * t[None, :]
-    Fv = F(grid, np.repeat(np.arange(lo.size), n).reshape(grid.shape))
-    prev = np.concatenate([np.full((lo.size, 1), -1.0), Fv[:, :-1]], axis=1)
-    change = (prev < 0) & (Fv >= 0)
-    has = change.any(axis=1)
-    k = np.argmax(change, axis=1)
-    out = np.full(lo.size, np.nan)
-    r = np.flatnonzero(has)
-    a = np.where(k[r] > 0, grid[r, np.maximum(k[r] - 1, 0)], lo[r])
-    b = grid[r, k[r]]
-    out[r] = _bisect(lambda x, i: -F(x, r[i]), a, b)
-    return out
 
 
 def max_E0(s, model=None, loading: str = "equibiaxial"):
@@ -719,7 +664,7 @@ def max_E0(s, model=None, loading: str = "equibiaxial"):
     ``s = 0``, ``lam = 2^(1/3)`` and ``E0 = sqrt(3)/2^(4/3)``. Neo-Hookean
     uni-axial: root of ``4 lam1 - 3 s - lam1^4 (lam1 - s)^3 = 0``. Other
     models: first sign change on a 256-point scan from the ``D0 = 0`` state,
-    refined by bisection.
+    refined by Illinois regula falsi.
 
     Examples
     --------
@@ -744,17 +689,17 @@ def max_E0(s, model=None, loading: str = "equibiaxial"):
                 return 2 * x**6 - 3 * sf[i] * x**5 - 8.0, 12 * x**5 - 15 * sf[i] * x**4
 
             hi = 1.5 * np.abs(sf) + 2.0
-            lam = _rtsafe(f, lam0, hi, hi)
+            lam = rtsafe(f, lam0, hi, hi)
         else:
-            lo_lim, hi_lim = _equibiaxial_limits(model)
+            lo_lim, hi_lim = equibiaxial_limits(model)
             top = np.full(sf.size, hi_lim * (1 - 1e-9)) if np.isfinite(hi_lim) else 64.0 * lam0
-            lam = _scan_first_up(lambda x, i: _equi_F(x, sf[i], model), lam0, top)
+            lam = scan_first_up(lambda x, i: _equi_F(x, sf[i], model), lam0, top)
         good = np.isfinite(lam)
         lg = np.where(good, lam, 1.0)
         _, dW, _ = _equi_elastic(lg, model)
         D2 = 2 * dW * (lg**6 - 1.0) - lg**5 * sf  # on the loading curve
         E0 = np.where(good, np.sqrt(np.abs(D2)) / lg**4, np.nan)
-        return _out(lam.reshape(shape)), _out(E0.reshape(shape))
+        return scalar_or_array(lam.reshape(shape), E0.reshape(shape))
     # uni-axial
     l10 = np.asarray(uniaxial_lam1(0.0 * sf, sf, model)).ravel()
     if nh:
@@ -763,7 +708,7 @@ def max_E0(s, model=None, loading: str = "equibiaxial"):
             return 4 * x - 3 * sf[i] - x**4 * u**3, 4 - 4 * x**3 * u**3 - 3 * x**4 * u**2
 
         hi = np.maximum(sf, 0.0) + 2.0 + np.abs(sf)
-        lam1 = _rtsafe(G, hi, l10, hi)
+        lam1 = rtsafe(G, hi, l10, hi)
     else:
         I1max = model.I1_max()
         if np.isfinite(I1max):
@@ -776,22 +721,22 @@ def max_E0(s, model=None, loading: str = "equibiaxial"):
         def F(x, i):
             shp = x.shape
             xf, sv = x.ravel(), sf[np.broadcast_to(i, shp).ravel()]
-            xx = _uniaxial_x(xf, sv, model)
+            xx = uniaxial_x(xf, sv, model)
             out = np.full(xf.size, -np.inf)  # off the branch (lock reached): no maximum here
             g = np.isfinite(xx)
             out[g] = -_uniaxial_path_detK(xf[g], xx[g], model)[0]
             return out.reshape(shp)
 
-        lam1 = _scan_first_up(F, l10, top)
+        lam1 = scan_first_up(F, l10, top)
     lam1g = np.where(np.isfinite(lam1), lam1, 1.0)
-    x = _uniaxial_x(lam1g, sf, model)
+    x = uniaxial_x(lam1g, sf, model)
     x = np.where(np.isfinite(lam1), x, np.nan)
     with np.errstate(invalid="ignore"):
         I1 = lam1g**2 + x + 1.0 / (lam1g**2 * x)
         dW = model.dW(np.where(np.isfinite(I1), I1, 3.0))
         E0 = np.sqrt(2 * dW * (lam1g**2 * x**2 - 1.0)) / (lam1g**2 * x)
     E0 = np.where(np.isfinite(lam1), E0, np.nan)
-    return _out(lam1.reshape(shape)), _out(E0.reshape(shape))
+    return scalar_or_array(lam1.reshape(shape), E0.reshape(shape))
 
 
 def no_maximum_threshold(model=None, loading: str = "equibiaxial") -> float:
@@ -832,7 +777,7 @@ def no_maximum_threshold(model=None, loading: str = "equibiaxial") -> float:
         return float("inf")
     I1max = model.I1_max()
     if loading == "equibiaxial":
-        lo_lim, hi_lim = _equibiaxial_limits(model)
+        lo_lim, hi_lim = equibiaxial_limits(model)
         top = hi_lim * (1 - 1e-9) if np.isfinite(hi_lim) else 1e3
 
         def S(lam):
@@ -856,16 +801,5 @@ def no_maximum_threshold(model=None, loading: str = "equibiaxial") -> float:
         return float("inf")
     # golden-section refinement around the grid maximum (a scalar problem)
     a, b = grid[max(k - 1, 0)], grid[min(k + 1, grid.size - 1)]
-    g = (np.sqrt(5.0) - 1.0) / 2.0
-    c, d = b - g * (b - a), a + g * (b - a)
-    fc, fd = S(np.array([c]))[0], S(np.array([d]))[0]
-    for _ in range(80):
-        if fc > fd:
-            b, d, fd = d, c, fc
-            c = b - g * (b - a)
-            fc = S(np.array([c]))[0]
-        else:
-            a, c, fc = c, d, fd
-            d = a + g * (b - a)
-            fd = S(np.array([d]))[0]
+    fc, fd = golden_section_max(lambda x: S(np.array([x]))[0], a, b)
     return float(max(fc, fd, vals[k]))

@@ -33,7 +33,10 @@ from __future__ import annotations
 import numpy as np
 
 from ._checks import as_array, broadcast, check_finite, check_positive
-from .models import Gent, Model, NeoHookean, as_model
+from ._loading import equibiaxial_limits, model_derivs, sqrt_branch, uniaxial_x
+from ._output import scalar_or_array
+from ._roots import expand_bracket, rtsafe
+from .models import Gent, NeoHookean, as_model
 
 __all__ = [
     "biaxial_stress",
@@ -50,140 +53,11 @@ __all__ = [
     "uniaxial_lam1",
 ]
 
-_EPS = np.finfo(float).eps
-
-
 # ----------------------------------------------------------------------------
 # private helpers
 # ----------------------------------------------------------------------------
-def _first(value, mask):
-    """A representative offending entry of ``value`` for error messages."""
-    v = np.broadcast_to(np.asarray(value), np.shape(mask))
-    return (v[mask].flat[0] if np.ndim(mask) else v).item()
-
-
-def _derivs(model: Model, I1: np.ndarray, name: str, value):
-    """``(W', W'')`` at ``I1``; ``ValueError`` naming ``name`` beyond the model limit."""
-    I1max = model.I1_max()
-    bad = ~(I1 < I1max)
-    if np.any(bad):
-        raise ValueError(
-            f"{name} = {_first(value, bad)!r} gives I1 = {_first(I1, bad)!r}, beyond the "
-            f"{model.name} limit I1 < {I1max}"
-        )
-    return np.asarray(model.dW(I1), dtype=float), np.asarray(model.d2W(I1), dtype=float)
-
-
-def _out(x: np.ndarray):
-    """Return a Python-friendly result: 0-d arrays become numpy floats."""
-    return x[()] if isinstance(x, np.ndarray) and x.ndim == 0 else x
-
-
-def _rtsafe(fun, a, b, x0=None, *, rtol=4 * _EPS, maxiter=200):
-    """Vectorised safeguarded Newton (bisection fallback) on brackets.
-
-    ``fun(x, idx) -> (f, df)`` evaluates the function and its derivative at the
-    points ``x`` belonging to the problems ``idx`` (integer indices). On entry
-    ``f(a) <= 0 <= f(b)`` must hold for every problem (``a`` may exceed ``b``).
-    Only unconverged problems are evaluated in each sweep; there is no loop over
-    points. ``x0`` is an optional first guess (used where it lies inside the bracket).
-    """
-    a = np.array(a, dtype=float).ravel()
-    b = np.array(b, dtype=float).ravel()
-    n = a.size
-    out = np.full(n, np.nan)
-    active = np.arange(n)
-    x = 0.5 * (a + b)
-    if x0 is not None:
-        x0 = np.broadcast_to(np.asarray(x0, dtype=float).ravel(), x.shape)
-        inside = np.isfinite(x0) & ((x0 - a) * (x0 - b) < 0)
-        x = np.where(inside, x0, x)
-    for it in range(maxiter):
-        if active.size == 0:
-            break
-        f, df = fun(x, active)
-        neg = f < 0
-        a = np.where(neg, x, a)
-        b = np.where(neg, b, x)
-        with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
-            step = f / df
-        xn = x - step
-        # Newton inside the (closed) bracket, else bisection; every 16th sweep bisects
-        # to break a possible Newton cycle
-        newton = (xn - a) * (xn - b) <= 0  # False for nan/inf
-        if it % 16 == 15:
-            newton[:] = False
-        xn = np.where(newton, xn, 0.5 * (a + b))
-        ax = np.abs(x)
-        # a Newton step of relative size 1e-9 leaves an error of order 1e-18 (quadratic
-        # convergence; f == 0 gives step 0); bisection stops when the bracket is a few
-        # ulps wide (checked every 4th sweep: bisection needs ~50 sweeps anyway)
-        conv = newton & (np.abs(step) <= 1e-9 * ax)
-        if it % 4 == 3:
-            conv |= np.abs(b - a) <= rtol * ax
-        if np.any(conv):
-            out[active[conv]] = xn[conv]
-            keep = ~conv
-            active, x, a, b = active[keep], xn[keep], a[keep], b[keep]
-        else:
-            x = xn
-    out[active] = x  # bracket has shrunk for maxiter sweeps: accept
-    return out
-
-
-def _expand(fun_sign, start, limit, want, maxsteps=80):
-    """Vectorised search from ``start`` toward ``limit`` for a point where
-    ``fun_sign(x, idx)`` has the sign ``want`` (+1 or -1). Returns nan where none."""
-    start = np.asarray(start, dtype=float)
-    limit = np.broadcast_to(np.asarray(limit, dtype=float), start.shape)
-    found = np.full(start.shape, np.nan)
-    active = np.arange(start.size)
-    for k in range(1, maxsteps + 1):
-        if active.size == 0:
-            break
-        lim, st = limit[active], start[active]
-        fin = np.isfinite(lim)
-        x = st * 2.0**k
-        x[fin] = lim[fin] + (st[fin] - lim[fin]) * 2.0 ** (-k)
-        f = fun_sign(x, active)
-        hit = np.sign(f) == want
-        found[active[hit]] = x[hit]
-        active = active[~hit]
-    return found
-
-
-def _sqrt_branch(D2, scale):
-    """``sqrt(D2)``; values within rounding of 0 (``|D2| <= 16 eps scale``) give 0, others
-    below 0 give ``nan`` (no real state)."""
-    D2 = np.where(np.abs(D2) <= 16 * _EPS * scale, 0.0, D2)
-    with np.errstate(invalid="ignore"):
-        return np.where(D2 >= 0, np.sqrt(np.abs(D2)), np.nan)
-
-
 def _I1(lam1, lam3):
     return lam1 * lam1 + lam3 * lam3 + 1.0 / (lam1 * lam3) ** 2
-
-
-def _equibiaxial_limits(model: Model) -> tuple[float, float]:
-    """Stretches ``(lam_lo, lam_hi)`` where ``I1 = 2 lam^2 + lam^-4`` reaches the model limit."""
-    I1max = model.I1_max()
-    if not np.isfinite(I1max):
-        return 0.0, np.inf
-    # 2 y^3 - I1max y^2 + 1 = 0 with y = lam^2: one root in (0, 1), one above 1
-    r = np.roots([2.0, -I1max, 0.0, 1.0])
-    r = np.sort(r[np.isreal(r)].real)
-    r = r[r > 0]
-    return float(np.sqrt(r[0])), float(np.sqrt(r[-1]))
-
-
-def _uniaxial_xlock(lam1, I1max):
-    """Largest ``x = lam3^2`` with ``lam1^2 + x + 1/(lam1^2 x) <= I1max`` (``inf`` if none)."""
-    if not np.isfinite(I1max):
-        return np.full(np.shape(lam1), np.inf)
-    c = I1max - lam1**2
-    disc = c**2 - 4.0 / lam1**2
-    with np.errstate(invalid="ignore"):
-        return np.where(disc >= 0, 0.5 * (c + np.sqrt(np.maximum(disc, 0.0))), np.nan)
 
 
 # ----------------------------------------------------------------------------
@@ -224,11 +98,11 @@ def biaxial_stress(lam1, lam3, D0, model=None):
     lam3 = check_positive("lam3", lam3)
     D0 = as_array("D0", D0)
     lam1, lam3, D0 = broadcast(lam1=lam1, lam3=lam3, D0=D0)
-    dW, _ = _derivs(model, _I1(lam1, lam3), "lam1", lam1)
+    dW, _ = model_derivs(model, _I1(lam1, lam3), "lam1", lam1)
     e = lam1**-2 * lam3**-2
     t1 = 2 * dW * (lam1 - e / lam1) - e / lam1 * D0**2
     t3 = 2 * dW * (lam3 - e / lam3) - e / lam3 * D0**2
-    return _out(t1), _out(t3)
+    return scalar_or_array(t1, t3)
 
 
 def biaxial_E0(lam1, lam3, D0):
@@ -244,7 +118,7 @@ def biaxial_E0(lam1, lam3, D0):
     lam3 = check_positive("lam3", lam3)
     D0 = as_array("D0", D0)
     lam1, lam3, D0 = broadcast(lam1=lam1, lam3=lam3, D0=D0)
-    return _out(D0 / (lam1**2 * lam3**2))
+    return scalar_or_array(D0 / (lam1**2 * lam3**2))
 
 
 def _biaxial_core(s1, s3, q, model, start=None, maxiter=100):
@@ -270,7 +144,7 @@ def _biaxial_core(s1, s3, q, model, start=None, maxiter=100):
     # start from the neo-Hookean equi-biaxial free-charge state, always admissible
     x0 = (1.0 + q) ** (1.0 / 6.0)
     if np.isfinite(I1max):
-        lo, hi = _equibiaxial_limits(model)
+        lo, hi = equibiaxial_limits(model)
         x0 = np.minimum(x0, 1.0 + 0.5 * (hi - 1.0))
     a, b = x0.copy(), x0.copy()
     if start is not None:  # a better first guess where it is admissible
@@ -384,7 +258,7 @@ def biaxial_stretches(s1, s3, D0, model=None, *, maxiter: int = 100):
     shape = s1.shape
     s1, s3, q = s1.ravel(), s3.ravel(), D0.ravel() ** 2
     la, lb = _biaxial_core(s1, s3, q, model, None, maxiter)
-    return _out(la.reshape(shape)), _out(lb.reshape(shape))
+    return scalar_or_array(la.reshape(shape), lb.reshape(shape))
 
 
 # ----------------------------------------------------------------------------
@@ -421,8 +295,8 @@ def equibiaxial_s(lam, D0, model=None):
     lam = check_positive("lam", lam)
     D0 = as_array("D0", D0)
     lam, D0 = broadcast(lam=lam, D0=D0)
-    dW, _ = _derivs(model, 2 * lam**2 + lam**-4, "lam", lam)
-    return _out(2 * dW * (lam - lam**-5) - lam**-5 * D0**2)
+    dW, _ = model_derivs(model, 2 * lam**2 + lam**-4, "lam", lam)
+    return scalar_or_array(2 * dW * (lam - lam**-5) - lam**-5 * D0**2)
 
 
 def equibiaxial_s_E0(lam, E0, model=None):
@@ -442,8 +316,8 @@ def equibiaxial_s_E0(lam, E0, model=None):
     lam = check_positive("lam", lam)
     E0 = as_array("E0", E0)
     lam, E0 = broadcast(lam=lam, E0=E0)
-    dW, _ = _derivs(model, 2 * lam**2 + lam**-4, "lam", lam)
-    return _out(2 * dW * (lam - lam**-5) - lam**3 * E0**2)
+    dW, _ = model_derivs(model, 2 * lam**2 + lam**-4, "lam", lam)
+    return scalar_or_array(2 * dW * (lam - lam**-5) - lam**3 * E0**2)
 
 
 def equibiaxial_D0(lam, s=0.0, model=None):
@@ -492,10 +366,10 @@ def equibiaxial_D0(lam, s=0.0, model=None):
         D2 = lam**6 - 1.0 - lam**5 * s
         scale = lam**6 + 1.0 + np.abs(lam**5 * s)
     else:
-        dW, _ = _derivs(model, 2 * lam**2 + lam**-4, "lam", lam)
+        dW, _ = model_derivs(model, 2 * lam**2 + lam**-4, "lam", lam)
         D2 = 2 * dW * (lam**6 - 1.0) - lam**5 * s
         scale = 2 * dW * (lam**6 + 1.0) + np.abs(lam**5 * s)
-    return _out(_sqrt_branch(D2, scale))
+    return scalar_or_array(sqrt_branch(D2, scale))
 
 
 def equibiaxial_E0(lam, s=0.0, model=None):
@@ -518,7 +392,7 @@ def equibiaxial_E0(lam, s=0.0, model=None):
     """
     D0 = equibiaxial_D0(lam, s, model)
     lam = np.broadcast_to(check_positive("lam", lam), np.shape(D0))
-    return _out(np.asarray(D0) / lam**4)
+    return scalar_or_array(np.asarray(D0) / lam**4)
 
 
 def equibiaxial_lam(D0, s=0.0, model=None):
@@ -561,7 +435,7 @@ def equibiaxial_lam(D0, s=0.0, model=None):
     D0, s = broadcast(D0=check_finite("D0", D0), s=check_finite("s", s))
     shape = D0.shape
     q, s = D0.ravel() ** 2, s.ravel()
-    lo_lim, hi_lim = _equibiaxial_limits(model)
+    lo_lim, hi_lim = equibiaxial_limits(model)
 
     nh = isinstance(model, NeoHookean)
     cq = 1.0 + q
@@ -584,8 +458,8 @@ def equibiaxial_lam(D0, s=0.0, model=None):
         c6 = (1.0 + q) ** (1.0 / 6.0)
         lo = ((1.0 + q) / (c6 + np.maximum(-s, 0.0))) ** 0.2
         hi = c6 + np.maximum(s, 0.0)
-        lam = _rtsafe(h, lo, hi, 0.5 * s + np.sqrt(0.25 * s**2 + c6**2))
-        return _out(lam.reshape(shape))
+        lam = rtsafe(h, lo, hi, 0.5 * s + np.sqrt(0.25 * s**2 + c6**2))
+        return scalar_or_array(lam.reshape(shape))
     if type(model) is Gent:
         # 2W' >= 1 (W'' >= 0, 2W'(3) = 1): h_Gent >= h_nH for lam >= 1 and <= for lam <= 1,
         # so the root lies between 1 and the explicit neo-Hookean bounds (see nh above)
@@ -595,136 +469,27 @@ def equibiaxial_lam(D0, s=0.0, model=None):
                                            lo_lim * (1 + 1e-12)))
         hi = np.where(up, np.minimum(c6 + np.maximum(s, 0.0), hi_lim * (1 - 1e-12)), 1.0)
         # first guess: the neo-Hookean estimate used above (exact for nH at s = 0)
-        lam = _rtsafe(h, lo, hi, 0.5 * s + np.sqrt(0.25 * s**2 + c6**2))
-        return _out(lam.reshape(shape))
+        lam = rtsafe(h, lo, hi, 0.5 * s + np.sqrt(0.25 * s**2 + c6**2))
+        return scalar_or_array(lam.reshape(shape))
     one = np.ones(q.size)
     f1 = h(one, np.arange(q.size))[0]
     lo = np.where(f1 <= 0, one, np.nan)
     hi = np.where(f1 >= 0, one, np.nan)
     need_lo, need_hi = np.flatnonzero(np.isnan(lo)), np.flatnonzero(np.isnan(hi))
-    lo[need_lo] = _expand(lambda x, i: h(x, need_lo[i])[0], one[need_lo], lo_lim, -1)
-    hi[need_hi] = _expand(lambda x, i: h(x, need_hi[i])[0], one[need_hi], hi_lim, +1)
+    lo[need_lo] = expand_bracket(lambda x, i: h(x, need_lo[i])[0], one[need_lo], lo_lim, -1)
+    hi[need_hi] = expand_bracket(lambda x, i: h(x, need_hi[i])[0], one[need_hi], hi_lim, +1)
     ok = np.flatnonzero(np.isfinite(lo) & np.isfinite(hi))
     # first guess: exact for neo-Hookean at s = 0, an upper estimate for s > 0
     u2 = (1.0 + q[ok]) ** (1.0 / 3.0)
     x0 = 0.5 * s[ok] + np.sqrt(0.25 * s[ok] ** 2 + u2)
     lam = np.full(q.size, np.nan)
-    lam[ok] = _rtsafe(lambda x, i: h(x, ok[i]), lo[ok], hi[ok], x0)
-    return _out(lam.reshape(shape))
+    lam[ok] = rtsafe(lambda x, i: h(x, ok[i]), lo[ok], hi[ok], x0)
+    return scalar_or_array(lam.reshape(shape))
 
 
 # ----------------------------------------------------------------------------
 # uni-axial dead load (t3 = 0)
 # ----------------------------------------------------------------------------
-def _uniaxial_x_gent(lam1, s, Jm):
-    """Gent closed form of ``x = lam3^2``: with ``2W' = Jm/(Jm + 3 - I1)`` the condition
-    ``s = 2W'(lam1 - x/lam1)`` times ``x (Jm + 3 - I1)`` is the quadratic
-    ``(Jm/lam1 - s) x^2 + (s (Jm + 3 - lam1^2) - Jm lam1) x - s/lam1^2 = 0``.
-    Of its roots, those with ``D0^2 >= 0`` (``x >= 1/lam1``) and ``I1 < 3 + Jm`` are
-    states; the smallest (smallest ``D0``) is returned, ``nan`` if none."""
-    A = Jm / lam1 - s
-    B = s * (Jm + 3.0 - lam1**2) - Jm * lam1
-    C = -s / lam1**2
-    with np.errstate(invalid="ignore", divide="ignore"):
-        sq = np.sqrt(np.maximum(B * B - 4.0 * A * C, 0.0))
-        qq = -0.5 * (B + np.where(B >= 0, sq, -sq))
-        r1 = qq / A
-        r2 = np.where(qq != 0, C / qq, -C / B)  # stable product form; A = 0: linear root
-        r1 = np.where(A != 0, r1, np.nan)
-    x_lo = 1.0 / lam1
-    tol = 64 * _EPS * x_lo  # rounding of the D0 = 0 root
-    best = np.full(lam1.shape, np.inf)
-    for r in (r1, r2):
-        r = np.where(np.abs(r - x_lo) <= tol, x_lo, r)
-        with np.errstate(invalid="ignore", divide="ignore"):
-            ok = np.isfinite(r) & (r >= x_lo) & (lam1**2 + r + 1.0 / (lam1**2 * r) < 3.0 + Jm)
-        best = np.where(ok & (r < best), r, best)
-    return np.where(np.isfinite(best), best, np.nan)
-
-
-def _uniaxial_x(lam1, s, model):
-    """``x = lam3^2`` on the uni-axial branch (flat arrays in, flat array out)."""
-    n = lam1.size
-    x = np.full(n, np.nan)
-    if isinstance(model, NeoHookean):
-        xx = lam1 * (lam1 - s)
-        good = (lam1 > s) & np.isfinite(_sqrt_branch(lam1**2 * xx**2 - 1.0, 2.0))
-        x[good] = xx[good]
-        return x
-    I1max = model.I1_max()
-    x_lo = 1.0 / lam1  # D0 = 0
-    _derivs(model, lam1**2 + 2.0 / lam1, "lam1", lam1)  # D0 = 0 state must be admissible
-    if type(model) is Gent:
-        return _uniaxial_x_gent(lam1, s, model.Jm)
-    x_lock = _uniaxial_xlock(lam1, I1max)
-
-    def g(xv, i):
-        l1 = lam1[i]
-        I1 = l1**2 + xv + 1.0 / (l1**2 * xv)
-        dW, d2W = model.dW(I1), model.d2W(I1)
-        f = 2 * dW * (l1 - xv / l1) - s[i]
-        df = 2 * d2W * (1.0 - 1.0 / (l1**2 * xv**2)) * (l1 - xv / l1) - 2 * dW / l1
-        return f, df
-
-    idx = np.arange(n)
-    f_lo = g(x_lo, idx)[0]
-    # the D0 = 0 state itself: f(x_lo) = 0 up to rounding
-    at_lo = np.abs(f_lo) <= 16 * _EPS * (np.abs(s) + lam1 * 2 * model.dW(lam1**2 + 2.0 / lam1))
-    x[at_lo] = x_lo[at_lo]
-    f_lo = np.where(at_lo, np.nan, f_lo)  # excluded from the brackets below
-    pos = s > 0
-    # first guess: the neo-Hookean x = lam1 (lam1 - s), corrected once for W'
-    with np.errstate(invalid="ignore", divide="ignore"):
-        x_nh = lam1 * (lam1 - s)
-        I1g = lam1**2 + x_nh + 1.0 / (lam1**2 * x_nh)
-        okg = (x_nh > 0) & (I1g < I1max)
-        dWg = np.where(okg, model.dW(np.where(okg, I1g, 3.0)), 0.5)
-        x0 = lam1 * (lam1 - s / (2 * dWg))
-    # (a) s > 0 and the lock does not cut in: root in [x_lo, lam1^2], f(lam1^2) = -s < 0
-    A = np.flatnonzero(pos & (lam1**2 > x_lo) & (x_lock > lam1**2) & (f_lo >= 0))
-    if A.size:
-        x[A] = _rtsafe(lambda xv, i: g(xv, A[i]), lam1[A] ** 2, x_lo[A], x0[A])
-    # (b) s <= 0: root at or beyond max(x_lo, lam1^2), where f decreases to -inf;
-    #     f(lam1^2) = -s exactly (avoid evaluating the rounding of lam1 - lam1^2/lam1)
-    start = np.maximum(x_lo, lam1**2)
-    f_st = np.where(lam1**2 >= x_lo, -s, f_lo)
-    B = np.flatnonzero(~pos & (f_st >= 0) & (start < x_lock) & ~at_lo)
-    zero = B[s[B] == 0]
-    x[zero] = start[zero]
-    B = B[s[B] < 0]
-    if B.size:
-        hi = _expand(lambda xv, i: g(xv, B[i])[0], start[B], x_lock[B], -1)
-        okB = np.isfinite(hi)
-        Bk = B[okB]
-        x[Bk] = _rtsafe(lambda xv, i: g(xv, Bk[i]), hi[okB], start[Bk], x0[Bk])
-    # (c) s > 0 and the Gent lock cuts in before lam1^2: f -> +inf at the lock and f may
-    #     dip below 0 and rise again; take the first sign change of a scan from x_lo
-    #     (the state with the smallest D0), refined by safeguarded Newton
-    C_all = np.flatnonzero(pos & np.isfinite(x_lock) & (x_lock <= lam1**2) & (x_lock > x_lo) & ~at_lo)
-    for c0 in range(0, C_all.size, 1 << 16):  # blocks bound the memory of the scan grid
-        C = C_all[c0:c0 + (1 << 16)]
-        t = np.concatenate([np.linspace(0.0, 0.97, 30), 1.0 - 0.03 * 2.0 ** -np.arange(1, 16)])
-        xs = x_lo[C, None] + (x_lock[C, None] - x_lo[C, None]) * t[None, :]
-        rows = np.repeat(C, t.size)
-        # grid points that round onto the locking limit are skipped (nan: no sign change)
-        xr = xs.ravel()
-        inside = lam1[rows] ** 2 + xr + 1.0 / (lam1[rows] ** 2 * xr) < I1max
-        fs = np.full(xr.size, np.nan)
-        fs[inside] = g(xr[inside], rows[inside])[0]
-        fs = fs.reshape(xs.shape)
-        f0, f1 = fs[:, :-1], fs[:, 1:]
-        change = ((f0 >= 0) & (f1 < 0)) | ((f0 < 0) & (f1 >= 0))
-        has = change.any(axis=1)
-        k = np.argmax(change, axis=1)[has]
-        Ck = C[has]
-        r = np.arange(C.size)[has]
-        left, right = xs[r, k], xs[r, k + 1]
-        neg_left = fs[r, k] < 0
-        a, b = np.where(neg_left, left, right), np.where(neg_left, right, left)
-        x[Ck] = _rtsafe(lambda xv, i: g(xv, Ck[i]), a, b)
-    return x
-
-
 def _uniaxial_inputs(lam1, s, model):
     model = as_model(model)
     lam1 = check_positive("lam1", lam1)
@@ -771,8 +536,8 @@ def uniaxial_lam3(lam1, s=0.0, model=None):
     1.437208
     """
     lam1, s, model = _uniaxial_inputs(lam1, s, model)
-    x = _uniaxial_x(lam1.ravel(), s.ravel(), model).reshape(lam1.shape)
-    return _out(np.sqrt(x))
+    x = uniaxial_x(lam1.ravel(), s.ravel(), model).reshape(lam1.shape)
+    return scalar_or_array(np.sqrt(x))
 
 
 def uniaxial_D0(lam1, s=0.0, model=None):
@@ -808,15 +573,15 @@ def uniaxial_D0(lam1, s=0.0, model=None):
     l1, sf = lam1.ravel(), s.ravel()
     if isinstance(model, NeoHookean):
         D2 = l1**4 * (l1 - sf) ** 2 - 1.0
-        D0 = np.where(l1 > sf, _sqrt_branch(D2, D2 + 2.0), np.nan)
+        D0 = np.where(l1 > sf, sqrt_branch(D2, D2 + 2.0), np.nan)
     else:
-        x = _uniaxial_x(l1, sf, model)
+        x = uniaxial_x(l1, sf, model)
         good = np.isfinite(x)
         D0 = np.full(l1.size, np.nan)
         xg, lg = x[good], l1[good]
         dW = model.dW(lg**2 + xg + 1.0 / (lg**2 * xg))
-        D0[good] = np.nan_to_num(_sqrt_branch(2 * dW * (lg**2 * xg**2 - 1.0), 2 * dW * (lg**2 * xg**2 + 1.0)))
-    return _out(D0.reshape(lam1.shape))
+        D0[good] = np.nan_to_num(sqrt_branch(2 * dW * (lg**2 * xg**2 - 1.0), 2 * dW * (lg**2 * xg**2 + 1.0)))
+    return scalar_or_array(D0.reshape(lam1.shape))
 
 
 def uniaxial_E0(lam1, s=0.0, model=None):
@@ -839,15 +604,15 @@ def uniaxial_E0(lam1, s=0.0, model=None):
     if isinstance(model, NeoHookean):
         with np.errstate(invalid="ignore", divide="ignore"):
             r = 1.0 - l1**-4 * (l1 - sf) ** -2.0
-        E0 = np.where(l1 > sf, _sqrt_branch(r, 2.0) / l1, np.nan)
+        E0 = np.where(l1 > sf, sqrt_branch(r, 2.0) / l1, np.nan)
     else:
-        x = _uniaxial_x(l1, sf, model)
+        x = uniaxial_x(l1, sf, model)
         good = np.isfinite(x)
         E0 = np.full(l1.size, np.nan)
         xg, lg = x[good], l1[good]
         dW = model.dW(lg**2 + xg + 1.0 / (lg**2 * xg))
-        E0[good] = np.nan_to_num(_sqrt_branch(2 * dW * (lg**2 * xg**2 - 1.0), 2 * dW * (lg**2 * xg**2 + 1.0))) / (lg**2 * xg)
-    return _out(E0.reshape(lam1.shape))
+        E0[good] = np.nan_to_num(sqrt_branch(2 * dW * (lg**2 * xg**2 - 1.0), 2 * dW * (lg**2 * xg**2 + 1.0))) / (lg**2 * xg)
+    return scalar_or_array(E0.reshape(lam1.shape))
 
 
 def _uniaxial_cubic_root(c, sig):
@@ -882,6 +647,20 @@ def _uniaxial_cubic_root(c, sig):
     return l
 
 
+def _gent_xi_residual(xi, t, sb, Jm):
+    """``R(xi)`` of :func:`_uniaxial_lam1_gent` and ``dR/dxi`` (``t = D0^2``, ``sb = s``)."""
+    c = np.sqrt(1.0 + t * xi)
+    sig = sb * xi
+    l = _uniaxial_cubic_root(c, sig)
+    ic, il = 1.0 / c, 1.0 / l
+    w = (c + ic) * il
+    f = l * l + w - 3.0 - Jm * (1.0 - xi)
+    # d/dxi by implicit differentiation of the cubic: (3l^2 - 2 sig l) l' = c' + s l^2
+    dc = 0.5 * t * ic
+    dl = (dc + sb * l * l) / (l * (3.0 * l - 2.0 * sig))
+    return f, (2.0 * l - w * il) * dl + (1.0 - ic * ic) * dc * il + Jm
+
+
 def _uniaxial_lam1_gent(q, s, Jm, block=1 << 14, maxiter=100):
     """Gent ``lam1(D0; s)`` on flat arrays (``q = D0^2``); see :func:`uniaxial_lam1`.
 
@@ -893,9 +672,10 @@ def _uniaxial_lam1_gent(q, s, Jm, block=1 << 14, maxiter=100):
     ``R(0) = -Jm < 0 <= R(1) = I1_nH - 3``, every ``xi`` in ``[0, 1]`` gives a real
     state, and each root is an equilibrium, which is unique (``omega*`` is strictly
     convex on the convex set ``I1 < 3 + Jm``): ``[0, 1]`` brackets exactly one root.
-    Safeguarded Newton (bisection fallback) from ``xi = 1`` (the neo-Hookean state),
-    vectorised and run in cache-sized blocks; the final ``lam1`` gets one Newton
-    polish on the cubic.
+    Safeguarded Newton (:func:`~analytic._roots.rtsafe`, bisection fallback) from the
+    upper bound of ``xi`` (``xi = 1``, the neo-Hookean state, unless a bound below
+    applies), bracket width checked every sweep, run in cache-sized blocks; the final
+    ``lam1`` gets one Newton polish on the cubic.
     """
     n = q.size
     out = np.empty(n)
@@ -912,35 +692,8 @@ def _uniaxial_lam1_gent(q, s, Jm, block=1 << 14, maxiter=100):
             with np.errstate(divide="ignore"):
                 hi = np.minimum(1.0, (cmax * cmax - 1.0) / t)
                 hi = np.minimum(hi, np.where(sb > 0, np.sqrt(3.0 + Jm), 0.25 * cmax * (3.0 + Jm) ** 2) / np.abs(sb))
-            lo = np.zeros(m)
-            xi = hi.copy()
-            conv = np.zeros(m, dtype=bool)
-            for it in range(maxiter):
-                c = np.sqrt(1.0 + t * xi)
-                sig = sb * xi
-                l = _uniaxial_cubic_root(c, sig)
-                ic, il = 1.0 / c, 1.0 / l
-                w = (c + ic) * il
-                f = l * l + w - 3.0 - Jm * (1.0 - xi)
-                # d/dxi by implicit differentiation of the cubic: (3l^2 - 2 sig l) l' = c' + s l^2
-                dc = 0.5 * t * ic
-                dl = (dc + sb * l * l) / (l * (3.0 * l - 2.0 * sig))
-                df = (2.0 * l - w * il) * dl + (1.0 - ic * ic) * dc * il + Jm
-                neg = f < 0
-                lo = np.where(neg, xi, lo)
-                hi = np.where(neg, hi, xi)
-                step = f / df
-                xn = xi - step
-                # Newton inside the closed bracket, else bisection; every 16th sweep bisects
-                newton = (xn >= lo) & (xn <= hi) if it % 16 != 15 else np.zeros(m, dtype=bool)
-                xn = np.where(newton, xn, 0.5 * (lo + hi))
-                # a Newton step of relative size 1e-9 leaves an error ~1e-18 (quadratic
-                # convergence); a bisected bracket a few ulps wide also stops
-                done = (newton & (np.abs(step) <= 1e-9 * xi)) | (hi - lo <= 4 * _EPS * xi)
-                xi = np.where(conv, xi, xn)
-                conv |= done
-                if conv.all():
-                    break
+            xi = rtsafe(lambda x, i: _gent_xi_residual(x, t[i], sb[i], Jm), np.zeros(m), hi, hi,
+                        maxiter=maxiter, start_on_bracket=True, width_every=1)
             c = np.sqrt(1.0 + t * xi)
             sig = sb * xi
             l = _uniaxial_cubic_root(c, sig)
@@ -966,7 +719,7 @@ def _uniaxial_lam1_nh(c, s):
     def q(l1, i):
         return l1**2 * (l1 - s[i]) - c[i], l1 * (3 * l1 - 2 * s[i])
 
-    return _rtsafe(q, lo, hi)
+    return rtsafe(q, lo, hi)
 
 
 def uniaxial_lam1(D0, s=0.0, model=None):
@@ -1014,8 +767,8 @@ def uniaxial_lam1(D0, s=0.0, model=None):
     shape = D0.shape
     D0f, sf = D0.ravel(), s.ravel()
     if type(model) is Gent:
-        return _out(_uniaxial_lam1_gent(D0f**2, sf, model.Jm).reshape(shape))
+        return scalar_or_array(_uniaxial_lam1_gent(D0f**2, sf, model.Jm).reshape(shape))
     l1 = _uniaxial_lam1_nh(np.sqrt(1.0 + D0f**2), sf)
     if isinstance(model, NeoHookean):
-        return _out(l1.reshape(shape))
-    return _out(_uniaxial_lam1_biaxial(D0f, sf, model, l1).reshape(shape))
+        return scalar_or_array(l1.reshape(shape))
+    return scalar_or_array(_uniaxial_lam1_biaxial(D0f, sf, model, l1).reshape(shape))

@@ -6,7 +6,7 @@ Section 4 of the paper linearises the equations of an ideal dielectric
 ``E2`` through its thickness ``x2``. Everything here is dimensionless
 (``mu = eps = 1``): the true field is ``E2 = lam2 D0``.
 
-Moduli (push-forward of ``Omega``, DESIGN.md §3)::
+Moduli (push-forward of ``Omega``)::
 
     A0_piqj = 2 W1 delta_ij b_pq + 4 W11 b_pi b_qj
               - (delta_iq E_p E_j + delta_jp E_i E_q + delta_pq E_i E_j)
@@ -36,8 +36,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from ._checks import as_array, broadcast, check_choice, check_positive
-from .models import Model, as_model
+from ._output import scalar_or_array
+from ._stroh_core import coefficients, exponents_from_coefficients, moduli, stroh_N
+from .models import Model
 
 __all__ = [
     "electroelastic_moduli",
@@ -45,23 +46,6 @@ __all__ = [
     "stroh_matrix",
     "stroh_exponents",
 ]
-
-_DIRECTIONS = ("parallel", "perpendicular")
-
-
-def _state(lam1, lam3, D0, model):
-    """Validated, broadcast ``(lam1, lam2, lam3, D0, W1, W11)``."""
-    model = as_model(model)
-    lam1 = check_positive("lam1", lam1)
-    lam3 = check_positive("lam3", lam3)
-    D0 = as_array("D0", D0)
-    if np.any(~np.isfinite(D0)):
-        raise ValueError(f"D0 must be finite, got {D0}")
-    lam1, lam3, D0 = broadcast(lam1=lam1, lam3=lam3, D0=D0)
-    lam2 = 1.0 / (lam1 * lam3)
-    I1 = lam1**2 + lam2**2 + lam3**2
-    return lam1, lam2, lam3, D0, model.dW(I1), model.d2W(I1)
-
 
 def electroelastic_moduli(lam1, lam3, D0, model: Model | None = None):
     """Push-forward electroelastic moduli of a biaxially stretched charged plate.
@@ -88,7 +72,7 @@ def electroelastic_moduli(lam1, lam3, D0, model: Model | None = None):
 
     Notes
     -----
-    Push-forward of ``Omega = W(I1) - eps I5/2`` (Eq. modelE), DESIGN.md §3. The
+    Push-forward of ``Omega = W(I1) - eps I5/2`` (Eq. modelE). The
     incremental constitutive law is ``T0_pi = A0_piqj u_{j,q} + p u_{p,i} - pdot
     delta_pi + AA0_pik EL0_k`` and ``DL0_k = -AA0_qjk u_{j,q} - Ae0_km EL0_m``.
     The paper's listed components (Section 4) are an alternative set; this
@@ -101,27 +85,7 @@ def electroelastic_moduli(lam1, lam3, D0, model: Model | None = None):
     >>> round(float(A0[0, 1, 1, 0]), 12), round(float(p - A0[1, 0, 1, 0] + A0[1, 0, 0, 1]), 12)
     (-0.120563271605, 0.0)
     """
-    lam1, lam2, lam3, D0, W1, W11 = _state(lam1, lam3, D0, model)
-    shape = lam1.shape
-    bdiag = np.stack([lam1**2, lam2**2, lam3**2], axis=-1)  # (..., 3)
-    E2 = lam2 * D0
-    E = np.zeros(shape + (3,))
-    E[..., 1] = E2
-    eye = np.eye(3)
-    b = bdiag[..., :, None] * eye  # (..., 3, 3)
-    W1e = W1[..., None, None, None, None]
-    W11e = W11[..., None, None, None, None]
-    A0 = (
-        2.0 * W1e * np.einsum("ij,...pq->...piqj", eye, b)
-        + 4.0 * W11e * np.einsum("...pi,...qj->...piqj", b, b)
-        - np.einsum("iq,...p,...j->...piqj", eye, E, E)
-        - np.einsum("jp,...i,...q->...piqj", eye, E, E)
-        - np.einsum("pq,...i,...j->...piqj", eye, E, E)
-    )
-    AA0 = np.einsum("ik,...p->...pik", eye, E) + np.einsum("pk,...i->...pik", eye, E)
-    Ae0 = -np.broadcast_to(eye, shape + (3, 3)).copy()
-    p = 2.0 * W1 * lam2**2 + E2**2
-    return A0, AA0, Ae0, p
+    return scalar_or_array(*moduli(lam1, lam3, D0, model))
 
 
 def stroh_coefficients(lam1, lam3, D0, model: Model | None = None, direction: str = "parallel"):
@@ -161,55 +125,7 @@ def stroh_coefficients(lam1, lam3, D0, model: Model | None = None, direction: st
     >>> [round(float(x), 12) for x in stroh_coefficients(1.0, 1.0, 0.0)]
     [1.0, 1.0, 1.0, 0.0]
     """
-    check_choice("direction", direction, _DIRECTIONS)
-    A0, AA0, _, _ = electroelastic_moduli(lam1, lam3, D0, model)
-    m = 0 if direction == "parallel" else 2
-    n = 1
-    a = A0[..., m, n, m, n]
-    c = A0[..., n, m, n, m]
-    b = 0.5 * (A0[..., m, m, m, m] + A0[..., n, n, n, n] - 2.0 * A0[..., m, m, n, n] - 2.0 * A0[..., m, n, n, m])
-    d = AA0[..., m, n, m]
-    return a, b, c, d
-
-
-def _coefficients_fast(lam1, lam3, D0, model, direction="parallel"):
-    """``(a, b, c, d)`` by the reduced formulas (no validation; hot loops).
-
-    Equal to :func:`stroh_coefficients` (checked in the tests):
-    ``a = 2 W1 l^2 - E2^2``, ``c = 2 W1 lam2^2``,
-    ``2b = 4 W11 (l^2 - lam2^2)^2 + a + c``, ``d = E2 = lam2 D0`` with ``l`` the
-    in-plane stretch of the wrinkle plane.
-    """
-    lam2 = 1.0 / (lam1 * lam3)
-    I1 = lam1**2 + lam2**2 + lam3**2
-    W1, W11 = model.dW(I1), model.d2W(I1)
-    lin = lam1 if direction == "parallel" else lam3
-    E2 = lam2 * D0
-    a = 2.0 * W1 * lin**2 - E2**2
-    c = 2.0 * W1 * lam2**2
-    b = 0.5 * (4.0 * W11 * (lin**2 - lam2**2) ** 2 + a + c)
-    return a, b, c, E2 + 0.0 * a
-
-
-def _stroh_N(a, b, c, d):
-    """Complex Stroh matrix (Eq. stroh-form) from scaled ``(a, b, c, d)``."""
-    shape = np.shape(a)
-    N = np.zeros(shape + (6, 6), dtype=complex)
-    N[..., 0, 1] = -1.0
-    N[..., 0, 2] = d / c
-    N[..., 1, 0] = -1.0
-    N[..., 2, 0] = 2.0 * d
-    N[..., 0, 3] = 1.0 / c
-    N[..., 2, 5] = -1.0
-    N[..., 3, 0] = -2.0 * (b + c) - 4.0 * d**2
-    N[..., 4, 1] = c - a
-    N[..., 5, 2] = d**2 / c + 1.0
-    # N1^T block
-    N[..., 3, 4] = -1.0
-    N[..., 4, 3] = -1.0
-    N[..., 5, 3] = d / c
-    N[..., 3, 5] = 2.0 * d
-    return N
+    return scalar_or_array(*coefficients(lam1, lam3, D0, model, direction))
 
 
 def stroh_matrix(lam1, lam3, D0, model: Model | None = None, direction: str = "parallel"):
@@ -236,8 +152,9 @@ def stroh_matrix(lam1, lam3, D0, model: Model | None = None, direction: str = "p
     Notes
     -----
     Uses the corrected Eq. (con-eqns), ``D_L02 = 2 d u_{1,1} - phi_{,2}``
-    (DESIGN.md §3.1), and ``N3_11 = -2(b + c) - 4 d^2`` in scaled quantities
-    (DESIGN.md §3.3). ``J N`` is symmetric with ``J = [[0, I], [I, 0]]``.
+    (printed ``phi_{,1}``), and ``N3_11 = -2(b + c) - 4 d^2`` in scaled quantities
+    (the printed ``-2(b + c)`` means the barred, scaled ``b`` and ``c``). ``J N`` is
+    symmetric with ``J = [[0, I], [I, 0]]``.
 
     Examples
     --------
@@ -248,22 +165,7 @@ def stroh_matrix(lam1, lam3, D0, model: Model | None = None, direction: str = "p
     >>> bool(np.allclose(J @ N, (J @ N).T))
     True
     """
-    a, b, c, d = stroh_coefficients(lam1, lam3, D0, model, direction)
-    return _stroh_N(a, b, c, d)
-
-
-def _exponents_from_coefficients(a, b, c, d):
-    """Decay exponents ``p2, p3`` (complex, ``Re > 0``) of Eq. (evalue), general form."""
-    a0 = a + d**2  # purely elastic a (charge-free)
-    b0 = b + 0.5 * d**2
-    disc = (b0 * b0 - a0 * c).astype(complex)
-    sq = np.sqrt(disc)
-    # larger root of c P^2 - 2 b0 P + a0 = 0 without cancellation
-    big = np.where(np.real(b0) >= 0, (b0 + sq) / c, (b0 - sq) / c)
-    small = (a0 / c) / big
-    p_big = np.sqrt(big)
-    p_small = np.sqrt(small)
-    return p_small, p_big
+    return scalar_or_array(stroh_N(*coefficients(lam1, lam3, D0, model, direction)))
 
 
 def stroh_exponents(lam1, lam3, D0, model: Model | None = None, direction: str = "parallel"):
@@ -298,6 +200,5 @@ def stroh_exponents(lam1, lam3, D0, model: Model | None = None, direction: str =
     >>> [round(complex(x).real, 12) for x in stroh_exponents(0.9, 0.9, 0.4)]
     [1.0, 0.729, 1.0]
     """
-    a, b, c, d = stroh_coefficients(lam1, lam3, D0, model, direction)
-    p2, p3 = _exponents_from_coefficients(a, b, c, d)
-    return np.ones_like(p2), p2, p3
+    p2, p3 = exponents_from_coefficients(*coefficients(lam1, lam3, D0, model, direction))
+    return scalar_or_array(np.ones_like(p2), p2, p3)

@@ -25,6 +25,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ._checks import as_array, check_positive
+from ._output import scalar_or_array
 
 __all__ = [
     "EPS0",
@@ -101,7 +102,7 @@ class Plate:
 KEPLINGER_PLATE = Plate(length=0.100, width=0.050, thickness=0.001, mu=9833.07)
 #: Attached mass in kg (Sec. 6).
 KEPLINGER_MASS = 0.150
-#: Load fractions ``alpha`` of the weight used for the uni-axial cases (DESIGN.md §2).
+#: Load fractions ``alpha`` of the weight used for the uni-axial cases (Sec. 6).
 KEPLINGER_ALPHAS = (0.05, 0.3, 0.7, 1.0, 1.5)
 
 
@@ -114,7 +115,7 @@ def D0_from_SI(D_L, mu: float, eps: float):
     >>> float(D0_from_SI(3.0, mu=4.0, eps=9.0))
     0.5
     """
-    return as_array("D_L", D_L) / np.sqrt(_pos("mu", mu) * _pos("eps", eps))
+    return scalar_or_array(as_array("D_L", D_L) / np.sqrt(_pos("mu", mu) * _pos("eps", eps)))
 
 
 def D0_to_SI(D0, mu: float, eps: float):
@@ -126,7 +127,7 @@ def D0_to_SI(D0, mu: float, eps: float):
     >>> float(D0_to_SI(0.5, mu=4.0, eps=9.0))
     3.0
     """
-    return as_array("D0", D0) * np.sqrt(_pos("mu", mu) * _pos("eps", eps))
+    return scalar_or_array(as_array("D0", D0) * np.sqrt(_pos("mu", mu) * _pos("eps", eps)))
 
 
 def E0_from_SI(E_L, mu: float, eps: float):
@@ -138,7 +139,7 @@ def E0_from_SI(E_L, mu: float, eps: float):
     >>> float(E0_from_SI(2.0, mu=4.0, eps=9.0))
     3.0
     """
-    return as_array("E_L", E_L) * np.sqrt(_pos("eps", eps) / _pos("mu", mu))
+    return scalar_or_array(as_array("E_L", E_L) * np.sqrt(_pos("eps", eps) / _pos("mu", mu)))
 
 
 def E0_to_SI(E0, mu: float, eps: float):
@@ -150,7 +151,7 @@ def E0_to_SI(E0, mu: float, eps: float):
     >>> float(E0_to_SI(3.0, mu=4.0, eps=9.0))
     2.0
     """
-    return as_array("E0", E0) * np.sqrt(_pos("mu", mu) / _pos("eps", eps))
+    return scalar_or_array(as_array("E0", E0) * np.sqrt(_pos("mu", mu) / _pos("eps", eps)))
 
 
 def s_from_SI(t, mu: float):
@@ -162,7 +163,7 @@ def s_from_SI(t, mu: float):
     >>> float(s_from_SI(19666.14, mu=9833.07))
     2.0
     """
-    return as_array("t", t) / _pos("mu", mu)
+    return scalar_or_array(as_array("t", t) / _pos("mu", mu))
 
 
 def s_to_SI(s, mu: float):
@@ -174,7 +175,7 @@ def s_to_SI(s, mu: float):
     >>> float(s_to_SI(2.0, mu=9833.07))
     19666.14
     """
-    return as_array("s", s) * _pos("mu", mu)
+    return scalar_or_array(as_array("s", s) * _pos("mu", mu))
 
 
 def charge_to_D0(Q, face_area: float, mu: float, eps: float):
@@ -188,7 +189,7 @@ def charge_to_D0(Q, face_area: float, mu: float, eps: float):
     >>> float(charge_to_D0(6.0, face_area=2.0, mu=1.0, eps=9.0))
     1.0
     """
-    return D0_from_SI(as_array("Q", Q) / _pos("face_area", face_area), mu, eps)
+    return scalar_or_array(D0_from_SI(as_array("Q", Q) / _pos("face_area", face_area), mu, eps))
 
 
 def D0_to_charge(D0, face_area: float, mu: float, eps: float):
@@ -200,7 +201,7 @@ def D0_to_charge(D0, face_area: float, mu: float, eps: float):
     >>> float(D0_to_charge(1.0, face_area=2.0, mu=1.0, eps=9.0))
     6.0
     """
-    return D0_to_SI(D0, mu, eps) * _pos("face_area", face_area)
+    return scalar_or_array(D0_to_SI(D0, mu, eps) * _pos("face_area", face_area))
 
 
 def voltage_to_E0(V, thickness: float, mu: float, eps: float):
@@ -212,7 +213,7 @@ def voltage_to_E0(V, thickness: float, mu: float, eps: float):
     >>> float(voltage_to_E0(4.0, thickness=2.0, mu=4.0, eps=9.0))
     3.0
     """
-    return E0_from_SI(as_array("V", V) / _pos("thickness", thickness), mu, eps)
+    return scalar_or_array(E0_from_SI(as_array("V", V) / _pos("thickness", thickness), mu, eps))
 
 
 def E0_to_voltage(E0, thickness: float, mu: float, eps: float):
@@ -224,7 +225,7 @@ def E0_to_voltage(E0, thickness: float, mu: float, eps: float):
     >>> float(E0_to_voltage(3.0, thickness=2.0, mu=4.0, eps=9.0))
     4.0
     """
-    return E0_to_SI(E0, mu, eps) * _pos("thickness", thickness)
+    return scalar_or_array(E0_to_SI(E0, mu, eps) * _pos("thickness", thickness))
 
 
 def dead_load_s(mass, g: float, area: float, mu: float):
@@ -250,7 +251,7 @@ def dead_load_s(mass, g: float, area: float, mu: float):
     mass = as_array("mass", mass)
     if np.any(mass < 0) or np.any(~np.isfinite(mass)):
         raise ValueError(f"mass must be finite and >= 0, got {mass!r}")
-    return mass * _pos("g", g) / (_pos("area", area) * _pos("mu", mu))
+    return scalar_or_array(mass * _pos("g", g) / (_pos("area", area) * _pos("mu", mu)))
 
 
 def keplinger_s(alpha, *, g: float, plate: Plate = KEPLINGER_PLATE, mass: float = KEPLINGER_MASS):
@@ -259,8 +260,8 @@ def keplinger_s(alpha, *, g: float, plate: Plate = KEPLINGER_PLATE, mass: float 
     Parameters
     ----------
     alpha : array_like
-        Fraction(s) of the 150 g weight (>= 0); DESIGN.md uses
-        ``(0.05, 0.3, 0.7, 1.0, 1.5)``.
+        Fraction(s) of the 150 g weight (>= 0); the uni-axial cases use
+        :data:`KEPLINGER_ALPHAS` ``= (0.05, 0.3, 0.7, 1.0, 1.5)``.
     g : float
         Gravitational acceleration in m/s^2, keyword only and required.
     plate : Plate
@@ -283,4 +284,4 @@ def keplinger_s(alpha, *, g: float, plate: Plate = KEPLINGER_PLATE, mass: float 
     alpha = as_array("alpha", alpha)
     if np.any(alpha < 0) or np.any(~np.isfinite(alpha)):
         raise ValueError(f"alpha must be finite and >= 0, got {alpha!r}")
-    return alpha * dead_load_s(mass, g, plate.cross_section, plate.mu)
+    return scalar_or_array(alpha * dead_load_s(mass, g, plate.cross_section, plate.mu))

@@ -45,10 +45,13 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+from scipy.linalg import schur
 
 from ._checks import as_array, broadcast, check_choice, check_positive
+from ._output import scalar_or_array
+from ._roots import brent, first_root_on_scan
+from ._stroh_core import coefficients, coefficients_fast, exponents_from_coefficients, stroh_N
 from .models import Model, as_model
-from .stroh import _coefficients_fast, _exponents_from_coefficients, _stroh_N, stroh_coefficients
 
 __all__ = [
     "thin_plate_factors",
@@ -97,12 +100,6 @@ def _sqrt_or_nan(x):
     return out
 
 
-def _ret(x):
-    """0-d arrays to float, otherwise the array."""
-    x = np.asarray(x)
-    return float(x) if x.ndim == 0 else x
-
-
 # ---------------------------------------------------------------------------
 # thin-plate limit
 # ---------------------------------------------------------------------------
@@ -134,8 +131,8 @@ def thin_plate_factors(lam1, lam3, D0, model: Model | None = None, direction: st
     [0.0, 2.0, 1.0]
     """
     check_choice("direction", direction, _DIRECTIONS)
-    a, b, c, d = stroh_coefficients(lam1, lam3, D0, model, direction)
-    return a - c, b + c + 2.0 * d**2, d**2 + c
+    a, b, c, d = coefficients(lam1, lam3, D0, model, direction)
+    return scalar_or_array(a - c, b + c + 2.0 * d**2, d**2 + c)
 
 
 def thin_limit_D0(lam, model: Model | None = None):
@@ -196,8 +193,8 @@ def thin_limit_D0_uniaxial(lam1, lam3, model: Model | None = None, direction: st
     Eq. (thin-uni-axial): ``D0^2 = lam1^4 lam3^2 - 1`` for neo-Hookean parallel
     wrinkles. For perpendicular wrinkles ``D0^2 = 2 W' (lam1^2 lam3^4 - 1)``
     coincides with the ``t3 = 0`` condition of the uni-axial loading curve for
-    every ``s`` (DESIGN.md §3.5): perpendicular long waves are marginal on every
-    uni-axial path.
+    every ``s``, not only for ``s = 0``: perpendicular long waves are marginal on
+    every uni-axial path.
 
     Examples
     --------
@@ -212,7 +209,7 @@ def thin_limit_D0_uniaxial(lam1, lam3, model: Model | None = None, direction: st
     lam1, lam3 = broadcast(lam1=lam1, lam3=lam3)
     lam_in, lam2 = _in_plane(lam1, lam3, direction)
     W1, _ = _W_derivs(lam1, lam3, model)
-    return _ret(_sqrt_or_nan(2.0 * W1 * ((lam_in / lam2) ** 2 - 1.0)))
+    return scalar_or_array(_sqrt_or_nan(2.0 * W1 * ((lam_in / lam2) ** 2 - 1.0)))
 
 
 # ---------------------------------------------------------------------------
@@ -297,7 +294,7 @@ def thick_limit_D0_uniaxial(
         x = _positive_root(B, C)
     else:
         x = np.where(C >= 0, C / (2.0 * W1 * S), np.nan)
-    return _ret(_sqrt_or_nan(x))
+    return scalar_or_array(_sqrt_or_nan(x))
 
 
 def thick_limit_D0(lam, model: Model | None = None, control: str = "charge"):
@@ -363,8 +360,6 @@ def surface_instability_stretch(model: Model | None = None, loading: str = "equi
     >>> round(surface_instability_stretch(), 5), round(surface_instability_stretch(loading="uniaxial"), 5)
     (0.66614, 0.44375)
     """
-    from scipy.optimize import brentq  # lazy: keeps `import analytic` light
-
     check_choice("loading", loading, ("equibiaxial", "uniaxial"))
     model = as_model(model)
 
@@ -380,7 +375,7 @@ def surface_instability_stretch(model: Model | None = None, loading: str = "equi
         if not I1 < model.I1_max():
             return np.nan
         if C_of(lo) <= 0:
-            return float(brentq(C_of, lo, hi, xtol=1e-15, rtol=1e-15, maxiter=200))
+            return float(brent(C_of, lo, hi, xtol=1e-15, rtol=1e-15, maxiter=200))
         hi = lo
     return np.nan
 
@@ -413,7 +408,7 @@ def _decaying(a, b, c, d):
     ``nan`` where strong ellipticity fails (an exponent with ``Re p <= 0``).
     """
     K = _real_K(a, b, c, d)
-    p2, p3 = _exponents_from_coefficients(a, b, c, d)
+    p2, p3 = exponents_from_coefficients(a, b, c, d)
     bad = (np.real(p2) <= 1e-12) | (np.real(p3) <= 1e-12) | ~np.isfinite(p2) | ~np.isfinite(p3)
     p2 = np.where(bad, 1.0, p2)
     p3 = np.where(bad, 1.0, p3)
@@ -498,13 +493,11 @@ def surface_impedance(
     True
     """
     check_choice("method", method, ("projector", "schur"))
-    a, b, c, d = stroh_coefficients(lam1, lam3, D0, model, direction)
+    a, b, c, d = coefficients(lam1, lam3, D0, model, direction)
     if method == "projector":
         Z, _, _ = _decaying(a, b, c, d)
-        return _impedance_from_Z(Z)
-    from scipy.linalg import schur
-
-    N = _stroh_N(a, b, c, d)
+        return scalar_or_array(_impedance_from_Z(Z))
+    N = stroh_N(a, b, c, d)
     flat = N.reshape(-1, 6, 6)
     out = np.empty((flat.shape[0], 3, 3), dtype=complex)
     for i, Ni in enumerate(flat):
@@ -514,7 +507,7 @@ def surface_impedance(
             continue
         A, Bm = Q[:3, :3], Q[3:, :3]
         out[i] = 1j * np.linalg.solve(A.T, Bm.T).T
-    return out.reshape(N.shape[:-2] + (3, 3))
+    return scalar_or_array(out.reshape(N.shape[:-2] + (3, 3)))
 
 
 def dispersion_function(
@@ -578,10 +571,10 @@ def dispersion_function(
     kh = as_array("kh", kh)
     if np.any(kh <= 0):
         raise ValueError(f"kh must be > 0, got {kh}")
-    a, b, c, d = stroh_coefficients(lam1, lam3, D0, model, direction)
+    a, b, c, d = coefficients(lam1, lam3, D0, model, direction)
     a, b, c, d, kh = broadcast(a=a, b=b, c=c, d=d, kh=kh)
     Z, M, _ = _decaying(a, b, c, d)
-    return _ret(_g_from(Z, M, kh, mode, control))
+    return scalar_or_array(_g_from(Z, M, kh, mode, control))
 
 
 # ---------------------------------------------------------------------------
@@ -592,62 +585,6 @@ def _search_bound(lam1, lam3, model, direction):
     lam_in, lam2 = _in_plane(lam1, lam3, direction)
     W1, _ = _W_derivs(lam1, lam3, model)
     return 2.0 * (lam_in / lam2 + 2.0) * np.sqrt(2.0 * W1)
-
-
-def _first_root(scan, gfun, hi, n_scan=64, rtol=1e-14):
-    """Smallest root in ``[0, hi]`` of a function of ``D0``, per point (vectorised).
-
-    ``scan(t)`` returns the function at ``D0 = hi * t`` for all points, shape
-    ``(n, len(t))``; ``gfun(idx, D0)`` returns it for the points ``idx`` at
-    ``D0`` of shape ``(len(idx), 1)``. Scan on ``n_scan`` intervals, then
-    Illinois regula falsi on the first sign change; ``nan`` if none.
-    """
-    n = hi.shape[0]
-    idx = np.arange(n)
-    t = np.linspace(0.0, 1.0, n_scan + 1)
-    D = hi[:, None] * t[None, :]
-    g = scan(t)
-    s = np.sign(g)
-    change = (s[:, :-1] * s[:, 1:] <= 0) & np.isfinite(g[:, :-1]) & np.isfinite(g[:, 1:])
-    has = change.any(axis=1)
-    j = np.argmax(change, axis=1)
-    out = np.full(n, np.nan)
-    if not has.any():
-        return out
-    ii = idx[has]
-    lo, up = D[ii, j[has]], D[ii, j[has] + 1]
-    glo, gup = g[ii, j[has]], g[ii, j[has] + 1]
-    exact = glo == 0
-    tol = rtol * np.maximum(hi[ii], 1.0)
-    # Illinois (modified regula falsi), with a bisection step whenever the
-    # bracket fails to halve; vectorised, converged points are frozen
-    side = np.zeros(ii.size, dtype=int)
-    active = ~exact & (up - lo > tol)
-    for _ in range(100):
-        if not active.any():
-            break
-        k = np.flatnonzero(active)
-        width = up[k] - lo[k]
-        with np.errstate(invalid="ignore", divide="ignore"):
-            x = up[k] - gup[k] * width / (gup[k] - glo[k])
-        bisect = ~np.isfinite(x) | (x <= lo[k]) | (x >= up[k]) | (np.abs(side[k]) >= 3)
-        x = np.where(bisect, 0.5 * (lo[k] + up[k]), x)
-        side[k] = np.where(bisect, 0, side[k])
-        gx = gfun(ii[k], x[:, None])[:, 0]
-        left = np.sign(gx) * np.sign(glo[k]) <= 0  # root in [lo, x]
-        # Illinois: halve the function value at the end that is kept
-        up[k] = np.where(left, x, up[k])
-        gup[k] = np.where(left, gx, np.where(side[k] < 0, 0.5 * gup[k], gup[k]))
-        lo[k] = np.where(left, lo[k], x)
-        glo[k] = np.where(left, np.where(side[k] > 0, 0.5 * glo[k], glo[k]), gx)
-        side[k] = np.where(left, np.where(side[k] > 0, side[k] + 1, 1), np.where(side[k] < 0, side[k] - 1, -1))
-        done = (up[k] - lo[k] <= tol[k]) | (gx == 0)
-        hit0 = gx == 0
-        lo[k] = np.where(hit0, x, lo[k])
-        up[k] = np.where(hit0, x, up[k])
-        active[k] = ~done
-    out[ii] = np.where(exact, D[ii, j[has]], 0.5 * (lo + up))
-    return out
 
 
 def thick_limit_D0_numeric(
@@ -757,17 +694,17 @@ def critical_D0_biaxial(
 
     def scan(t):
         Du = uniq[:, 2:3] * t[None, :]
-        a, b, c, d = _coefficients_fast(uniq[:, 0:1], uniq[:, 1:2], Du, model, direction)
+        a, b, c, d = coefficients_fast(uniq[:, 0:1], uniq[:, 1:2], Du, model, direction)
         Z, M, _ = _decaying(a, b, c, d)
         return _g_from(Z[inv], M[inv], khf[:, None], mode, control)
 
     def gfun(idx, D0):
-        a, b, c, d = _coefficients_fast(l1[idx][:, None], l3[idx][:, None], D0, model, direction)
+        a, b, c, d = coefficients_fast(l1[idx][:, None], l3[idx][:, None], D0, model, direction)
         Z, M, _ = _decaying(a, b, c, d)
         return _g_from(Z, M, khf[idx][:, None], mode, control)
 
-    out = _first_root(scan, gfun, hif)
-    return _ret(out.reshape(shape))
+    out = first_root_on_scan(scan, gfun, hif)
+    return scalar_or_array(out.reshape(shape))
 
 
 def _g_from(Z, M, kh, mode, control):
@@ -828,8 +765,10 @@ def critical_D0(
     -----
     Beyond the paper. Tends to :func:`thin_limit_D0` (Eq. antisym_thin) as
     ``kh -> 0`` (antisymmetric modes) and to :func:`thick_limit_D0`
-    (Eq. short-wave) as ``kh -> inf``. Uses the corrected Eq. (con-eqns)
-    (DESIGN.md §3.1). Numerically stable for every ``kh`` (module notes).
+    (Eq. short-wave) as ``kh -> inf``. Uses Eq. (con-eqns) with its last relation
+    corrected to ``D_L02 = 2 d u_{1,1} - phi_{,2}`` (printed ``phi_{,1}``; the printed
+    Stroh matrix is consistent with ``phi_{,2}``). Numerically stable for every ``kh``
+    (module notes).
 
     Examples
     --------

@@ -1,4 +1,4 @@
-"""Time 10^6 points of every analytic loading curve (issue 2: each must take < 1 s).
+"""Time 10^6 points of every analytic loading curve (target: each under 1 s).
 
 Run ``python benchmarks/bench_analytic.py [--n N] [--repeat R]``. Prints, per curve and
 model, the best wall time of R repetitions for N points, and whether it is under 1 s

@@ -3,7 +3,7 @@
 A dispersion curve is the critical D0 of an equi-biaxially stretched plate at
 200 log-spaced values of kh in [1e-2, 1e2] (``analytic.critical_D0``: 64-point
 scan in D0, then Illinois regula falsi to ~1e-14 relative, fully vectorised).
-Target (issue 3): under 1 s per curve. Prints the best of 3 wall times per
+Target: under 1 s per curve. Prints the best of 3 wall times per
 curve, the number of roots found and the end values against the thin/thick
 limits.
 

@@ -213,7 +213,7 @@ def test_gent_no_maximum_threshold():
 # ----------------------------------------------------------------------------- uni-axial locus
 def test_uniaxial_printed_det_H_star_on_path_only():
     """Sec. 5: det H* = 4 lam1^-6 lam3^-6 (3 lam3^2 + lam1^2 - lam1^2 lam3^6) holds on the
-    uni-axial path (DESIGN.md §3 item 4) and not for arbitrary (lam1, lam3, D0)."""
+    uni-axial path (D0^2 = lam1^2 lam3^4 - 1) and not for arbitrary (lam1, lam3, D0)."""
     printed = lambda a, b: 4 * a**-6 * b**-6 * (3 * b**2 + a**2 - a**2 * b**6)  # noqa: E731
     lam1 = np.linspace(2.6, 4.0, 11)  # on all three branches
     for s in (0.0, 1.0, 2.0):

@@ -321,7 +321,7 @@ def test_no_wrinkling_on_uniaxial_charge_controlled_loading_curves(model):
         assert np.all(D0 < thin_limit_D0_uniaxial(lam1, lam3, model, "parallel"))
         assert np.all(D0 < thick_limit_D0_uniaxial(lam1, lam3, model, "parallel"))
         assert np.all(D0 < thick_limit_D0_uniaxial(lam1, lam3, model, "perpendicular"))
-        # DESIGN.md §3.5: perpendicular long waves are marginal (t3 = 0 <=> a = c)
+        # perpendicular long waves are marginal for every s (t3 = 0 <=> a = c)
         np.testing.assert_allclose(
             thin_limit_D0_uniaxial(lam1, lam3, model, "perpendicular"), D0, rtol=1e-9, atol=1e-9
         )
