@@ -16,8 +16,8 @@ import numpy as np
 import pytest
 
 from validation import cases as vc
-from validation.sweep import (BREAKDOWN_TOL, RunOutcome, StepRecord, csv_columns, read_table,
-                              run_case, run_cases, validate)
+from validation.records import RunOutcome, StepRecord
+from validation.sweep import BREAKDOWN_TOL, csv_columns, read_table, run_case, run_cases, validate
 
 CONTRACT = ["case", "model", "variant", "s", "D0", "lam1_fe", "lam1_analytic", "lam3_fe",
             "min_P33", "converged", "stable"]

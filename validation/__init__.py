@@ -7,8 +7,9 @@ and ``report.md``.
 """
 
 from .cases import ALPHAS, CASES, KEPLINGER, Case, RunSpec, get_case, keplinger_s
-from .sweep import (BREAKDOWN_TOL, CaseResult, RunOutcome, StepRecord, make_figure, read_table,
-                    run_case, run_cases, validate)
+from .records import RunOutcome, StepRecord
+from .sweep import (BREAKDOWN_TOL, CaseResult, make_figure, read_table, run_case, run_cases,
+                    validate)
 
 __all__ = [
     "ALPHAS", "CASES", "KEPLINGER", "Case", "RunSpec", "get_case", "keplinger_s",

@@ -17,6 +17,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+import analytic as an
+
 __all__ = [
     "KEPLINGER",
     "ALPHAS",
@@ -24,6 +26,7 @@ __all__ = [
     "Case",
     "CASES",
     "get_case",
+    "analytic_model",
     "keplinger_s",
     "FE_VARIANTS",
     "KEPLINGER_VARIANTS",
@@ -262,3 +265,22 @@ def get_case(name: str) -> Case:
         return CASES[name]
     except KeyError:
         raise ValueError(f"case must be one of {list(CASES)}, got {name!r}") from None
+
+
+def analytic_model(name: str):
+    """The :mod:`analytic` model object of a FE material name.
+
+    Parameters
+    ----------
+    name : {"neo-Hookean", "Gent"}
+        ``"Gent"`` has ``Jm = 97.2``, as the FE material.
+
+    Returns
+    -------
+    analytic.NeoHookean or analytic.Gent
+    """
+    if name == "neo-Hookean":
+        return an.NeoHookean()
+    if name == "Gent":
+        return an.Gent(Jm=97.2)
+    raise ValueError(f"model must be 'neo-Hookean' or 'Gent', got {name!r}")

@@ -4,7 +4,7 @@
 builds the FE problem of a :class:`~validation.cases.RunSpec`, ramps the load
 ``(s, D0)`` with :func:`skfem_dielectric.newton.ramp` (pre-load first, then the
 charge targets) and reports each converged target as a
-:class:`~validation.sweep.StepRecord`. The saved state is the ramp's reduced
+:class:`~validation.records.StepRecord`. The saved state is the ramp's reduced
 solution vector and its load, so a resumed ramp continues bit for bit.
 
 Geometry in SI-like units of millimetres (the Keplinger plate 100 x 50 x 1 mm)
@@ -14,6 +14,8 @@ with ``mu = eps = 1``: every reported quantity is dimensionless.
 from __future__ import annotations
 
 import numpy as np
+
+from .records import RunOutcome, StepRecord
 
 __all__ = ["build_problem", "run_fe", "simulate", "bench"]
 
@@ -70,8 +72,6 @@ class _Membrane:
         return [np.array([spec.s, d]) for d in spec.D0]
 
     def record(self, step, fields: bool):
-        from .sweep import StepRecord
-
         q = step.quantities
         rec = StepRecord(D0=float(np.asarray(step.load)[1]), lam1=q["lam1"], lam3=q["lam3"],
                          min_P33=q["min_P33"], min_P33_clamp=q.get("min_P33_clamp", np.nan),
@@ -181,8 +181,6 @@ class _Plate:
         return self.problem.stability(_PARDISO.inertia)
 
     def record(self, step, fields: bool):
-        from .sweep import StepRecord
-
         q = step.quantities
         rec = StepRecord(D0=float(np.asarray(step.load)[1]), lam1=q["lam1"], lam3=q["lam3"],
                          min_P33=q["min_P33"], min_P33_clamp=q.get("min_P33_clamp", np.nan),
@@ -246,8 +244,6 @@ def run_fe(spec, start, state, on_step, linear_solver="superlu"):
     RunOutcome
     """
     from skfem_dielectric.newton import ramp
-
-    from .sweep import RunOutcome
 
     if "maxwell" in spec.variant:
         # the Maxwell follower load has a non-symmetric tangent, which the symmetric-

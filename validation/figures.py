@@ -13,7 +13,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .cases import ALPHAS, keplinger_s
+from .cases import ALPHAS, analytic_model, keplinger_s
 
 __all__ = [
     "plot_equibiaxial_loading",
@@ -44,12 +44,6 @@ def _new_axes(ax, n=1, figsize=None):
         return ax
     fig, axes = plt.subplots(1, n, figsize=figsize or (5.0 * n, 4.0), layout="constrained")
     return axes
-
-
-def _model(name):
-    from .sweep import analytic_model
-
-    return analytic_model(name)
 
 
 def _colors(n):
@@ -169,7 +163,7 @@ def plot_equibiaxial_loading(model="neo-Hookean", s_values=(0, 1, 2, 3), quantit
     if quantity not in ("D0", "E0"):
         raise ValueError(f"quantity must be 'D0' or 'E0', got {quantity!r}")
     ax = _new_axes(ax)
-    m = _model(model)
+    m = analytic_model(model)
     for s, c in zip(s_values, _colors(len(s_values))):
         lam, D0 = _equibiaxial_curve(an, s, m, lam_max)
         ax.plot(lam, D0 if quantity == "D0" else D0 / lam**4, color=c, label=f"$s = {s:g}$")
@@ -214,7 +208,7 @@ def plot_equibiaxial_wrinkling(model="neo-Hookean", s_values=(0, 0.8, 1.5, 2.5, 
     import analytic as an
 
     ax = _new_axes(ax)
-    m = _model(model)
+    m = analytic_model(model)
     lam = np.linspace(0.5, 5.0, 2000)
     lk, thick = _refine_start(lam, lambda x: an.thick_limit_D0(x, m))
     ln, thin = _refine_start(lam, lambda x: an.thin_limit_D0(x, m))
@@ -252,7 +246,7 @@ def uniaxial_voltage_locus(model="neo-Hookean", s=None):
     """
     import analytic as an
 
-    m = _model(model)
+    m = analytic_model(model)
     s = np.linspace(0.0, 6.0, 301) if s is None else np.asarray(s, dtype=float)
     lam1, E0 = (np.atleast_1d(np.asarray(a, dtype=float))
                 for a in an.max_E0(s, m, loading="uniaxial"))
@@ -277,7 +271,7 @@ def plot_uniaxial_loading(model="neo-Hookean", s_values=(0, 1, 2, 3, 4), quantit
     if quantity not in ("D0", "E0"):
         raise ValueError(f"quantity must be 'D0' or 'E0', got {quantity!r}")
     ax = _new_axes(ax)
-    m = _model(model)
+    m = analytic_model(model)
     for s, c in zip(s_values, _colors(len(s_values))):
         lam1, D0, E0 = _uniaxial_curve(an, s, m, lam1_max)
         ax.plot(lam1, D0 if quantity == "D0" else E0, color=c, label=f"$s = {s:g}$")
@@ -311,7 +305,7 @@ def uniaxial_thick_limit_curve(lam1, model="neo-Hookean", direction="parallel"):
     """
     import analytic as an
 
-    m = _model(model)
+    m = analytic_model(model)
     lam1 = np.asarray(lam1, dtype=float)
     lo = lam1 ** -0.5 * (1 + 1e-12)       # D0 = 0 on the path
     hi = lo * 20.0
@@ -352,7 +346,7 @@ def plot_uniaxial_wrinkling(fe=None, alphas=ALPHAS, ax=None, D0max=7.0):
     import analytic as an
 
     ax = _new_axes(ax, figsize=(6.5, 4.8))
-    m = _model("neo-Hookean")
+    m = analytic_model("neo-Hookean")
     lam1 = np.linspace(0.4, 6.0, 1500)
     ln, thin, _ = _uniaxial_curve(an, 0.0, m, 6.0)          # Eq. (thin-uni-axial) = s = 0
     lk, thick = _refine_start(lam1, uniaxial_thick_limit_curve)

@@ -35,19 +35,17 @@ from typing import Callable, Iterable
 
 import numpy as np
 
-from .cases import Case, RunSpec, get_case
+from .cases import Case, RunSpec, analytic_model, get_case
 from .progress import Progress
+from .records import StepRecord
 
 __all__ = [
-    "StepRecord",
-    "RunOutcome",
     "CaseResult",
     "BREAKDOWN_TOL",
     "csv_columns",
     "run_case",
     "run_cases",
     "read_table",
-    "analytic_model",
     "validate",
     "make_figure",
 ]
@@ -61,30 +59,6 @@ __all__ = [
 BREAKDOWN_TOL = 1e-2
 
 _FMT = ".12g"   # 12 significant digits (and at most 12 decimals) in the CSV
-
-
-@dataclass
-class StepRecord:
-    """What a runner reports for one converged charge target (dimensionless)."""
-
-    D0: float
-    lam1: float
-    lam3: float
-    min_P33: float
-    min_P33_clamp: float = float("nan")
-    min_P33_interior: float = float("nan")
-    stable: bool | None = None
-    iterations: int = 0
-    fields: dict | None = None
-
-
-@dataclass
-class RunOutcome:
-    """End of a ramp: ``converged`` is False when a target could not be reached."""
-
-    converged: bool
-    reason: str = ""
-    failed_D0: float | None = None
 
 
 @dataclass
@@ -103,17 +77,6 @@ class CaseResult:
     reasons: dict = field(default_factory=dict)
     runtime_s: float = 0.0
     resumed_steps: int = 0
-
-
-def analytic_model(name: str):
-    """The :mod:`analytic` model object for ``"neo-Hookean"`` or ``"Gent"`` (``Jm = 97.2``)."""
-    import analytic as an
-
-    if name == "neo-Hookean":
-        return an.NeoHookean()
-    if name == "Gent":
-        return an.Gent(Jm=97.2)
-    raise ValueError(f"model must be 'neo-Hookean' or 'Gent', got {name!r}")
 
 
 def csv_columns(case: Case) -> list[str]:
