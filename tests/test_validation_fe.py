@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 from validation import cases as vc
-from validation.fe import run_fe
+from validation.fe import keplinger_s, run_fe
 from validation.sweep import read_table, run_case
 
 
@@ -37,10 +37,10 @@ def small_case():
     runs = (
         # 3D: pre-load in sub-steps, then charge; resumes from (x, load) of a target
         vc.RunSpec("equibiaxial", "Gent", "coupled", 1.5, (0.0, 1.0, 2.0, 3.0)),
-        vc.RunSpec("uniaxial", "neo-Hookean", "coupled", vc.keplinger_s(1.0), (0.0, 1.5, 3.0),
+        vc.RunSpec("uniaxial", "neo-Hookean", "coupled", keplinger_s(1.0), (0.0, 1.5, 3.0),
                    alpha=1.0, mesh=(("n1", 4), ("n2", 1), ("n3", 2)), record_fields=True,
                    record_maps=True),
-        vc.RunSpec("uniaxial", "neo-Hookean", "membrane", vc.keplinger_s(1.0),
+        vc.RunSpec("uniaxial", "neo-Hookean", "membrane", keplinger_s(1.0),
                    (0.0, 1.0, 2.0, 3.0, 4.0), alpha=1.0, mesh=(("n1", 8), ("n2", 1), ("n3", 4)),
                    record_fields=True),
         # s = 0: the pre-load is the unloaded state itself (a single target)
@@ -94,7 +94,7 @@ def test_process_pool_matches_serial(tmp_path, monkeypatch):
 def test_maxwell_keplinger_against_coupled_and_resume(tmp_path):
     # the quick Keplinger plate (eighth model, 10 x 1 x 5 Q2), alpha = 1, D0 steps of 0.5
     # up to the breakdown: 3D fully coupled vs 3D Maxwell traction (electrostatic field)
-    s = vc.keplinger_s(1.0)
+    s = keplinger_s(1.0)
     mesh = vc._mesh(vc.QUICK_PLATE, "maxwell")
     runs = tuple(vc.RunSpec("uniaxial", "neo-Hookean", v, s, tuple(np.arange(0.0, 6.01, 0.5)),
                             alpha=1.0, mesh=mesh) for v in ("coupled", "maxwell"))

@@ -6,8 +6,10 @@ CSVs step by step (resumable), draws the figures and writes ``summary.json``
 and ``report.md``.
 """
 
-from .cases import ALPHAS, CASES, KEPLINGER, Case, RunSpec, get_case, keplinger_s
+from .cases import CASES, get_case
+from .fe import keplinger_s
 from .records import RunOutcome, StepRecord
+from .specs import ALPHAS, KEPLINGER, Case, RunSpec
 from .sweep import (BREAKDOWN_TOL, CaseResult, make_figure, read_table, run_case, run_cases,
                     validate)
 
