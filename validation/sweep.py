@@ -35,9 +35,19 @@ from typing import Callable, Iterable
 
 import numpy as np
 
-from .cases import Case, RunSpec, analytic_model, get_case
+import analytic as an
+
+from .cases import CASES, Case, RunSpec, analytic_model, get_case
+from .fe import run_fe
+from .figures import case_figure, save_figure
 from .progress import Progress
 from .records import StepRecord
+from .report import write_report, write_summary
+
+try:
+    import fcntl
+except ImportError:                   # pragma: no cover - Windows
+    fcntl = None
 
 __all__ = [
     "CaseResult",
@@ -109,8 +119,6 @@ def _fmt(x) -> str:
 
 def _analytic(spec: RunSpec, D0: float) -> tuple[float, float]:
     """``(lam1, lam3)`` of the homogeneous theory: Eq. (loading_gent) or Eq. (DEuniax)."""
-    import analytic as an
-
     model = analytic_model(spec.model)
     if spec.geometry == "equibiaxial":
         lam = float(an.equibiaxial_lam(D0, spec.s, model))
@@ -261,8 +269,7 @@ def run_case(case: Case | str, out, *, quick: bool = False, force: bool = False,
     """
     t0 = time.perf_counter()
     case = get_case(case) if isinstance(case, str) else case
-    if runner is None:
-        from .fe import run_fe as runner
+    runner = run_fe if runner is None else runner
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
     csv_path = out / f"{case.name}.csv"
@@ -299,9 +306,7 @@ class _case_lock:
         self.path, self.name, self.fh = state_dir / "lock", name, None
 
     def __enter__(self):
-        try:
-            import fcntl
-        except ImportError:           # pragma: no cover - Windows
+        if fcntl is None:             # pragma: no cover - Windows
             return self
         self.fh = open(self.path, "w")
         try:
@@ -489,8 +494,6 @@ def run_cases(cases: Iterable[Case | str], out, *, quick: bool = False, force: b
 
 def make_figure(case: Case | str, out) -> list[Path]:
     """Draw the figure of ``case`` from ``out/<case>.csv`` into ``out/<case>.png|pdf``."""
-    from .figures import case_figure, save_figure
-
     case = get_case(case) if isinstance(case, str) else case
     out = Path(out)
     csv_path, fields_path = out / f"{case.name}.csv", out / f"{case.name}_fields.csv"
@@ -517,9 +520,6 @@ def validate(cases: Iterable[Case | str] | None, out, *, quick: bool = False,
     -------
     list of CaseResult
     """
-    from .cases import CASES
-    from .report import write_report, write_summary
-
     cases = list(CASES) if cases is None else list(cases)
     results = run_cases(cases, out, quick=quick, force=force, jobs=jobs, executor=executor,
                         runner=runner, progress=progress)
