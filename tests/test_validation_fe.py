@@ -115,8 +115,8 @@ def test_maxwell_keplinger_against_coupled_and_resume(tmp_path):
     assert list(t["D0"][c]) == list(t["D0"][m]) == list(np.arange(0.0, 3.01, 0.5))
     assert t["breakdown"][c][-1] and t["breakdown"][m][-1]
     # the two couplings discretise the same equations (Div tau_m = 0); they differ only by
-    # the discrete int Div P_m . v at the clamp corners: issue 5 asks for 0.1 % on lam1 and
-    # 5 % of mu on min P33 up to the breakdown (measured 5.8e-4 and 3.4e-4 mu)
+    # the discrete int Div P_m . v at the clamp corners: required agreement 0.1 % on lam1
+    # and 5 % of mu on min P33 up to the breakdown (measured 5.8e-4 and 3.4e-4 mu)
     np.testing.assert_allclose(t["lam1_fe"][m], t["lam1_fe"][c], rtol=1e-3)
     np.testing.assert_allclose(t["min_P33_interior"][m], t["min_P33_interior"][c], atol=0.05)
     # pre-load: no charge, no Maxwell traction, the same elastic problem: Newton tolerance

@@ -1,5 +1,8 @@
 """FE-versus-analytic validation: the paper's figures with FE dots, and the CLI.
 
+The paper: Conroy Broderick, Righi, Destrade, Ogden, "Stability analysis of
+charge-controlled soft dielectric plates", Int. J. Eng. Sci., 2020.
+
 The main job is :func:`validate` (``skfem-dielectric validate``): it runs the FE
 ramps of every :data:`CASES` entry (one per figure of the paper), writes tidy
 CSVs step by step (resumable), draws the figures and writes ``summary.json``

@@ -1,6 +1,6 @@
 """Run the FE ramps of a case, write its tidy CSV step by step, resume after interruption.
 
-Data flow (DESIGN.md §1): for every :class:`~validation.cases.RunSpec` of a case a
+Data flow: for every :class:`~validation.cases.RunSpec` of a case a
 *runner* (by default :func:`validation.fe.run_fe`, the real FE solver) ramps
 ``D0`` through the targets and calls back after each converged target. The
 callback appends one CSV row to ``DIR/<case>.csv`` (and field rows to
@@ -90,7 +90,21 @@ class CaseResult:
 
 
 def csv_columns(case: Case) -> list[str]:
-    """Columns of ``DIR/<case>.csv`` (DESIGN.md §5 plus bookkeeping)."""
+    """Columns of ``DIR/<case>.csv``.
+
+    The run (``case``, ``run``, ``step``, ``model``, ``variant``, ``alpha`` for the
+    uni-axial cases, ``s``), the load ``D0``, FE and analytic stretches at the plate
+    centre, the ``P33/mu`` minima, the verdicts ``converged``, ``stable``,
+    ``breakdown`` and the Newton ``iterations``.
+
+    Parameters
+    ----------
+    case : Case
+
+    Returns
+    -------
+    list of str
+    """
     cols = ["case", "run", "step", "model", "variant"]
     if case.geometry == "uniaxial":
         cols.append("alpha")
