@@ -16,8 +16,9 @@ import numpy as np
 import pytest
 
 from validation import cases as vc
-from validation.sweep import (BREAKDOWN_TOL, RunOutcome, StepRecord, csv_columns, read_table,
-                              run_case, run_cases, validate)
+from validation.fe import keplinger_s
+from validation.records import RunOutcome, StepRecord
+from validation.sweep import BREAKDOWN_TOL, csv_columns, read_table, run_case, run_cases, validate
 
 CONTRACT = ["case", "model", "variant", "s", "D0", "lam1_fe", "lam1_analytic", "lam3_fe",
             "min_P33", "converged", "stable"]
@@ -91,7 +92,7 @@ def eq_case(n_s=2, n=4, name="nh-d-e"):
 
 
 def uni_case(alphas=(0.3, 1.0), fields=False, name="uni-axial-ideal"):
-    runs = tuple(vc.RunSpec("uniaxial", "neo-Hookean", v, vc.keplinger_s(a),
+    runs = tuple(vc.RunSpec("uniaxial", "neo-Hookean", v, keplinger_s(a),
                             tuple(np.linspace(0, 6, 13)), alpha=a, record_fields=fields)
                  for v in ("coupled", "maxwell") for a in alphas)
     return vc.Case(name, name, "test", "uniaxial", quick=runs, full=runs)
@@ -99,8 +100,11 @@ def uni_case(alphas=(0.3, 1.0), fields=False, name="uni-axial-ideal"):
 
 def test_keplinger_s():
     # s = alpha m g/(mu A) = 0.15 * 9.81 / (9833.07 * 50e-6), paper Sec. 5 caption
-    assert vc.keplinger_s(1.0) == pytest.approx(0.15 * 9.81 / (9833.07 * 50e-6), rel=1e-15)
-    assert vc.keplinger_s(1.0) == pytest.approx(2.99296, abs=5e-6)
+    assert keplinger_s(1.0) == pytest.approx(0.15 * 9.81 / (9833.07 * 50e-6), rel=1e-15)
+    assert keplinger_s(1.0) == pytest.approx(2.99296, abs=5e-6)
+    # the weights of Fig. uni-axial-ideal: bit for bit the formula alpha m g/(mu A)
+    for a in vc.ALPHAS:
+        assert keplinger_s(a) == a * 0.15 * 9.81 / (9833.07 * 50e-6)
 
 
 def test_csv_contract_and_error(tmp_path):

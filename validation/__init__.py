@@ -1,14 +1,20 @@
 """FE-versus-analytic validation: the paper's figures with FE dots, and the CLI.
 
+The paper: Conroy Broderick, Righi, Destrade, Ogden, "Stability analysis of
+charge-controlled soft dielectric plates", Int. J. Eng. Sci., 2020.
+
 The main job is :func:`validate` (``skfem-dielectric validate``): it runs the FE
 ramps of every :data:`CASES` entry (one per figure of the paper), writes tidy
 CSVs step by step (resumable), draws the figures and writes ``summary.json``
 and ``report.md``.
 """
 
-from .cases import ALPHAS, CASES, KEPLINGER, Case, RunSpec, get_case, keplinger_s
-from .sweep import (BREAKDOWN_TOL, CaseResult, RunOutcome, StepRecord, make_figure, read_table,
-                    run_case, run_cases, validate)
+from .cases import CASES, get_case
+from .fe import keplinger_s
+from .records import RunOutcome, StepRecord
+from .specs import ALPHAS, KEPLINGER, Case, RunSpec
+from .sweep import (BREAKDOWN_TOL, CaseResult, make_figure, read_table, run_case, run_cases,
+                    validate)
 
 __all__ = [
     "ALPHAS", "CASES", "KEPLINGER", "Case", "RunSpec", "get_case", "keplinger_s",

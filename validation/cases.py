@@ -1,21 +1,24 @@
 """The validation cases: one per figure of the paper.
 
-A :class:`Case` names a paper figure and lists the FE ramps (:class:`RunSpec`)
-whose dots are drawn over its analytic curves. Each ramp is a mechanical
-pre-load (the first target, ``D0 = 0``) followed by a charge ramp through the
-listed ``D0`` targets. ``quick`` runs use coarse meshes and few charge steps
-(the README's main job), full runs the paper's resolution.
+A :class:`~validation.specs.Case` names a paper figure and lists the FE ramps
+(:class:`~validation.specs.RunSpec`) whose dots are drawn over its analytic curves.
+Each ramp is a mechanical pre-load (the first target, ``D0 = 0``) followed by a
+charge ramp through the listed ``D0`` targets. ``quick`` runs use coarse meshes and
+few charge steps (the README's main job), full runs the paper's resolution.
 
-Keplinger plate (paper Sec. 6, DESIGN.md §2): 100 mm x 50 mm x 1 mm,
-``mu = 9833.07 Pa``, ``m = 150 g``, ``A = 50 mm^2`` and ``g = 9.81 m/s^2``, so
-``s = alpha m g / (mu A) = 2.99296 alpha``.
+The Keplinger runs take their dead load ``s`` from :func:`validation.fe.keplinger_s`
+(the FE package's ``s = alpha m g/(mu A)`` with ``g = 9.81``); the analytic side of
+every case is the :mod:`analytic` model of :func:`analytic_model`.
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
-
 import numpy as np
+
+import analytic as an
+
+from .fe import keplinger_s
+from .specs import ALPHAS, GENT_JM, KEPLINGER, MODELS, Case, RunSpec
 
 __all__ = [
     "KEPLINGER",
@@ -24,151 +27,10 @@ __all__ = [
     "Case",
     "CASES",
     "get_case",
-    "keplinger_s",
+    "analytic_model",
     "FE_VARIANTS",
     "KEPLINGER_VARIANTS",
 ]
-
-#: Keplinger et al. plate and weight, SI units; ``g`` stated explicitly.
-KEPLINGER = {"length": 0.100, "width": 0.050, "thickness": 0.001, "mu": 9833.07,
-             "mass": 0.150, "area": 50e-6, "g": 9.81}
-#: Weight fractions of the paper's Fig. uni-axial-ideal.
-ALPHAS = (0.05, 0.3, 0.7, 1.0, 1.5)
-
-MODELS = ("neo-Hookean", "Gent")
-VARIANTS = ("coupled", "maxwell", "membrane", "membrane-maxwell")
-GEOMETRIES = ("equibiaxial", "uniaxial", "uniaxial-free")
-
-
-def keplinger_s(alpha):
-    """Dimensionless dead load ``s = alpha m g/(mu A)`` of the Keplinger plate.
-
-    Parameters
-    ----------
-    alpha : float or array_like
-        Fraction of the 150 g weight, ``alpha > 0``.
-
-    Returns
-    -------
-    float or ndarray
-        ``s`` with ``g = 9.81 m/s^2`` (paper caption of Fig. uni-axial-ideal).
-
-    Examples
-    --------
-    >>> round(keplinger_s(1.0), 5)
-    2.99296
-    """
-    a = np.asarray(alpha, dtype=float)
-    if np.any(~np.isfinite(a)) or np.any(a < 0):
-        raise ValueError(f"alpha must be >= 0 and finite, got {alpha!r}")
-    k = KEPLINGER
-    s = a * k["mass"] * k["g"] / (k["mu"] * k["area"])
-    return float(s) if s.ndim == 0 else s
-
-
-@dataclass(frozen=True)
-class RunSpec:
-    """One FE ramp: a pre-load followed by charge targets.
-
-    Parameters
-    ----------
-    geometry : {"equibiaxial", "uniaxial", "uniaxial-free"}
-        Homogeneous equi-biaxial dead-load plate, the clamped Keplinger
-        plate carrying a weight, or a homogeneous uni-axial dead load (free
-        lateral edges, no clamps).
-    model : {"neo-Hookean", "Gent"}
-        Strain energy (Gent with ``Jm = 97.2``).
-    variant : {"coupled", "maxwell", "membrane", "membrane-maxwell"}
-        3D fully coupled ``u-p-phi`` solver, 3D Maxwell-traction variant (field
-        of the potential solved on the deformed body), or
-        the 2D membrane model (in-plane, exact incompressibility) with the
-        electric energy in the total energy (``"membrane"``) or with the
-        Maxwell traction of the local field as a follower load
-        (``"membrane-maxwell"``; exact on homogeneous states only).
-    s : float
-        Dimensionless dead load (equi-biaxial traction, or weight/(mu A)).
-    D0 : tuple of float
-        Charge targets, increasing, the first one ``0`` (the pre-load).
-    alpha : float or None
-        Weight fraction (uni-axial runs only).
-    mesh : tuple of (str, int)
-        Mesh divisions ``(("n1", .), ("n2", .), ("n3", .))`` along length,
-        thickness and width.
-    record_fields : bool
-        Also store the centre-line profile (``P33``, stretches) of every step.
-    record_maps : bool
-        Also store the mid-plane stretch maps of the pre-loaded plate (``D0 = 0``).
-    stop_at_breakdown : bool
-        End the ramp at the first step where ``P33`` near the clamps turns
-        compressive (the paper's breakdown), as the paper's COMSOL runs did.
-    """
-
-    geometry: str
-    model: str
-    variant: str
-    s: float
-    D0: tuple
-    alpha: float | None = None
-    mesh: tuple = (("n1", 1), ("n2", 1), ("n3", 1))
-    record_fields: bool = False
-    record_maps: bool = False
-    stop_at_breakdown: bool = True
-
-    def __post_init__(self):
-        if self.geometry not in GEOMETRIES:
-            raise ValueError(f"geometry must be one of {GEOMETRIES}, got {self.geometry!r}")
-        if self.model not in MODELS:
-            raise ValueError(f"model must be one of {MODELS}, got {self.model!r}")
-        if self.variant not in VARIANTS:
-            raise ValueError(f"variant must be one of {VARIANTS}, got {self.variant!r}")
-        if not np.isfinite(self.s) or self.s < 0:
-            raise ValueError(f"s must be >= 0 and finite, got {self.s!r}")
-        D0 = np.asarray(self.D0, dtype=float)
-        if D0.ndim != 1 or D0.size < 1 or np.any(~np.isfinite(D0)) or np.any(D0 < 0) \
-                or np.any(np.diff(D0) <= 0):
-            raise ValueError(f"D0 must be a non-empty increasing sequence >= 0, got {self.D0!r}")
-        object.__setattr__(self, "D0", tuple(float(d) for d in D0))
-
-    @property
-    def key(self) -> str:
-        """Stable identifier, used for state files and the CSV ``run`` column."""
-        parts = [self.geometry, "nh" if self.model == "neo-Hookean" else "gent", self.variant]
-        parts.append(f"a{self.alpha:g}" if self.alpha is not None else f"s{self.s:g}")
-        return "_".join(parts)
-
-    @property
-    def mesh_dict(self) -> dict:
-        return dict(self.mesh)
-
-
-@dataclass(frozen=True)
-class Case:
-    """A paper figure and the FE ramps overlaid on it.
-
-    Attributes
-    ----------
-    name : str
-        CLI name, e.g. ``"uni-axial-ideal"``.
-    figure : str
-        The paper's figure label.
-    title : str
-        One-line description.
-    geometry : str
-        ``"equibiaxial"`` or ``"uniaxial"`` (decides the CSV columns).
-    quick, full : tuple of RunSpec
-        The FE ramps of a quick and of a full run.
-    """
-
-    name: str
-    figure: str
-    title: str
-    geometry: str
-    quick: tuple = field(default=())
-    full: tuple = field(default=())
-
-    def runs(self, quick: bool = False) -> tuple:
-        """The FE ramps of this case."""
-        return self.quick if quick else self.full
 
 
 def _steps(D0max: float, n: int) -> tuple:
@@ -262,3 +124,22 @@ def get_case(name: str) -> Case:
         return CASES[name]
     except KeyError:
         raise ValueError(f"case must be one of {list(CASES)}, got {name!r}") from None
+
+
+def analytic_model(name: str):
+    """The :mod:`analytic` model object of a FE material name.
+
+    Parameters
+    ----------
+    name : {"neo-Hookean", "Gent"}
+        ``"Gent"`` has ``Jm = GENT_JM`` (97.2), as the FE material.
+
+    Returns
+    -------
+    analytic.NeoHookean or analytic.Gent
+    """
+    if name == "neo-Hookean":
+        return an.NeoHookean()
+    if name == "Gent":
+        return an.Gent(Jm=GENT_JM)
+    raise ValueError(f"model must be 'neo-Hookean' or 'Gent', got {name!r}")

@@ -7,16 +7,22 @@ only into the folder given by ``--out``.
 from __future__ import annotations
 
 import argparse
+import functools
 import sys
 import time
+from importlib.metadata import PackageNotFoundError, version
 from pathlib import Path
+
+from .cases import CASES
+from .fe import bench, pardiso_installed, run_fe, simulate
+from .figures import case_figure, save_figure
+from .specs import MODELS, VARIANTS
+from .sweep import validate
 
 __all__ = ["main", "build_parser"]
 
 
 def _version() -> str:
-    from importlib.metadata import PackageNotFoundError, version
-
     try:
         return version("skfem-dielectric")
     except PackageNotFoundError:      # pragma: no cover - running from a source tree
@@ -25,8 +31,6 @@ def _version() -> str:
 
 def build_parser() -> argparse.ArgumentParser:
     """The argument parser (exposed for the docs and the tests)."""
-    from .cases import CASES, MODELS, VARIANTS
-
     p = argparse.ArgumentParser(
         prog="skfem-dielectric",
         description="Charge-controlled soft dielectric plates: the paper's figures with "
@@ -91,8 +95,6 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 def _cmd_list(args) -> int:
-    from .cases import CASES
-
     w = max(len(n) for n in CASES)
     print(f"{'case':<{w}}  {'paper figure':<18} {'runs quick/full':<16} description")
     for c in CASES.values():
@@ -102,8 +104,6 @@ def _cmd_list(args) -> int:
 
 
 def _cmd_curves(args) -> int:
-    from .figures import case_figure, save_figure
-
     names = args.case or ["nh-d-e", "gent-d-e", "gent-equi-biaxial", "figde", "uni-axial-ideal"]
     args.out.mkdir(parents=True, exist_ok=True)
     for name in names:
@@ -116,18 +116,9 @@ def _cmd_curves(args) -> int:
 
 
 def _cmd_validate(args) -> int:
-    from .sweep import validate
-
-    import functools
-
-    from .fe import run_fe
-
-    if args.solver == "pardiso":
-        from skfem_dielectric.linear import pardiso_available
-
-        if not pardiso_available():
-            raise ValueError("--solver pardiso needs pypardiso (pip install -e '.[fast]'), "
-                             "got no pypardiso")
+    if args.solver == "pardiso" and not pardiso_installed():
+        raise ValueError("--solver pardiso needs pypardiso (pip install -e '.[fast]'), "
+                         "got no pypardiso")
     t0 = time.perf_counter()
     runner = None if args.solver == "superlu" else functools.partial(run_fe,
                                                                      linear_solver=args.solver)
@@ -139,8 +130,6 @@ def _cmd_validate(args) -> int:
 
 
 def _cmd_simulate(args) -> int:
-    from .fe import simulate
-
     out = simulate(geometry=args.geometry, model=args.model, variant=args.variant, s=args.s,
                    alpha=args.alpha, D0_max=args.D0_max, steps=args.steps,
                    mesh=args.mesh, fmt=args.fmt, out=args.out)
@@ -150,8 +139,6 @@ def _cmd_simulate(args) -> int:
 
 
 def _cmd_bench(args) -> int:
-    from .fe import bench
-
     for line in bench(mesh=tuple(args.mesh), alpha=args.alpha, D0_max=args.D0_max,
                       steps=args.steps, variant=args.variant, solver=args.solver):
         print(line)

@@ -1,11 +1,21 @@
-"""Adapters from :mod:`skfem_dielectric` problems to the harness's runner protocol.
+"""The harness's FE runner: a :class:`~validation.specs.RunSpec` solved with :mod:`skfem_dielectric`.
 
-:func:`run_fe` is the default runner of :func:`validation.sweep.run_case`: it
-builds the FE problem of a :class:`~validation.cases.RunSpec`, ramps the load
-``(s, D0)`` with :func:`skfem_dielectric.newton.ramp` (pre-load first, then the
-charge targets) and reports each converged target as a
-:class:`~validation.sweep.StepRecord`. The saved state is the ramp's reduced
-solution vector and its load, so a resumed ramp continues bit for bit.
+This is the only module of :mod:`validation` that imports :mod:`skfem_dielectric`. It
+touches the FE package in a few small functions, one per job:
+
+* :func:`build_problem` -- the FE problem of a spec (3D plate, 3D Maxwell-traction
+  plate or 2D membrane);
+* :func:`ramp_targets` and :func:`ramp_settings` -- the ramp's loads ``(s, D0)`` and
+  its Newton tolerances, cut-back limit and linear solver;
+* :func:`stability_verdict` -- the inertia verdict of a converged 3D state;
+* :func:`membrane_stretch_maps` -- the membrane's deformation gradient at points;
+* :func:`keplinger_s` -- the Keplinger plate's dead load.
+
+:func:`run_fe` is the default runner of :func:`validation.sweep.run_case`: it ramps
+the load (pre-load first, then the charge targets) with :func:`skfem_dielectric.ramp`
+and reports each converged target as a :class:`~validation.records.StepRecord`. The
+saved state is the ramp's reduced solution vector and its load, so a resumed ramp
+continues bit for bit.
 
 Geometry in SI-like units of millimetres (the Keplinger plate 100 x 50 x 1 mm)
 with ``mu = eps = 1``: every reported quantity is dimensionless.
@@ -13,26 +23,250 @@ with ``mu = eps = 1``: every reported quantity is dimensionless.
 
 from __future__ import annotations
 
+import csv
+import functools
+import time
+import warnings
+from pathlib import Path
+
+import meshio
 import numpy as np
 
-__all__ = ["build_problem", "run_fe", "simulate", "bench"]
+import skfem_dielectric as fe
+
+from .records import RunOutcome, StepRecord
+from .specs import GENT_JM, KEPLINGER, RunSpec
+
+__all__ = [
+    "keplinger_s",
+    "build_problem",
+    "ramp_targets",
+    "ramp_settings",
+    "stability_verdict",
+    "membrane_stretch_maps",
+    "pardiso_installed",
+    "run_fe",
+    "simulate",
+    "bench",
+]
 
 L1, L3, H = 100.0, 50.0, 1.0     # mm
-_PARDISO = None                  # cached PARDISO solver for the stability verdicts
+MEMBRANE_VARIANTS = ("membrane", "membrane-maxwell")
+#: Loading of the membrane per geometry: the Keplinger plate is clamped.
+MEMBRANE_LOADING = {"equibiaxial": "equibiaxial", "uniaxial": "clamped",
+                    "uniaxial-free": "uniaxial"}
+#: 3D pre-load sub-steps, as the drivers equibiaxial_plate (4) and keplinger_plate (3).
+PRELOAD_STEPS = {"equibiaxial": 4, "uniaxial": 3}
+#: 3D Newton tolerance relative to the external load: as equibiaxial_plate (1e-11) and
+#: keplinger_plate (1e-9); the membrane keeps the tolerance of the plain ramp.
+RTOL = {"equibiaxial": 1e-11, "uniaxial": 1e-9}
+MEMBRANE_TOL = {"atol": 1e-10, "rtol": 1e-10}
+#: Cut-backs per target and Newton iterations per attempt, every variant.
+MAX_CUTBACKS, MAX_ITER = 6, 25
 
 
 class _Stop(Exception):
     """Raised inside ``on_step`` to end a ramp at the breakdown."""
 
 
-def _material(model: str):
-    from skfem_dielectric.materials import GentDielectric, NeoHookeanDielectric
+def keplinger_s(alpha: float) -> float:
+    """Dimensionless dead load ``s = alpha m g/(mu A)`` of the Keplinger plate.
 
-    if model == "neo-Hookean":
-        return NeoHookeanDielectric(1.0, 1.0)
-    if model == "Gent":
-        return GentDielectric(1.0, 1.0, 97.2)
-    raise ValueError(f"model must be 'neo-Hookean' or 'Gent', got {model!r}")
+    :func:`skfem_dielectric.keplinger_s` with ``g = KEPLINGER["g"] = 9.81 m/s^2``
+    (paper caption of Fig. uni-axial-ideal).
+
+    Parameters
+    ----------
+    alpha : float
+        Fraction of the 150 g weight, ``alpha >= 0``.
+
+    Returns
+    -------
+    float
+
+    Examples
+    --------
+    >>> round(keplinger_s(1.0), 5)
+    2.99296
+    """
+    return fe.keplinger_s(alpha, g=KEPLINGER["g"])
+
+
+def _is_membrane(spec: RunSpec) -> bool:
+    return spec.variant in MEMBRANE_VARIANTS
+
+
+# --------------------------------------------------------------------------- the FE model
+def build_problem(spec: RunSpec):
+    """The FE problem of ``spec``, a ramp problem of :mod:`skfem_dielectric`.
+
+    The 3D plates are eighth models: of a 4 x 1 x 4 plate with one element per
+    direction by default for the homogeneous equi-biaxial state (as
+    :func:`skfem_dielectric.equibiaxial_plate`), of the 100 x 1 x 50 mm Keplinger plate
+    (as :func:`skfem_dielectric.keplinger_plate`). The membrane is the quarter of the
+    100 x 50 mm plate of thickness 1 mm.
+
+    Parameters
+    ----------
+    spec : RunSpec
+
+    Returns
+    -------
+    PlateProblem or MembranePlate
+        For ``variant="maxwell"`` the plate with ``coupling="maxwell"`` and the field of
+        the potential solved on the deformed body.
+    """
+    m = spec.mesh_dict
+    if _is_membrane(spec):
+        coupling = "maxwell" if spec.variant == "membrane-maxwell" else "full"
+        return fe.MembranePlate(fe.make_material(spec.model, Jm=GENT_JM), L1=L1, L3=L3, H=H,
+                                n1=m.get("n1", 1), n3=m.get("n3", 1),
+                                loading=MEMBRANE_LOADING[spec.geometry], coupling=coupling)
+    el = (m.get("n1", 1), m.get("n2", 1), m.get("n3", 1))
+    # the variant that discretises the fully coupled equations (docs/fe_variants.md)
+    coupling = {"coupling": "maxwell", "field": "electrostatic"} \
+        if spec.variant == "maxwell" else {}
+    if spec.geometry == "equibiaxial":
+        return fe.equibiaxial_problem(model=spec.model, Jm=GENT_JM, elements=el, **coupling)
+    if spec.geometry == "uniaxial":
+        return fe.keplinger_problem(model=spec.model, Jm=GENT_JM, size=(L1, H, L3),
+                                    elements=el, **coupling)
+    raise ValueError(f"the 3D plate has no geometry {spec.geometry!r}")
+
+
+def ramp_targets(spec: RunSpec) -> list:
+    """The ramp's loads ``(s, D0)`` for ``spec``, the pre-load first.
+
+    3D: the pre-load in equal steps ``(s k/n, 0)``, ``n`` from :data:`PRELOAD_STEPS`
+    (a single ``(0, 0)`` target when ``s = 0``), then ``(s, D0)`` for the charge
+    targets. Membrane: straight to ``(s, D0)`` for every target, as
+    :func:`skfem_dielectric.membrane_ramp`.
+
+    Parameters
+    ----------
+    spec : RunSpec
+
+    Returns
+    -------
+    list of ndarray
+    """
+    if _is_membrane(spec):
+        return [np.array([spec.s, d]) for d in spec.D0]
+    n = PRELOAD_STEPS[spec.geometry] if spec.s > 0 else 1
+    return fe.preload_then_charge(spec.s, spec.D0, n)
+
+
+def ramp_settings(spec: RunSpec, linear_solver="superlu") -> dict:
+    """Keyword arguments of :func:`skfem_dielectric.ramp` for ``spec``.
+
+    Parameters
+    ----------
+    spec : RunSpec
+    linear_solver : str
+        Requested solver. The Maxwell-traction variants have a non-symmetric tangent
+        (follower load), which the symmetric-indefinite PARDISO set-up (upper triangle
+        only) cannot factorise: they get :func:`skfem_dielectric.nonsymmetric_solver`
+        of it (SuperLU, or PARDISO as a general LU when PARDISO is asked for).
+
+    Returns
+    -------
+    dict
+        ``atol``, ``rtol`` (:data:`RTOL` with ``atol = 0`` in 3D,
+        :data:`MEMBRANE_TOL` for the membrane), ``max_cutbacks``, ``max_iter`` and
+        ``linear_solver``.
+    """
+    if "maxwell" in spec.variant:
+        linear_solver = fe.nonsymmetric_solver(linear_solver)
+    tol = MEMBRANE_TOL if _is_membrane(spec) else {"atol": 0.0, "rtol": RTOL[spec.geometry]}
+    return {**tol, "max_cutbacks": MAX_CUTBACKS, "max_iter": MAX_ITER,
+            "linear_solver": linear_solver}
+
+
+def pardiso_installed() -> bool:
+    """Whether PARDISO (pypardiso, the ``fast`` extra) can be used."""
+    return fe.pardiso_available()
+
+
+@functools.cache
+def _pardiso():
+    """One PARDISO solver per process for the stability verdicts (its set-up is slow)."""
+    return fe.get_linear_solver("pardiso")
+
+
+def stability_verdict(spec: RunSpec, problem, x, load) -> bool | None:
+    """Inertia verdict of the coupled tangent at a converged 3D state.
+
+    Computed with PARDISO apart from the ramp, whose deterministic SuperLU path is
+    kept so that a resumed ramp repeats the uninterrupted one bit for bit.
+
+    Parameters
+    ----------
+    spec : RunSpec
+    problem
+        The problem of :func:`build_problem`.
+    x, load
+        Converged reduced state and its load.
+
+    Returns
+    -------
+    bool or None
+        ``None`` for the membrane, for the Maxwell traction (its tangent is
+        non-symmetric: its inertia is no stability verdict) and without PARDISO.
+    """
+    if _is_membrane(spec) or spec.variant == "maxwell" or not pardiso_installed():
+        return None
+    solver = _pardiso()
+    K, r = problem.assemble(x, load)
+    solver.solve(K, r)
+    return problem.stability(solver.inertia)
+
+
+def membrane_stretch_maps(problem, x) -> dict:
+    """``lam1 = F11``, ``lam3 = F33`` of the membrane at its mesh vertices.
+
+    Parameters
+    ----------
+    problem : MembranePlate
+    x : ndarray
+        Reduced state.
+
+    Returns
+    -------
+    dict
+        ``kind = 1``, the reference ``x1``, ``x3`` in metres, ``lam1``, ``lam3`` and
+        ``P33 = nan``: rows of the fields table.
+    """
+    pts = problem.mesh.p
+    # nudge boundary points inside so that the element finder locates them
+    c = pts.mean(axis=1, keepdims=True)
+    inner = pts + 1e-9 * (c - pts)
+    G, dofs = fe.point_gradients(problem.basis, inner)
+    u = problem.T @ x
+    F = np.einsum("pn,pijn->ijn", u[dofs], G) + np.eye(2)[:, :, None]
+    return {"kind": np.ones(pts.shape[1]), "x1": pts[0] * 1e-3, "x3": pts[1] * 1e-3,
+            "lam1": F[0, 0], "lam3": F[1, 1], "P33": np.full(pts.shape[1], np.nan)}
+
+
+def _plate_stretch_maps(problem, x, load) -> dict:
+    """``lam1 = |F e1|``, ``lam3 = |F e3|`` on a grid of the 3D plate's mid-plane."""
+    g1, _, g3 = problem.plate.grids
+    x1 = np.linspace(g1[0], g1[-1], 4 * (len(g1) - 1) + 1)
+    x3 = np.linspace(g3[0], g3[-1], 4 * (len(g3) - 1) + 1)
+    X1, X3 = (a.ravel() for a in np.meshgrid(x1, x3, indexing="ij"))
+    tiny = 1e-9 * (g1[-1] - g1[0])
+    pts = np.vstack([np.clip(X1, g1[0] + tiny, g1[-1] - tiny), np.full(X1.size, tiny),
+                     np.clip(X3, g3[0] + tiny, g3[-1] - tiny)])
+    F = problem.evaluate(x, load, pts)["F"]
+    lam = np.linalg.norm(F, axis=0)
+    return {"kind": np.ones(X1.size), "x1": X1 * 1e-3, "x3": X3 * 1e-3, "lam1": lam[0],
+            "lam3": lam[2], "P33": np.full(X1.size, np.nan)}
+
+
+def _centre_line(spec: RunSpec, problem, step) -> dict:
+    """Centre-line profile in millimetres: ``x1``, ``P33/mu``, ``lam1``, ``lam3``."""
+    if _is_membrane(spec):
+        return problem.centre_line(step.x, step.load)
+    return step.quantities["centre_line"]
 
 
 def _interior_min(x1_mm, P33) -> float:
@@ -49,180 +283,44 @@ def _interior_min(x1_mm, P33) -> float:
     return float(np.min(np.asarray(P33)[keep])) if keep.any() else float("nan")
 
 
-class _Membrane:
-    """The 2D membrane model (skfem_dielectric.membrane) behind the runner protocol."""
-
-    def __init__(self, spec):
-        from skfem_dielectric.membrane import MembranePlate
-
-        m = spec.mesh_dict
-        loading = {"equibiaxial": "equibiaxial", "uniaxial": "clamped",
-                   "uniaxial-free": "uniaxial"}[spec.geometry]
-        coupling = "maxwell" if spec.variant == "membrane-maxwell" else "full"
-        self.problem = MembranePlate(_material(spec.model), L1=L1, L3=L3, H=H,
-                                     n1=m.get("n1", 1), n3=m.get("n3", 1), loading=loading,
-                                     coupling=coupling)
-
-    tolerances: dict = {}
-
-    def targets(self, spec) -> list:
-        """Ramp loads ``(s, D0)``: straight to the pre-load, then the charge targets."""
-        return [np.array([spec.s, d]) for d in spec.D0]
-
-    def record(self, step, fields: bool):
-        from .sweep import StepRecord
-
-        q = step.quantities
-        rec = StepRecord(D0=float(np.asarray(step.load)[1]), lam1=q["lam1"], lam3=q["lam3"],
-                         min_P33=q["min_P33"], min_P33_clamp=q.get("min_P33_clamp", np.nan),
-                         stable=None, iterations=step.iterations)
-        prof = self.fields(step.x, step.load)
-        rec.min_P33_interior = _interior_min(prof["x1"] * 1e3, prof["P33"])
-        if fields:
-            rec.fields = prof
-        return rec
-
-    def fields(self, x, load) -> dict:
-        """Centre-line profile (quarter plate, metres): ``P33/mu``, ``lam1``, ``lam3``."""
-        c = self.problem.centre_line(x, load)
-        return {"kind": np.zeros(len(c["x1"])), "x1": np.asarray(c["x1"]) * 1e-3,
-                "x3": np.zeros(len(c["x1"])), "P33": c["P33"], "lam1": c["lam1"],
-                "lam3": c["lam3"]}
-
-    def maps(self, x, load) -> dict:
-        from skfem_dielectric.mesh2d import point_gradients
-
-        pb = self.problem
-        pts = pb.mesh.p
-        # nudge boundary points inside so that the element finder locates them
-        c = pts.mean(axis=1, keepdims=True)
-        inner = pts + 1e-9 * (c - pts)
-        G, dofs = point_gradients(pb.basis, inner)
-        u = pb.T @ x
-        F = np.einsum("pn,pijn->ijn", u[dofs], G) + np.eye(2)[:, :, None]
-        return {"kind": np.ones(pts.shape[1]), "x1": pts[0] * 1e-3, "x3": pts[1] * 1e-3,
-                "lam1": F[0, 0], "lam3": F[1, 1], "P33": np.full(pts.shape[1], np.nan)}
+def _step_record(spec: RunSpec, problem, step) -> StepRecord:
+    """The :class:`StepRecord` of a converged target, with the centre line if recorded."""
+    q = step.quantities
+    rec = StepRecord(D0=float(np.asarray(step.load)[1]), lam1=q["lam1"], lam3=q["lam3"],
+                     min_P33=q["min_P33"], min_P33_clamp=q.get("min_P33_clamp", np.nan),
+                     stable=stability_verdict(spec, problem, step.x, step.load),
+                     iterations=step.iterations)
+    c = _centre_line(spec, problem, step)
+    rec.min_P33_interior = _interior_min(c["x1"], c["P33"])
+    if spec.record_fields:
+        n = len(c["x1"])
+        rec.fields = {"kind": np.zeros(n), "x1": np.asarray(c["x1"]) * 1e-3, "x3": np.zeros(n),
+                      "P33": c["P33"], "lam1": c["lam1"], "lam3": c["lam3"]}
+        if spec.record_maps and rec.D0 == 0.0:
+            # stretch maps of the pre-loaded plate (kind 1) after the centre line (kind 0)
+            maps = (membrane_stretch_maps(problem, step.x) if _is_membrane(spec)
+                    else _plate_stretch_maps(problem, step.x, step.load))
+            rec.fields = {k: np.r_[rec.fields[k], maps[k]] for k in rec.fields}
+    return rec
 
 
-    def export(self, x, load):
-        """meshio ``Mesh`` of the membrane: displacement ``(u1, 0, u3)``, ``lam1``, ``lam3``."""
-        import meshio
-
-        pb = self.problem
-        u = pb.T @ x
-        ud = u[pb.basis.nodal_dofs]                       # (2, nverts): u1, u3
-        p = pb.mesh.p
-        pts = np.c_[p[0], np.zeros(p.shape[1]), p[1]]     # (x1, x2 = 0, x3)
-        disp = np.c_[ud[0], np.zeros(p.shape[1]), ud[1]]
-        maps = self.maps(x, load)
-        return meshio.Mesh(pts, [("quad", pb.mesh.t[:4].T.copy())],
-                           point_data={"displacement": disp, "lam1": maps["lam1"],
-                                       "lam3": maps["lam3"]})
-
-
-class _Plate:
-    """The 3D fully coupled u-p-phi plate (skfem_dielectric.plate) behind the runner protocol.
-
-    Mirrors :func:`skfem_dielectric.drivers.equibiaxial_plate` (1 element, eighth
-    model of a 4 x 1 x 4 plate: the state is homogeneous) and
-    :func:`skfem_dielectric.drivers.keplinger_plate` (eighth model of the
-    100 x 1 x 50 mm plate), including their pre-load steps and tolerances; the
-    problem object is kept so that fields and stability can be evaluated.
-    """
-
-    def __init__(self, spec):
-        from skfem_dielectric.materials import make_material
-        from skfem_dielectric.mesh import plate_mesh
-        from skfem_dielectric.plate import PlateProblem
-
-        m = spec.mesh_dict
-        el = (m.get("n1", 1), m.get("n2", 1), m.get("n3", 1))
-        if spec.geometry == "equibiaxial":
-            pm = plate_mesh(4.0, 1.0, 4.0, *el, symmetry="eighth")
-            self.preload, self.tolerances = 4, {"atol": 0.0, "rtol": 1e-11}
-        elif spec.geometry == "uniaxial":
-            pm = plate_mesh(L1, H, L3, *el, symmetry="eighth")
-            self.preload, self.tolerances = 3, {"atol": 0.0, "rtol": 1e-9}
-        else:
-            raise ValueError(f"the 3D plate has no geometry {spec.geometry!r}")
-        if spec.variant == "maxwell":
-            # Maxwell traction with the field of the potential solved on the deformed body
-            # (the variant that discretises the fully coupled equations; docs/fe_variants.md)
-            self.problem = PlateProblem(pm, make_material(spec.model), loading=spec.geometry,
-                                        coupling="maxwell", field="electrostatic")
-        else:
-            self.problem = PlateProblem(pm, make_material(spec.model), loading=spec.geometry)
-        self.maxwell = spec.variant == "maxwell"
-
-    def targets(self, spec) -> list:
-        """Pre-load in equal steps ``(s k/n, 0)``, then ``(s, D0)`` for the charge targets."""
-        n = self.preload if spec.s > 0 else 1          # s = 0: a single (0, 0) target
-        return ([np.array([spec.s * k / n, 0.0]) for k in range(1, n + 1)]
-                + [np.array([spec.s, d]) for d in spec.D0 if d > 0])
-
-    def stability(self, x, load):
-        """Inertia verdict of the coupled tangent at a converged state (PARDISO), else None.
-
-        Computed apart from the ramp, whose deterministic SuperLU path is kept so
-        that a resumed ramp repeats the uninterrupted one bit for bit.
-        """
-        from skfem_dielectric.linear import get_linear_solver, pardiso_available
-
-        global _PARDISO
-        if self.maxwell or not pardiso_available():
-            # the Maxwell tangent is non-symmetric: its inertia is no stability verdict
-            return None
-        if _PARDISO is None:             # one instance per process: its set-up is slow
-            _PARDISO = get_linear_solver("pardiso")
-        K, r = self.problem.assemble(x, load)
-        _PARDISO.solve(K, r)
-        return self.problem.stability(_PARDISO.inertia)
-
-    def record(self, step, fields: bool):
-        from .sweep import StepRecord
-
-        q = step.quantities
-        rec = StepRecord(D0=float(np.asarray(step.load)[1]), lam1=q["lam1"], lam3=q["lam3"],
-                         min_P33=q["min_P33"], min_P33_clamp=q.get("min_P33_clamp", np.nan),
-                         stable=self.stability(step.x, step.load), iterations=step.iterations)
-        c = q["centre_line"]
-        rec.min_P33_interior = _interior_min(c["x1"], c["P33"])
-        if fields:
-            rec.fields = {"kind": np.zeros(len(c["x1"])), "x1": np.asarray(c["x1"]) * 1e-3,
-                          "x3": np.zeros(len(c["x1"])), "P33": c["P33"], "lam1": c["lam1"],
-                          "lam3": c["lam3"]}
-        return rec
-
-    def maps(self, x, load) -> dict:
-        """``lam1 = |F e1|``, ``lam3 = |F e3|`` on a grid of the mid-thickness plane."""
-        g1, _, g3 = self.problem.plate.grids
-        x1 = np.linspace(g1[0], g1[-1], 4 * (len(g1) - 1) + 1)
-        x3 = np.linspace(g3[0], g3[-1], 4 * (len(g3) - 1) + 1)
-        X1, X3 = (a.ravel() for a in np.meshgrid(x1, x3, indexing="ij"))
-        tiny = 1e-9 * (g1[-1] - g1[0])
-        pts = np.vstack([np.clip(X1, g1[0] + tiny, g1[-1] - tiny), np.full(X1.size, tiny),
-                         np.clip(X3, g3[0] + tiny, g3[-1] - tiny)])
-        F = self.problem.evaluate(x, load, pts)["F"]
-        lam = np.linalg.norm(F, axis=0)
-        return {"kind": np.ones(X1.size), "x1": X1 * 1e-3, "x3": X3 * 1e-3, "lam1": lam[0],
-                "lam3": lam[2], "P33": np.full(X1.size, np.nan)}
-
-    def export(self, x, load):
-        """meshio ``Mesh`` (:func:`skfem_dielectric.export.step_mesh`): u, phi, p, P33, stretches."""
-        from skfem_dielectric.export import step_mesh
-
-        return step_mesh(self.problem, x, load)
+def _export(spec: RunSpec, problem, x, load):
+    """meshio ``Mesh`` of a state: :func:`skfem_dielectric.step_mesh` in 3D (u, phi, p,
+    P33, stretches); for the membrane the displacement ``(u1, 0, u3)``, ``lam1``, ``lam3``."""
+    if not _is_membrane(spec):
+        return fe.step_mesh(problem, x, load)
+    u = problem.T @ x
+    ud = u[problem.basis.nodal_dofs]                   # (2, nverts): u1, u3
+    p = problem.mesh.p
+    pts = np.c_[p[0], np.zeros(p.shape[1]), p[1]]     # (x1, x2 = 0, x3)
+    disp = np.c_[ud[0], np.zeros(p.shape[1]), ud[1]]
+    maps = membrane_stretch_maps(problem, x)
+    return meshio.Mesh(pts, [("quad", problem.mesh.t[:4].T.copy())],
+                       point_data={"displacement": disp, "lam1": maps["lam1"],
+                                   "lam3": maps["lam3"]})
 
 
-def build_problem(spec):
-    """The FE problem wrapper of ``spec`` (``.problem`` is a ``RampProblem``)."""
-    if spec.variant in ("membrane", "membrane-maxwell"):
-        return _Membrane(spec)
-    if spec.variant in ("coupled", "maxwell"):
-        return _Plate(spec)
-    raise ValueError(f"variant {spec.variant!r} has no FE driver yet")
-
-
+# --------------------------------------------------------------------------- the runner
 def run_fe(spec, start, state, on_step, linear_solver="superlu"):
     """Run the FE ramp of ``spec`` from target ``start`` (runner protocol of :mod:`.sweep`).
 
@@ -243,51 +341,41 @@ def run_fe(spec, start, state, on_step, linear_solver="superlu"):
     -------
     RunOutcome
     """
-    from skfem_dielectric.ramp import ramp
-
-    from .sweep import RunOutcome
-
-    if "maxwell" in spec.variant:
-        # the Maxwell follower load has a non-symmetric tangent, which the symmetric-
-        # indefinite PARDISO set-up (upper triangle only) cannot factorise: SuperLU, or
-        # PARDISO as a general LU (mtype 11) when PARDISO is asked for
-        from skfem_dielectric.linear import nonsymmetric_solver
-
-        linear_solver = nonsymmetric_solver(linear_solver)
-    wrap = build_problem(spec)
-    targets = wrap.targets(spec)
+    problem = build_problem(spec)
+    targets = ramp_targets(spec)
     x0 = None if state is None else np.asarray(state["x"], dtype=float)
     start_load = None if state is None else np.asarray(state["load"], dtype=float)
     if start_load is not None:
-        pos = [k for k, t in enumerate(targets) if np.allclose(t, start_load, rtol=0, atol=1e-14)]
-        if not pos:
-            raise ValueError(f"saved load {start_load} is not a target of run {spec.key}")
-        targets = targets[pos[0] + 1:]
+        try:
+            targets = fe.remaining_targets(targets, start_load)
+        except ValueError:
+            raise ValueError(f"saved load {start_load} is not a target of run {spec.key}"
+                             ) from None
 
     def cb(step):
         load = np.asarray(step.load, dtype=float)
         if load[0] != spec.s:
             return                                   # an intermediate pre-load step
         i = spec.D0.index(float(load[1]))
-        rec = wrap.record(step, spec.record_fields)
-        if spec.record_fields and spec.record_maps and spec.D0[i] == 0.0:
-            # stretch maps of the pre-loaded plate (kind 1) after the centre line (kind 0)
-            maps = wrap.maps(step.x, step.load)
-            rec.fields = {k: np.r_[rec.fields[k], maps[k]] for k in rec.fields}
-        if on_step(i, rec, {"x": step.x, "load": load}):
+        if on_step(i, _step_record(spec, problem, step), {"x": step.x, "load": load}):
             raise _Stop
 
     try:
-        import warnings
-
         with warnings.catch_warnings():
             warnings.simplefilter("ignore", RuntimeWarning)   # the failure is recorded
-            res = ramp(wrap.problem, targets, x0=x0, start=start_load, on_step=cb,
-                       linear_solver=linear_solver, **wrap.tolerances)
+            res = fe.ramp(problem, targets, x0=x0, start=start_load, on_step=cb,
+                          **ramp_settings(spec, linear_solver))
     except _Stop:
         return RunOutcome(True)
     failed = None if res.failed_at is None else float(np.asarray(res.failed_at).ravel()[-1])
     return RunOutcome(bool(res.converged), res.reason, failed)
+
+
+def _ramp_spec(geometry, model, variant, s, alpha, D0, mesh) -> RunSpec:
+    """A :class:`RunSpec` that runs to its last target (no breakdown stop)."""
+    return RunSpec(geometry, model, variant, float(s), tuple(D0), alpha=alpha,
+                   mesh=(("n1", mesh[0]), ("n2", mesh[1]), ("n3", mesh[2])),
+                   stop_at_breakdown=False)
 
 
 def simulate(*, geometry="uniaxial", model="neo-Hookean", variant="coupled", s=None,
@@ -319,13 +407,6 @@ def simulate(*, geometry="uniaxial", model="neo-Hookean", variant="coupled", s=N
     list of Path
         The written files: the fields and ``steps.csv``.
     """
-    import csv
-    from pathlib import Path
-
-    import meshio
-
-    from .cases import RunSpec, keplinger_s
-
     if steps < 1:
         raise ValueError(f"steps must be >= 1, got {steps}")
     if not np.isfinite(D0_max) or D0_max <= 0:
@@ -337,17 +418,15 @@ def simulate(*, geometry="uniaxial", model="neo-Hookean", variant="coupled", s=N
         s = keplinger_s(alpha)
     else:
         s = 1.0 if s is None else s
-    n = (20, 1, 10) if mesh is None else tuple(mesh)
-    spec = RunSpec(geometry, model, variant, float(s), tuple(np.linspace(0, D0_max, steps + 1)),
-                   alpha=alpha, mesh=(("n1", n[0]), ("n2", n[1]), ("n3", n[2])),
-                   stop_at_breakdown=False)
+    spec = _ramp_spec(geometry, model, variant, s, alpha, np.linspace(0, D0_max, steps + 1),
+                      (20, 1, 10) if mesh is None else tuple(mesh))
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
-    wrap = build_problem(spec)
+    problem = build_problem(spec)
     frames, rows = [], []
 
     def on_step(i, rec, st):
-        frames.append(wrap.export(st["x"], st["load"]))
+        frames.append(_export(spec, problem, st["x"], st["load"]))
         rows.append([i, spec.D0[i], rec.lam1, rec.lam3, rec.min_P33, rec.min_P33_clamp,
                      rec.iterations])
         return False
@@ -356,17 +435,17 @@ def simulate(*, geometry="uniaxial", model="neo-Hookean", variant="coupled", s=N
     written = []
     stem = f"{spec.key}"
     if fmt == "vtu":
-        for i, mesh in enumerate(frames):
+        for i, frame in enumerate(frames):
             path = out / f"{stem}_{i:03d}.vtu"
-            meshio.write(path, mesh)
+            meshio.write(path, frame)
             written.append(path)
     elif frames:
         path = out / f"{stem}.xdmf"
         with meshio.xdmf.TimeSeriesWriter(path, data_format="XML") as w:   # no h5py needed
             w.write_points_cells(frames[0].points, frames[0].cells)
-            for i, mesh in enumerate(frames):
-                w.write_data(spec.D0[i], point_data=mesh.point_data,
-                             cell_data=mesh.cell_data or None)
+            for i, frame in enumerate(frames):
+                w.write_data(spec.D0[i], point_data=frame.point_data,
+                             cell_data=frame.cell_data or None)
         written.append(path)
     table = out / f"{stem}_steps.csv"
     with open(table, "w", newline="") as fh:
@@ -396,21 +475,15 @@ def bench(*, mesh=(20, 1, 10), alpha=1.0, D0_max=6.0, steps=6, variant="coupled"
     -------
     list of str
     """
-    import time
-
-    from .cases import RunSpec, keplinger_s
-
     if steps < 1:
         raise ValueError(f"steps must be >= 1, got {steps}")
-    spec = RunSpec("uniaxial", "neo-Hookean", variant, keplinger_s(alpha),
-                   tuple(np.linspace(0, D0_max, steps + 1)), alpha=alpha,
-                   mesh=(("n1", mesh[0]), ("n2", mesh[1]), ("n3", mesh[2])),
-                   stop_at_breakdown=False)
+    spec = _ramp_spec("uniaxial", "neo-Hookean", variant, keplinger_s(alpha), alpha,
+                      np.linspace(0, D0_max, steps + 1), mesh)
     t_build = time.perf_counter()
-    wrap = build_problem(spec)
+    problem = build_problem(spec)
     t_build = time.perf_counter() - t_build
     lines = [f"Keplinger plate, alpha = {alpha:g} (s = {spec.s:.4g}), variant {variant}, "
-             f"mesh {tuple(mesh)}, {wrap.problem.initial_state().size} unknowns, set-up {t_build:.2f} s",
+             f"mesh {tuple(mesh)}, {problem.initial_state().size} unknowns, set-up {t_build:.2f} s",
              f"{'step':>4} {'D0':>6} {'lam1':>9} {'min_P33':>9} {'iters':>5} {'seconds':>8}"]
     t = [time.perf_counter()]
 

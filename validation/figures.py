@@ -1,8 +1,9 @@
 """The paper's figures: analytic curves from :mod:`analytic` with the FE dots on top.
 
 Every plotting function takes ``ax=None`` (or ``axes=None`` for two panels),
-imports pyplot lazily, draws and returns the axes; nothing here shows or
-saves a figure except :func:`save_figure`, which writes into a given folder.
+draws and returns the axes; nothing here shows or saves a figure except
+:func:`save_figure`, which writes into a given folder (pyplot chooses its backend
+at the first figure, so importing this module sets none).
 FE data are the tidy tables of :func:`validation.sweep.read_table` (``None``
 draws the analytic curves alone).
 """
@@ -11,9 +12,15 @@ from __future__ import annotations
 
 from pathlib import Path
 
+import matplotlib.pyplot as plt
+import matplotlib.tri as mtri
 import numpy as np
+from matplotlib.lines import Line2D
 
-from .cases import ALPHAS, keplinger_s
+import analytic as an
+
+from .cases import ALPHAS, analytic_model
+from .fe import keplinger_s
 
 __all__ = [
     "plot_equibiaxial_loading",
@@ -38,23 +45,13 @@ _VARIANT_LABEL = {"coupled": "FE 3D, fully coupled", "maxwell": "FE 3D, Maxwell 
 
 
 def _new_axes(ax, n=1, figsize=None):
-    import matplotlib.pyplot as plt
-
     if ax is not None:
         return ax
     fig, axes = plt.subplots(1, n, figsize=figsize or (5.0 * n, 4.0), layout="constrained")
     return axes
 
 
-def _model(name):
-    from .sweep import analytic_model
-
-    return analytic_model(name)
-
-
 def _colors(n):
-    import matplotlib.pyplot as plt
-
     cmap = plt.get_cmap("viridis")
     return [cmap(x) for x in np.linspace(0.0, 0.85, n)]
 
@@ -83,8 +80,6 @@ def _fe_E0(fe):
 
 def _variant_legend(ax, fe):
     """Legend entries for the FE marker styles actually drawn."""
-    from matplotlib.lines import Line2D
-
     if fe is None or not len(fe.get("run", [])):
         return []
     return [Line2D([], [], ls="none", color="k", label=_VARIANT_LABEL[v], **_VARIANT_MARKER[v])
@@ -117,7 +112,7 @@ def _refine_start(x, f, n=80):
     return x, y
 
 
-def _equibiaxial_curve(an, s, m, lam_max, n=1500):
+def _equibiaxial_curve(s, m, lam_max, n=1500):
     """``(lam, D0)`` of Eq. (loading_gent), sampled in ``D0`` (smooth from ``D0 = 0``)."""
     D0max = float(an.equibiaxial_D0(lam_max, s, m))
     if not np.isfinite(D0max):
@@ -126,7 +121,7 @@ def _equibiaxial_curve(an, s, m, lam_max, n=1500):
     return np.asarray(an.equibiaxial_lam(D0, s, m), dtype=float), D0
 
 
-def _uniaxial_curve(an, s, m, lam1_max, n=1500):
+def _uniaxial_curve(s, m, lam1_max, n=1500):
     """``(lam1, D0, E0)`` of Eq. (DEuniax), sampled in ``D0``."""
     D0max = float(an.uniaxial_D0(lam1_max, s, m))
     if not np.isfinite(D0max):
@@ -164,14 +159,12 @@ def plot_equibiaxial_loading(model="neo-Hookean", s_values=(0, 1, 2, 3), quantit
     -------
     matplotlib Axes
     """
-    import analytic as an
-
     if quantity not in ("D0", "E0"):
         raise ValueError(f"quantity must be 'D0' or 'E0', got {quantity!r}")
     ax = _new_axes(ax)
-    m = _model(model)
+    m = analytic_model(model)
     for s, c in zip(s_values, _colors(len(s_values))):
-        lam, D0 = _equibiaxial_curve(an, s, m, lam_max)
+        lam, D0 = _equibiaxial_curve(s, m, lam_max)
         ax.plot(lam, D0 if quantity == "D0" else D0 / lam**4, color=c, label=f"$s = {s:g}$")
         mask = _fe_rows(fe, s=s, model=model)
         if mask is not None:
@@ -211,10 +204,8 @@ def plot_equibiaxial_wrinkling(model="neo-Hookean", s_values=(0, 0.8, 1.5, 2.5, 
     -------
     matplotlib Axes
     """
-    import analytic as an
-
     ax = _new_axes(ax)
-    m = _model(model)
+    m = analytic_model(model)
     lam = np.linspace(0.5, 5.0, 2000)
     lk, thick = _refine_start(lam, lambda x: an.thick_limit_D0(x, m))
     ln, thin = _refine_start(lam, lambda x: an.thin_limit_D0(x, m))
@@ -226,7 +217,7 @@ def plot_equibiaxial_wrinkling(model="neo-Hookean", s_values=(0, 0.8, 1.5, 2.5, 
         ax.fill(xs, ys, color="0.85", zorder=0, label="wrinkling zone")
     ax.plot(lk, thick, "--", color="tab:blue", label="thick-plate limit")
     for s, c in zip(s_values, _colors(len(s_values))):
-        l, D0 = _equibiaxial_curve(an, s, m, 5.0)
+        l, D0 = _equibiaxial_curve(s, m, 5.0)
         ax.plot(l, D0, color=c, label=f"$s = {s:g}$")
         mask = _fe_rows(fe, s=s, model=model)
         if mask is not None:
@@ -250,9 +241,7 @@ def uniaxial_voltage_locus(model="neo-Hookean", s=None):
     Traced through the maxima of ``E0`` along the fixed-``s`` loading curves,
     :func:`analytic.max_E0` with ``loading="uniaxial"`` (paper Fig. figde).
     """
-    import analytic as an
-
-    m = _model(model)
+    m = analytic_model(model)
     s = np.linspace(0.0, 6.0, 301) if s is None else np.asarray(s, dtype=float)
     lam1, E0 = (np.atleast_1d(np.asarray(a, dtype=float))
                 for a in an.max_E0(s, m, loading="uniaxial"))
@@ -272,14 +261,12 @@ def plot_uniaxial_loading(model="neo-Hookean", s_values=(0, 1, 2, 3, 4), quantit
     -------
     matplotlib Axes
     """
-    import analytic as an
-
     if quantity not in ("D0", "E0"):
         raise ValueError(f"quantity must be 'D0' or 'E0', got {quantity!r}")
     ax = _new_axes(ax)
-    m = _model(model)
+    m = analytic_model(model)
     for s, c in zip(s_values, _colors(len(s_values))):
-        lam1, D0, E0 = _uniaxial_curve(an, s, m, lam1_max)
+        lam1, D0, E0 = _uniaxial_curve(s, m, lam1_max)
         ax.plot(lam1, D0 if quantity == "D0" else E0, color=c, label=f"$s = {s:g}$")
         mask = _fe_rows(fe, s=s, model=model)
         if mask is not None:
@@ -309,9 +296,7 @@ def uniaxial_thick_limit_curve(lam1, model="neo-Hookean", direction="parallel"):
     ``thick_limit_D0_uniaxial(lam1, lam3) - sqrt(lam1^2 lam3^4 - 1)`` (paper
     Fig. uni-axial-ideal); ``nan`` where no root is bracketed.
     """
-    import analytic as an
-
-    m = _model(model)
+    m = analytic_model(model)
     lam1 = np.asarray(lam1, dtype=float)
     lo = lam1 ** -0.5 * (1 + 1e-12)       # D0 = 0 on the path
     hi = lo * 20.0
@@ -349,12 +334,10 @@ def plot_uniaxial_wrinkling(fe=None, alphas=ALPHAS, ax=None, D0max=7.0):
     -------
     matplotlib Axes
     """
-    import analytic as an
-
     ax = _new_axes(ax, figsize=(6.5, 4.8))
-    m = _model("neo-Hookean")
+    m = analytic_model("neo-Hookean")
     lam1 = np.linspace(0.4, 6.0, 1500)
-    ln, thin, _ = _uniaxial_curve(an, 0.0, m, 6.0)          # Eq. (thin-uni-axial) = s = 0
+    ln, thin, _ = _uniaxial_curve(0.0, m, 6.0)          # Eq. (thin-uni-axial) = s = 0
     lk, thick = _refine_start(lam1, uniaxial_thick_limit_curve)
     ok_k = np.isfinite(thick) & (thick <= D0max)
     ok_n = np.isfinite(thin) & (thin <= D0max)
@@ -367,7 +350,7 @@ def plot_uniaxial_wrinkling(fe=None, alphas=ALPHAS, ax=None, D0max=7.0):
     first_cross = True
     for a, c in zip(alphas, _colors(len(alphas))):
         s = keplinger_s(a)
-        l1, D0c, _ = _uniaxial_curve(an, s, m, 6.0)
+        l1, D0c, _ = _uniaxial_curve(s, m, 6.0)
         ax.plot(l1, D0c, color=c, label=rf"$\alpha = {a:g}$, $s = {s:.3g}$")
         if fe is None or not len(fe.get("run", [])):
             continue
@@ -423,9 +406,6 @@ def plot_stretch_maps(fields, axes=None):
     -------
     pair of matplotlib Axes
     """
-    import matplotlib.pyplot as plt
-    import matplotlib.tri as mtri
-
     axes = _new_axes(axes, n=2, figsize=(8.0, 5.0))
     sel = (fields["step"] == fields["step"].min()) & (fields["kind"] == 1)
     L, W = 0.1, 0.05
@@ -462,8 +442,6 @@ def plot_p33_profiles(fields, fe=None, ax=None, variant="coupled"):
     -------
     matplotlib Axes
     """
-    import matplotlib.pyplot as plt
-
     ax = _new_axes(ax, figsize=(6.5, 4.5))
     runs = [r for r in dict.fromkeys(fields["run"]) if f"_{variant}_" in r]
     if not runs:
@@ -512,8 +490,6 @@ def case_figure(name: str, fe=None, fields=None):
     -------
     matplotlib Figure
     """
-    import matplotlib.pyplot as plt
-
     if name in ("nh-d-e", "gent-d-e"):
         model, s_values = ("neo-Hookean", (0, 1, 2, 3)) if name == "nh-d-e" \
             else ("Gent", (0, 1, 2.3, 3))
@@ -580,8 +556,6 @@ def _tag(axes):
 
 def save_figure(fig, folder, stem: str) -> list[Path]:
     """Write ``fig`` as ``folder/stem.png`` and ``.pdf`` (no timestamps) and close it."""
-    import matplotlib.pyplot as plt
-
     folder = Path(folder)
     paths = [folder / f"{stem}.png", folder / f"{stem}.pdf"]
     fig.savefig(paths[0], dpi=130, metadata={"Software": None})

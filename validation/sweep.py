@@ -1,6 +1,6 @@
 """Run the FE ramps of a case, write its tidy CSV step by step, resume after interruption.
 
-Data flow (DESIGN.md §1): for every :class:`~validation.cases.RunSpec` of a case a
+Data flow: for every :class:`~validation.cases.RunSpec` of a case a
 *runner* (by default :func:`validation.fe.run_fe`, the real FE solver) ramps
 ``D0`` through the targets and calls back after each converged target. The
 callback appends one CSV row to ``DIR/<case>.csv`` (and field rows to
@@ -35,19 +35,27 @@ from typing import Callable, Iterable
 
 import numpy as np
 
-from .cases import Case, RunSpec, get_case
+import analytic as an
+
+from .cases import CASES, Case, RunSpec, analytic_model, get_case
+from .fe import run_fe
+from .figures import case_figure, save_figure
 from .progress import Progress
+from .records import StepRecord
+from .report import write_report, write_summary
+
+try:
+    import fcntl
+except ImportError:                   # pragma: no cover - Windows
+    fcntl = None
 
 __all__ = [
-    "StepRecord",
-    "RunOutcome",
     "CaseResult",
     "BREAKDOWN_TOL",
     "csv_columns",
     "run_case",
     "run_cases",
     "read_table",
-    "analytic_model",
     "validate",
     "make_figure",
 ]
@@ -61,30 +69,6 @@ __all__ = [
 BREAKDOWN_TOL = 1e-2
 
 _FMT = ".12g"   # 12 significant digits (and at most 12 decimals) in the CSV
-
-
-@dataclass
-class StepRecord:
-    """What a runner reports for one converged charge target (dimensionless)."""
-
-    D0: float
-    lam1: float
-    lam3: float
-    min_P33: float
-    min_P33_clamp: float = float("nan")
-    min_P33_interior: float = float("nan")
-    stable: bool | None = None
-    iterations: int = 0
-    fields: dict | None = None
-
-
-@dataclass
-class RunOutcome:
-    """End of a ramp: ``converged`` is False when a target could not be reached."""
-
-    converged: bool
-    reason: str = ""
-    failed_D0: float | None = None
 
 
 @dataclass
@@ -105,19 +89,22 @@ class CaseResult:
     resumed_steps: int = 0
 
 
-def analytic_model(name: str):
-    """The :mod:`analytic` model object for ``"neo-Hookean"`` or ``"Gent"`` (``Jm = 97.2``)."""
-    import analytic as an
-
-    if name == "neo-Hookean":
-        return an.NeoHookean()
-    if name == "Gent":
-        return an.Gent(Jm=97.2)
-    raise ValueError(f"model must be 'neo-Hookean' or 'Gent', got {name!r}")
-
-
 def csv_columns(case: Case) -> list[str]:
-    """Columns of ``DIR/<case>.csv`` (DESIGN.md §5 plus bookkeeping)."""
+    """Columns of ``DIR/<case>.csv``.
+
+    The run (``case``, ``run``, ``step``, ``model``, ``variant``, ``alpha`` for the
+    uni-axial cases, ``s``), the load ``D0``, FE and analytic stretches at the plate
+    centre, the ``P33/mu`` minima, the verdicts ``converged``, ``stable``,
+    ``breakdown`` and the Newton ``iterations``.
+
+    Parameters
+    ----------
+    case : Case
+
+    Returns
+    -------
+    list of str
+    """
     cols = ["case", "run", "step", "model", "variant"]
     if case.geometry == "uniaxial":
         cols.append("alpha")
@@ -146,8 +133,6 @@ def _fmt(x) -> str:
 
 def _analytic(spec: RunSpec, D0: float) -> tuple[float, float]:
     """``(lam1, lam3)`` of the homogeneous theory: Eq. (loading_gent) or Eq. (DEuniax)."""
-    import analytic as an
-
     model = analytic_model(spec.model)
     if spec.geometry == "equibiaxial":
         lam = float(an.equibiaxial_lam(D0, spec.s, model))
@@ -298,8 +283,7 @@ def run_case(case: Case | str, out, *, quick: bool = False, force: bool = False,
     """
     t0 = time.perf_counter()
     case = get_case(case) if isinstance(case, str) else case
-    if runner is None:
-        from .fe import run_fe as runner
+    runner = run_fe if runner is None else runner
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
     csv_path = out / f"{case.name}.csv"
@@ -336,9 +320,7 @@ class _case_lock:
         self.path, self.name, self.fh = state_dir / "lock", name, None
 
     def __enter__(self):
-        try:
-            import fcntl
-        except ImportError:           # pragma: no cover - Windows
+        if fcntl is None:             # pragma: no cover - Windows
             return self
         self.fh = open(self.path, "w")
         try:
@@ -526,8 +508,6 @@ def run_cases(cases: Iterable[Case | str], out, *, quick: bool = False, force: b
 
 def make_figure(case: Case | str, out) -> list[Path]:
     """Draw the figure of ``case`` from ``out/<case>.csv`` into ``out/<case>.png|pdf``."""
-    from .figures import case_figure, save_figure
-
     case = get_case(case) if isinstance(case, str) else case
     out = Path(out)
     csv_path, fields_path = out / f"{case.name}.csv", out / f"{case.name}_fields.csv"
@@ -554,9 +534,6 @@ def validate(cases: Iterable[Case | str] | None, out, *, quick: bool = False,
     -------
     list of CaseResult
     """
-    from .cases import CASES
-    from .report import write_report, write_summary
-
     cases = list(CASES) if cases is None else list(cases)
     results = run_cases(cases, out, quick=quick, force=force, jobs=jobs, executor=executor,
                         runner=runner, progress=progress)

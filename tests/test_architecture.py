@@ -1,0 +1,224 @@
+"""Architecture rules of the three import packages, checked on their source.
+
+The rules (docs/architecture.md):
+
+* no import loop inside ``analytic``, ``skfem_dielectric`` or ``validation`` (module-level
+  and function-level imports alike);
+* ``analytic`` and ``skfem_dielectric`` never import each other or ``validation`` (the
+  FE-versus-theory cross-check must be able to catch a bug on either side);
+* no import of a private name (``_x``) from another module, and no use of another
+  module's private attribute through its name (``module._x``);
+* imports at module level only, except for optional dependencies (the ``fast`` and
+  ``cluster`` extras), which are imported where they are used;
+* in ``skfem_dielectric`` no module over 500 lines and no class over 300 lines.
+
+Each rule reports every offending place, so that a failure says what to change.
+"""
+
+from __future__ import annotations
+
+import ast
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[1]
+PACKAGES = ("analytic", "skfem_dielectric", "validation")
+# optional dependencies (extras): imported inside the functions that need them
+OPTIONAL = ("pypardiso", "mkl", "dask", "distributed")
+MAX_MODULE_LINES = 500
+MAX_CLASS_LINES = 300
+
+
+def _modules(package: str) -> dict[str, Path]:
+    out = {}
+    for path in sorted((ROOT / package).rglob("*.py")):
+        rel = path.relative_to(ROOT).with_suffix("")
+        parts = list(rel.parts)
+        if parts[-1] == "__init__":
+            parts = parts[:-1]
+        out[".".join(parts)] = path
+    return out
+
+
+ALL = {name: path for pkg in PACKAGES for name, path in _modules(pkg).items()}
+TREES = {name: ast.parse(path.read_text(), filename=str(path)) for name, path in ALL.items()}
+
+
+def _is_package(module: str) -> bool:
+    return ALL[module].name == "__init__.py"
+
+
+def _resolve(module: str, node: ast.ImportFrom) -> str:
+    """Absolute name of the module an ``ImportFrom`` reads from."""
+    if not node.level:
+        return node.module or ""
+    base = module.split(".")
+    if not _is_package(module):
+        base = base[:-1]
+    base = base[: len(base) - (node.level - 1)]
+    return ".".join(base + ([node.module] if node.module else []))
+
+
+def _imports(module: str):
+    """``(node, target_module, imported_names)`` of every import in ``module``."""
+    for node in ast.walk(TREES[module]):
+        if isinstance(node, ast.Import):
+            for a in node.names:
+                yield node, a.name, []
+        elif isinstance(node, ast.ImportFrom):
+            target = _resolve(module, node)
+            names = [a.name for a in node.names]
+            yield node, target, names
+
+
+def _edges(module: str) -> set[str]:
+    """Modules of the three packages that ``module`` imports."""
+    out = set()
+    for _, target, names in _imports(module):
+        for name in names or [None]:
+            sub = f"{target}.{name}" if name else None
+            if sub in ALL:
+                out.add(sub)
+            elif target in ALL:
+                out.add(target)
+    out.discard(module)
+    return out
+
+
+def _cycles(package: str) -> list[list[str]]:
+    """Strongly connected components of more than one module (Tarjan)."""
+    nodes = [m for m in ALL if m.split(".")[0] == package]
+    graph = {m: sorted(e for e in _edges(m) if e.split(".")[0] == package) for m in nodes}
+    index, low, stack, on, comps, counter = {}, {}, [], set(), [], [0]
+
+    def visit(v):
+        index[v] = low[v] = counter[0]
+        counter[0] += 1
+        stack.append(v)
+        on.add(v)
+        for w in graph[v]:
+            if w not in index:
+                visit(w)
+                low[v] = min(low[v], low[w])
+            elif w in on:
+                low[v] = min(low[v], index[w])
+        if low[v] == index[v]:
+            comp = []
+            while True:
+                w = stack.pop()
+                on.discard(w)
+                comp.append(w)
+                if w == v:
+                    break
+            if len(comp) > 1:
+                comps.append(sorted(comp))
+
+    for v in nodes:
+        if v not in index:
+            visit(v)
+    return comps
+
+
+def _where(module: str, node: ast.AST) -> str:
+    return f"{ALL[module].relative_to(ROOT)}:{node.lineno}"
+
+
+@pytest.mark.parametrize("package", PACKAGES)
+def test_no_import_loop(package):
+    cycles = _cycles(package)
+    assert not cycles, "import loops: " + "; ".join(" <-> ".join(c) for c in cycles)
+
+
+def test_theory_and_fe_stay_independent():
+    bad = []
+    for module in ALL:
+        pkg = module.split(".")[0]
+        forbidden = {"analytic": ("skfem_dielectric", "validation"),
+                     "skfem_dielectric": ("analytic", "validation"),
+                     "validation": ()}[pkg]
+        for node, target, _ in _imports(module):
+            if target.split(".")[0] in forbidden:
+                bad.append(f"{_where(module, node)} imports {target}")
+    assert not bad, "\n".join(bad)
+
+
+def _private(name: str) -> bool:
+    return name.startswith("_") and not (name.startswith("__") and name.endswith("__"))
+
+
+def test_no_private_name_imported_from_another_module():
+    bad = []
+    for module in ALL:
+        for node, target, names in _imports(module):
+            for name in names:
+                if _private(name):
+                    bad.append(f"{_where(module, node)} imports {name} from {target}")
+    assert not bad, "\n".join(bad)
+
+
+def test_no_private_attribute_of_another_module():
+    """``mod._x`` where ``mod`` is a module imported by name (``import a.b as mod``)."""
+    bad = []
+    for module, tree in TREES.items():
+        aliases = set()
+        for node, target, names in _imports(module):
+            if isinstance(node, ast.Import):
+                aliases.update(a.asname or a.name.split(".")[0] for a in node.names)
+            else:
+                aliases.update(a.asname or a.name for a in node.names
+                               if f"{target}.{a.name}" in ALL)
+        for node in ast.walk(tree):
+            if (isinstance(node, ast.Attribute) and _private(node.attr)
+                    and isinstance(node.value, ast.Name) and node.value.id in aliases):
+                bad.append(f"{_where(module, node)} uses {node.value.id}.{node.attr}")
+    assert not bad, "\n".join(bad)
+
+
+def test_imports_at_module_level_except_optional_dependencies():
+    bad = []
+    for module, tree in TREES.items():
+        top = set(map(id, tree.body))
+        for stmt in tree.body:   # module-level try/if blocks are module level too
+            if isinstance(stmt, (ast.Try, ast.If)):
+                top.update(id(n) for n in ast.walk(stmt)
+                           if isinstance(n, (ast.Import, ast.ImportFrom)))
+        for node, target, _ in _imports(module):
+            if id(node) in top:
+                continue
+            if target.split(".")[0] in OPTIONAL:
+                continue
+            bad.append(f"{_where(module, node)} imports {target} inside a function")
+    assert not bad, "\n".join(bad)
+
+
+def _lines(node: ast.AST) -> int:
+    return node.end_lineno - node.lineno + 1
+
+
+def test_module_and_class_sizes():
+    bad = []
+    for module, path in ALL.items():
+        if not module.startswith("skfem_dielectric"):
+            continue
+        n = len(path.read_text().splitlines())
+        if n > MAX_MODULE_LINES:
+            bad.append(f"{path.relative_to(ROOT)}: {n} lines > {MAX_MODULE_LINES}")
+        for node in ast.walk(TREES[module]):
+            if isinstance(node, ast.ClassDef) and _lines(node) > MAX_CLASS_LINES:
+                bad.append(f"{_where(module, node)} class {node.name}: {_lines(node)} "
+                           f"lines > {MAX_CLASS_LINES}")
+    assert not bad, "\n".join(bad)
+
+
+def test_the_checker_sees_a_loop_and_a_private_import(tmp_path, monkeypatch):
+    """The rules can fail: a two-module loop and a private import are reported."""
+    a = ast.parse("from .b import f\nfrom .b import _g\n")
+    b = ast.parse("from .a import h\n")
+    fake = {"pkg": tmp_path / "pkg" / "__init__.py", "pkg.a": tmp_path / "pkg" / "a.py",
+            "pkg.b": tmp_path / "pkg" / "b.py"}
+    monkeypatch.setitem(globals(), "ALL", fake)
+    monkeypatch.setitem(globals(), "TREES", {"pkg": ast.parse(""), "pkg.a": a, "pkg.b": b})
+    assert _cycles("pkg") == [["pkg.a", "pkg.b"]]
+    names = [n for _, _, ns in _imports("pkg.a") for n in ns]
+    assert [n for n in names if _private(n)] == ["_g"]

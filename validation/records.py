@@ -1,0 +1,36 @@
+"""What an FE runner reports: one :class:`StepRecord` per converged target, a :class:`RunOutcome`.
+
+These two records are the whole interface between the harness (:mod:`validation.sweep`)
+and a runner (:func:`validation.fe.run_fe`, or a stand-in in the tests), so they live
+apart from both.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+__all__ = ["StepRecord", "RunOutcome"]
+
+
+@dataclass
+class StepRecord:
+    """What a runner reports for one converged charge target (dimensionless)."""
+
+    D0: float
+    lam1: float
+    lam3: float
+    min_P33: float
+    min_P33_clamp: float = float("nan")
+    min_P33_interior: float = float("nan")
+    stable: bool | None = None
+    iterations: int = 0
+    fields: dict | None = None
+
+
+@dataclass
+class RunOutcome:
+    """End of a ramp: ``converged`` is False when a target could not be reached."""
+
+    converged: bool
+    reason: str = ""
+    failed_D0: float | None = None
