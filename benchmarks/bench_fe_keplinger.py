@@ -55,7 +55,7 @@ def run(solver: str, n1: int, n3: int, threads: int | None, stop_unstable: bool)
     asm_med = float(np.median(res.assembly_times)) if res.assembly_times else float("nan")
     sol_med = float(np.median(res.solve_times)) if res.solve_times else float("nan")
     return {
-        "solver": solver, "dofs": int(prob.red.n), "elements": int(prob.nel),
+        "solver": solver, "dofs": int(prob.ndofs), "elements": int(prob.plate.mesh.nelements),
         "converged": bool(res.converged), "reason": res.reason,
         "failed_at": None if res.failed_at is None else [float(v) for v in res.failed_at],
         "D0_target_reached": max([float(st.load[1]) for st in res.steps if st.target_reached],

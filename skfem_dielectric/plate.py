@@ -159,6 +159,7 @@ class PlateProblem(Problem):
             intorder=intorder, chunk=chunk, threads=threads,
             elastic_volume=coupling == "maxwell" and field == "electrostatic")
         f = self.form
+        self.threads, self.nel = f.threads, f.nel
         self.b2, self.b1, self.bphi = f.b2, f.b1, f.bphi
         self.n_u, self.n_p, self.off_p, self.off_phi = f.n_u, f.n_p, f.off_p, f.off_phi
         self.n_full = f.n_full
