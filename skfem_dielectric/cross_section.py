@@ -45,10 +45,17 @@ from .problem import Layout, Problem
 __all__ = ["CrossSection"]
 
 FIELDS = ("electrostatic", "local")
+THICKNESSES = ("half", "full")
+
+
+def _component_dofs(basis, boundary: str, comp: str) -> np.ndarray:
+    """Dofs of one component (``"u^1"``, ``"u^2"``) of a vector basis on a boundary."""
+    d = basis.get_dofs(boundary)
+    return np.concatenate([d.nodal[comp], d.facet[comp]])
 
 
 class CrossSection(Problem):
-    """Quarter cross-section in generalised plane strain, a :class:`~skfem_dielectric.problem.Problem`.
+    """Cross-section in generalised plane strain, a :class:`~skfem_dielectric.problem.Problem`.
 
     Parameters
     ----------
@@ -57,7 +64,8 @@ class CrossSection(Problem):
     L1, H : float
         Reference length and thickness of the whole plate.
     n1, n2 : int
-        Q2 elements along the half-length and the half-thickness.
+        Q2 elements along the half-length and the modelled thickness (the half
+        thickness, or the whole one for ``thickness="full"``).
     lam3 : float, optional
         Prescribed out-of-plane stretch. If ``None`` (default), ``lam3`` is an
         unknown and the load's ``s3`` component prescribes the nominal stress.
@@ -74,6 +82,26 @@ class CrossSection(Problem):
         on the deformed section (default), or the local thin-plate field
         ``D = F D_L/J`` without electrostatics (exact on homogeneous states
         only; see :class:`skfem_dielectric.plate.PlateProblem`).
+    thickness : {"half", "full"}
+        ``"half"`` (default): ``[0, H/2]`` with ``u2 = phi = 0`` on the mid-plane, which
+        admits only modes symmetric about it (extensional).  ``"full"``: ``[-H/2, H/2]``,
+        flexural (antisymmetric) modes too; the bottom face carries the opposite charge
+        (or potential), ``phi`` is pinned at the mid-plane centre under charge control and
+        ``u2`` at ``X1 = L1/4`` (a node of the lowest modes of either class) against the
+        rigid translation.
+    lam1 : float, optional
+        Prescribed stretch along x1: the end ``x1 = L1/2`` slides on a rigid wall at
+        ``u1 = (lam1 - 1) L1/2`` (no shear traction), so that the increments of a
+        homogeneous state are Fourier modes ``sin, cos(pi X1/(L1/2))``; the load's ``s1``
+        is then not used.
+    phi_order : int
+        Polynomial order of the potential (2: Q2, default; higher: ``ElementQuadP``).
+    intorder : int
+        Quadrature order (4: 3 x 3 Gauss points).
+    grad_div : float
+        Grad-div stabilisation ``gamma (J - 1)^2 / 2`` in units of ``mu``: removes the
+        spurious mesh-scale surface modes from the stability analysis, leaves every
+        homogeneous state unchanged (docs/stability.md).  Default 0.
 
     Notes
     -----
@@ -85,9 +113,17 @@ class CrossSection(Problem):
 
     def __init__(self, material, L1: float = 20.0, H: float = 1.0, n1: int = 8,
                  n2: int = 2, lam3: float | None = None, control: str = "charge",
-                 coupling: str = "full", field: str = "electrostatic"):
+                 coupling: str = "full", field: str = "electrostatic",
+                 thickness: str = "half", lam1: float | None = None,
+                 phi_order: int = 2, intorder: int = 4, grad_div: float = 0.0):
         check_control_coupling(control, coupling)
         check_choice("field", field, FIELDS)
+        check_choice("thickness", thickness, THICKNESSES)
+        self.thickness = thickness
+        if not (math.isfinite(float(grad_div)) and float(grad_div) >= 0):
+            raise ValueError(f"grad_div must be a finite number >= 0, got {grad_div!r}")
+        self.grad_div = float(grad_div) * material.mu
+        self.lam1_fixed = None if lam1 is None else check_positive("lam1", lam1)
         self.coupling, self.field = coupling, field
         self.symmetric = coupling == "full"
         self.load_names = ("s1", "s3", "D0" if control == "charge" else "E0")
@@ -99,12 +135,17 @@ class CrossSection(Problem):
         self.lam3_fixed = None if lam3 is None else check_positive("lam3", lam3)
         self.control = control
         a1, a2 = self.L1 / 2, self.H / 2
-        mesh = quarter_quad_mesh(a1, a2, self.n1, self.n2, ("sym_x1", "sym_x2", "x1_plus", "top"))
+        full = thickness == "full"
+        mesh = quarter_quad_mesh(a1, a2, self.n1, self.n2,
+                                 ("sym_x1", "bottom" if full else "sym_x2", "x1_plus", "top"),
+                                 b2=-a2 if full else 0.0)
         self.mesh = mesh
         eu = fe.ElementVector(fe.ElementQuad2())
-        self.bu = fe.Basis(mesh, eu, intorder=4)
+        ephi = fe.ElementQuad2() if phi_order == 2 else fe.ElementQuadP(check_count(
+            "phi_order", phi_order))
+        self.bu = fe.Basis(mesh, eu, intorder=intorder)
         self.bp = fe.Basis(mesh, fe.ElementQuad1(), quadrature=self.bu.quadrature)
-        self.bf = fe.Basis(mesh, fe.ElementQuad2(), quadrature=self.bu.quadrature)
+        self.bf = fe.Basis(mesh, ephi, quadrature=self.bu.quadrature)
         nu, npp, nf = self.bu.N, self.bp.N, self.bf.N
         self.offsets = (0, nu, nu + npp, nu + npp + nf)  # u, p, phi, lam3
         n_full = nu + npp + nf + 1
@@ -115,13 +156,25 @@ class CrossSection(Problem):
         edofs = np.vstack([self.bu.element_dofs, o_p + self.bp.element_dofs,
                            o_f + self.bf.element_dofs, np.full((1, nel), o_l)]).T
         self.nb = (self.bu.Nbfun, self.bp.Nbfun, self.bf.Nbfun)
-        du = {k: self.bu.get_dofs(k) for k in ("sym_x1", "sym_x2")}
-        fixed = [du["sym_x1"].nodal["u^1"], du["sym_x1"].facet["u^1"],
-                 du["sym_x2"].nodal["u^2"], du["sym_x2"].facet["u^2"],
-                 o_f + self.bf.get_dofs("sym_x2").all()]
+        fixed = [_component_dofs(self.bu, "sym_x1", "u^1")]
         self._top_phi = o_f + self.bf.get_dofs("top").all()
+        self._bottom_phi = o_f + self.bf.get_dofs("bottom").all() if full else np.zeros(0, int)
+        if full:
+            ux = self.bu.doflocs
+            pin = np.flatnonzero(np.arange(nu) % 2 == 1)      # u2 dofs
+            k = pin[np.argmin(np.hypot(ux[0, pin] - a1 / 2, ux[1, pin]))]
+            fixed.append(np.array([k]))
+            if control == "charge":
+                fx = self.bf.doflocs
+                fixed.append(np.array([o_f + int(np.argmin(np.hypot(fx[0], fx[1])))]))
+        else:
+            fixed += [_component_dofs(self.bu, "sym_x2", "u^2"),
+                      o_f + self.bf.get_dofs("sym_x2").all()]
         if control == "voltage":
-            fixed.append(self._top_phi)
+            fixed += [self._top_phi, self._bottom_phi]
+        self._end_u1 = _component_dofs(self.bu, "x1_plus", "u^1")
+        if self.lam1_fixed is not None:
+            fixed.append(self._end_u1)
         if self._local:  # purely elastic: no potential unknowns
             fixed.append(o_f + np.arange(nf))
         if self.lam3_fixed is not None:
@@ -135,8 +188,8 @@ class CrossSection(Problem):
         if coupling == "maxwell":
             # Maxwell traction on the charged face (top) and the lateral end (x1_plus)
             facets = np.concatenate([mesh.boundaries["top"], mesh.boundaries["x1_plus"]])
-            fbm = fe.FacetBasis(mesh, eu, facets=facets, intorder=4)
-            fbf = fe.FacetBasis(mesh, fe.ElementQuad2(), facets=facets, intorder=4)
+            fbm = fe.FacetBasis(mesh, eu, facets=facets, intorder=intorder)
+            fbf = fe.FacetBasis(mesh, ephi, facets=facets, intorder=intorder)
             fdofs = np.vstack([fbm.element_dofs,
                                np.full((1, facets.size), o_l), o_f + fbf.element_dofs]).T
             self.scatter_m = ScatterMap(self.red.index[fdofs], self.red.n)
@@ -144,18 +197,21 @@ class CrossSection(Problem):
         self.dx = self.bu.dx
         # unit loads: traction mu e1 on x1_plus, charge 1 on top
         mu = material.mu
-        fb = fe.FacetBasis(mesh, eu, facets=mesh.boundaries["x1_plus"], intorder=4)
-        ft = fe.FacetBasis(mesh, fe.ElementQuad2(), facets=mesh.boundaries["top"],
-                           intorder=4)
+        fb = fe.FacetBasis(mesh, eu, facets=mesh.boundaries["x1_plus"], intorder=intorder)
+        ft = fe.FacetBasis(mesh, ephi, facets=mesh.boundaries["top"], intorder=intorder)
         f = np.zeros(n_full)
         f[:nu] = fe.LinearForm(lambda v, w: mu * v[0]).assemble(fb)
         self.f_s1 = self.red.reduce(f)
         f = np.zeros(n_full)
-        f[o_l] = mu * a1 * a2  # s3 resultant over the reference quarter section
+        f[o_l] = mu * a1 * a2 * (2.0 if full else 1.0)  # s3 resultant over the section
         self.f_s3 = self.red.reduce(f)
         f = np.zeros(n_full)
         f[o_f:o_l] = fe.LinearForm(lambda v, w: v).assemble(ft)
-        self.q_top = self.red.reduce(f)  # int w dA on the top face
+        if full:   # the opposite charge on the bottom face
+            fbot = fe.FacetBasis(mesh, ephi, facets=mesh.boundaries["bottom"],
+                                 intorder=intorder)
+            f[o_f:o_l] -= fe.LinearForm(lambda v, w: v).assemble(fbot)
+        self.q_top = self.red.reduce(f)  # int w dA on the top face (minus the bottom)
         self.x_line = np.linspace(0.0, a1, 4 * self.n1 + 1)
         pts = np.vstack([self.x_line, np.zeros_like(self.x_line)])
         self._probe_u = point_gradients(self.bu, pts)
@@ -183,12 +239,22 @@ class CrossSection(Problem):
         if self.control == "voltage":
             E_L = e0 * math.sqrt(self.material.mu / self.material.eps)
             x[self._top_phi] = E_L * self.H / 2  # E_L2 = -phi_,2 = -E0 sqrt(mu/eps)
+            x[self._bottom_phi] = -E_L * self.H / 2
+        if self.lam1_fixed is not None:
+            x[self._end_u1] = (self.lam1_fixed - 1.0) * self.L1 / 2
         return x
 
     def initial_state(self) -> np.ndarray:
-        """Undeformed, uncharged state (``lam3 = 1`` when it is unknown)."""
+        """Uncharged state: undeformed (``lam3 = 1`` when it is unknown), or with the
+        prescribed ``lam1`` the homogeneous incompressible stretch ``u1 = (lam1 - 1) X1``,
+        ``u2 = (1/(lam1 lam3) - 1) X2`` (a Newton start the prescribed end cannot fold)."""
         x = np.zeros(self.n_full)
-        x[self.offsets[3]] = 1.0 if self.lam3_fixed is None else self.lam3_fixed
+        lam3 = 1.0 if self.lam3_fixed is None else self.lam3_fixed
+        x[self.offsets[3]] = lam3
+        if self.lam1_fixed is not None:
+            X = self.bu.doflocs
+            x[0:self.offsets[1]:2] = (self.lam1_fixed - 1.0) * X[0, 0::2]
+            x[1:self.offsets[1]:2] = (1.0 / (self.lam1_fixed * lam3) - 1.0) * X[1, 1::2]
         return self.red.restrict(x)
 
     def split(self, x: np.ndarray, load=(0.0, 0.0, 0.0)):
@@ -224,11 +290,12 @@ class CrossSection(Problem):
 
     def _volume(self, x, load, need_tangent=True):
         gu, lam3, pq, gf = self._fields(x, load)
-        R = cross_section_kernel(self.material, gu, lam3, pq, gf, need_tangent=need_tangent)
+        R = cross_section_kernel(self.material, gu, lam3, pq, gf, need_tangent=need_tangent,
+                                 grad_div=self.grad_div)
         Rm = R
         if self._elastic_volume:  # the field acts through the boundary only
             Rm = cross_section_kernel(self.material, gu, lam3, pq, np.zeros_like(gf),
-                                      need_tangent=need_tangent)
+                                      need_tangent=need_tangent, grad_div=self.grad_div)
         return gu, lam3, gf, R, Rm
 
     def residual(self, x: np.ndarray, load) -> np.ndarray:
@@ -299,7 +366,8 @@ class CrossSection(Problem):
         gf = np.einsum("pn,pin->in", phi[df], Gf)
         Np, dp = self._probe_p
         pq = np.einsum("pn,pn->n", p[dp], Np)
-        R = cross_section_kernel(self.material, gu, lam3, pq, gf, need_tangent=False)
+        R = cross_section_kernel(self.material, gu, lam3, pq, gf, need_tangent=False,
+                                 grad_div=self.grad_div)
         mu, eps = self.material.mu, self.material.eps
         P33 = R.P[2, 2] / lam3 / mu  # second Piola S33 = P33 / lam3 (F block-diagonal)
         E0 = float(gf[1, 0] * math.sqrt(eps / mu))

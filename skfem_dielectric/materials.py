@@ -206,9 +206,10 @@ def _points_first(T: np.ndarray, s: np.ndarray | None, nt: int) -> np.ndarray:
     return out
 
 
-def dielectric_response(material, F: np.ndarray, G: np.ndarray, p: np.ndarray | None, kappa: float,
-              formulation: str, need_tangent: bool, stress_free_reference: bool,
-              weights: np.ndarray | None) -> PointResponse:
+def dielectric_response(material, F: np.ndarray, G: np.ndarray, p: np.ndarray | None,
+                        kappa: float, formulation: str, need_tangent: bool,
+                        stress_free_reference: bool, weights: np.ndarray | None,
+                        grad_div: float = 0.0) -> PointResponse:
     """Core of :func:`ideal_dielectric_response` in the assembly layout.
 
     Tensor-first ``F``, ``G``, ``psi``, ``P``,
@@ -219,7 +220,8 @@ def dielectric_response(material, F: np.ndarray, G: np.ndarray, p: np.ndarray | 
     The fourth-order tangent is two batched products of small matrices: the dyads
     ``X_aK Y_bL`` (``4 W'' F F``, the pressure / ``|a|^2`` terms, ``M F^-T``, and
     ``-eps J a a C^-1`` written as three dyads through ``C^-1 = F^-1 F^-T``) and the two
-    crossed terms ``X_aL Y_bK``, plus ``2 W' I``.
+    crossed terms ``X_aL Y_bK``, plus ``2 W' I``.  ``grad_div`` adds ``gamma (J - 1)^2 / 2``
+    to the mixed form (see :func:`ideal_dielectric_response`).
     """
     kappa = _check_form(formulation, kappa)
     eps = material.eps
@@ -236,6 +238,9 @@ def dielectric_response(material, F: np.ndarray, G: np.ndarray, p: np.ndarray | 
             p = np.zeros_like(J)
         pe = p
         vol = p * (J - 1.0) - (0.5 * p * p / kappa if finite_k else 0.0)
+        if grad_div:
+            pe = p + grad_div * (J - 1.0)
+            vol = vol + 0.5 * grad_div * (J - 1.0) ** 2
         dpsi_dp = J - 1.0 - (p / kappa if finite_k else 0.0)
         A_pp = -1.0 / kappa if finite_k else 0.0
     else:
@@ -262,7 +267,8 @@ def dielectric_response(material, F: np.ndarray, G: np.ndarray, p: np.ndarray | 
     Y = coef * FinvT + eJ * M                                      # [b, L]
     # dyads X_aK Y_bL: X stored [m, K, a], Y stored [m, b, L]
     Xd = [Finv, np.swapaxes(M, 0, 1)]
-    Yd = [Y + kappa * J * J * FinvT if formulation == "penalty" else Y, eJ * FinvT]
+    stiff = kappa if formulation == "penalty" else grad_div     # d(pe)/dJ
+    Yd = [Y + stiff * J * J * FinvT if stiff else Y, eJ * FinvT]
     for m in range(3):     # -eJ a_a a_b Cinv_KL = sum_m (Finv_Km a_a)(-eJ a_b Finv_Lm)
         Xd.append(Finv[:, m][:, None] * a[None])
         Yd.append(-eJ * a[:, None] * Finv[:, m][None])
@@ -295,7 +301,8 @@ def dielectric_response(material, F: np.ndarray, G: np.ndarray, p: np.ndarray | 
 def ideal_dielectric_response(material, F: np.ndarray, G: np.ndarray,
                               p: np.ndarray | None = None, kappa: float = math.inf,
                               formulation: str = "mixed", need_tangent: bool = True,
-                              stress_free_reference: bool = True) -> PointResponse:
+                              stress_free_reference: bool = True,
+                              grad_div: float = 0.0) -> PointResponse:
     """Energy density, first derivatives and consistent tangent of the ideal dielectric.
 
     Parameters
@@ -324,6 +331,16 @@ def ideal_dielectric_response(material, F: np.ndarray, G: np.ndarray,
         modes at free corners unstable (observed: spurious negative eigenvalues and Newton
         stagnation on the clamped plate at ``s ~ 0.2``).  For the penalty form it gives the
         usual compressible neo-Hookean ``mu/2 (I1 - 3) - mu ln J + kappa (J-1)^2/2``.
+    grad_div
+        ``gamma >= 0``: adds ``gamma (J - 1)^2 / 2`` to the mixed form (grad-div
+        stabilisation).  It vanishes with its first derivative where ``J = 1``, so exact
+        incompressible solutions (every homogeneous state) are unchanged, and adds
+        ``gamma (F^-T : Grad v)^2`` to the tangent.  That term controls the modes that are
+        divergence free only against the Q1 pressures, on which the hydrostatic part
+        ``p (F^-T : Grad v)^2`` of the tangent acts: without it, where ``p`` is strongly
+        negative (compressed or charged states with a free surface) such mesh-scale
+        surface modes have negative energy below the continuum's onset.  ``gamma`` of a
+        few ``mu`` plus ``|p|`` removes them (docs/stability.md).
 
     Returns
     -------
@@ -338,8 +355,10 @@ def ideal_dielectric_response(material, F: np.ndarray, G: np.ndarray,
     tangent against finite differences of the stresses in ``tests/test_fe_materials.py``.
     """
     F = np.asarray(F, dtype=float)
-    r = dielectric_response(material, F, np.asarray(G, dtype=float), p, kappa, formulation, need_tangent,
-                  stress_free_reference, None)
+    if not (math.isfinite(float(grad_div)) and grad_div >= 0):
+        raise ValueError(f"grad_div must be a finite number >= 0, got {grad_div!r}")
+    r = dielectric_response(material, F, np.asarray(G, dtype=float), p, kappa, formulation,
+                            need_tangent, stress_free_reference, None, grad_div)
     if need_tangent:
         r.A_FF = np.moveaxis(r.A_FF, (-3, -4, -2, -1), (0, 1, 2, 3))
         r.A_FG = np.moveaxis(r.A_FG, (-2, -3, -1), (0, 1, 2))

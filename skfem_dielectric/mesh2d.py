@@ -80,8 +80,9 @@ def point_gradients(basis, points: np.ndarray):
     return G, basis.element_dofs[:, cells]
 
 
-def quarter_quad_mesh(a1: float, a2: float, n1: int, n2: int, names: tuple[str, str, str, str]):
-    """Quadrilateral mesh of the quarter ``[0, a1] x [0, a2]`` with named boundaries.
+def quarter_quad_mesh(a1: float, a2: float, n1: int, n2: int, names: tuple[str, str, str, str],
+                      b2: float = 0.0):
+    """Quadrilateral mesh of the quarter ``[0, a1] x [b2, a2]`` with named boundaries.
 
     Parameters
     ----------
@@ -90,18 +91,20 @@ def quarter_quad_mesh(a1: float, a2: float, n1: int, n2: int, names: tuple[str, 
     n1, n2 : int
         Elements along each side.
     names : 4 str
-        Names of the sides ``x = 0``, ``y = 0``, ``x = a1``, ``y = a2``.
+        Names of the sides ``x = 0``, ``y = b2``, ``x = a1``, ``y = a2``.
+    b2 : float
+        Lower end in ``y`` (0: the quarter; ``-a2``: the full height).
 
     Returns
     -------
     skfem.MeshQuad
     """
     tol = 1e-9 * max(a1, a2)
-    mesh = fe.MeshQuad.init_tensor(np.linspace(0, a1, n1 + 1), np.linspace(0, a2, n2 + 1))
+    mesh = fe.MeshQuad.init_tensor(np.linspace(0, a1, n1 + 1), np.linspace(b2, a2, n2 + 1))
     x0, y0, x1, y1 = names
     return mesh.with_boundaries({
         x0: lambda x: np.abs(x[0]) < tol,
-        y0: lambda x: np.abs(x[1]) < tol,
+        y0: lambda x: np.abs(x[1] - b2) < tol,
         x1: lambda x: np.abs(x[0] - a1) < tol,
         y1: lambda x: np.abs(x[1] - a2) < tol,
     })

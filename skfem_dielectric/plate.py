@@ -104,6 +104,10 @@ class PlateProblem(Problem):
         matrices).
     threads
         Worker threads for the batched assembly (default ``min(2, cpu_count)``).
+    grad_div
+        Grad-div stabilisation ``gamma (J - 1)^2 / 2`` (in units of ``mu``; mixed
+        formulation): removes spurious mesh-scale modes from the stability analysis,
+        leaves every homogeneous state unchanged (docs/stability.md).  Default 0.
 
     Raises
     ------
@@ -116,7 +120,7 @@ class PlateProblem(Problem):
                  control: str = "charge", coupling: str = "full",
                  field: str = "electrostatic", formulation: str = "mixed",
                  kappa: float = math.inf, phi_element: str = "Q2", intorder: int = 4,
-                 chunk: int = 1500, threads: int | None = None):
+                 chunk: int = 1500, threads: int | None = None, grad_div: float = 0.0):
         if not isinstance(plate, PlateMesh):
             raise ValueError(f"plate must be a PlateMesh, got {type(plate).__name__}")
         check_choice("loading", loading, LOADINGS)
@@ -134,6 +138,13 @@ class PlateProblem(Problem):
         if formulation == "penalty" and not math.isfinite(kappa):
             raise ValueError("kappa must be finite for the penalty formulation, got inf")
         check_choice("phi_element", phi_element, ("Q1", "Q2"))
+        grad_div = float(grad_div)
+        if not (math.isfinite(grad_div) and grad_div >= 0):
+            raise ValueError(f"grad_div must be a finite number >= 0, got {grad_div!r}")
+        if grad_div and formulation != "mixed":
+            raise ValueError("grad_div needs formulation='mixed' (the penalty form has its "
+                             f"own kappa), got {formulation!r}")
+        self.grad_div = grad_div
         for attr in ("mu", "eps", "energy_derivatives"):
             if not hasattr(material, attr):
                 raise ValueError(f"material must define {attr!r}, got {type(material).__name__}")
@@ -157,7 +168,8 @@ class PlateProblem(Problem):
         self.form = MixedUPPhiForm(
             m, material, formulation=formulation, kappa=kappa, phi_element=phi_element,
             intorder=intorder, chunk=chunk, threads=threads,
-            elastic_volume=coupling == "maxwell" and field == "electrostatic")
+            elastic_volume=coupling == "maxwell" and field == "electrostatic",
+            grad_div=grad_div * material.mu)
         f = self.form
         self.threads, self.nel = f.threads, f.nel
         self.b2, self.b1, self.bphi = f.b2, f.b1, f.bphi

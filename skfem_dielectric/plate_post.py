@@ -79,7 +79,8 @@ def plate_stresses(problem, F: np.ndarray, G: np.ndarray, p: np.ndarray | None,
     local = problem.local_field
     r = ideal_dielectric_response(problem.material, F, np.zeros_like(G) if local else G, p,
                                   kappa=problem.kappa, formulation=problem.formulation,
-                                  need_tangent=False)
+                                  need_tangent=False,
+                                  grad_div=problem.grad_div * problem.material.mu)
     Finv = inv3(F)
     S = np.einsum("Ka...,aL...->KL...", Finv, r.P)
     cauchy = np.einsum("aK...,bK...->ab...", r.P, F) / r.J

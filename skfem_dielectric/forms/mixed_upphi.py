@@ -60,6 +60,9 @@ class MixedUPPhiForm:
         Quadrature order, elements per batch, worker threads.
     elastic_volume
         Equilibrium rows with the elastic stress only (Maxwell-traction coupling).
+    grad_div
+        Grad-div stabilisation ``gamma (J - 1)^2 / 2`` of the mixed form
+        (:func:`~skfem_dielectric.materials.ideal_dielectric_response`).
 
     Notes
     -----
@@ -71,8 +74,10 @@ class MixedUPPhiForm:
 
     def __init__(self, mesh, material, *, formulation: str = "mixed", kappa: float = math.inf,
                  phi_element: str = "Q2", intorder: int = 4, chunk: int = 1500,
-                 threads: int | None = None, elastic_volume: bool = False):
+                 threads: int | None = None, elastic_volume: bool = False,
+                 grad_div: float = 0.0):
         self.material, self.formulation, self.kappa = material, formulation, kappa
+        self.grad_div = grad_div
         self.elastic_volume = elastic_volume
         self.chunk = int(chunk)
         self.threads = max(1, int(min(2, os.cpu_count() or 1) if threads is None else threads))
@@ -210,10 +215,10 @@ class MixedUPPhiForm:
         F, G, p = self.quadrature_fields(xf, sl)
         w = self.w[sl] if need_tangent else None
         r = dielectric_response(self.material, F, G, p, self.kappa, self.formulation,
-                                need_tangent, True, w)
+                                need_tangent, True, w, self.grad_div)
         if self.elastic_volume:   # equilibrium rows: elastic stress, Gauss rows: D_L(F, G)
             r0 = dielectric_response(self.material, F, np.zeros_like(G), p, self.kappa,
-                                     self.formulation, need_tangent, True, w)
+                                     self.formulation, need_tangent, True, w, self.grad_div)
             r.P = r0.P
             if need_tangent:
                 r.A_FF = r0.A_FF

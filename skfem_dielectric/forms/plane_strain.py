@@ -31,7 +31,8 @@ __all__ = ["cross_section_kernel", "PlaneStrainForm"]
 
 
 def cross_section_kernel(material, gradu: np.ndarray, lam3, p: np.ndarray,
-                         gradphi: np.ndarray, need_tangent: bool = True):
+                         gradphi: np.ndarray, need_tangent: bool = True,
+                         grad_div: float = 0.0):
     """Energy derivatives of the generalised-plane-strain state at points.
 
     Parameters
@@ -48,6 +49,8 @@ def cross_section_kernel(material, gradu: np.ndarray, lam3, p: np.ndarray,
         In-plane potential gradient (``E_L = -Grad phi``).
     need_tangent : bool
         Whether the second derivatives are needed.
+    grad_div : float
+        Grad-div stabilisation ``gamma (J - 1)^2 / 2`` (``gamma`` in stress units).
 
     Returns
     -------
@@ -57,7 +60,7 @@ def cross_section_kernel(material, gradu: np.ndarray, lam3, p: np.ndarray,
         blocks and the ``33`` entries are what the 2D model uses.
     """
     return ideal_dielectric_response(material, plane_strain_F(gradu, lam3), pad3(gradphi), p,
-                                     need_tangent=need_tangent)
+                                     need_tangent=need_tangent, grad_div=grad_div)
 
 
 class PlaneStrainForm:
