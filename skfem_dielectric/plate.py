@@ -57,6 +57,7 @@ from .checks import check_choice
 from .forms.maxwell_traction import MaxwellBoundary
 from .forms.mixed_upphi import MixedUPPhiForm
 from .mesh import PlateMesh
+from .newton import segment_det_limit
 from .plate_post import plate_quantities, plate_step_mesh, plate_stresses, evaluate_fields
 from .problem import Layout, Problem
 
@@ -330,6 +331,18 @@ class PlateProblem(Problem):
         if self.control == "voltage" or self.boundary is not None:
             return super().load_vector(x, load, h)
         return np.stack([-self.red.reduce(self.f_s), self.red.reduce(self.q_D0)], axis=1)
+
+    def max_step(self, x: np.ndarray, dx: np.ndarray, load) -> float:
+        """Largest ``alpha`` in ``(0, 1]`` with ``det F(x + a dx) > 0`` at every quadrature
+        point for all ``a`` in ``[0, alpha]`` (a ``step_limit`` of
+        :func:`~skfem_dielectric.newton.newton`, by
+        :func:`~skfem_dielectric.newton.segment_det_limit`); 0.0 if ``det F(x) <= 0``."""
+        x0, x1, alpha = self.full(x, load), self.full(x + dx, load), 1.0
+        for sl in self.form.chunks():
+            F0, F1 = (self.form.quadrature_fields(v, sl)[0].reshape(3, 3, -1) for v in (x0, x1))
+            alpha = min(alpha, segment_det_limit(np.moveaxis(F0, 2, 0),
+                                                 np.moveaxis(F1 - F0, 2, 0)))
+        return alpha
 
     # ------------------------------------------------------------ post-processing
     def evaluate(self, x: np.ndarray, load, points: np.ndarray) -> dict[str, np.ndarray]:

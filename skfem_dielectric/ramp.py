@@ -17,6 +17,13 @@ cannot be reached ends the ramp: ``RampResult.converged=False``, ``reason``, ``f
 (the load of the failed sub-step), a ``RuntimeWarning`` is issued and all converged steps
 are kept; the furthest converged sub-step towards the failed target is appended as a step
 with ``target_reached=False``.
+
+Admissible states: ``step_limit(x, dx, load) -> alpha_max`` caps every Newton step (e.g.
+:meth:`~skfem_dielectric.plate.PlateProblem.max_step`, ``det F > 0`` along the step) and
+``admissible(x, load) -> reason`` rejects a converged state (a rejected sub-step is cut back
+like a failed one).  The ramp does not look for them on the problem: the drivers of
+:mod:`skfem_dielectric.drivers` pass them for the 3D plate
+(:func:`~skfem_dielectric.drivers.plate_admissible`); a direct caller passes them itself.
 """
 
 from __future__ import annotations
@@ -159,7 +166,9 @@ def ramp(problem: Problem, loads: Sequence[Any], *, x0: np.ndarray | None = None
          start: Any = None, on_step: Callable[[StepResult], Any] | None = None,
          linear_solver: str | LinearSolver = "superlu", max_cutbacks: int = 6,
          atol: float = 1e-10, rtol: float = 1e-10, max_iter: int = 25,
-         line_search: bool = True, stop_on_instability: bool = False) -> RampResult:
+         line_search: bool = True, stop_on_instability: bool = False,
+         step_limit: Callable[[np.ndarray, np.ndarray, Any], float] | None = None,
+         admissible: Callable[[np.ndarray, Any], str] | None = None) -> RampResult:
     """Run ``problem`` through the target ``loads`` with adaptive sub-stepping.
 
     Parameters
@@ -192,6 +201,10 @@ def ramp(problem: Problem, loads: Sequence[Any], *, x0: np.ndarray | None = None
         False if it is intermediate) and its load is ``unstable_at``.  A load-controlled
         Newton cannot follow the path through such a point, so without this option the
         ramp spends its cut-backs trying (see ``docs/fe.md``, breakdown).
+    step_limit, admissible
+        Optional ``step_limit(x, dx, load) -> alpha_max`` and ``admissible(x, load) ->
+        reason`` of the admissible states (see the module docstring and :func:`newton`);
+        a sub-step that converges to a state ``admissible`` rejects is cut back.
 
     Returns
     -------
@@ -242,7 +255,11 @@ def ramp(problem: Problem, loads: Sequence[Any], *, x0: np.ndarray | None = None
             nr = newton(lambda xx: problem.assemble(xx, load), x,
                         residual=lambda xx: problem.residual(xx, load),
                         linear_solver=solver, atol=atol, rtol=rtol, scale=scale,
-                        max_iter=max_iter, line_search=line_search)
+                        max_iter=max_iter, line_search=line_search,
+                        step_limit=None if step_limit is None else
+                        (lambda xx, dd: step_limit(xx, dd, load)),
+                        admissible=None if admissible is None else
+                        (lambda xx: admissible(xx, load)))
             iters += nr.iterations
             t_asm += sum(nr.assembly_seconds)
             t_sol += sum(nr.solve_seconds)
