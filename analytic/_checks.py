@@ -19,10 +19,10 @@ def as_array(name: str, value) -> np.ndarray:
 
 
 def check_finite(name: str, value) -> np.ndarray:
-    """``value`` as a float array, all entries finite (the message shows the converted array)."""
+    """``value`` as a float array, all entries finite (``ValueError`` naming ``name``)."""
     arr = as_array(name, value)
     if np.any(~np.isfinite(arr)):
-        raise ValueError(f"{name} must be finite, got {arr!r}")
+        raise ValueError(f"{name} must be finite, got {value!r}")
     return arr
 
 
