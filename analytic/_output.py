@@ -76,8 +76,9 @@ def representable(func):
     """Decorator: a computation that overflows double precision raises ``ValueError``.
 
     ``func`` runs under ``numpy.errstate(over="raise")`` (code that expects an overflow
-    says so with a local ``errstate``); a ``FloatingPointError`` becomes a ``ValueError``
-    that names the argument of the most extreme magnitude.  Results that do not overflow
+    says so with a local ``errstate``); a ``FloatingPointError`` (or a singular matrix,
+    ``numpy.linalg.LinAlgError``, of such inputs) becomes a ``ValueError`` that names the
+    argument of the most extreme magnitude.  Results that do not overflow
     are unchanged.
     """
 
@@ -86,9 +87,11 @@ def representable(func):
         try:
             with np.errstate(over="raise"):
                 return func(*args, **kwargs)
-        except FloatingPointError:
+        except (FloatingPointError, np.linalg.LinAlgError):
             pass
         name, value = _culprit(func, args, kwargs)
+        if isinstance(value, np.ndarray) and value.ndim == 0:
+            value = value.item()
         raise ValueError(f"{name} must be of a size for which {func.__name__} is "
                          f"representable in double precision (a step of the computation "
                          f"overflows), got {value!r}")

@@ -23,7 +23,7 @@ from typing import Any, Callable, Sequence
 
 import numpy as np
 
-from .checks import check_finite
+from .checks import check_count, check_finite, check_positive
 from .cross_section import CrossSection
 from .linear import LinearSolver
 from .loads import charge_targets, keplinger_s, preload_then_charge, remaining_targets
@@ -61,6 +61,17 @@ def plate_admissible(problem: PlateProblem, x: np.ndarray, load) -> str:
         return (f"inverted deformation: F11 = {F[0, 0]:.6g}, F33 = {F[2, 2]:.6g} at the plate "
                 f"centre (must be > 0)")
     return ""
+
+
+def _triple(name: str, value, check) -> tuple:
+    """``value`` as a 3-tuple checked entry by entry (``size``: lengths, ``elements``: counts)."""
+    try:
+        items = tuple(value)
+    except TypeError:
+        items = ()
+    if len(items) != 3:
+        raise ValueError(f"{name} must be a triple (x1, x2, x3), got {value!r}")
+    return tuple(check(f"{name}[{i}]", v) for i, v in enumerate(items))
 
 
 def run_ramp(problem: Problem, targets: Sequence[Any], *,
@@ -135,7 +146,8 @@ def equibiaxial_problem(*, model: Any = "neo-Hookean", Jm: float = 97.2,
         :class:`~skfem_dielectric.plate.PlateProblem` options (``control``, ``coupling``,
         ``field``, ``formulation``, ``kappa``, ``phi_element``, ``threads``, ...).
     """
-    pm = plate_mesh(*size, *elements, symmetry=symmetry)
+    pm = plate_mesh(*_triple("size", size, check_positive),
+                    *_triple("elements", elements, check_count), symmetry=symmetry)
     return PlateProblem(pm, make_material(model, Jm), loading="equibiaxial", **options)
 
 
@@ -161,7 +173,9 @@ def keplinger_problem(*, model: Any = "neo-Hookean", Jm: float = 97.2,
     **options
         :class:`~skfem_dielectric.plate.PlateProblem` options.
     """
-    pm = plate_mesh(*size, *elements, symmetry=symmetry, grading=grading)
+    pm = plate_mesh(*_triple("size", size, check_positive),
+                    *_triple("elements", elements, check_count), symmetry=symmetry,
+                    grading=grading)
     return PlateProblem(pm, make_material(model, Jm), loading="uniaxial", **options)
 
 

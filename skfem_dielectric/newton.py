@@ -29,6 +29,8 @@ from typing import Callable
 import numpy as np
 import scipy.sparse as sp
 
+from .checks import (check_callable, check_count, check_nonnegative, check_nonnegative_int,
+                     check_tolerances)
 from .linear import LinearSolver, get_linear_solver
 
 __all__ = ["NewtonResult", "newton", "segment_det_limit"]
@@ -194,9 +196,30 @@ def newton(assemble: Callable[[np.ndarray], tuple[sp.spmatrix, np.ndarray]],
     NewtonResult
         Never raises on divergence, singular tangents or non-finite values: these end the
         iteration with ``converged=False`` and a ``reason``.
+
+    Raises
+    ------
+    ValueError
+        Invalid arguments, each named: a callable that is not, ``x0`` not a finite 1-D
+        vector, negative or non-finite tolerances (or ``atol = rtol = 0``, which can never
+        be met), ``max_iter < 1``, ``max_backtracks < 0``.
     """
+    check_callable("assemble", assemble, optional=False)
+    for name, f in (("residual", residual), ("step_limit", step_limit),
+                    ("admissible", admissible)):
+        check_callable(name, f)
+    atol, rtol = check_tolerances(atol, rtol)
+    xtol = check_nonnegative("xtol", xtol)
+    scale = None if scale is None else check_nonnegative("scale", scale)
+    max_iter = check_count("max_iter", max_iter)
+    max_backtracks = check_nonnegative_int("max_backtracks", max_backtracks)
     solver = get_linear_solver(linear_solver)
-    x = np.array(x0, dtype=float, copy=True)
+    try:
+        x = np.array(x0, dtype=float, copy=True)
+    except (TypeError, ValueError):
+        raise ValueError(f"x0 must be a real vector, got {x0!r}") from None
+    if x.ndim != 1 or not np.all(np.isfinite(x)):
+        raise ValueError(f"x0 must be a finite 1-D vector, got shape {x.shape}")
     res = NewtonResult(x=x, converged=False, iterations=0, residual_norms=[])
 
     def _assemble(xx):

@@ -53,7 +53,7 @@ import numpy as np
 from skfem import ElementHex1, ElementHex2, FacetBasis, LinearForm, asm
 
 from .assembly import DofReduction
-from .checks import check_choice
+from .checks import check_choice, check_count, check_material, check_positive
 from .forms.maxwell_traction import MaxwellBoundary
 from .forms.mixed_upphi import MixedUPPhiForm
 from .mesh import PlateMesh
@@ -129,15 +129,13 @@ class PlateProblem(Problem):
             raise ValueError(f"coupling 'maxwell' needs control='charge', got {control!r}")
         if coupling == "maxwell" and formulation != "mixed":
             raise ValueError(f"coupling 'maxwell' needs formulation='mixed', got {formulation!r}")
-        kappa = float(kappa)
-        if not kappa > 0 or math.isnan(kappa):
-            raise ValueError(f"kappa must be > 0, got {kappa}")
+        kappa = math.inf if kappa == math.inf else check_positive("kappa", kappa)
         if formulation == "penalty" and not math.isfinite(kappa):
             raise ValueError("kappa must be finite for the penalty formulation, got inf")
         check_choice("phi_element", phi_element, ("Q1", "Q2"))
-        for attr in ("mu", "eps", "energy_derivatives"):
-            if not hasattr(material, attr):
-                raise ValueError(f"material must define {attr!r}, got {type(material).__name__}")
+        check_material("material", material)
+        intorder, chunk = check_count("intorder", intorder), check_count("chunk", chunk)
+        threads = None if threads is None else check_count("threads", threads)
         self.plate, self.material = plate, material
         self.loading, self.control = loading, control
         self.coupling, self.field = coupling, field

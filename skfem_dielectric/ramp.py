@@ -35,6 +35,8 @@ from typing import Any, Callable, Sequence
 
 import numpy as np
 
+from .checks import (check_callable, check_count, check_nonnegative_int, check_tolerances,
+                     check_vector)
 from .linear import LinearSolver, get_linear_solver
 from .newton import newton
 from .problem import Problem
@@ -156,8 +158,11 @@ class RampResult:
 
 
 def _as_load(load: Any) -> Any:
-    arr = np.asarray(load, dtype=float)
-    if not np.all(np.isfinite(arr)):
+    try:
+        arr = np.asarray(load, dtype=float)
+    except (TypeError, ValueError):
+        raise ValueError(f"loads must be numbers or 1-D arrays, got {load!r}") from None
+    if arr.ndim > 1 or not np.all(np.isfinite(arr)):
         raise ValueError(f"loads must be finite, got {load!r}")
     return float(arr) if arr.ndim == 0 else arr.copy()
 
@@ -210,14 +215,34 @@ def ramp(problem: Problem, loads: Sequence[Any], *, x0: np.ndarray | None = None
     -------
     RampResult
         Never raises on non-convergence; warns (``RuntimeWarning``) when it stops early.
+
+    Raises
+    ------
+    ValueError
+        Invalid arguments, each named: ``problem`` not a ``Problem``, non-finite loads,
+        ``x0`` not a finite vector of the problem's length, a callable that is not,
+        ``max_cutbacks < 0``, ``max_iter < 1``, negative tolerances or
+        ``atol = rtol = 0``.
     """
     if not isinstance(problem, Problem):
         raise ValueError("problem must be a skfem_dielectric.Problem (see "
                          f"skfem_dielectric.problem), got {type(problem).__name__}")
+    for name, f in (("on_step", on_step), ("step_limit", step_limit),
+                    ("admissible", admissible)):
+        check_callable(name, f)
+    atol, rtol = check_tolerances(atol, rtol)
+    max_iter = check_count("max_iter", max_iter)
+    max_cutbacks = check_nonnegative_int("max_cutbacks", max_cutbacks)
     t_start = time.perf_counter()
     solver = get_linear_solver(linear_solver, symmetric=problem.symmetric)
+    try:
+        loads = list(loads)
+    except TypeError:
+        raise ValueError(f"loads must be a sequence of loads, got {loads!r}") from None
     targets = [_as_load(ld) for ld in loads]
-    x = np.array(problem.initial_state() if x0 is None else x0, dtype=float, copy=True)
+    x0_ = problem.initial_state()
+    x = np.array(x0_ if x0 is None else check_vector("x0", x0, len(x0_)), dtype=float,
+                 copy=True)
     if start is None:
         cur = 0.0 * np.asarray(targets[0], dtype=float) if targets else 0.0
         cur = _as_load(cur)
