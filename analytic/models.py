@@ -106,9 +106,11 @@ class Gent(Model):
     name: str = field(default="Gent", init=False)
 
     def __post_init__(self):
-        Jm = float(self.Jm)
-        if not np.isfinite(Jm) or Jm <= 0:
-            raise ValueError(f"Jm must be a finite number > 0, got {self.Jm}")
+        Jm = self.Jm.item() if isinstance(self.Jm, np.ndarray) and self.Jm.ndim == 0 else self.Jm
+        if isinstance(Jm, (bool, np.bool_, str, bytes)) or not isinstance(
+                Jm, (int, float, np.integer, np.floating)) or not np.isfinite(Jm) or Jm <= 0:
+            raise ValueError(f"Jm must be a finite number > 0, got {self.Jm!r}")
+        Jm = float(Jm)
         object.__setattr__(self, "Jm", Jm)
 
     def I1_max(self) -> float:
