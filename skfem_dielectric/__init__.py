@@ -31,7 +31,8 @@ from .ramp import RampResult, StepResult, ramp
 
 __all__ = [
     # the contract and the machinery
-    "Problem", "Layout", "newton", "NewtonResult", "segment_det_limit", "ramp", "RampResult", "StepResult",
+    "Problem", "Layout", "newton", "NewtonResult", "segment_det_limit", "ramp", "RampResult",
+    "StepResult",
     "LinearSolver", "SuperLUSolver", "PardisoSolver", "PardisoLUSolver", "get_linear_solver",
     "nonsymmetric_solver", "pardiso_available", "DofReduction", "ScatterMap",
     # materials and meshes

@@ -157,8 +157,9 @@ def check_energy(owner: str, funcs: dict[str, Callable], dW3: float,
         bad = ~np.isfinite(np.broadcast_to(v, I1.shape))
         if np.any(bad):
             k = int(np.argmax(bad))
-            raise ValueError(f"{owner}: {label}(I1) must be finite, got {label}({float(I1[k])!r}) = "
-                             f"{float(np.broadcast_to(v, I1.shape)[k])!r}")
+            vk = float(np.broadcast_to(v, I1.shape)[k])
+            raise ValueError(f"{owner}: {label}(I1) must be finite, got "
+                             f"{label}({float(I1[k])!r}) = {vk!r}")
     d = float(np.broadcast_to(np.asarray(funcs["dW"](I1.copy()), dtype=float), I1.shape)[0])
     if not abs(d - dW3) <= 1e-9 * abs(dW3):
         raise ValueError(f"{owner}: dW(3) must equal {dW3!r} (normalised shear modulus, "
