@@ -8,8 +8,11 @@ __all__ = ["as_array", "check_finite", "check_positive", "check_nonnegative", "c
 
 
 def as_array(name: str, value) -> np.ndarray:
-    """``value`` as a float array; ``ValueError`` naming ``name`` if it is not numeric or is NaN."""
+    """``value`` as a float array; ``ValueError`` naming ``name`` if it is not numeric (strings
+    and booleans are not numbers here) or is NaN."""
     try:
+        if isinstance(value, (str, bytes)) or np.asarray(value).dtype.kind in "bOUSV":
+            raise TypeError
         arr = np.asarray(value, dtype=float)
     except (TypeError, ValueError):
         raise ValueError(f"{name} must be a real number or array, got {value!r}") from None
@@ -19,10 +22,10 @@ def as_array(name: str, value) -> np.ndarray:
 
 
 def check_finite(name: str, value) -> np.ndarray:
-    """``value`` as a float array, all entries finite (the message shows the converted array)."""
+    """``value`` as a float array, all entries finite (``ValueError`` naming ``name``)."""
     arr = as_array(name, value)
     if np.any(~np.isfinite(arr)):
-        raise ValueError(f"{name} must be finite, got {arr!r}")
+        raise ValueError(f"{name} must be finite, got {value!r}")
     return arr
 
 

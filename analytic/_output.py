@@ -6,13 +6,22 @@ kind (``float``; ``bool`` for the stability verdicts; ``complex`` for the Stroh
 exponents); any other result is returned as an ``ndarray`` whose shape is the
 broadcast shape of the arguments, followed by the matrix or tensor axes where a
 function returns matrices (Hessians, moduli, Stroh matrix, impedance).
+
+Every public function is also wrapped by :func:`representable`: an input so large or so
+small that a step of the computation leaves double precision (an overflow) raises a
+``ValueError`` naming the argument instead of returning ``inf``, ``nan`` or a wrong number
+with a ``RuntimeWarning``.
 """
 
 from __future__ import annotations
 
+import functools
+import inspect
+import math
+
 import numpy as np
 
-__all__ = ["scalar_or_array"]
+__all__ = ["scalar_or_array", "representable"]
 
 
 def scalar_or_array(*values):
@@ -37,3 +46,54 @@ def scalar_or_array(*values):
 def _one(value):
     arr = np.asarray(value)
     return arr.item() if arr.ndim == 0 else arr
+
+
+def _magnitude(value) -> float:
+    """Largest ``|log10 |v||`` over the finite non-zero numbers in ``value`` (0 if none)."""
+    try:
+        arr = np.abs(np.asarray(value, dtype=float))
+    except (TypeError, ValueError):
+        return 0.0
+    arr = arr[np.isfinite(arr) & (arr > 0)]
+    return float(np.max(np.abs(np.log10(arr)))) if arr.size else 0.0
+
+
+def _culprit(func, args, kwargs) -> tuple[str, object]:
+    """The number argument of the most extreme magnitude (the likely cause of an overflow)."""
+    try:
+        bound = inspect.signature(func).bind(*args, **kwargs).arguments
+    except TypeError:
+        bound = {f"argument {i}": a for i, a in enumerate(args)} | dict(kwargs)
+    numbers = {k: v for k, v in bound.items() if not isinstance(v, (str, bool))
+               and not callable(v) and math.isfinite(_magnitude(v))}
+    if not numbers:
+        return "the arguments", bound
+    name = max(numbers, key=lambda k: _magnitude(numbers[k]))
+    return name, numbers[name]
+
+
+def representable(func):
+    """Decorator: a computation that overflows double precision raises ``ValueError``.
+
+    ``func`` runs under ``numpy.errstate(over="raise")`` (code that expects an overflow
+    says so with a local ``errstate``); a ``FloatingPointError`` (or a singular matrix,
+    ``numpy.linalg.LinAlgError``, of such inputs) becomes a ``ValueError`` that names the
+    argument of the most extreme magnitude.  Results that do not overflow
+    are unchanged.
+    """
+
+    @functools.wraps(func)
+    def wrapper(*args, **kwargs):
+        try:
+            with np.errstate(over="raise"):
+                return func(*args, **kwargs)
+        except (FloatingPointError, np.linalg.LinAlgError):
+            pass
+        name, value = _culprit(func, args, kwargs)
+        if isinstance(value, np.ndarray) and value.ndim == 0:
+            value = value.item()
+        raise ValueError(f"{name} must be of a size for which {func.__name__} is "
+                         f"representable in double precision (a step of the computation "
+                         f"overflows), got {value!r}")
+
+    return wrapper

@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ._checks import as_array, broadcast, check_choice, check_positive
+from ._checks import as_array, broadcast, check_choice, check_finite, check_positive
 from .models import as_model
 
 __all__ = ["coefficients", "coefficients_fast", "exponents_from_coefficients", "moduli", "stroh_N"]
@@ -78,7 +78,7 @@ def _state(lam1, lam3, D0, model):
     model = as_model(model)
     lam1 = check_positive("lam1", lam1)
     lam3 = check_positive("lam3", lam3)
-    D0 = as_array("D0", D0)
+    D0 = check_finite("D0", D0)
     if np.any(~np.isfinite(D0)):
         raise ValueError(f"D0 must be finite, got {D0}")
     lam1, lam3, D0 = broadcast(lam1=lam1, lam3=lam3, D0=D0)

@@ -28,7 +28,7 @@ import numpy as np
 
 from ._checks import as_array, broadcast, check_choice, check_finite, check_positive
 from ._loading import equibiaxial_limits, model_derivs, uniaxial_x, uniaxial_xlock
-from ._output import scalar_or_array
+from ._output import representable, scalar_or_array
 from ._roots import golden_section_max, illinois, rtsafe, scan_first_up
 from .homogeneous import equibiaxial_lam, uniaxial_lam1
 from .models import NeoHookean, as_model
@@ -72,6 +72,7 @@ def _stretches(lam1, lam3, name, value):
     return broadcast(lam1=lam1, lam3=lam3, **{name: v})
 
 
+@representable
 def invariant_I1(lam1, lam3):
     """``I1 = lam1^2 + lam3^2 + lam1^-2 lam3^-2`` of the biaxial plate, Eq. (invariants1a).
 
@@ -87,6 +88,7 @@ def invariant_I1(lam1, lam3):
     return scalar_or_array(lam1**2 + lam3**2 + 1.0 / (lam1 * lam3) ** 2)
 
 
+@representable
 def omega_star(lam1, lam3, D0, model=None):
     """Dimensionless energy ``omega*(lam1, lam3, D0) = W(I1) + lam1^-2 lam3^-2 D0^2/2``.
 
@@ -117,6 +119,7 @@ def omega_star(lam1, lam3, D0, model=None):
     return scalar_or_array(model.W(I1) + 0.5 * D0**2 / (lam1 * lam3) ** 2)
 
 
+@representable
 def omega(lam1, lam3, E0, model=None):
     """Dimensionless energy ``omega(lam1, lam3, E0) = W(I1) - lam1^2 lam3^2 E0^2/2``.
 
@@ -138,6 +141,7 @@ def omega(lam1, lam3, E0, model=None):
     return scalar_or_array(model.W(I1) - 0.5 * E0**2 * (lam1 * lam3) ** 2)
 
 
+@representable
 def equibiaxial_omega_star(lam, D0, model=None):
     """Equi-biaxial ``omega*-hat(lam, D0) = W(2 lam^2 + lam^-4) + lam^-4 D0^2/2`` (Sec. 2.1).
 
@@ -150,6 +154,7 @@ def equibiaxial_omega_star(lam, D0, model=None):
     return omega_star(lam, lam, D0, model)
 
 
+@representable
 def equibiaxial_omega(lam, E0, model=None):
     """Equi-biaxial ``omega-hat(lam, E0) = W(2 lam^2 + lam^-4) - lam^4 E0^2/2`` (Sec. 2.1).
 
@@ -183,6 +188,7 @@ def _stack(rows):
     return np.stack([np.stack(r, axis=-1) for r in rows], axis=-2)
 
 
+@representable
 def hessian_omega_star(lam1, lam3, D0, model=None):
     """3x3 Hessian ``H*`` of ``omega*`` in ``(lam1, lam3, D0)``.
 
@@ -228,6 +234,7 @@ def hessian_omega_star(lam1, lam3, D0, model=None):
     return scalar_or_array(_stack([[h11, h13, h1D], [h13, h33, h3D], [h1D, h3D, e]]))
 
 
+@representable
 def hessian_omega(lam1, lam3, E0, model=None):
     """3x3 Hessian ``H`` of ``omega`` in ``(lam1, lam3, E0)``.
 
@@ -268,6 +275,7 @@ def _equi_elastic(lam, model):
     return d2W * I1p**2 + dW * I1pp, dW, d2W
 
 
+@representable
 def equibiaxial_hessian_omega_star(lam, D0, model=None):
     """2x2 equi-biaxial Hessian ``H*`` of ``omega*-hat`` in ``(lam, D0)``.
 
@@ -290,7 +298,7 @@ def equibiaxial_hessian_omega_star(lam, D0, model=None):
     """
     model = as_model(model)
     lam = check_positive("lam", lam)
-    D0 = as_array("D0", D0)
+    D0 = check_finite("D0", D0)
     lam, D0 = broadcast(lam=lam, D0=D0)
     m, _, _ = _equi_elastic(lam, model)
     r = 1.0 / lam
@@ -298,6 +306,7 @@ def equibiaxial_hessian_omega_star(lam, D0, model=None):
     return scalar_or_array(_stack([[m + 10 * r4 * r * r * D0**2, -4 * r4 * r * D0], [-4 * r4 * r * D0, r4]]))
 
 
+@representable
 def equibiaxial_hessian_omega(lam, E0, model=None):
     """2x2 equi-biaxial Hessian ``H`` of ``omega-hat`` in ``(lam, E0)``.
 
@@ -318,12 +327,13 @@ def equibiaxial_hessian_omega(lam, E0, model=None):
     """
     model = as_model(model)
     lam = check_positive("lam", lam)
-    E0 = as_array("E0", E0)
+    E0 = check_finite("E0", E0)
     lam, E0 = broadcast(lam=lam, E0=E0)
     m, _, _ = _equi_elastic(lam, model)
     return scalar_or_array(_stack([[m - 6 * lam**2 * E0**2, -4 * lam**3 * E0], [-4 * lam**3 * E0, -(lam**4)]]))
 
 
+@representable
 def leading_minors(H):
     """Leading principal minors of (stacks of) square matrices.
 
@@ -354,6 +364,7 @@ def _posdef2(h11, h12, h22):
     return (h11 > 0) & (h11 * h22 - h12 * h12 > 0)
 
 
+@representable
 def stability_verdict(lam1, lam3, D0, model=None, control: str = "charge"):
     """Hessian stability of the homogeneous biaxial state ``(lam1, lam3, D0)``.
 
@@ -403,6 +414,7 @@ def stability_verdict(lam1, lam3, D0, model=None, control: str = "charge"):
     return scalar_or_array(_posdef2(H[..., 0, 0], H[..., 0, 1], H[..., 1, 1]))
 
 
+@representable
 def equibiaxial_stability_verdict(lam, D0, model=None, control: str = "charge"):
     """Hessian stability of the equi-biaxial state ``(lam, D0)`` against equi-biaxial perturbations.
 
@@ -428,7 +440,7 @@ def equibiaxial_stability_verdict(lam, D0, model=None, control: str = "charge"):
         H = equibiaxial_hessian_omega_star(lam, D0, model)
     else:
         lam = check_positive("lam", lam)
-        D0 = as_array("D0", D0)
+        D0 = check_finite("D0", D0)
         lam, D0 = broadcast(lam=lam, D0=D0)
         H = equibiaxial_hessian_omega(lam, D0 / lam**4, model)
     return scalar_or_array(H[..., 0, 0] > 0)
@@ -437,6 +449,7 @@ def equibiaxial_stability_verdict(lam, D0, model=None, control: str = "charge"):
 # ----------------------------------------------------------------------------
 # voltage-control limit loci
 # ----------------------------------------------------------------------------
+@representable
 def voltage_limit_D0(lam, model=None):
     """Equi-biaxial locus ``det H* = 0``: the ``D0`` where voltage control becomes unstable.
 
@@ -474,6 +487,7 @@ def voltage_limit_D0(lam, model=None):
         return scalar_or_array(np.where(D2 >= 0, np.sqrt(np.abs(D2)), np.nan))
 
 
+@representable
 def voltage_limit_E0(lam, model=None):
     """Equi-biaxial voltage limit as a field: ``E0 = lam^-4`` :func:`voltage_limit_D0`.
 
@@ -551,6 +565,7 @@ def _locus_inputs(lam1, model):
     return lam1, model
 
 
+@representable
 def uniaxial_voltage_limit_lam3(lam1, model=None):
     """``lam3`` on the uni-axial voltage-control limit locus (``det H* = 0`` with ``t3 = 0``).
 
@@ -587,6 +602,7 @@ def uniaxial_voltage_limit_lam3(lam1, model=None):
     return scalar_or_array(np.sqrt(_uniaxial_locus_x(lam1.ravel(), model)).reshape(lam1.shape))
 
 
+@representable
 def uniaxial_voltage_limit_D0(lam1, model=None):
     """``D0`` on the uni-axial voltage-control limit locus (dashed curve of Fig. figde(a)).
 
@@ -609,6 +625,7 @@ def uniaxial_voltage_limit_D0(lam1, model=None):
     return scalar_or_array(D0.reshape(lam1.shape))
 
 
+@representable
 def uniaxial_voltage_limit_E0(lam1, model=None):
     """``E0`` on the uni-axial voltage-control limit locus (dashed curve of Fig. figde(b)).
 
@@ -636,6 +653,7 @@ def _equi_F(lam, s, model):
     return 2 * dW * (lam**6 - 1.0) - lam**5 * s - lam**6 * m / 6.0
 
 
+@representable
 def max_E0(s, model=None, loading: str = "equibiaxial"):
     """Maximum of ``E0`` along the loading curve of fixed dead load ``s``.
 
@@ -739,6 +757,7 @@ def max_E0(s, model=None, loading: str = "equibiaxial"):
     return scalar_or_array(lam1.reshape(shape), E0.reshape(shape))
 
 
+@representable
 def no_maximum_threshold(model=None, loading: str = "equibiaxial") -> float:
     """Dead load ``s`` above which the fixed-``s`` curve has no maximum of ``E0``.
 

@@ -34,7 +34,7 @@ import numpy as np
 
 from ._checks import as_array, broadcast, check_finite, check_positive
 from ._loading import equibiaxial_limits, model_derivs, sqrt_branch, uniaxial_x
-from ._output import scalar_or_array
+from ._output import representable, scalar_or_array
 from ._roots import expand_bracket, rtsafe
 from .models import Gent, NeoHookean, as_model
 
@@ -63,6 +63,7 @@ def _I1(lam1, lam3):
 # ----------------------------------------------------------------------------
 # general biaxial state
 # ----------------------------------------------------------------------------
+@representable
 def biaxial_stress(lam1, lam3, D0, model=None):
     """Nominal stresses ``(t1, t3)/mu`` of the homogeneous biaxial state.
 
@@ -96,7 +97,7 @@ def biaxial_stress(lam1, lam3, D0, model=None):
     model = as_model(model)
     lam1 = check_positive("lam1", lam1)
     lam3 = check_positive("lam3", lam3)
-    D0 = as_array("D0", D0)
+    D0 = check_finite("D0", D0)
     lam1, lam3, D0 = broadcast(lam1=lam1, lam3=lam3, D0=D0)
     dW, _ = model_derivs(model, _I1(lam1, lam3), "lam1", lam1)
     e = lam1**-2 * lam3**-2
@@ -105,6 +106,7 @@ def biaxial_stress(lam1, lam3, D0, model=None):
     return scalar_or_array(t1, t3)
 
 
+@representable
 def biaxial_E0(lam1, lam3, D0):
     """Lagrangian field ``E0 = d omega*/d D0 = lam1^-2 lam3^-2 D0`` (Eq. DLEL).
 
@@ -116,7 +118,7 @@ def biaxial_E0(lam1, lam3, D0):
     """
     lam1 = check_positive("lam1", lam1)
     lam3 = check_positive("lam3", lam3)
-    D0 = as_array("D0", D0)
+    D0 = check_finite("D0", D0)
     lam1, lam3, D0 = broadcast(lam1=lam1, lam3=lam3, D0=D0)
     return scalar_or_array(D0 / (lam1**2 * lam3**2))
 
@@ -207,6 +209,7 @@ def _biaxial_core(s1, s3, q, model, start=None, maxiter=100):
     return la, lb
 
 
+@representable
 def biaxial_stretches(s1, s3, D0, model=None, *, maxiter: int = 100):
     """Stretches ``(lam1, lam3)`` of the plate under dead loads ``s1, s3`` and charge ``D0``.
 
@@ -250,7 +253,7 @@ def biaxial_stretches(s1, s3, D0, model=None, *, maxiter: int = 100):
     model = as_model(model)
     s1 = as_array("s1", s1)
     s3 = as_array("s3", s3)
-    D0 = as_array("D0", D0)
+    D0 = check_finite("D0", D0)
     for name, v in (("s1", s1), ("s3", s3), ("D0", D0)):
         if np.any(~np.isfinite(v)):
             raise ValueError(f"{name} must be finite, got {v!r}")
@@ -264,6 +267,7 @@ def biaxial_stretches(s1, s3, D0, model=None, *, maxiter: int = 100):
 # ----------------------------------------------------------------------------
 # equi-biaxial loading
 # ----------------------------------------------------------------------------
+@representable
 def equibiaxial_s(lam, D0, model=None):
     """Equi-biaxial dead load ``s`` that holds stretch ``lam`` at charge ``D0``.
 
@@ -293,12 +297,13 @@ def equibiaxial_s(lam, D0, model=None):
     """
     model = as_model(model)
     lam = check_positive("lam", lam)
-    D0 = as_array("D0", D0)
+    D0 = check_finite("D0", D0)
     lam, D0 = broadcast(lam=lam, D0=D0)
     dW, _ = model_derivs(model, 2 * lam**2 + lam**-4, "lam", lam)
     return scalar_or_array(2 * dW * (lam - lam**-5) - lam**-5 * D0**2)
 
 
+@representable
 def equibiaxial_s_E0(lam, E0, model=None):
     """Equi-biaxial dead load ``s`` that holds stretch ``lam`` at field ``E0``.
 
@@ -314,12 +319,13 @@ def equibiaxial_s_E0(lam, E0, model=None):
     """
     model = as_model(model)
     lam = check_positive("lam", lam)
-    E0 = as_array("E0", E0)
+    E0 = check_finite("E0", E0)
     lam, E0 = broadcast(lam=lam, E0=E0)
     dW, _ = model_derivs(model, 2 * lam**2 + lam**-4, "lam", lam)
     return scalar_or_array(2 * dW * (lam - lam**-5) - lam**3 * E0**2)
 
 
+@representable
 def equibiaxial_D0(lam, s=0.0, model=None):
     """Charge ``D0`` on the equi-biaxial loading curve of dead load ``s``.
 
@@ -360,7 +366,7 @@ def equibiaxial_D0(lam, s=0.0, model=None):
     """
     model = as_model(model)
     lam = check_positive("lam", lam)
-    s = as_array("s", s)
+    s = check_finite("s", s)
     lam, s = broadcast(lam=lam, s=s)
     if isinstance(model, NeoHookean):
         D2 = lam**6 - 1.0 - lam**5 * s
@@ -372,6 +378,7 @@ def equibiaxial_D0(lam, s=0.0, model=None):
     return scalar_or_array(sqrt_branch(D2, scale))
 
 
+@representable
 def equibiaxial_E0(lam, s=0.0, model=None):
     """Field ``E0 = lam^-4 D0`` on the equi-biaxial loading curve of dead load ``s``.
 
@@ -395,6 +402,7 @@ def equibiaxial_E0(lam, s=0.0, model=None):
     return scalar_or_array(np.asarray(D0) / lam**4)
 
 
+@representable
 def equibiaxial_lam(D0, s=0.0, model=None):
     """Charge-controlled equi-biaxial stretch ``lam(D0; s)`` (inverse of :func:`equibiaxial_D0`).
 
@@ -497,6 +505,7 @@ def _uniaxial_inputs(lam1, s, model):
     return lam1, s, model
 
 
+@representable
 def uniaxial_lam3(lam1, s=0.0, model=None):
     """Transverse stretch ``lam3`` on the uni-axial dead-load curve (``t3 = 0``, ``t1 = s``).
 
@@ -540,6 +549,7 @@ def uniaxial_lam3(lam1, s=0.0, model=None):
     return scalar_or_array(np.sqrt(x))
 
 
+@representable
 def uniaxial_D0(lam1, s=0.0, model=None):
     """Charge ``D0`` on the uni-axial dead-load curve of load ``s``.
 
@@ -584,6 +594,7 @@ def uniaxial_D0(lam1, s=0.0, model=None):
     return scalar_or_array(D0.reshape(lam1.shape))
 
 
+@representable
 def uniaxial_E0(lam1, s=0.0, model=None):
     """Field ``E0 = lam1^-2 lam3^-2 D0`` on the uni-axial dead-load curve of load ``s``.
 
@@ -722,6 +733,7 @@ def _uniaxial_lam1_nh(c, s):
     return rtsafe(q, lo, hi)
 
 
+@representable
 def uniaxial_lam1(D0, s=0.0, model=None):
     """Charge-controlled stretch ``lam1(D0; s)`` under a uni-axial dead load (inverse of :func:`uniaxial_D0`).
 

@@ -106,9 +106,11 @@ class Gent(Model):
     name: str = field(default="Gent", init=False)
 
     def __post_init__(self):
-        Jm = float(self.Jm)
-        if not np.isfinite(Jm) or Jm <= 0:
-            raise ValueError(f"Jm must be a finite number > 0, got {self.Jm}")
+        Jm = self.Jm.item() if isinstance(self.Jm, np.ndarray) and self.Jm.ndim == 0 else self.Jm
+        if isinstance(Jm, (bool, np.bool_, str, bytes)) or not isinstance(
+                Jm, (int, float, np.integer, np.floating)) or not np.isfinite(Jm) or Jm <= 0:
+            raise ValueError(f"Jm must be a finite number > 0, got {self.Jm!r}")
+        Jm = float(Jm)
         object.__setattr__(self, "Jm", Jm)
 
     def I1_max(self) -> float:
@@ -149,6 +151,15 @@ class UserModel(Model):
     I1_limit : float, optional
         Supremum of admissible ``I1`` (default ``inf``); larger ``I1`` raises.
 
+    Raises
+    ------
+    ValueError
+        On construction, a callable that fails, returns non-finite values or an array of
+        another shape than ``I1`` (a scalar is broadcast) on the probe ``I1`` = 3, 3.05,
+        3.2, 3.5, 4 (those below ``I1_limit``; else points between 3 and the limit), or a
+        model with ``W'(3) != 1/2`` (the energies are normalised by the shear modulus,
+        ``mu = 2 W'(3) = 1``).
+
     Examples
     --------
     A Mooney-free "quadratic" model ``W = (I1-3)/2 + 0.01 (I1-3)^2``:
@@ -178,6 +189,7 @@ class UserModel(Model):
         object.__setattr__(self, "d2W_fun", d2W)
         object.__setattr__(self, "name", str(name))
         object.__setattr__(self, "I1_limit", float(I1_limit))
+        _probe_energy(self)
 
     def I1_max(self) -> float:
         return self.I1_limit
@@ -199,6 +211,38 @@ class UserModel(Model):
     def d2W(self, I1):
         I1 = self._check(I1)
         return np.asarray(self.d2W_fun(I1), dtype=float) + 0.0 * I1
+
+
+_PROBE = np.array([3.0, 3.05, 3.2, 3.5, 4.0])
+
+
+def _probe_energy(model: "UserModel") -> None:
+    """``ValueError`` naming the model and the callable unless ``W, W', W''`` give finite
+    numbers of the shape of ``I1`` on a probe grid and ``W'(3) = 1/2``."""
+    lim = model.I1_limit
+    I1 = _PROBE[_PROBE < lim] if np.sum(_PROBE < lim) >= 3 else \
+        3.0 + (lim - 3.0) * np.array([0.0, 0.1, 0.4, 0.7, 0.9])
+    who = f"UserModel {model.name!r}"
+    for label, f in (("W", model.W_fun), ("dW", model.dW_fun), ("d2W", model.d2W_fun)):
+        try:
+            raw = f(I1.copy())
+            if raw is None:
+                raise TypeError("it returned None")
+            v = np.asarray(raw, dtype=float)
+        except Exception as exc:  # noqa: BLE001 - any failure of user code is reported
+            raise ValueError(f"{who}: {label}(I1) must return numbers for I1 = {I1.tolist()}, "
+                             f"it raised {type(exc).__name__}: {exc}") from None
+        if v.shape not in ((), I1.shape):
+            raise ValueError(f"{who}: {label}(I1) must return an array of the shape of I1 "
+                             f"{I1.shape} (or a scalar), got shape {v.shape}")
+        v = np.broadcast_to(v, I1.shape)
+        if not np.all(np.isfinite(v)):
+            k = int(np.argmax(~np.isfinite(v)))
+            raise ValueError(f"{who}: {label}(I1) must be finite, got {label}({float(I1[k])!r}) = "
+                             f"{float(v[k])!r}")
+        if label == "dW" and not abs(v[0] - 0.5) <= 1e-9:
+            raise ValueError(f"{who}: dW(3) must be 0.5 (energies normalised by the shear "
+                             f"modulus, mu = 2 W'(3) = 1), got {float(v[0])!r}")
 
 
 def as_model(model) -> Model:

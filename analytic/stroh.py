@@ -36,7 +36,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ._output import scalar_or_array
+from ._output import representable, scalar_or_array
 from ._stroh_core import coefficients, exponents_from_coefficients, moduli, stroh_N
 from .models import Model
 
@@ -47,6 +47,7 @@ __all__ = [
     "stroh_exponents",
 ]
 
+@representable
 def electroelastic_moduli(lam1, lam3, D0, model: Model | None = None):
     """Push-forward electroelastic moduli of a biaxially stretched charged plate.
 
@@ -88,6 +89,7 @@ def electroelastic_moduli(lam1, lam3, D0, model: Model | None = None):
     return scalar_or_array(*moduli(lam1, lam3, D0, model))
 
 
+@representable
 def stroh_coefficients(lam1, lam3, D0, model: Model | None = None, direction: str = "parallel"):
     """Scaled moduli combinations ``(a, b, c, d)`` of Eq. (gent-moduli).
 
@@ -128,6 +130,7 @@ def stroh_coefficients(lam1, lam3, D0, model: Model | None = None, direction: st
     return scalar_or_array(*coefficients(lam1, lam3, D0, model, direction))
 
 
+@representable
 def stroh_matrix(lam1, lam3, D0, model: Model | None = None, direction: str = "parallel"):
     """The 6x6 Stroh matrix ``N`` of Eq. (stroh-form), ``eta' = i N eta``.
 
@@ -168,6 +171,7 @@ def stroh_matrix(lam1, lam3, D0, model: Model | None = None, direction: str = "p
     return scalar_or_array(stroh_N(*coefficients(lam1, lam3, D0, model, direction)))
 
 
+@representable
 def stroh_exponents(lam1, lam3, D0, model: Model | None = None, direction: str = "parallel"):
     """Decay exponents ``(1, p2, p3)`` of the eigenvalues ``q = i p`` of ``N``.
 

@@ -25,7 +25,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ._checks import as_array, check_positive
-from ._output import scalar_or_array
+from ._output import representable, scalar_or_array
 
 __all__ = [
     "EPS0",
@@ -106,6 +106,7 @@ KEPLINGER_MASS = 0.150
 KEPLINGER_ALPHAS = (0.05, 0.3, 0.7, 1.0, 1.5)
 
 
+@representable
 def D0_from_SI(D_L, mu: float, eps: float):
     """``D0 = D_L/sqrt(mu eps)`` from ``D_L`` in C/m^2 (Sec. 2.1).
 
@@ -118,6 +119,7 @@ def D0_from_SI(D_L, mu: float, eps: float):
     return scalar_or_array(as_array("D_L", D_L) / np.sqrt(_pos("mu", mu) * _pos("eps", eps)))
 
 
+@representable
 def D0_to_SI(D0, mu: float, eps: float):
     """``D_L = D0 sqrt(mu eps)`` in C/m^2 (inverse of :func:`D0_from_SI`).
 
@@ -130,6 +132,7 @@ def D0_to_SI(D0, mu: float, eps: float):
     return scalar_or_array(as_array("D0", D0) * np.sqrt(_pos("mu", mu) * _pos("eps", eps)))
 
 
+@representable
 def E0_from_SI(E_L, mu: float, eps: float):
     """``E0 = E_L sqrt(eps/mu)`` from ``E_L`` in V/m (Sec. 2.1).
 
@@ -142,6 +145,7 @@ def E0_from_SI(E_L, mu: float, eps: float):
     return scalar_or_array(as_array("E_L", E_L) * np.sqrt(_pos("eps", eps) / _pos("mu", mu)))
 
 
+@representable
 def E0_to_SI(E0, mu: float, eps: float):
     """``E_L = E0 sqrt(mu/eps)`` in V/m (inverse of :func:`E0_from_SI`).
 
@@ -154,6 +158,7 @@ def E0_to_SI(E0, mu: float, eps: float):
     return scalar_or_array(as_array("E0", E0) * np.sqrt(_pos("mu", mu) / _pos("eps", eps)))
 
 
+@representable
 def s_from_SI(t, mu: float):
     """``s = t/mu`` from a nominal traction ``t`` in Pa (Sec. 2.1).
 
@@ -166,6 +171,7 @@ def s_from_SI(t, mu: float):
     return scalar_or_array(as_array("t", t) / _pos("mu", mu))
 
 
+@representable
 def s_to_SI(s, mu: float):
     """Nominal traction ``t = s mu`` in Pa (inverse of :func:`s_from_SI`).
 
@@ -178,6 +184,7 @@ def s_to_SI(s, mu: float):
     return scalar_or_array(as_array("s", s) * _pos("mu", mu))
 
 
+@representable
 def charge_to_D0(Q, face_area: float, mu: float, eps: float):
     """``D0`` of a total charge ``Q`` (C) spread over a face of reference area ``face_area`` (m^2).
 
@@ -192,6 +199,7 @@ def charge_to_D0(Q, face_area: float, mu: float, eps: float):
     return scalar_or_array(D0_from_SI(as_array("Q", Q) / _pos("face_area", face_area), mu, eps))
 
 
+@representable
 def D0_to_charge(D0, face_area: float, mu: float, eps: float):
     """Total charge ``Q = D0 sqrt(mu eps) L1 L3`` in C (inverse of :func:`charge_to_D0`).
 
@@ -204,6 +212,7 @@ def D0_to_charge(D0, face_area: float, mu: float, eps: float):
     return scalar_or_array(D0_to_SI(D0, mu, eps) * _pos("face_area", face_area))
 
 
+@representable
 def voltage_to_E0(V, thickness: float, mu: float, eps: float):
     """``E0`` of a voltage ``V`` (V) across a plate of reference thickness ``H`` (m): ``|E_L| = V/H``.
 
@@ -216,6 +225,7 @@ def voltage_to_E0(V, thickness: float, mu: float, eps: float):
     return scalar_or_array(E0_from_SI(as_array("V", V) / _pos("thickness", thickness), mu, eps))
 
 
+@representable
 def E0_to_voltage(E0, thickness: float, mu: float, eps: float):
     """Voltage ``V = E0 sqrt(mu/eps) H`` in V (inverse of :func:`voltage_to_E0`).
 
@@ -228,6 +238,7 @@ def E0_to_voltage(E0, thickness: float, mu: float, eps: float):
     return scalar_or_array(E0_to_SI(E0, mu, eps) * _pos("thickness", thickness))
 
 
+@representable
 def dead_load_s(mass, g: float, area: float, mu: float):
     """Dimensionless dead load ``s = m g/(mu A)`` of a hanging mass (nominal stress over ``mu``).
 
@@ -254,6 +265,7 @@ def dead_load_s(mass, g: float, area: float, mu: float):
     return scalar_or_array(mass * _pos("g", g) / (_pos("area", area) * _pos("mu", mu)))
 
 
+@representable
 def keplinger_s(alpha, *, g: float, plate: Plate = KEPLINGER_PLATE, mass: float = KEPLINGER_MASS):
     """Dead load ``s = alpha m g/(mu A)`` of the Keplinger et al. plate (Sec. 6).
 

@@ -47,8 +47,8 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.linalg import schur
 
-from ._checks import as_array, broadcast, check_choice, check_positive
-from ._output import scalar_or_array
+from ._checks import as_array, broadcast, check_choice, check_finite, check_positive
+from ._output import representable, scalar_or_array
 from ._roots import brent, first_root_on_scan
 from ._stroh_core import coefficients, coefficients_fast, exponents_from_coefficients, stroh_N
 from .models import Model, as_model
@@ -103,6 +103,7 @@ def _sqrt_or_nan(x):
 # ---------------------------------------------------------------------------
 # thin-plate limit
 # ---------------------------------------------------------------------------
+@representable
 def thin_plate_factors(lam1, lam3, D0, model: Model | None = None, direction: str = "parallel"):
     """The three factors of ``det N3`` (Eq. detN3).
 
@@ -135,6 +136,7 @@ def thin_plate_factors(lam1, lam3, D0, model: Model | None = None, direction: st
     return scalar_or_array(a - c, b + c + 2.0 * d**2, d**2 + c)
 
 
+@representable
 def thin_limit_D0(lam, model: Model | None = None):
     """Thin-plate (long-wave) wrinkling limit of an equi-biaxially stretched plate.
 
@@ -169,6 +171,7 @@ def thin_limit_D0(lam, model: Model | None = None):
     return thin_limit_D0_uniaxial(lam, lam, model, "parallel")
 
 
+@representable
 def thin_limit_D0_uniaxial(lam1, lam3, model: Model | None = None, direction: str = "parallel"):
     """Thin-plate limit ``a = c`` for general in-plane stretches ``(lam1, lam3)``.
 
@@ -239,6 +242,7 @@ def _positive_root(B, C):
     return x
 
 
+@representable
 def thick_limit_D0_uniaxial(
     lam1, lam3, model: Model | None = None, direction: str = "parallel", control: str = "charge"
 ):
@@ -297,6 +301,7 @@ def thick_limit_D0_uniaxial(
     return scalar_or_array(_sqrt_or_nan(x))
 
 
+@representable
 def thick_limit_D0(lam, model: Model | None = None, control: str = "charge"):
     """Thick-plate (surface) wrinkling limit of an equi-biaxially stretched plate.
 
@@ -332,6 +337,7 @@ def thick_limit_D0(lam, model: Model | None = None, control: str = "charge"):
     return thick_limit_D0_uniaxial(lam, lam, model, "parallel", control)
 
 
+@representable
 def surface_instability_stretch(model: Model | None = None, loading: str = "equibiaxial") -> float:
     """Critical compressive stretch of the charge-free half-space (``D0 = 0``).
 
@@ -455,6 +461,7 @@ def _impedance_from_Z(Z):
     return 1j * gB[:, None] * Z / gA[None, :]
 
 
+@representable
 def surface_impedance(
     lam1, lam3, D0, model: Model | None = None, direction: str = "parallel", method: str = "projector"
 ):
@@ -510,6 +517,7 @@ def surface_impedance(
     return scalar_or_array(out.reshape(N.shape[:-2] + (3, 3)))
 
 
+@representable
 def dispersion_function(
     lam1,
     lam3,
@@ -587,6 +595,7 @@ def _search_bound(lam1, lam3, model, direction):
     return 2.0 * (lam_in / lam2 + 2.0) * np.sqrt(2.0 * W1)
 
 
+@representable
 def thick_limit_D0_numeric(
     lam1, lam3, model: Model | None = None, direction: str = "parallel", control: str = "charge"
 ):
@@ -624,6 +633,7 @@ def thick_limit_D0_numeric(
 # ---------------------------------------------------------------------------
 # finite thickness
 # ---------------------------------------------------------------------------
+@representable
 def critical_D0_biaxial(
     lam1,
     lam3,
@@ -722,6 +732,7 @@ def _g_from(Z, M, kh, mode, control):
     return np.linalg.det(TV)
 
 
+@representable
 def critical_D0(
     lam,
     kh,
@@ -781,6 +792,7 @@ def critical_D0(
     return critical_D0_biaxial(lam, lam, kh, model, mode, control, "parallel", D0_max)
 
 
+@representable
 def critical_point_on_path(
     lam,
     D0,
@@ -820,7 +832,7 @@ def critical_point_on_path(
     True
     """
     lam = check_positive("lam", lam)
-    D0 = as_array("D0", D0)
+    D0 = check_finite("D0", D0)
     if lam.ndim != 1 or D0.shape != lam.shape:
         raise ValueError(f"lam and D0 must be 1-D arrays of equal length, got {lam.shape} and {D0.shape}")
     kh = float(as_array("kh", kh))
@@ -863,6 +875,7 @@ class WrinklingMap:
     upper: np.ndarray
 
 
+@representable
 def wrinkling_map(lam, model: Model | None = None, control: str = "charge") -> WrinklingMap:
     """Wrinkling region in the ``(lam, D0)`` plane between the thin and thick limits.
 

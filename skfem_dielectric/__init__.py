@@ -10,7 +10,8 @@ from .assembly import DofReduction, ScatterMap
 from .cross_section import CrossSection
 from .drivers import (cross_section_ramp, equibiaxial_plate, equibiaxial_problem,
                       keplinger_plate, keplinger_problem, maxwell_equibiaxial,
-                      maxwell_keplinger, membrane_keplinger, membrane_ramp, run_ramp)
+                      maxwell_keplinger, membrane_keplinger, membrane_ramp, plate_admissible,
+                      run_ramp)
 from .export import step_mesh, write_vtu_series, write_xdmf
 from .forms.maxwell_traction import maxwell_stress, maxwell_traction, maxwell_traction_field
 from .forms.membrane import membrane_kernel
@@ -23,14 +24,15 @@ from .materials import (GentDielectric, IdealDielectric, NeoHookeanDielectric, P
 from .membrane import MembranePlate
 from .mesh import PlateMesh, plate_mesh
 from .mesh2d import point_gradients
-from .newton import NewtonResult, newton
+from .newton import NewtonResult, newton, segment_det_limit
 from .plate import PlateProblem
 from .problem import Layout, Problem
 from .ramp import RampResult, StepResult, ramp
 
 __all__ = [
     # the contract and the machinery
-    "Problem", "Layout", "newton", "NewtonResult", "ramp", "RampResult", "StepResult",
+    "Problem", "Layout", "newton", "NewtonResult", "segment_det_limit", "ramp", "RampResult",
+    "StepResult",
     "LinearSolver", "SuperLUSolver", "PardisoSolver", "PardisoLUSolver", "get_linear_solver",
     "nonsymmetric_solver", "pardiso_available", "DofReduction", "ScatterMap",
     # materials and meshes
@@ -42,7 +44,7 @@ __all__ = [
     "cross_section_kernel", "maxwell_stress", "maxwell_traction", "maxwell_traction_field",
     # loads and drivers
     "keplinger_s", "charge_targets", "preload_then_charge", "remaining_targets",
-    "equibiaxial_problem", "keplinger_problem", "run_ramp", "equibiaxial_plate",
+    "equibiaxial_problem", "keplinger_problem", "plate_admissible", "run_ramp", "equibiaxial_plate",
     "keplinger_plate", "maxwell_equibiaxial", "maxwell_keplinger", "membrane_ramp",
     "membrane_keplinger", "cross_section_ramp",
     # export

@@ -34,7 +34,7 @@ import skfem as fe
 from skfem.io.meshio import to_meshio
 
 from .assembly import DofReduction, ScatterMap
-from .checks import check_choice, check_count, check_positive
+from .checks import check_choice, check_count, check_material, check_positive
 from .forms.maxwell_traction import maxwell_nominal_stress, maxwell_stress
 from .forms.plane_strain import PlaneStrainForm, cross_section_kernel
 from .kinematics import det3, plane_strain_F, second_piola
@@ -129,7 +129,7 @@ class CrossSection(Problem):
         self.load_names = ("s1", "s3", "D0" if control == "charge" else "E0")
         self._local = coupling == "maxwell" and field == "local"
         self._elastic_volume = coupling == "maxwell" and field == "electrostatic"
-        self.material = material
+        self.material = check_material("material", material)
         self.L1, self.H = check_positive("L1", L1), check_positive("H", H)
         self.n1, self.n2 = check_count("n1", n1), check_count("n2", n2)
         self.lam3_fixed = None if lam3 is None else check_positive("lam3", lam3)

@@ -18,11 +18,12 @@ are bit-for-bit those of the uninterrupted run (deterministic linear solver).
 from __future__ import annotations
 
 import math
+from functools import partial
 from typing import Any, Callable, Sequence
 
 import numpy as np
 
-from .checks import check_finite
+from .checks import check_count, check_finite, check_positive
 from .cross_section import CrossSection
 from .linear import LinearSolver
 from .loads import charge_targets, keplinger_s, preload_then_charge, remaining_targets
@@ -33,13 +34,44 @@ from .plate import PlateProblem
 from .problem import Problem
 from .ramp import RampResult, StepResult, ramp
 
-__all__ = ["equibiaxial_problem", "keplinger_problem", "run_ramp", "equibiaxial_plate",
+__all__ = ["plate_admissible", "equibiaxial_problem", "keplinger_problem", "run_ramp",
+           "equibiaxial_plate",
            "keplinger_plate", "maxwell_equibiaxial", "maxwell_keplinger", "membrane_ramp",
            "membrane_keplinger", "cross_section_ramp"]
 
 
 def _phase(load) -> str:
     return "preload" if np.asarray(load)[1] == 0 else "charge"
+
+
+def plate_admissible(problem: PlateProblem, x: np.ndarray, load) -> str:
+    """Why the plate state ``x`` is inverted, or ``""`` if it is not.
+
+    Inverted: ``det F <= 0`` at a quadrature point, or ``F11 <= 0`` or ``F33 <= 0`` at the
+    plate centre (the plate turned inside out through a symmetry plane: ``F11 = F33 =
+    -lam``, ``F22 = lam^-2`` has ``det F = 1`` and ``|F e1| = lam``, an equilibrium of the
+    discrete equations that no deformation of the plate reaches).
+    """
+    for _, F, _, _ in problem.quadrature_fields(x, load):
+        J = np.linalg.det(np.moveaxis(F.reshape(3, 3, -1), 2, 0))
+        if not np.all(J > 0):
+            return f"det F = {float(J.min()):.3g} <= 0 at a quadrature point"
+    F = problem.evaluate(x, load, np.zeros((3, 1)))["F"][:, :, 0]
+    if not (F[0, 0] > 0 and F[2, 2] > 0):
+        return (f"inverted deformation: F11 = {F[0, 0]:.6g}, F33 = {F[2, 2]:.6g} at the plate "
+                f"centre (must be > 0)")
+    return ""
+
+
+def _triple(name: str, value, check) -> tuple:
+    """``value`` as a 3-tuple checked entry by entry (``size``: lengths, ``elements``: counts)."""
+    try:
+        items = tuple(value)
+    except TypeError:
+        items = ()
+    if len(items) != 3:
+        raise ValueError(f"{name} must be a triple (x1, x2, x3), got {value!r}")
+    return tuple(check(f"{name}[{i}]", v) for i, v in enumerate(items))
 
 
 def run_ramp(problem: Problem, targets: Sequence[Any], *,
@@ -64,7 +96,10 @@ def run_ramp(problem: Problem, targets: Sequence[Any], *,
     extra
         Quantities added to every step (e.g. ``alpha``); each step also gets ``phase``.
     **ramp_options
-        Newton and cut-back settings of :func:`~skfem_dielectric.ramp.ramp`.
+        Newton and cut-back settings of :func:`~skfem_dielectric.ramp.ramp`.  For a
+        :class:`~skfem_dielectric.plate.PlateProblem` they default to
+        ``step_limit=problem.max_step`` (``det F > 0`` along every Newton step) and
+        ``admissible``: :func:`plate_admissible` (no converged inverted state).
 
     Returns
     -------
@@ -77,6 +112,9 @@ def run_ramp(problem: Problem, targets: Sequence[Any], *,
         if x0 is None:
             raise ValueError("start given without x0")
     extra = dict(extra or {})
+    if isinstance(problem, PlateProblem):
+        ramp_options.setdefault("step_limit", problem.max_step)
+        ramp_options.setdefault("admissible", partial(plate_admissible, problem))
 
     def hook(step: StepResult):
         step.quantities.update(extra)
@@ -108,7 +146,8 @@ def equibiaxial_problem(*, model: Any = "neo-Hookean", Jm: float = 97.2,
         :class:`~skfem_dielectric.plate.PlateProblem` options (``control``, ``coupling``,
         ``field``, ``formulation``, ``kappa``, ``phi_element``, ``threads``, ...).
     """
-    pm = plate_mesh(*size, *elements, symmetry=symmetry)
+    pm = plate_mesh(*_triple("size", size, check_positive),
+                    *_triple("elements", elements, check_count), symmetry=symmetry)
     return PlateProblem(pm, make_material(model, Jm), loading="equibiaxial", **options)
 
 
@@ -134,7 +173,9 @@ def keplinger_problem(*, model: Any = "neo-Hookean", Jm: float = 97.2,
     **options
         :class:`~skfem_dielectric.plate.PlateProblem` options.
     """
-    pm = plate_mesh(*size, *elements, symmetry=symmetry, grading=grading)
+    pm = plate_mesh(*_triple("size", size, check_positive),
+                    *_triple("elements", elements, check_count), symmetry=symmetry,
+                    grading=grading)
     return PlateProblem(pm, make_material(model, Jm), loading="uniaxial", **options)
 
 

@@ -16,6 +16,7 @@ from typing import Any
 import meshio
 import numpy as np
 
+from .checks import check_file_prefix
 from .problem import Problem
 
 __all__ = ["step_mesh", "write_vtu_series", "write_xdmf"]
@@ -50,7 +51,7 @@ def write_vtu_series(result, directory: str | Path, prefix: str = "step",
     directory
         Output directory (created if missing).
     prefix
-        File name prefix.
+        File name prefix (no path separators: the files stay in ``directory``).
     problem
         Problem override.
 
@@ -60,6 +61,7 @@ def write_vtu_series(result, directory: str | Path, prefix: str = "step",
         The written VTU files followed by the PVD file.  The PVD "timestep" is the step
         index; each step's load is in the VTU field data ``load``.
     """
+    check_file_prefix("prefix", prefix)
     problem = problem if problem is not None else result.problem
     if problem is None:
         raise ValueError("problem is None: pass the PlateProblem that produced the result")

@@ -327,7 +327,8 @@ def get_linear_solver(name: str | LinearSolver = "auto", *, symmetric: bool = Tr
             raise ValueError("linear solver 'pardiso' needs pypardiso (pip install "
                              "'skfem-dielectric[fast]')")
         return PardisoSolver(**options)
-    raise ValueError(f"linear solver must be 'auto', 'superlu' or 'pardiso', got {name!r}")
+    raise ValueError(f"linear_solver must be a linear solver name ('auto', 'superlu', "
+                     f"'pardiso') or a solver instance, got {name!r}")
 
 
 def nonsymmetric_solver(name: str | LinearSolver = "superlu") -> LinearSolver:

@@ -11,7 +11,7 @@ from typing import Any, Sequence
 
 import numpy as np
 
-from .checks import check_finite, check_positive
+from .checks import check_count, check_finite, check_positive
 
 __all__ = ["keplinger_s", "charge_targets", "preload_then_charge", "remaining_targets"]
 
@@ -54,10 +54,20 @@ def charge_targets(D0: Any, name: str = "D0") -> np.ndarray:
     ValueError
         Naming ``name`` if ``D0`` is empty, not 1-D or not finite.
     """
-    vals = np.atleast_1d(np.asarray(D0, dtype=float))
+    vals = _floats(name, D0)
     if vals.ndim != 1 or vals.size == 0 or not np.all(np.isfinite(vals)):
         raise ValueError(f"{name} must be a non-empty 1-D array of finite values, got {D0!r}")
     return vals
+
+
+def _floats(name: str, values: Any) -> np.ndarray:
+    """``values`` as an at least 1-D float array (strings, booleans, None rejected)."""
+    try:
+        if isinstance(values, (str, bytes)) or np.asarray(values).dtype.kind in "bOUSV":
+            raise TypeError
+        return np.atleast_1d(np.asarray(values, dtype=float))
+    except (TypeError, ValueError):
+        raise ValueError(f"{name} must be a sequence of finite numbers, got {values!r}") from None
 
 
 def preload_then_charge(s: float, D0: Sequence[float], preload_steps: int) -> list[np.ndarray]:
@@ -78,13 +88,11 @@ def preload_then_charge(s: float, D0: Sequence[float], preload_steps: int) -> li
     list of ndarray
         The loads ``(s, D0)`` in ramp order.
     """
-    if int(preload_steps) != preload_steps or preload_steps < 1:
-        raise ValueError(f"preload_steps must be an integer >= 1, got {preload_steps!r}")
+    n = check_count("preload_steps", preload_steps)
     s = check_finite("s", s)
-    vals = np.atleast_1d(np.asarray(D0, dtype=float))
+    vals = _floats("D0", D0)
     if vals.ndim != 1 or not np.all(np.isfinite(vals)):
         raise ValueError(f"D0 must be a finite sequence, got {D0!r}")
-    n = int(preload_steps)
     out = [np.array([s * k / n, 0.0]) for k in range(1, n + 1)]
     out += [np.array([s, v]) for v in vals if v != 0.0]
     return out

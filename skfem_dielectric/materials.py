@@ -39,7 +39,7 @@ from typing import Any, Callable
 
 import numpy as np
 
-from .checks import check_positive
+from .checks import check_energy, check_positive
 from .kinematics import det_inv3
 
 __all__ = ["NeoHookeanDielectric", "GentDielectric", "IdealDielectric", "PointResponse",
@@ -122,6 +122,13 @@ class IdealDielectric:
         Shear modulus in the reference state (``mu = 2 W'(3)``), used only for scaling.
     eps
         Permittivity (> 0).
+
+    Raises
+    ------
+    ValueError
+        A callable that fails, returns non-finite values or an array of another shape than
+        ``I1`` on the probe ``I1 = 3 ... 4`` (:data:`skfem_dielectric.checks.ENERGY_PROBE`),
+        or ``dW(3) != mu/2``.
     """
 
     W: Callable[[np.ndarray], np.ndarray]
@@ -136,6 +143,8 @@ class IdealDielectric:
         for name in ("W", "dW", "d2W"):
             if not callable(getattr(self, name)):
                 raise ValueError(f"{name} must be callable, got {getattr(self, name)!r}")
+        check_energy("IdealDielectric", {"W": self.W, "dW": self.dW, "d2W": self.d2W},
+                     0.5 * float(self.mu))
 
     def energy_derivatives(self, I1: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """``(W, dW/dI1, d2W/dI1^2)`` at ``I1``."""

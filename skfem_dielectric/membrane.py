@@ -13,7 +13,7 @@ import skfem as fe
 from skfem.io.meshio import to_meshio
 
 from .assembly import DofReduction, ScatterMap
-from .checks import check_choice, check_count, check_positive
+from .checks import check_choice, check_count, check_material, check_positive
 from .forms.membrane import edge_maxwell_traction, membrane_kernel
 from .kinematics import det2, inv_t2
 from .mesh2d import BatchedVectorForm, point_gradients, quarter_quad_mesh
@@ -96,7 +96,7 @@ class MembranePlate(Problem):
         self.coupling = coupling
         self.symmetric = coupling == "full"
         self.load_names = ("s", "D0") if control == "charge" else ("s", "E0")
-        self.material = material
+        self.material = check_material("material", material)
         self.L1, self.L3, self.H = (check_positive("L1", L1), check_positive("L3", L3),
                                     check_positive("H", H))
         self.n1, self.n3 = check_count("n1", n1), check_count("n3", n3)

@@ -116,9 +116,14 @@ def plate_mesh(L1: float, H: float, L3: float, n1: int, n2: int, n3: int,
                              f"got {symmetry!r}")
         axes = SYMMETRIES[symmetry]
     else:
-        axes = tuple(sorted(set(int(a) for a in symmetry)))
-        if any(a not in (1, 2, 3) for a in axes):
-            raise ValueError(f"symmetry axes must be among (1, 2, 3), got {symmetry!r}")
+        try:
+            axes = tuple(sorted(set(symmetry)))
+        except TypeError:
+            axes = (None,)
+        if any(isinstance(a, bool) or a not in (1, 2, 3) for a in axes):
+            raise ValueError(f"symmetry must be a name or a tuple of axes among (1, 2, 3), "
+                             f"got {symmetry!r}")
+        axes = tuple(int(a) for a in axes)
 
     def grid(L, n, ax, grade=1.0):
         lo = 0.0 if ax in axes else -L / 2

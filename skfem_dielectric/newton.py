@@ -10,6 +10,14 @@ divergence: it returns a :class:`NewtonResult` with ``converged=False`` and a ``
 Convergence: ``||r|| <= atol + rtol * scale`` where ``scale`` is given by the caller
 (typically the norm of the external load vector), or the Newton increment is at round-off
 level (``||dx|| <= xtol (1 + ||x||)``) while ``||r||`` is below ``1e3 (atol + rtol scale)``.
+
+Admissible states: a model whose unknowns must stay in a region (e.g. ``det F > 0``, no
+inverted element) passes ``step_limit(x, dx) -> alpha_max``, the largest step fraction
+along ``dx`` that stays inside; a step is then started at ``alpha = alpha_max / 2`` when
+``alpha_max < 1`` (and backtracked from there), never beyond the boundary.  ``admissible(x)
+-> reason`` (empty when admissible) is asked of every converged state: a state it rejects
+ends the solve with ``converged=False`` and that reason.  :func:`segment_det_limit` is the
+``det F > 0`` step limit along a segment of deformation gradients.
 """
 
 from __future__ import annotations
@@ -21,9 +29,11 @@ from typing import Callable
 import numpy as np
 import scipy.sparse as sp
 
+from .checks import (check_callable, check_count, check_nonnegative, check_nonnegative_int,
+                     check_tolerances)
 from .linear import LinearSolver, get_linear_solver
 
-__all__ = ["NewtonResult", "newton"]
+__all__ = ["NewtonResult", "newton", "segment_det_limit"]
 
 
 @dataclass
@@ -66,12 +76,84 @@ def _norm(r: np.ndarray) -> float:
     return float(np.linalg.norm(r))
 
 
+def _cof(A: np.ndarray) -> np.ndarray:
+    """Cofactor matrices of ``A[..., 3, 3]`` (rows are cross products of rows of ``A``)."""
+    return np.stack([np.cross(A[..., 1, :], A[..., 2, :]), np.cross(A[..., 2, :], A[..., 0, :]),
+                     np.cross(A[..., 0, :], A[..., 1, :])], axis=-2)
+
+
+def segment_det_limit(F0: np.ndarray, dF: np.ndarray, tol: float = 1e-8) -> float:
+    """Largest ``alpha`` in ``(0, 1]`` with ``det(F0 + a dF) > tol det F0`` for all ``a`` in
+    ``[0, alpha)`` at every point.
+
+    Parameters
+    ----------
+    F0, dF
+        Deformation gradients and their increments, shape ``(n, 3, 3)``; ``det F0 > 0``.
+    tol
+        Relative floor of the determinant.  A floor above zero also catches a segment that
+        only *touches* ``det F = 0`` (a double root, e.g. two stretches passing through
+        zero together, which turns the body inside out while ``det F`` keeps its sign).
+
+    Returns
+    -------
+    float
+        1.0 if the whole segment is admissible; 0.0 if ``det F0 <= 0`` somewhere.
+
+    Notes
+    -----
+    ``det(F0 + a dF) = c0 + c1 a + c2 a^2 + c3 a^3`` with ``c0 = det F0``,
+    ``c1 = cof F0 : dF``, ``c2 = cof dF : F0``, ``c3 = det dF``; between the critical
+    points of the cubic it is monotone, so its first crossing of the floor is bracketed
+    and found by bisection.
+    """
+    F0 = np.asarray(F0, dtype=float).reshape(-1, 3, 3)
+    dF = np.asarray(dF, dtype=float).reshape(-1, 3, 3)
+    c0 = np.linalg.det(F0)
+    if not np.all(c0 > 0):
+        return 0.0
+    c1 = np.einsum("nij,nij->n", _cof(F0), dF)
+    c2 = np.einsum("nij,nij->n", _cof(dF), F0)
+    c3 = np.linalg.det(dF)
+    g0 = (1.0 - tol) * c0
+
+    def g(a, i=slice(None)):
+        return ((c3[i] * a + c2[i]) * a + c1[i]) * a + g0[i]
+
+    # critical points: 3 c3 a^2 + 2 c2 a + c1 = 0 (or linear when c3 = 0)
+    qa, qb, qc = 3.0 * c3, 2.0 * c2, c1
+    disc = qb * qb - 4.0 * qa * qc
+    sq = np.sqrt(np.maximum(disc, 0.0))
+    with np.errstate(divide="ignore", invalid="ignore"):
+        lin = np.where(qb != 0, -qc / qb, np.nan)
+        r1 = np.where(qa != 0, (-qb - sq) / (2.0 * qa), lin)
+        r2 = np.where(qa != 0, (-qb + sq) / (2.0 * qa), np.nan)
+    r1 = np.where(disc >= 0, r1, np.nan)
+    r2 = np.where(disc >= 0, r2, np.nan)
+    cps = np.stack([np.zeros_like(c0), r1, r2, np.ones_like(c0)], axis=1)
+    cps = np.where((cps > 0) & (cps < 1) | (cps == 0) | (cps == 1), cps, 1.0)
+    cps = np.sort(cps, axis=1)
+    gv = np.stack([g(cps[:, k]) for k in range(4)], axis=1)
+    bad = gv <= 0
+    hit = np.nonzero(bad.any(axis=1))[0]
+    if hit.size == 0:
+        return 1.0
+    k = np.argmax(bad[hit], axis=1)
+    lo, hi = cps[hit, k - 1], cps[hit, k]       # g(lo) > 0 >= g(hi), g monotone between
+    for _ in range(60):
+        mid = 0.5 * (lo + hi)
+        pos = g(mid, hit) > 0
+        lo, hi = np.where(pos, mid, lo), np.where(pos, hi, mid)
+    return float(max(lo.min(), 0.0))
+
+
 def newton(assemble: Callable[[np.ndarray], tuple[sp.spmatrix, np.ndarray]],
            x0: np.ndarray, *, residual: Callable[[np.ndarray], np.ndarray] | None = None,
            linear_solver: str | LinearSolver = "superlu", atol: float = 1e-10,
            rtol: float = 1e-10, xtol: float = 1e-13, scale: float | None = None,
-           max_iter: int = 25, line_search: bool = True,
-           max_backtracks: int = 8) -> NewtonResult:
+           max_iter: int = 25, line_search: bool = True, max_backtracks: int = 8,
+           step_limit: Callable[[np.ndarray, np.ndarray], float] | None = None,
+           admissible: Callable[[np.ndarray], str] | None = None) -> NewtonResult:
     """Solve ``r(x) = 0`` by Newton's method with a backtracking line search.
 
     Parameters
@@ -98,15 +180,46 @@ def newton(assemble: Callable[[np.ndarray], tuple[sp.spmatrix, np.ndarray]],
         Backtrack (halve) a step that does not reduce ``||r||``; otherwise take full steps.
     max_backtracks
         Maximum halvings per iteration; if none reduces ``||r||`` the solve fails.
+    step_limit
+        Optional ``step_limit(x, dx) -> alpha_max`` in ``[0, 1]``: the largest admissible
+        fraction of the increment ``dx`` (e.g. ``det F > 0`` along the step,
+        :meth:`~skfem_dielectric.plate.PlateProblem.max_step`).  With ``alpha_max < 1`` the
+        step starts at ``alpha_max / 2`` (and is backtracked from there); ``alpha_max = 0``
+        ends the solve (``converged=False``).
+    admissible
+        Optional ``admissible(x) -> reason``: empty for an admissible state; a converged
+        state it rejects gives ``converged=False`` with ``reason`` (e.g. an inverted
+        deformation).
 
     Returns
     -------
     NewtonResult
         Never raises on divergence, singular tangents or non-finite values: these end the
         iteration with ``converged=False`` and a ``reason``.
+
+    Raises
+    ------
+    ValueError
+        Invalid arguments, each named: a callable that is not, ``x0`` not a finite 1-D
+        vector, negative or non-finite tolerances (or ``atol = rtol = 0``, which can never
+        be met), ``max_iter < 1``, ``max_backtracks < 0``.
     """
+    check_callable("assemble", assemble, optional=False)
+    for name, f in (("residual", residual), ("step_limit", step_limit),
+                    ("admissible", admissible)):
+        check_callable(name, f)
+    atol, rtol = check_tolerances(atol, rtol)
+    xtol = check_nonnegative("xtol", xtol)
+    scale = None if scale is None else check_nonnegative("scale", scale)
+    max_iter = check_count("max_iter", max_iter)
+    max_backtracks = check_nonnegative_int("max_backtracks", max_backtracks)
     solver = get_linear_solver(linear_solver)
-    x = np.array(x0, dtype=float, copy=True)
+    try:
+        x = np.array(x0, dtype=float, copy=True)
+    except (TypeError, ValueError):
+        raise ValueError(f"x0 must be a real vector, got {x0!r}") from None
+    if x.ndim != 1 or not np.all(np.isfinite(x)):
+        raise ValueError(f"x0 must be a finite 1-D vector, got shape {x.shape}")
     res = NewtonResult(x=x, converged=False, iterations=0, residual_norms=[])
 
     def _assemble(xx):
@@ -131,7 +244,9 @@ def newton(assemble: Callable[[np.ndarray], tuple[sp.spmatrix, np.ndarray]],
         scale = rn
     tol = atol + rtol * scale
     if rn <= tol:
-        res.converged = True
+        why = admissible(x) if admissible is not None else ""
+        res.converged = not why
+        res.reason = f"inadmissible state: {why}" if why else ""
         return res
     for it in range(1, max_iter + 1):
         t = time.perf_counter()
@@ -148,7 +263,15 @@ def newton(assemble: Callable[[np.ndarray], tuple[sp.spmatrix, np.ndarray]],
             res.reason = "non-finite Newton increment (singular tangent?)"
             return res
         alpha = 1.0
-        K1, r1, err = _assemble(x + dx)
+        if step_limit is not None:
+            amax = float(step_limit(x, dx))
+            if not amax > 0:
+                res.reason = (f"inadmissible Newton step at iteration {it}: no positive step "
+                              f"fraction keeps the state admissible")
+                return res
+            if amax < 1.0:
+                alpha = 0.5 * amax
+        K1, r1, err = _assemble(x + alpha * dx)
         rn1 = _norm(r1) if not err else np.inf
         dxn = _norm(dx)
 
@@ -164,7 +287,7 @@ def newton(assemble: Callable[[np.ndarray], tuple[sp.spmatrix, np.ndarray]],
             dxbar = solver.resolve(r_trial)
             return dxbar is not None and _norm(dxbar) <= (1.0 - 0.5 * a) * dxn
 
-        if line_search and not acceptable(r1, rn1, 1.0):
+        if line_search and not acceptable(r1, rn1, alpha):
             accepted = False
             for _ in range(max_backtracks):
                 alpha *= 0.5
@@ -200,6 +323,10 @@ def newton(assemble: Callable[[np.ndarray], tuple[sp.spmatrix, np.ndarray]],
         dn = alpha * _norm(dx)
         res.step_norms.append(dn)
         if rn <= tol or (dn <= xtol * (1.0 + _norm(x)) and rn <= 1e3 * tol):
+            why = admissible(x) if admissible is not None else ""
+            if why:
+                res.reason = f"converged to an inadmissible state: {why}"
+                return res
             res.converged = True
             return res
     res.reason = f"no convergence in {max_iter} iterations (||r|| = {rn:.3e}, tol {tol:.1e})"

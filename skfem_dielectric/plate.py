@@ -53,10 +53,11 @@ import numpy as np
 from skfem import ElementHex1, ElementHex2, FacetBasis, LinearForm, asm
 
 from .assembly import DofReduction
-from .checks import check_choice
+from .checks import check_choice, check_count, check_material, check_positive
 from .forms.maxwell_traction import MaxwellBoundary
 from .forms.mixed_upphi import MixedUPPhiForm
 from .mesh import PlateMesh
+from .newton import segment_det_limit
 from .plate_post import plate_quantities, plate_step_mesh, plate_stresses, evaluate_fields
 from .problem import Layout, Problem
 
@@ -132,9 +133,7 @@ class PlateProblem(Problem):
             raise ValueError(f"coupling 'maxwell' needs control='charge', got {control!r}")
         if coupling == "maxwell" and formulation != "mixed":
             raise ValueError(f"coupling 'maxwell' needs formulation='mixed', got {formulation!r}")
-        kappa = float(kappa)
-        if not kappa > 0 or math.isnan(kappa):
-            raise ValueError(f"kappa must be > 0, got {kappa}")
+        kappa = math.inf if kappa == math.inf else check_positive("kappa", kappa)
         if formulation == "penalty" and not math.isfinite(kappa):
             raise ValueError("kappa must be finite for the penalty formulation, got inf")
         check_choice("phi_element", phi_element, ("Q1", "Q2"))
@@ -145,9 +144,9 @@ class PlateProblem(Problem):
             raise ValueError("grad_div needs formulation='mixed' (the penalty form has its "
                              f"own kappa), got {formulation!r}")
         self.grad_div = grad_div
-        for attr in ("mu", "eps", "energy_derivatives"):
-            if not hasattr(material, attr):
-                raise ValueError(f"material must define {attr!r}, got {type(material).__name__}")
+        check_material("material", material)
+        intorder, chunk = check_count("intorder", intorder), check_count("chunk", chunk)
+        threads = None if threads is None else check_count("threads", threads)
         self.plate, self.material = plate, material
         self.loading, self.control = loading, control
         self.coupling, self.field = coupling, field
@@ -342,6 +341,18 @@ class PlateProblem(Problem):
         if self.control == "voltage" or self.boundary is not None:
             return super().load_vector(x, load, h)
         return np.stack([-self.red.reduce(self.f_s), self.red.reduce(self.q_D0)], axis=1)
+
+    def max_step(self, x: np.ndarray, dx: np.ndarray, load) -> float:
+        """Largest ``alpha`` in ``(0, 1]`` with ``det F(x + a dx) > 0`` at every quadrature
+        point for all ``a`` in ``[0, alpha]`` (a ``step_limit`` of
+        :func:`~skfem_dielectric.newton.newton`, by
+        :func:`~skfem_dielectric.newton.segment_det_limit`); 0.0 if ``det F(x) <= 0``."""
+        x0, x1, alpha = self.full(x, load), self.full(x + dx, load), 1.0
+        for sl in self.form.chunks():
+            F0, F1 = (self.form.quadrature_fields(v, sl)[0].reshape(3, 3, -1) for v in (x0, x1))
+            alpha = min(alpha, segment_det_limit(np.moveaxis(F0, 2, 0),
+                                                 np.moveaxis(F1 - F0, 2, 0)))
+        return alpha
 
     # ------------------------------------------------------------ post-processing
     def evaluate(self, x: np.ndarray, load, points: np.ndarray) -> dict[str, np.ndarray]:

@@ -17,6 +17,13 @@ cannot be reached ends the ramp: ``RampResult.converged=False``, ``reason``, ``f
 (the load of the failed sub-step), a ``RuntimeWarning`` is issued and all converged steps
 are kept; the furthest converged sub-step towards the failed target is appended as a step
 with ``target_reached=False``.
+
+Admissible states: ``step_limit(x, dx, load) -> alpha_max`` caps every Newton step (e.g.
+:meth:`~skfem_dielectric.plate.PlateProblem.max_step`, ``det F > 0`` along the step) and
+``admissible(x, load) -> reason`` rejects a converged state (a rejected sub-step is cut back
+like a failed one).  The ramp does not look for them on the problem: the drivers of
+:mod:`skfem_dielectric.drivers` pass them for the 3D plate
+(:func:`~skfem_dielectric.drivers.plate_admissible`); a direct caller passes them itself.
 """
 
 from __future__ import annotations
@@ -28,6 +35,8 @@ from typing import Any, Callable, Sequence
 
 import numpy as np
 
+from .checks import (check_callable, check_count, check_nonnegative_int, check_tolerances,
+                     check_vector)
 from .linear import LinearSolver, get_linear_solver
 from .newton import newton
 from .problem import Problem
@@ -149,8 +158,11 @@ class RampResult:
 
 
 def _as_load(load: Any) -> Any:
-    arr = np.asarray(load, dtype=float)
-    if not np.all(np.isfinite(arr)):
+    try:
+        arr = np.asarray(load, dtype=float)
+    except (TypeError, ValueError):
+        raise ValueError(f"loads must be numbers or 1-D arrays, got {load!r}") from None
+    if arr.ndim > 1 or not np.all(np.isfinite(arr)):
         raise ValueError(f"loads must be finite, got {load!r}")
     return float(arr) if arr.ndim == 0 else arr.copy()
 
@@ -159,7 +171,9 @@ def ramp(problem: Problem, loads: Sequence[Any], *, x0: np.ndarray | None = None
          start: Any = None, on_step: Callable[[StepResult], Any] | None = None,
          linear_solver: str | LinearSolver = "superlu", max_cutbacks: int = 6,
          atol: float = 1e-10, rtol: float = 1e-10, max_iter: int = 25,
-         line_search: bool = True, stop_on_instability: bool = False) -> RampResult:
+         line_search: bool = True, stop_on_instability: bool = False,
+         step_limit: Callable[[np.ndarray, np.ndarray, Any], float] | None = None,
+         admissible: Callable[[np.ndarray, Any], str] | None = None) -> RampResult:
     """Run ``problem`` through the target ``loads`` with adaptive sub-stepping.
 
     Parameters
@@ -192,19 +206,43 @@ def ramp(problem: Problem, loads: Sequence[Any], *, x0: np.ndarray | None = None
         False if it is intermediate) and its load is ``unstable_at``.  A load-controlled
         Newton cannot follow the path through such a point, so without this option the
         ramp spends its cut-backs trying (see ``docs/fe.md``, breakdown).
+    step_limit, admissible
+        Optional ``step_limit(x, dx, load) -> alpha_max`` and ``admissible(x, load) ->
+        reason`` of the admissible states (see the module docstring and :func:`newton`);
+        a sub-step that converges to a state ``admissible`` rejects is cut back.
 
     Returns
     -------
     RampResult
         Never raises on non-convergence; warns (``RuntimeWarning``) when it stops early.
+
+    Raises
+    ------
+    ValueError
+        Invalid arguments, each named: ``problem`` not a ``Problem``, non-finite loads,
+        ``x0`` not a finite vector of the problem's length, a callable that is not,
+        ``max_cutbacks < 0``, ``max_iter < 1``, negative tolerances or
+        ``atol = rtol = 0``.
     """
     if not isinstance(problem, Problem):
         raise ValueError("problem must be a skfem_dielectric.Problem (see "
                          f"skfem_dielectric.problem), got {type(problem).__name__}")
+    for name, f in (("on_step", on_step), ("step_limit", step_limit),
+                    ("admissible", admissible)):
+        check_callable(name, f)
+    atol, rtol = check_tolerances(atol, rtol)
+    max_iter = check_count("max_iter", max_iter)
+    max_cutbacks = check_nonnegative_int("max_cutbacks", max_cutbacks)
     t_start = time.perf_counter()
     solver = get_linear_solver(linear_solver, symmetric=problem.symmetric)
+    try:
+        loads = list(loads)
+    except TypeError:
+        raise ValueError(f"loads must be a sequence of loads, got {loads!r}") from None
     targets = [_as_load(ld) for ld in loads]
-    x = np.array(problem.initial_state() if x0 is None else x0, dtype=float, copy=True)
+    x0_ = problem.initial_state()
+    x = np.array(x0_ if x0 is None else check_vector("x0", x0, len(x0_)), dtype=float,
+                 copy=True)
     if start is None:
         cur = 0.0 * np.asarray(targets[0], dtype=float) if targets else 0.0
         cur = _as_load(cur)
@@ -242,7 +280,11 @@ def ramp(problem: Problem, loads: Sequence[Any], *, x0: np.ndarray | None = None
             nr = newton(lambda xx: problem.assemble(xx, load), x,
                         residual=lambda xx: problem.residual(xx, load),
                         linear_solver=solver, atol=atol, rtol=rtol, scale=scale,
-                        max_iter=max_iter, line_search=line_search)
+                        max_iter=max_iter, line_search=line_search,
+                        step_limit=None if step_limit is None else
+                        (lambda xx, dd: step_limit(xx, dd, load)),
+                        admissible=None if admissible is None else
+                        (lambda xx: admissible(xx, load)))
             iters += nr.iterations
             t_asm += sum(nr.assembly_seconds)
             t_sol += sum(nr.solve_seconds)

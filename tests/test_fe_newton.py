@@ -183,3 +183,28 @@ def test_stop_on_instability_without_inertia_warns_and_goes_on():
     assert res.converged and res.unstable_at is None
     np.testing.assert_allclose(res.column("x1"), cardano(np.array([1.0, 2.0, 3.0])),
                                rtol=1e-12)
+
+
+def test_newton_step_limit_and_admissible_state():
+    """A step limit caps the first trial at alpha_max / 2; a converged state that the
+    admissibility check rejects is not reported as converged."""
+    prob = Cubic()
+    free = newton(lambda x: prob.assemble(x, 2.0), np.zeros(3), atol=1e-12, rtol=0)
+    seen = []
+
+    def limit(x, dx):
+        seen.append(float(np.max(np.abs(dx))))
+        return 0.5 if len(seen) == 1 else 1.0
+
+    capped = newton(lambda x: prob.assemble(x, 2.0), np.zeros(3), atol=1e-12, rtol=0,
+                    step_limit=limit)
+    assert capped.converged and np.allclose(capped.x, free.x, atol=1e-11)
+    assert capped.step_norms[0] == pytest.approx(0.25 * np.linalg.norm(2.0 * prob.c))
+    stuck = newton(lambda x: prob.assemble(x, 2.0), np.zeros(3), atol=1e-12, rtol=0,
+                   step_limit=lambda x, dx: 0.0)
+    assert not stuck.converged and "inadmissible Newton step" in stuck.reason
+    rejected = newton(lambda x: prob.assemble(x, 2.0), np.zeros(3), atol=1e-12, rtol=0,
+                      admissible=lambda x: "x2 too large" if x[2] > 1 else "")
+    assert not rejected.converged and rejected.reason.endswith("x2 too large")
+    with pytest.raises(ValueError, match="atol and rtol must not both be 0"):
+        newton(lambda x: prob.assemble(x, 2.0), np.zeros(3), atol=0.0, rtol=0.0)
