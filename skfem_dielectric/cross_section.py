@@ -156,29 +156,10 @@ class CrossSection(Problem):
         edofs = np.vstack([self.bu.element_dofs, o_p + self.bp.element_dofs,
                            o_f + self.bf.element_dofs, np.full((1, nel), o_l)]).T
         self.nb = (self.bu.Nbfun, self.bp.Nbfun, self.bf.Nbfun)
-        fixed = [_component_dofs(self.bu, "sym_x1", "u^1")]
         self._top_phi = o_f + self.bf.get_dofs("top").all()
         self._bottom_phi = o_f + self.bf.get_dofs("bottom").all() if full else np.zeros(0, int)
-        if full:
-            ux = self.bu.doflocs
-            pin = np.flatnonzero(np.arange(nu) % 2 == 1)      # u2 dofs
-            k = pin[np.argmin(np.hypot(ux[0, pin] - a1 / 2, ux[1, pin]))]
-            fixed.append(np.array([k]))
-            if control == "charge":
-                fx = self.bf.doflocs
-                fixed.append(np.array([o_f + int(np.argmin(np.hypot(fx[0], fx[1])))]))
-        else:
-            fixed += [_component_dofs(self.bu, "sym_x2", "u^2"),
-                      o_f + self.bf.get_dofs("sym_x2").all()]
-        if control == "voltage":
-            fixed += [self._top_phi, self._bottom_phi]
         self._end_u1 = _component_dofs(self.bu, "x1_plus", "u^1")
-        if self.lam1_fixed is not None:
-            fixed.append(self._end_u1)
-        if self._local:  # purely elastic: no potential unknowns
-            fixed.append(o_f + np.arange(nf))
-        if self.lam3_fixed is not None:
-            fixed.append(np.array([o_l]))
+        fixed = _section_constraints(self, full, control)
         self.red = DofReduction(n_full, np.concatenate(fixed))
         self.scatter = ScatterMap(self.red.index[edofs], self.red.n)
         self._layout = Layout.from_reduction(
@@ -195,35 +176,9 @@ class CrossSection(Problem):
             self.scatter_m = ScatterMap(self.red.index[fdofs], self.red.n)
         self.form = PlaneStrainForm(self.bu, self.bp, self.bf, fbm, fbf)
         self.dx = self.bu.dx
-        # unit loads: traction mu e1 on x1_plus, charge 1 on top
-        mu = material.mu
-        fb = fe.FacetBasis(mesh, eu, facets=mesh.boundaries["x1_plus"], intorder=intorder)
-        ft = fe.FacetBasis(mesh, ephi, facets=mesh.boundaries["top"], intorder=intorder)
-        f = np.zeros(n_full)
-        f[:nu] = fe.LinearForm(lambda v, w: mu * v[0]).assemble(fb)
-        self.f_s1 = self.red.reduce(f)
-        f = np.zeros(n_full)
-        f[o_l] = mu * a1 * a2 * (2.0 if full else 1.0)  # s3 resultant over the section
-        self.f_s3 = self.red.reduce(f)
-        f = np.zeros(n_full)
-        f[o_f:o_l] = fe.LinearForm(lambda v, w: v).assemble(ft)
-        if full:   # the opposite charge on the bottom face
-            fbot = fe.FacetBasis(mesh, ephi, facets=mesh.boundaries["bottom"],
-                                 intorder=intorder)
-            f[o_f:o_l] -= fe.LinearForm(lambda v, w: v).assemble(fbot)
-        self.q_top = self.red.reduce(f)  # int w dA on the top face (minus the bottom)
+        self.f_s1, self.f_s3, self.q_top = _section_loads(self, eu, ephi, intorder, full)
         self.x_line = np.linspace(0.0, a1, 4 * self.n1 + 1)
-        pts = np.vstack([self.x_line, np.zeros_like(self.x_line)])
-        self._probe_u = point_gradients(self.bu, pts)
-        cells = mesh.element_finder(mapping=self.bf.mapping)(*pts)
-        ref = self.bf.mapping.invF(pts[:, :, None], tind=cells)
-        self._probe_phi = (np.array([self.bf.elem.gbasis(self.bf.mapping, ref, a, tind=cells)
-                                     [0].grad[..., 0] for a in range(self.nb[2])]),
-                           self.bf.element_dofs[:, cells])
-        self._probe_p = (np.array([np.asarray(self.bp.elem.gbasis(self.bp.mapping, ref, a,
-                                                                  tind=cells)[0])[..., 0]
-                                   for a in range(self.nb[1])]),
-                         self.bp.element_dofs[:, cells])
+        self._probe_u, self._probe_phi, self._probe_p = _centre_line_probes(self)
 
     # -- Problem contract -------------------------------------------------------
     @property
@@ -391,3 +346,63 @@ class CrossSection(Problem):
             "E0": E0,
             "D0": D0,
         }
+
+
+def _section_constraints(pb, full: bool, control: str) -> list[np.ndarray]:
+    """Fixed full dofs of a section: symmetry line, mid-plane or pins, electrodes, the
+    sliding end, the potential of the local Maxwell field, a prescribed ``lam3``."""
+    nu, o_f, o_l = pb.offsets[1], pb.offsets[2], pb.offsets[3]
+    a1 = pb.L1 / 2
+    fixed = [_component_dofs(pb.bu, "sym_x1", "u^1")]
+    if full:
+        ux = pb.bu.doflocs
+        pin = np.flatnonzero(np.arange(nu) % 2 == 1)      # u2 dofs
+        fixed.append(np.array([pin[np.argmin(np.hypot(ux[0, pin] - a1 / 2, ux[1, pin]))]]))
+        if control == "charge":
+            fx = pb.bf.doflocs
+            fixed.append(np.array([o_f + int(np.argmin(np.hypot(fx[0], fx[1])))]))
+    else:
+        fixed += [_component_dofs(pb.bu, "sym_x2", "u^2"),
+                  o_f + pb.bf.get_dofs("sym_x2").all()]
+    if control == "voltage":
+        fixed += [pb._top_phi, pb._bottom_phi]
+    if pb.lam1_fixed is not None:
+        fixed.append(pb._end_u1)
+    if pb._local:  # purely elastic: no potential unknowns
+        fixed.append(o_f + np.arange(o_l - o_f))
+    if pb.lam3_fixed is not None:
+        fixed.append(np.array([o_l]))
+    return fixed
+
+
+def _section_loads(pb, eu, ephi, intorder: int, full: bool):
+    """Reduced unit loads: traction ``mu e1`` on ``x1_plus`` (per unit ``s1``), the ``s3``
+    resultant, and ``int w dA`` on the top face minus the bottom (per unit charge)."""
+    mesh, mu, n_full = pb.mesh, pb.material.mu, pb.n_full
+    nu, o_f, o_l = pb.offsets[1], pb.offsets[2], pb.offsets[3]
+    fb = fe.FacetBasis(mesh, eu, facets=mesh.boundaries["x1_plus"], intorder=intorder)
+    ft = fe.FacetBasis(mesh, ephi, facets=mesh.boundaries["top"], intorder=intorder)
+    f = np.zeros(n_full)
+    f[:nu] = fe.LinearForm(lambda v, w: mu * v[0]).assemble(fb)
+    f_s1 = pb.red.reduce(f)
+    f = np.zeros(n_full)
+    f[o_l] = mu * pb.L1 / 2 * pb.H / 2 * (2.0 if full else 1.0)  # s3 resultant
+    f_s3 = pb.red.reduce(f)
+    f = np.zeros(n_full)
+    f[o_f:o_l] = fe.LinearForm(lambda v, w: v).assemble(ft)
+    if full:   # the opposite charge on the bottom face
+        fbot = fe.FacetBasis(mesh, ephi, facets=mesh.boundaries["bottom"], intorder=intorder)
+        f[o_f:o_l] -= fe.LinearForm(lambda v, w: v).assemble(fbot)
+    return f_s1, f_s3, pb.red.reduce(f)
+
+
+def _centre_line_probes(pb):
+    """Shape functions of ``u``, ``phi`` and ``p`` at the centre-line points."""
+    pts = np.vstack([pb.x_line, np.zeros_like(pb.x_line)])
+    cells = pb.mesh.element_finder(mapping=pb.bf.mapping)(*pts)
+    ref = pb.bf.mapping.invF(pts[:, :, None], tind=cells)
+    phi = (np.array([pb.bf.elem.gbasis(pb.bf.mapping, ref, a, tind=cells)[0].grad[..., 0]
+                     for a in range(pb.nb[2])]), pb.bf.element_dofs[:, cells])
+    p = (np.array([np.asarray(pb.bp.elem.gbasis(pb.bp.mapping, ref, a, tind=cells)[0])[..., 0]
+                   for a in range(pb.nb[1])]), pb.bp.element_dofs[:, cells])
+    return point_gradients(pb.bu, pts), phi, p

@@ -74,6 +74,36 @@ def _nearest(basis, point) -> int:
     return int(np.argmin(d))
 
 
+def _unit_loads(problem, intorder: int):
+    """Unit external vectors of a plate: traction ``mu N`` per unit ``s``, charge per unit
+    ``D0``, and the reference area of the clamp face."""
+    m, mu, eps = problem.plate.mesh, problem.material.mu, problem.material.eps
+    names = set(m.boundaries)
+    f_s = np.zeros(problem.n_full)
+    faces = {"equibiaxial": ("x1_plus", "x1_minus", "x3_plus", "x3_minus"),
+             "uniaxial-free": ("x1_plus", "x1_minus"),
+             "uniaxial": ("x1_plus",), "none": ()}[problem.loading]
+    comps = (0,) if problem.loading == "uniaxial-free" else (0, 1, 2)
+    N2 = problem.b2.N
+    for name in (n for n in faces if n in names):
+        fb = FacetBasis(m, ElementHex2(), facets=m.boundaries[name], intorder=intorder)
+        for c in comps:
+            v = asm(LinearForm(lambda v, w, c=c: v * w.n[c]), fb)
+            f_s[c::3][: N2] += mu * v[:N2]
+    f_s[problem.n_u:] = 0.0
+    q_D0 = np.zeros(problem.n_full)    # charge sigma_F per unit D0 (phi rows)
+    for name, sign in (("top", 1.0), ("bottom", -1.0)):
+        if name in names:
+            fb = FacetBasis(m, problem.bphi.elem, facets=m.boundaries[name],
+                            intorder=intorder)
+            v = asm(LinearForm(lambda v, w: v), fb)
+            q_D0[problem.off_phi:] += sign * math.sqrt(mu * eps) * v
+    clamp_area = (float(asm(LinearForm(lambda v, w: v), FacetBasis(
+        m, ElementHex1(), facets=m.boundaries["x1_plus"])).sum())
+        if "x1_plus" in names else 0.0)
+    return f_s, q_D0, clamp_area
+
+
 class PlateProblem(Problem):
     """Discretised 3D plate, a :class:`~skfem_dielectric.problem.Problem`.
 
@@ -180,7 +210,7 @@ class PlateProblem(Problem):
         f.bind(self.red)
         self.scatter = f.scatter
         self._layout = Layout.from_reduction(self.red, f.fields, ("p", "phi"))
-        self._loads(intorder)
+        self.f_s, self.q_D0, self.clamp_area = _unit_loads(self, intorder)
         self.boundary = (MaxwellBoundary(m, self.bphi.elem, self.off_phi, self.red,
                                          material.eps, field, intorder)
                          if coupling == "maxwell" else None)
@@ -218,33 +248,6 @@ class PlateProblem(Problem):
         if self.local_field:   # purely elastic: every potential dof fixed at 0
             fixed.append(np.arange(self.off_phi, self.n_full))
         return DofReduction(self.n_full, np.concatenate(fixed) if fixed else None, tied)
-
-    def _loads(self, intorder: int) -> None:
-        """Unit external vectors: traction ``mu N`` per unit ``s``, charge per unit ``D0``."""
-        m, mu, eps = self.plate.mesh, self.material.mu, self.material.eps
-        names = set(m.boundaries)
-        self.f_s = np.zeros(self.n_full)
-        faces = {"equibiaxial": ("x1_plus", "x1_minus", "x3_plus", "x3_minus"),
-                 "uniaxial-free": ("x1_plus", "x1_minus"),
-                 "uniaxial": ("x1_plus",), "none": ()}[self.loading]
-        comps = (0,) if self.loading == "uniaxial-free" else (0, 1, 2)
-        N2 = self.b2.N
-        for name in (n for n in faces if n in names):
-            fb = FacetBasis(m, ElementHex2(), facets=m.boundaries[name], intorder=intorder)
-            for c in comps:
-                v = asm(LinearForm(lambda v, w, c=c: v * w.n[c]), fb)
-                self.f_s[c::3][: N2] += mu * v[:N2]
-        self.f_s[self.n_u:] = 0.0
-        self.q_D0 = np.zeros(self.n_full)    # charge sigma_F per unit D0 (phi rows)
-        for name, sign in (("top", 1.0), ("bottom", -1.0)):
-            if name in names:
-                fb = FacetBasis(m, self.bphi.elem, facets=m.boundaries[name],
-                                intorder=intorder)
-                v = asm(LinearForm(lambda v, w: v), fb)
-                self.q_D0[self.off_phi:] += sign * math.sqrt(mu * eps) * v
-        self.clamp_area = (float(asm(LinearForm(lambda v, w: v), FacetBasis(
-            m, ElementHex1(), facets=m.boundaries["x1_plus"])).sum())
-            if "x1_plus" in names else 0.0)
 
     # ------------------------------------------------------------------ contract
     @property
