@@ -693,7 +693,7 @@ def folder_results(out, results=()) -> list[CaseResult]:
         old = prev.get(name) if isinstance(prev.get(name), dict) else {}
         r.runtime_s = float(old.get("runtime_s", 0.0) or 0.0)
         r.resumed_steps = int(old.get("resumed_steps", 0) or 0)
-        r.quick = quick
+        r.quick = old.get("quick") if isinstance(old.get("quick"), bool) else quick
         every.append(r)
     every += [r for r in results if r.name not in CASES]
     return every
