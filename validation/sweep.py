@@ -24,6 +24,7 @@ lets it continue from there; ``on_step`` returns ``True`` to end the ramp
 from __future__ import annotations
 
 import csv
+import errno
 import json
 import os
 import shutil
@@ -348,6 +349,9 @@ def run_case(case: Case | str, out, *, quick: bool = False, force: bool = False,
         notice(msg)
 
     with FolderLock(state_root / f"{case.name}.lock", f"case {case.name!r} in {out}"):
+        for p in (csv_path, fields_path, man_path):
+            if p.exists() and not p.is_file():
+                raise IsADirectoryError(errno.EISDIR, os.strerror(errno.EISDIR), str(p))
         if not force and man_path.exists():
             try:
                 saved = json.loads(man_path.read_text())
