@@ -292,3 +292,37 @@ def test_fuzz_bad_invocations(tmp_path, capsys, monkeypatch):
     assert (tmp_path / "a-file").read_text() == "keep"
     # nothing was computed: no case CSV anywhere (every invocation failed before FE work)
     assert not list(tmp_path.rglob("*.csv"))
+
+
+def test_simulate_says_why_its_ramp_stopped(tmp_path, capsys, monkeypatch):
+    # a ramp the solver could not finish: simulate's steps CSV ends with the reason
+    import validation.cli as cli
+
+    def stopped(**kw):
+        out = kw["out"]
+        out.mkdir(parents=True)
+        files = [out / f"run_{i:03d}.vtu" for i in range(2)]
+        for f in files:
+            f.write_text("")
+        table = out / "run_steps.csv"
+        table.write_text("step,D0,lam1,lam3,min_P33,min_P33_clamp,iterations\n"
+                         "0,0.0,1.2,0.7,0.1,0.1,3\n1,0.5,1.3,0.6,0.1,0.1,4\n"
+                         "2,,,,,,stopped: Newton diverged after 6 cut-backs\n")
+        return files + [table]
+
+    monkeypatch.setattr(cli, "simulate", stopped)
+    code, out, _ = run_cli(["simulate", "--D0-max", "2", "--steps", "4", "--out",
+                            str(tmp_path / "sim")], capsys)
+    assert code == 0
+    assert out.splitlines()[-1] == ("ramp stopped after step 1 (D0 = 0.5): the next target "
+                                    "D0 = 1 was not reached: Newton diverged after 6 cut-backs")
+    assert 'timestep="0.5" group="" part="0" file="run_001.vtu"' in \
+        (tmp_path / "sim" / "run.pvd").read_text()
+
+
+def test_bad_scheduler_address(tmp_path, capsys):
+    pytest.importorskip("distributed", reason="dask.distributed is not installed")
+    code, _, err = run_cli(["validate", "--quick", "--case", "nh-d-e", "--out", str(tmp_path),
+                            "--scheduler", "http://nowhere:1"], capsys)
+    assert_one_line_error(code, err, 2)
+    assert "--scheduler must be a dask scheduler address" in err

@@ -222,7 +222,11 @@ def _dask_executor(address: str, jobs: int):
         cluster = LocalCluster(n_workers=jobs, threads_per_worker=1, processes=True,
                                dashboard_address=None)
         return Client(cluster), cluster
-    return Client(address, timeout="20s"), None
+    try:
+        return Client(address, timeout="20s"), None
+    except ValueError as exc:
+        raise ValueError(f"--scheduler must be a dask scheduler address (tcp://HOST:PORT) or "
+                         f"'local', got {address!r} ({exc})") from None
 
 
 def _cmd_validate(args) -> int:
@@ -244,6 +248,9 @@ def _cmd_validate(args) -> int:
             client.close()
             if cluster is not None:
                 cluster.close()
+        for r in results:                 # the workers' stderr may not reach this terminal
+            for line in r.repairs:
+                print(f"skfem-dielectric: {line}", file=sys.stderr)
     else:
         results = validate(args.case, args.out, jobs=args.jobs, **kw)
     print((args.out / "report.md").read_text(), end="")
