@@ -643,6 +643,7 @@ def validate(cases: Iterable[Case | str] | None, out, *, quick: bool = False,
     for r in results:
         make_figure(r.name, out)
     out = Path(out)
+    (out / ".state").mkdir(parents=True, exist_ok=True)
     with FolderLock(out / ".state" / "summary.lock", f"the summary of {out}", wait=True):
         every = folder_results(out, results)
         write_summary(every, out, quick=quick)
