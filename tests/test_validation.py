@@ -192,12 +192,16 @@ def test_resume_after_crash_between_row_and_state(tmp_path):
 def test_second_writer_is_refused(tmp_path):
     fcntl = pytest.importorskip("fcntl")
     case = eq_case(n_s=1)
-    lock = tmp_path / ".state" / "nh-d-e" / "lock"
+    lock = tmp_path / ".state" / "nh-d-e.lock"
     lock.parent.mkdir(parents=True)
     with open(lock, "w") as fh:                     # another process writing this case
         fcntl.flock(fh, fcntl.LOCK_EX | fcntl.LOCK_NB)
-        with pytest.raises(ValueError, match="being written by another process"):
+        fh.write("pid 4242: skfem-dielectric validate --out x\n")
+        fh.flush()
+        with pytest.raises(ValueError, match=r"being written by another process "
+                                             r"\(pid 4242: skfem-dielectric validate"):
             run_case(case, tmp_path, runner=FakeRunner(), progress=False)
+    assert not (tmp_path / "nh-d-e.csv").exists()    # the refused process wrote nothing
     res = run_case(case, tmp_path, runner=FakeRunner(), progress=False)   # lock released
     assert res.n_steps == 5
 

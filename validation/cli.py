@@ -7,19 +7,24 @@ only into the folder given by ``--out``.
 from __future__ import annotations
 
 import argparse
+import csv
 import functools
+import math
 import sys
 import time
 from importlib.metadata import PackageNotFoundError, version
 from pathlib import Path
 
+import numpy as np
+
 from .cases import CASES
 from .fe import bench, pardiso_installed, run_fe, simulate
 from .figures import case_figure, save_figure
 from .specs import MODELS, VARIANTS
+from .store import write_text_atomic
 from .sweep import validate
 
-__all__ = ["main", "build_parser"]
+__all__ = ["main", "build_parser", "EXIT_CODES"]
 
 
 def _version() -> str:
@@ -29,69 +34,160 @@ def _version() -> str:
         return "unknown"
 
 
+#: Exit codes of :func:`main` (docs/cli.md).
+EXIT_CODES = {
+    0: "success",
+    1: "validate: a case with FE runs produced no FE step",
+    2: "bad input: an invalid option or value (the message names it), an option that does "
+       "not apply to the chosen geometry, a missing optional dependency, or another "
+       "process writing the same case into the same --out (the message names it)",
+    3: "file system: a path below --out cannot be created, read or written (--out is a "
+       "file or below a file, no permission, disk full, .state is a file, a CSV is a "
+       "folder); the message names the path",
+    130: "interrupted (rerun the same command to resume)",
+}
+
+SIM_HELP = ("Run one FE ramp (pre-load, then D0 = 0 -> --D0-max in --steps steps) and export "
+            "the fields for ParaView plus a CSV of the steps. The exported mesh is the "
+            "symmetric model in millimetres: in 3D one eighth of the plate (x1 >= 0, x2 >= 0, "
+            "x3 >= 0; the Keplinger plate 100 x 1 x 50 mm gives 50 x 0.5 x 25 mm, the "
+            "homogeneous equi-biaxial plate 4 x 1 x 4 gives 2 x 0.5 x 2), for the 2D "
+            "membrane one quarter of the 100 x 50 mm mid-plane (x2 = 0). Fields are "
+            "dimensionless (stresses over mu, D0 = D/sqrt(mu eps)). With --format vtu a "
+            "<run>.pvd index lists the steps with D0 as the time value.")
+
+
+class _Formatter(argparse.ArgumentDefaultsHelpFormatter):
+    """Shows each option's default, except for options without one (``None``)."""
+
+    def _get_help_string(self, action):
+        if action.default is None or action.default is False:
+            return action.help
+        return super()._get_help_string(action)
+
+
+class _Parser(argparse.ArgumentParser):
+    """An argument parser whose errors are one line on stderr (exit code 2)."""
+
+    def error(self, message):
+        self.exit(2, f"{self.prog}: error: {' '.join(message.split())} "
+                     f"(see {self.prog} --help)\n")
+
+
+def _out_dir(text: str) -> Path:
+    if not text.strip():
+        raise argparse.ArgumentTypeError(f"must be a folder path, got {text!r}")
+    return Path(text)
+
+
 def build_parser() -> argparse.ArgumentParser:
-    """The argument parser (exposed for the docs and the tests)."""
-    p = argparse.ArgumentParser(
-        prog="skfem-dielectric",
+    """The argument parser (exposed for the docs and the tests).
+
+    Returns
+    -------
+    argparse.ArgumentParser
+        Every subcommand shows its defaults in ``--help``; a parse error is one line
+        on stderr and exit code 2.
+    """
+    p = _Parser(
+        prog="skfem-dielectric", formatter_class=_Formatter,
         description="Charge-controlled soft dielectric plates: the paper's figures with "
-                    "finite-element dots, closed-form curves and FE simulations.")
+                    "finite-element dots, closed-form curves and FE simulations.",
+        epilog="exit codes: " + "; ".join(f"{k} {v}" for k, v in EXIT_CODES.items()))
     p.add_argument("--version", action="version", version=f"%(prog)s {_version()}")
-    sub = p.add_subparsers(dest="command", metavar="COMMAND", required=True)
+    sub = p.add_subparsers(dest="command", metavar="COMMAND", required=True,
+                           parser_class=_Parser)
 
-    sub.add_parser("list", help="list the validation cases (one per paper figure)",
-                   description="List the validation cases, their paper figure and FE runs.")
+    def add(name, help, description):
+        return sub.add_parser(name, help=help, description=description,
+                              formatter_class=_Formatter)
 
-    c = sub.add_parser("curves", help="draw the analytic curves only (no FE)",
-                       description="Draw the closed-form curves of the paper's figures, "
-                                   "without FE dots, as PNG and PDF into --out.")
+    add("list", "list the validation cases (one per paper figure)",
+        "List the validation cases, their paper figure and FE runs.")
+
+    c = add("curves", "draw the analytic curves only (no FE)",
+            "Draw the closed-form curves of the paper's figures, without FE dots, as PNG "
+            "and PDF into --out.")
     c.add_argument("--case", nargs="+", choices=list(CASES), metavar="NAME",
                    help="cases to draw (default: those that need no FE fields)")
-    c.add_argument("--out", required=True, type=Path, help="output folder")
+    c.add_argument("--out", required=True, type=_out_dir, help="output folder")
 
-    v = sub.add_parser("validate", help="run FE sweeps, overlay them on the theory (main job)",
-                       description="Run the FE ramps of the cases, write DIR/<case>.csv step by "
-                                   "step, the figures (PNG, PDF), summary.json and report.md. "
-                                   "An interrupted run resumes when rerun with the same --out.")
+    v = add("validate", "run FE sweeps, overlay them on the theory (main job)",
+            "Run the FE ramps of the cases, write DIR/<case>.csv step by step, the figures "
+            "(PNG, PDF), summary.json and report.md (covering every case in DIR). An "
+            "interrupted run resumes when rerun with the same --out; a case is locked while "
+            "a process writes it.")
     v.add_argument("--quick", action="store_true", help="coarse meshes and few D0 steps")
     v.add_argument("--case", nargs="+", choices=list(CASES), metavar="NAME",
                    help=f"cases to run (default: all of {', '.join(CASES)})")
-    v.add_argument("--out", required=True, type=Path, help="output folder")
-    v.add_argument("--jobs", type=int, default=1, help="worker processes (default 1)")
+    v.add_argument("--out", required=True, type=_out_dir, help="output folder")
+    v.add_argument("--jobs", type=int, default=1,
+                   help="worker processes (a process pool, or the workers of "
+                        "--scheduler local)")
+    v.add_argument("--scheduler", default=None, metavar="ADDRESS",
+                   help="run the cases on a dask.distributed cluster: the scheduler's "
+                        "ADDRESS (e.g. tcp://10.0.0.1:8786) or 'local' for a LocalCluster "
+                        "of --jobs worker processes; needs the 'cluster' extra "
+                        "(pip install -e '.[cluster]')")
     v.add_argument("--force", action="store_true", help="recompute instead of resuming")
     v.add_argument("--solver", choices=["superlu", "pardiso"], default="superlu",
-                   help="linear solver of the FE ramps: superlu (default, deterministic: a "
+                   help="linear solver of the FE ramps: superlu (deterministic: a "
                         "resumed run repeats the uninterrupted one bit for bit) or pardiso "
                         "(faster on fine meshes, needs the 'fast' extra; multi-threaded, so "
                         "the last digits may differ between runs)")
     v.add_argument("--no-progress", action="store_true", help="no progress bars")
 
-    s = sub.add_parser("simulate", help="run one FE ramp and export VTU/XDMF",
-                       description="Run one FE ramp (pre-load, then D0 = 0 -> --D0-max) and "
-                                   "export the fields for ParaView plus a CSV of the steps.")
+    s = add("simulate", "run one FE ramp and export VTU/XDMF", SIM_HELP)
     s.add_argument("--geometry", choices=["equibiaxial", "uniaxial"], default="uniaxial",
                    help="homogeneous equi-biaxial plate or clamped Keplinger plate")
-    s.add_argument("--model", choices=list(MODELS), default="neo-Hookean")
-    s.add_argument("--variant", choices=list(VARIANTS), default="coupled")
+    s.add_argument("--model", choices=list(MODELS), default="neo-Hookean",
+                   help="strain energy (Gent with Jm = 97.2)")
+    s.add_argument("--variant", choices=list(VARIANTS), default="coupled",
+                   help="3D fully coupled, 3D Maxwell traction, 2D membrane, or 2D membrane "
+                        "with the local-field Maxwell traction")
     s.add_argument("--s", type=float, default=None,
-                   help="dimensionless dead load (equi-biaxial; default 1)")
+                   help="dimensionless dead load, --geometry equibiaxial only (default 1)")
     s.add_argument("--alpha", type=float, default=None,
-                   help="weight fraction of the Keplinger plate (uni-axial; default 1)")
-    s.add_argument("--D0-max", dest="D0_max", type=float, default=4.0, help="final D0")
+                   help="weight fraction of the Keplinger plate, --geometry uniaxial only "
+                        "(default 1)")
+    s.add_argument("--D0-max", dest="D0_max", type=float, default=4.0,
+                   help="final charge target D0")
     s.add_argument("--steps", type=int, default=8, help="number of charge steps")
     s.add_argument("--mesh", type=int, nargs=3, metavar=("N1", "N2", "N3"), default=None,
-                   help="elements along length, thickness, width")
-    s.add_argument("--format", dest="fmt", choices=["vtu", "xdmf"], default="vtu")
-    s.add_argument("--out", required=True, type=Path, help="output folder")
+                   help="elements of the symmetric model along length, thickness, width "
+                        "(default 20 1 10; the membrane uses N1 and N3)")
+    s.add_argument("--format", dest="fmt", choices=["vtu", "xdmf"], default="vtu",
+                   help="one .vtu per step with a .pvd index, or one XDMF time series")
+    s.add_argument("--out", required=True, type=_out_dir, help="output folder")
 
-    b = sub.add_parser("bench", help="time one Keplinger ramp (DOFs, iterations, seconds)",
-                       description="Time the Keplinger plate ramp on a given mesh and solver.")
-    b.add_argument("--mesh", type=int, nargs=3, metavar=("N1", "N2", "N3"), default=[20, 1, 10])
-    b.add_argument("--alpha", type=float, default=1.0)
-    b.add_argument("--D0-max", dest="D0_max", type=float, default=6.0)
-    b.add_argument("--steps", type=int, default=6)
-    b.add_argument("--variant", choices=list(VARIANTS), default="coupled")
-    b.add_argument("--solver", default="auto", help="linear solver: superlu, pardiso or auto")
+    b = add("bench", "time one Keplinger ramp (DOFs, iterations, seconds)",
+            "Time the Keplinger plate ramp on a given mesh and solver; prints the linear "
+            "solver that was used (also what 'auto' chose).")
+    b.add_argument("--mesh", type=int, nargs=3, metavar=("N1", "N2", "N3"), default=[20, 1, 10],
+                   help="elements of the eighth model along length, thickness, width")
+    b.add_argument("--alpha", type=float, default=1.0, help="weight fraction of the plate")
+    b.add_argument("--D0-max", dest="D0_max", type=float, default=6.0,
+                   help="final charge target D0")
+    b.add_argument("--steps", type=int, default=6, help="number of charge steps")
+    b.add_argument("--variant", choices=list(VARIANTS), default="coupled", help="FE variant")
+    b.add_argument("--solver", choices=["auto", "superlu", "pardiso"], default="auto",
+                   help="linear solver: superlu, pardiso or auto (PARDISO if pypardiso is "
+                        "installed, else SuperLU)")
     return p
+
+
+def _positive(name: str, value, *, integer: bool = False, zero: bool = False) -> None:
+    """``ValueError`` naming the option unless ``value`` is finite and > 0 (``zero``: >= 0)."""
+    if math.isfinite(value) and (value >= 0 if zero else value > 0):
+        return
+    bound = ">= 0" if zero else (">= 1" if integer else "> 0")
+    raise ValueError(f"{name} must be {bound}{'' if integer else ' and finite'}, got {value}")
+
+
+def _check_mesh(name: str, mesh) -> None:
+    if mesh is not None and any(n < 1 for n in mesh):
+        raise ValueError(f"{name} must be three element counts >= 1, got "
+                         f"{' '.join(map(str, mesh))}")
 
 
 def _cmd_list(args) -> int:
@@ -115,53 +211,165 @@ def _cmd_curves(args) -> int:
     return 0
 
 
+def _dask_executor(address: str, jobs: int):
+    """``(client, cluster)`` of a dask.distributed scheduler ADDRESS or a LocalCluster."""
+    try:
+        from dask.distributed import Client, LocalCluster
+    except ImportError:
+        raise ValueError(f"--scheduler needs dask.distributed (pip install -e '.[cluster]'), "
+                         f"got --scheduler {address} without it") from None
+    if address == "local":
+        cluster = LocalCluster(n_workers=jobs, threads_per_worker=1, processes=True,
+                               dashboard_address=None)
+        return Client(cluster), cluster
+    try:
+        return Client(address, timeout="20s"), None
+    except ValueError as exc:
+        raise ValueError(f"--scheduler must be a dask scheduler address (tcp://HOST:PORT) or "
+                         f"'local', got {address!r} ({exc})") from None
+
+
 def _cmd_validate(args) -> int:
     if args.solver == "pardiso" and not pardiso_installed():
         raise ValueError("--solver pardiso needs pypardiso (pip install -e '.[fast]'), "
                          "got no pypardiso")
+    if args.scheduler is not None and not args.scheduler.strip():
+        raise ValueError("--scheduler must be a scheduler address or 'local', got ''")
     t0 = time.perf_counter()
     runner = None if args.solver == "superlu" else functools.partial(run_fe,
                                                                      linear_solver=args.solver)
-    results = validate(args.case, args.out, quick=args.quick, force=args.force, jobs=args.jobs,
-                       runner=runner, progress=False if args.no_progress else None)
+    kw = dict(quick=args.quick, force=args.force, runner=runner,
+              progress=False if args.no_progress else None)
+    if args.scheduler:
+        client, cluster = _dask_executor(args.scheduler, args.jobs)
+        try:
+            results = validate(args.case, args.out, executor=client.get_executor(), **kw)
+        finally:
+            client.close()
+            if cluster is not None:
+                cluster.close()
+        for r in results:                 # the workers' stderr may not reach this terminal
+            for line in r.repairs:
+                print(f"skfem-dielectric: {line}", file=sys.stderr)
+    else:
+        results = validate(args.case, args.out, jobs=args.jobs, **kw)
     print((args.out / "report.md").read_text(), end="")
     print(f"\nwall time {time.perf_counter() - t0:.1f} s; results in {args.out}")
     return 0 if all(r.n_steps or not r.n_runs for r in results) else 1
 
 
+def _write_pvd(path: Path, files, times) -> Path:
+    """A ParaView collection: each ``.vtu`` of ``files`` at the time value in ``times``."""
+    items = "".join(f'    <DataSet timestep="{t}" group="" part="0" file="{f.name}"/>\n'
+                    for f, t in zip(files, times))
+    return write_text_atomic(path, '<?xml version="1.0"?>\n<VTKFile type="Collection" '
+                                   'version="0.1" byte_order="LittleEndian">\n  <Collection>\n'
+                                   f'{items}  </Collection>\n</VTKFile>\n')
+
+
 def _cmd_simulate(args) -> int:
+    if args.geometry != "uniaxial" and args.alpha is not None:
+        raise ValueError(f"--alpha is the weight fraction of the Keplinger plate and applies to "
+                         f"--geometry uniaxial only, got --alpha {args.alpha:g} with --geometry "
+                         f"{args.geometry} (use --s for its dead load)")
+    if args.geometry == "uniaxial" and args.s is not None:
+        raise ValueError(f"--s applies to --geometry equibiaxial only (the Keplinger plate's "
+                         f"load follows from --alpha), got --s {args.s:g} with --geometry "
+                         f"uniaxial")
+    _positive("--steps", args.steps, integer=True)
+    _positive("--D0-max", args.D0_max)
+    if args.alpha is not None:
+        _positive("--alpha", args.alpha)
+    if args.s is not None:
+        _positive("--s", args.s, zero=True)
+    _check_mesh("--mesh", args.mesh)
     out = simulate(geometry=args.geometry, model=args.model, variant=args.variant, s=args.s,
                    alpha=args.alpha, D0_max=args.D0_max, steps=args.steps,
                    mesh=args.mesh, fmt=args.fmt, out=args.out)
+    table = out[-1]
+    with open(table, newline="") as fh:
+        rows = list(csv.DictReader(fh))
+    done = [r for r in rows if r["D0"] != ""]
+    vtu = [p for p in out if p.suffix == ".vtu"]
+    if vtu:
+        out.insert(len(out) - 1, _write_pvd(table.with_name(table.name[:-len("_steps.csv")]
+                                                            + ".pvd"),
+                                            vtu, [r["D0"] for r in done]))
     for p in out:
         print(p)
+    targets = [float(d) for d in np.linspace(0.0, args.D0_max, args.steps + 1)]
+    failed = [r for r in rows if r["D0"] == ""]
+    if failed:
+        k = len(done)
+        print(f"ramp stopped after step {k - 1} (D0 = {done[-1]['D0'] if done else '-'}): "
+              f"the next target D0 = {targets[k]:g} was not reached: "
+              f"{failed[0]['iterations'].removeprefix('stopped: ')}")
+    else:
+        print(f"ramp reached D0 = {targets[-1]:g} in {len(done) - 1} charge steps")
     return 0
 
 
 def _cmd_bench(args) -> int:
+    _positive("--steps", args.steps, integer=True)
+    _positive("--D0-max", args.D0_max)
+    _positive("--alpha", args.alpha)
+    _check_mesh("--mesh", args.mesh)
+    if args.solver == "pardiso" and not pardiso_installed():
+        raise ValueError("--solver pardiso needs pypardiso (pip install -e '.[fast]'), "
+                         "got no pypardiso")
+    used = args.solver if args.solver != "auto" else \
+        ("pardiso" if pardiso_installed() else "superlu")
+    print(f"linear solver: {used}" + (" (chosen by 'auto': PARDISO if pypardiso is installed, "
+                                      "else SuperLU)" if args.solver == "auto" else ""))
     for line in bench(mesh=tuple(args.mesh), alpha=args.alpha, D0_max=args.D0_max,
-                      steps=args.steps, variant=args.variant, solver=args.solver):
+                      steps=args.steps, variant=args.variant, solver=used):
         print(line)
     return 0
+
+
+def _one_line(text) -> str:
+    return " ".join(str(text).split())
+
+
+def _os_message(exc: OSError) -> str:
+    paths = [str(p) for p in (exc.filename, exc.filename2) if p is not None]
+    what = exc.strerror or type(exc).__name__
+    if paths:
+        return f"cannot use {' -> '.join(paths)}: {what}"
+    return _one_line(exc) or what
 
 
 def main(argv: list[str] | None = None) -> int:
     """Entry point of the console script; returns the exit code.
 
-    Exit codes: 0 success, 1 a validation case produced no FE step, 2 bad
-    input, 130 interrupted (rerun the same command to resume).
+    Parameters
+    ----------
+    argv : list of str, optional
+        The arguments (default: ``sys.argv[1:]``).
+
+    Returns
+    -------
+    int
+        One of :data:`EXIT_CODES`: 0 success, 1 a validation case produced no FE
+        step, 2 bad input (also: another process writes the same case), 3 a path
+        cannot be created, read or written, 130 interrupted (rerun the same command
+        to resume). Every error is one line on stderr.
     """
     parser = build_parser()
     args = parser.parse_args(argv)
     cmd = {"list": _cmd_list, "curves": _cmd_curves, "validate": _cmd_validate,
            "simulate": _cmd_simulate, "bench": _cmd_bench}[args.command]
+    prefix = f"skfem-dielectric {args.command}: error:"
     try:
         if getattr(args, "jobs", 1) < 1:
             raise ValueError(f"--jobs must be >= 1, got {args.jobs}")
         return cmd(args)
     except ValueError as exc:
-        print(f"skfem-dielectric {args.command}: error: {exc}", file=sys.stderr)
+        print(f"{prefix} {_one_line(exc)}", file=sys.stderr)
         return 2
+    except OSError as exc:
+        print(f"{prefix} {_os_message(exc)}", file=sys.stderr)
+        return 3
     except KeyboardInterrupt:
         print("\ninterrupted; rerun the same command to resume", file=sys.stderr)
         return 130

@@ -6,7 +6,7 @@ import sys
 import time
 from typing import TextIO
 
-__all__ = ["Progress"]
+__all__ = ["Progress", "notice"]
 
 
 class Progress:
@@ -83,3 +83,19 @@ class Progress:
 
     def __exit__(self, *exc) -> None:
         self.close()
+
+
+def notice(message: str, stream: TextIO | None = None) -> None:
+    """Write a one-line message (e.g. what a resume repaired) to ``stream`` (``sys.stderr``).
+
+    Examples
+    --------
+    >>> import io
+    >>> buf = io.StringIO()
+    >>> notice("run x: recomputed", stream=buf)
+    >>> buf.getvalue()
+    'skfem-dielectric: run x: recomputed\\n'
+    """
+    stream = sys.stderr if stream is None else stream
+    stream.write("skfem-dielectric: " + " ".join(message.split()) + "\n")
+    stream.flush()

@@ -7,6 +7,7 @@ from dataclasses import asdict
 from pathlib import Path
 
 from .cases import get_case
+from .store import write_text_atomic
 
 __all__ = ["summary_dict", "write_summary", "write_report"]
 
@@ -39,10 +40,21 @@ def summary_dict(results, *, quick: bool) -> dict:
 
 
 def write_summary(results, folder, *, quick: bool) -> Path:
-    """Write ``folder/summary.json``."""
+    """Write ``folder/summary.json`` atomically (see :func:`summary_dict`).
+
+    Parameters
+    ----------
+    results : sequence of CaseResult
+    folder : path-like
+    quick : bool
+
+    Returns
+    -------
+    Path
+    """
     path = Path(folder) / "summary.json"
-    path.write_text(json.dumps(summary_dict(results, quick=quick), indent=2, sort_keys=True) + "\n")
-    return path
+    return write_text_atomic(path, json.dumps(summary_dict(results, quick=quick), indent=2,
+                                              sort_keys=True) + "\n")
 
 
 def _g(x, fmt=".2e"):
@@ -53,8 +65,24 @@ def _g(x, fmt=".2e"):
 
 
 def write_report(results, folder, *, quick: bool) -> Path:
-    """Write ``folder/report.md``: one table row per case and the breakdown points."""
-    lines = [f"# skfem-dielectric validation ({'quick' if quick else 'full'} run)", "",
+    """Write ``folder/report.md``: one table row per case and the breakdown points.
+
+    Parameters
+    ----------
+    results : sequence of CaseResult
+        Every case to report (:func:`validation.sweep.folder_results`).
+    folder : path-like
+        Output folder.
+    quick : bool
+        Whether this invocation ran ``--quick`` (the title, for results that do not say).
+
+    Returns
+    -------
+    Path
+    """
+    kinds = {quick if r.quick is None else r.quick for r in results} or {quick}
+    kind = "quick and full runs" if len(kinds) > 1 else f"{'quick' if kinds.pop() else 'full'} run"
+    lines = [f"# skfem-dielectric validation ({kind})", "",
              "| case | paper figure | FE runs | FE steps | max rel. error lam1 | runtime (s) |",
              "| --- | --- | --- | --- | --- | --- |"]
     for r in results:
@@ -73,6 +101,4 @@ def write_report(results, folder, *, quick: bool) -> Path:
         lines += [f"- {name} / {k}: {v}" for name, k, v in fails]
     lines += ["", "Files: `<case>.csv` (one row per FE step), `<case>.png|pdf`, "
               "`summary.json`; `.state/` holds resume states."]
-    path = Path(folder) / "report.md"
-    path.write_text("\n".join(lines) + "\n")
-    return path
+    return write_text_atomic(Path(folder) / "report.md", "\n".join(lines) + "\n")

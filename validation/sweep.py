@@ -24,6 +24,7 @@ lets it continue from there; ``on_step`` returns ``True`` to end the ramp
 from __future__ import annotations
 
 import csv
+import errno
 import json
 import os
 import shutil
@@ -40,14 +41,11 @@ import analytic as an
 from .cases import CASES, Case, RunSpec, analytic_model, get_case
 from .fe import run_fe
 from .figures import case_figure, save_figure
-from .progress import Progress
+from .progress import Progress, notice
 from .records import StepRecord
 from .report import write_report, write_summary
-
-try:
-    import fcntl
-except ImportError:                   # pragma: no cover - Windows
-    fcntl = None
+from .store import (FolderLock, RowDigest, dumps, load_state, save_state, write_csv_atomic,
+                    write_text_atomic)
 
 __all__ = [
     "CaseResult",
@@ -58,6 +56,7 @@ __all__ = [
     "read_table",
     "validate",
     "make_figure",
+    "folder_results",
 ]
 
 #: The paper's breakdown: ``min P33/mu`` along the centre line (which runs into
@@ -87,6 +86,8 @@ class CaseResult:
     reasons: dict = field(default_factory=dict)
     runtime_s: float = 0.0
     resumed_steps: int = 0
+    quick: bool | None = None
+    repairs: list = field(default_factory=list)
 
 
 def csv_columns(case: Case) -> list[str]:
@@ -174,13 +175,15 @@ def read_table(path) -> dict[str, np.ndarray]:
 
     Numeric columns become float arrays (empty cells ``nan``), ``True``/``False``
     columns (and always ``converged``, ``stable``, ``breakdown``) become object arrays of
-    bool/None, the others string arrays.
+    bool/None, the others string arrays. Rows with another number of cells than the
+    header (a line cut short by a crash) are left out.
     """
     with open(path, newline="") as fh:
         rows = list(csv.reader(fh))
     if not rows:
         return {}
-    header, body = rows[0], rows[1:]
+    header = rows[0]
+    body = [r for r in rows[1:] if len(r) == len(header)]   # a half-written line is no row
     table = {}
     for j, name in enumerate(header):
         col = [r[j] for r in body]
@@ -195,54 +198,48 @@ def read_table(path) -> dict[str, np.ndarray]:
     return table
 
 
-# --------------------------------------------------------------------------- state files
+# --------------------------------------------------------------------------- files of a case
+_FIELD_KEYS = ["case", "run", "step", "D0"]
+
+
 def _state_path(state_dir: Path, spec: RunSpec) -> Path:
     return state_dir / f"{spec.key}.npz"
 
 
-def _save_state(path: Path, step: int, state: dict | None, done: bool, reason: str = "") -> None:
-    arrays = {f"x_{k}": np.asarray(v) for k, v in (state or {}).items()}
-    tmp = path.with_suffix(".tmp.npz")
-    with open(tmp, "wb") as fh:
-        np.savez(fh, __step__=step, __done__=done, __reason__=reason, **arrays)
-    os.replace(tmp, path)
-
-
-def _load_state(path: Path) -> dict | None:
-    if not path.exists():
-        return None
-    try:
-        with np.load(path, allow_pickle=False) as z:
-            return {"step": int(z["__step__"]), "done": bool(z["__done__"]),
-                    "reason": str(z["__reason__"]),
-                    "state": {k[2:]: z[k] for k in z.files if k.startswith("x_")}}
-    except (OSError, ValueError, KeyError):
-        return None
+def _manifest_entry(r: RunSpec) -> list:
+    return [r.key, list(r.D0), [list(m) for m in r.mesh], r.record_fields, r.record_maps,
+            r.stop_at_breakdown]
 
 
 def _manifest(case: Case, runs: tuple) -> dict:
-    return {"case": case.name, "runs": [[r.key, list(r.D0), [list(m) for m in r.mesh],
-                                         r.record_fields, r.record_maps, r.stop_at_breakdown]
-                                        for r in runs]}
+    return {"case": case.name, "runs": [_manifest_entry(r) for r in runs]}
 
 
-def _read_rows(path: Path) -> tuple[list[str] | None, list[list[str]]]:
+def _spec_sig(spec: RunSpec) -> str:
+    return dumps(_manifest_entry(spec))
+
+
+def _read_csv(path: Path) -> tuple[list[str] | None, list[list[str]], str]:
+    """``(header, rows, problem)``; an unreadable file gives no rows and says why."""
     if not path.exists():
-        return None, []
-    with open(path, newline="") as fh:
-        rows = list(csv.reader(fh))
-    return (rows[0], rows[1:]) if rows else (None, [])
+        return None, [], ""
+    try:
+        with open(path, newline="") as fh:
+            rows = list(csv.reader(fh))
+    except (csv.Error, UnicodeDecodeError) as exc:
+        return None, [], f"{path} is unreadable ({exc})"
+    return (rows[0], rows[1:], "") if rows else (None, [], "")
 
 
-def _write_rows(path: Path, header: list[str] | None, rows: list[list[str]]) -> None:
-    if header is None:
-        if path.exists():
-            path.unlink()
-        return
-    with open(path, "w", newline="") as fh:
-        w = csv.writer(fh, lineterminator="\n")
-        w.writerow(header)
-        w.writerows(rows)
+def _rows_by_run(rows, case_name: str, keys, ncols: int) -> tuple[dict, int]:
+    """The complete rows of each run (in file order) and the number of other rows."""
+    by, bad = {k: [] for k in keys}, 0
+    for r in rows:
+        if len(r) == ncols and r[0] == case_name and r[1] in by:
+            by[r[1]].append(r)
+        else:
+            bad += 1
+    return by, bad
 
 
 def _append(path: Path, header: list[str], rows: Iterable[list[str]]) -> None:
@@ -255,10 +252,54 @@ def _append(path: Path, header: list[str], rows: Iterable[list[str]]) -> None:
         fh.flush()
 
 
+class _CaseFiles:
+    """The two CSVs of a case: rows appended as the ramps go, kept per run in memory.
+
+    :meth:`rewrite` writes both files atomically in the canonical order (runs in the
+    order of the case, steps in order), the order of an uninterrupted run.
+    """
+
+    def __init__(self, case: Case, runs: tuple, csv_path: Path, fields_path: Path):
+        self.case, self.keys = case, [r.key for r in runs]
+        self.csv_path, self.fields_path = csv_path, fields_path
+        self.header, self.f_header = csv_columns(case), None
+        self.rows = {k: [] for k in self.keys}
+        self.frows = {k: [] for k in self.keys}
+
+    def add(self, key: str, row: list[str]) -> None:
+        self.rows[key].append(row)
+        _append(self.csv_path, self.header, [row])
+
+    def add_fields(self, key: str, header: list[str], rows: list[list[str]]) -> None:
+        if self.f_header is None:
+            self.f_header = header
+        self.frows[key] += rows
+        _append(self.fields_path, self.f_header, rows)
+
+    def drop(self, key: str) -> None:
+        self.rows[key], self.frows[key] = [], []
+        self.rewrite()
+
+    def rewrite(self) -> None:
+        write_csv_atomic(self.csv_path, self.header, [r for k in self.keys for r in self.rows[k]])
+        frows = [r for k in self.keys for r in self.frows[k]]
+        if frows:
+            write_csv_atomic(self.fields_path, self.f_header, frows)
+        elif self.fields_path.exists():
+            self.fields_path.unlink()
+
+
 # --------------------------------------------------------------------------- one case
 def run_case(case: Case | str, out, *, quick: bool = False, force: bool = False,
              runner: Callable | None = None, progress: bool | None = None) -> CaseResult:
     """Run (or resume) every FE ramp of ``case``, writing its CSV step by step.
+
+    The case is locked (``flock`` on ``out/.state/<case>.lock``, a file that is never
+    deleted) before anything is read or cleared; a second process writing the same
+    case into the same folder gets :class:`~validation.store.LockedError`. A resume
+    verifies before it trusts: each run's rows must match the row count and checksum
+    saved with its state, and the state must belong to the run's settings; a run that
+    fails a check is recomputed (from the start) and a line on stderr says so.
 
     Parameters
     ----------
@@ -266,7 +307,7 @@ def run_case(case: Case | str, out, *, quick: bool = False, force: bool = False,
         The case or its name.
     out : path-like
         Output folder; everything is written below it (``<case>.csv``,
-        ``<case>_fields.csv``, ``.state/<case>/``).
+        ``<case>_fields.csv``, ``.state/<case>/``, ``.state/<case>.lock``).
     quick : bool
         Coarse meshes and few steps.
     force : bool
@@ -280,146 +321,208 @@ def run_case(case: Case | str, out, *, quick: bool = False, force: bool = False,
     -------
     CaseResult
         Errors against the analytic curves, breakdown ``D0`` per run, runtime.
+
+    Raises
+    ------
+    validation.store.LockedError
+        Another process is writing this case into ``out`` (a ``ValueError``).
+    OSError
+        A file or folder below ``out`` cannot be created, read or written.
     """
     t0 = time.perf_counter()
     case = get_case(case) if isinstance(case, str) else case
     runner = run_fe if runner is None else runner
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
+    state_root = out / ".state"
+    state_root.mkdir(exist_ok=True)
     csv_path = out / f"{case.name}.csv"
     fields_path = out / f"{case.name}_fields.csv"
-    state_dir = out / ".state" / case.name
+    state_dir = state_root / case.name
     runs = case.runs(quick)
     manifest = _manifest(case, runs)
     man_path = state_dir / "manifest.json"
-    if not force and man_path.exists():
-        force = json.loads(man_path.read_text()) != manifest   # other settings: start afresh
-    elif not force and not man_path.exists() and csv_path.exists():
-        force = True                                            # rows without state
-    if force:
-        for p in (csv_path, fields_path):
-            if p.exists():
-                p.unlink()
-        shutil.rmtree(state_dir, ignore_errors=True)
-    state_dir.mkdir(parents=True, exist_ok=True)
-    with _case_lock(state_dir, case.name):
-        man_path.write_text(json.dumps(manifest))
-        return _run_locked(case, runs, out, csv_path, fields_path, state_dir, runner, progress,
-                           t0)
+    notes: list[str] = []
+
+    def note(msg: str) -> None:
+        notes.append(msg)
+        notice(msg)
+
+    with FolderLock(state_root / f"{case.name}.lock", f"case {case.name!r} in {out}"):
+        for p in (csv_path, fields_path, man_path):
+            if p.exists() and not p.is_file():
+                raise IsADirectoryError(errno.EISDIR, os.strerror(errno.EISDIR), str(p))
+        if not force and man_path.exists():
+            try:
+                saved = json.loads(man_path.read_text())
+            except (ValueError, UnicodeDecodeError) as exc:
+                note(f"{man_path} is unreadable ({type(exc).__name__}); case {case.name} is "
+                     f"recomputed")
+                force = True
+            else:
+                if saved != manifest:
+                    note(f"{man_path}: the saved runs of case {case.name} have other settings "
+                         f"(quick/full, meshes or steps); the case is recomputed")
+                    force = True
+        elif not force and not man_path.exists() and (csv_path.exists()
+                                                       or fields_path.exists()):
+            note(f"{csv_path} has no saved state ({man_path} is missing); case {case.name} "
+                 f"is recomputed")
+            force = True                                            # rows without state
+        if force:
+            for p in (csv_path, fields_path):
+                if p.exists():
+                    p.unlink()
+            if state_dir.is_dir():
+                shutil.rmtree(state_dir)
+        state_dir.mkdir(exist_ok=True)
+        write_text_atomic(man_path, json.dumps(manifest))
+        result = _run_locked(case, runs, csv_path, fields_path, state_dir, runner, progress,
+                             note)
+    result.runtime_s = round(time.perf_counter() - t0, 3)
+    result.quick = bool(quick)
+    result.repairs = notes
+    return result
 
 
-class _case_lock:
-    """Exclusive lock on ``.state/<case>/lock`` while a process writes the case.
-
-    Two processes writing the same case into the same folder would interleave
-    rows; ``flock`` is released by the OS when a process dies, so a killed run
-    never blocks its own resume. (No-op where ``fcntl`` is unavailable.)
-    """
-
-    def __init__(self, state_dir: Path, name: str):
-        self.path, self.name, self.fh = state_dir / "lock", name, None
-
-    def __enter__(self):
-        if fcntl is None:             # pragma: no cover - Windows
-            return self
-        self.fh = open(self.path, "w")
-        try:
-            fcntl.flock(self.fh, fcntl.LOCK_EX | fcntl.LOCK_NB)
-        except OSError:
-            self.fh.close()
-            raise ValueError(f"case {self.name!r} is being written by another process into "
-                             f"{self.path.parent.parent.parent}") from None
-        return self
-
-    def __exit__(self, *exc):
-        if self.fh is not None:
-            self.fh.close()          # releases the lock
+def _check_rows(st: dict, rows: list, frows: list, files: _CaseFiles) -> str:
+    """Why the rows of a run do not match its saved state (empty when they do)."""
+    for name, have, n, sha in ((files.csv_path.name, rows, st["rows"], st["sha"]),
+                               (files.fields_path.name, frows, st["frows"], st["fsha"])):
+        if len(have) < n:
+            return f"{name} holds {len(have)} of its {n} saved rows"
+        if RowDigest.of(have[:n]).hexdigest() != sha:
+            return f"its rows in {name} differ from those saved with its state"
+    if not st["step"] + 1 <= st["rows"] <= st["step"] + 2:
+        return f"its saved state counts {st['rows']} rows for step {st['step']}"
+    return ""
 
 
-def _run_locked(case, runs, out, csv_path, fields_path, state_dir, runner, progress,
-                t0) -> CaseResult:
-    """Body of :func:`run_case` under the case lock: resume plan, ramps, summary."""
-    header = csv_columns(case)
-    _, old_rows = _read_rows(csv_path)
-    f_header, old_frows = _read_rows(fields_path)
-
-    # Which runs are complete, where does the first incomplete one resume?
-    plan, keep, resumed = [], set(), 0
-    broken = False
+def _plan(case, runs, files: _CaseFiles, state_dir: Path, note) -> tuple[list, int]:
+    """Read the CSVs and states, keep what verifies; ``(plan, resumed steps)``."""
+    header, rows, why = _read_csv(files.csv_path)
+    if why or (header is not None and header != files.header):
+        note(why or f"{files.csv_path} has another header than {files.header}")
+        rows = []
+    by_run, bad = _rows_by_run(rows, case.name, files.keys, len(files.header))
+    f_header, frows, fwhy = _read_csv(files.fields_path)
+    if fwhy or (f_header is not None and f_header[:4] != _FIELD_KEYS):
+        note(fwhy or f"{files.fields_path} has another header")
+        f_header, frows = None, []
+    fby_run, fbad = _rows_by_run(frows, case.name, files.keys,
+                                 len(f_header) if f_header else 0)
+    for n, path in ((bad, files.csv_path), (fbad, files.fields_path)):
+        if n:
+            note(f"{path}: {n} incomplete or unreadable row(s) dropped")
+    files.f_header = f_header
+    plan, resumed = [], 0
     for spec in runs:
         path = _state_path(state_dir, spec)
-        st = None if broken else _load_state(path)
-        if st is None:
-            broken = True
+        st, why = load_state(path, _spec_sig(spec))
+        r, fr = by_run[spec.key], fby_run[spec.key]
+        if st is not None:
+            why = _check_rows(st, r, fr, files)
+        if st is None or why:
+            if why:
+                note(f"run {spec.key} of case {case.name}: {why}; recomputed from the start")
+            elif len(r) > 1:
+                note(f"run {spec.key} of case {case.name}: {len(r)} rows without a saved "
+                     f"state; recomputed from the start")
             if path.exists():
                 path.unlink()
-            plan.append((spec, 0, None))
+            plan.append((spec, 0, None, RowDigest(), RowDigest()))
             continue
-        keep |= {(spec.key, str(i)) for i in range(st["step"] + 1)}
+        files.rows[spec.key], files.frows[spec.key] = r[:st["rows"]], fr[:st["frows"]]
+        if st["done"] and (len(r) > st["rows"] or len(fr) > st["frows"]):
+            note(f"run {spec.key} of case {case.name}: rows after its last saved step dropped")
         resumed += st["step"] + 1
-        if st["done"]:
-            if st["reason"]:
-                keep.add((spec.key, str(st["step"] + 1)))   # the failed-step row
-            continue
-        broken = True
-        plan.append((spec, st["step"] + 1, st["state"]))
-    rows = [r for r in old_rows if (r[1], r[2]) in keep]
-    frows = [r for r in old_frows if (r[1], r[2]) in keep]
-    _write_rows(csv_path, header if rows else None, rows)
-    _write_rows(fields_path, f_header if frows else None, frows)
+        if not st["done"]:
+            plan.append((spec, st["step"] + 1, st["state"], RowDigest.of(r[:st["rows"]]),
+                         RowDigest.of(fr[:st["frows"]])))
+    return plan, resumed
 
-    total = sum(len(spec.D0) - start for spec, start, _ in plan)
+
+def _run_locked(case, runs, csv_path, fields_path, state_dir, runner, progress,
+                note) -> CaseResult:
+    """Body of :func:`run_case` under the case lock: resume plan, ramps, summary."""
+    files = _CaseFiles(case, runs, csv_path, fields_path)
+    plan, resumed = _plan(case, runs, files, state_dir, note)
+    files.rewrite()
+    total = sum(len(spec.D0) - start for spec, start, *_ in plan)
     with Progress(total, case.name, enabled=progress) as bar:
-        for spec, start, state in plan:
-            _run_one(case, spec, start, state, runner, csv_path, fields_path, state_dir, bar)
-
-    if not csv_path.exists():
-        _write_rows(csv_path, header, [])        # a case without FE runs: header only
+        for spec, start, state, rows, frows in plan:
+            try:
+                _run_one(case, spec, start, state, runner, files, rows, frows, state_dir, bar)
+            except _ResumeFailed as exc:
+                note(f"run {spec.key} of case {case.name}: the runner could not continue from "
+                     f"the saved state ({exc}); recomputed from the start")
+                resumed -= start
+                files.drop(spec.key)
+                _run_one(case, spec, 0, None, runner, files, RowDigest(), RowDigest(),
+                         state_dir, bar)
+    files.rewrite()
     result = summarise_case(case, csv_path, n_runs=len(runs))
-    result.runtime_s = round(time.perf_counter() - t0, 3)
     result.resumed_steps = resumed
     return result
 
 
-def _run_one(case, spec, start, state, runner, csv_path, fields_path, state_dir, bar) -> None:
+class _ResumeFailed(Exception):
+    """The runner raised before reporting a step of a resumed ramp."""
+
+
+def _run_one(case, spec, start, state, runner, files: _CaseFiles, rows: RowDigest,
+             frows: RowDigest, state_dir: Path, bar) -> None:
     path = _state_path(state_dir, spec)
-    header = csv_columns(case)
-    last = {"step": start - 1}
+    sig = _spec_sig(spec)
+    last = {"step": start - 1, "done": False}
+
+    def save(step, st, done, reason=""):
+        save_state(path, step=step, state=st, done=done, reason=reason, rows=rows, frows=frows,
+                   spec=sig)
+        last["done"] = done
 
     def on_step(index: int, rec: StepRecord, st: dict) -> bool:
         if index != last["step"] + 1:
             raise RuntimeError(f"runner reported step {index} of run {spec.key} after step "
                                f"{last['step']}; steps must come once each, in order")
         brk = _breakdown(spec, rec)
-        _append(csv_path, header, [_row(case, spec, index, rec, True, brk, spec.D0[index])])
+        row = _row(case, spec, index, rec, True, brk, spec.D0[index])
+        files.add(spec.key, row)
+        rows.add(row)
         if spec.record_fields and rec.fields:
             names = sorted(rec.fields)
             cols = [np.asarray(rec.fields[n], dtype=float).ravel() for n in names]
             frs = [[case.name, spec.key, str(index), _fmt(spec.D0[index])] + [_fmt(v) for v in vals]
                    for vals in zip(*cols)]
-            _append(fields_path, ["case", "run", "step", "D0"] + names, frs)
+            files.add_fields(spec.key, _FIELD_KEYS + names, frs)
+            for r in frs:
+                frows.add(r)
         stop = brk and spec.stop_at_breakdown
         last_target = index == len(spec.D0) - 1
-        _save_state(path, index, None if (stop or last_target) else st, done=stop or last_target,
-                    reason="")
+        save(index, None if (stop or last_target) else st, stop or last_target)
         last["step"] = index
         bar.update(note=f"{spec.key} D0={spec.D0[index]:.3g}")
         return stop
 
     if start >= len(spec.D0):
         return
-    outcome = runner(spec, start, state, on_step)
-    st = _load_state(path)
-    if st is not None and st["done"]:
+    try:
+        outcome = runner(spec, start, state, on_step)
+    except Exception as exc:
+        if start > 0 and last["step"] == start - 1:
+            raise _ResumeFailed(f"{type(exc).__name__}: {exc}") from exc
+        raise
+    if last["done"]:
         return
     # the ramp ended early: record the failed target and the reason
     k = last["step"] + 1
     if not outcome.converged and k < len(spec.D0):
-        _append(csv_path, header, [_row(case, spec, k, None, False, spec.geometry == "uniaxial",
-                                        spec.D0[k])])
-        _save_state(path, last["step"], None, done=True, reason=outcome.reason or "failed")
+        row = _row(case, spec, k, None, False, spec.geometry == "uniaxial", spec.D0[k])
+        files.add(spec.key, row)
+        rows.add(row)
+        save(last["step"], None, True, outcome.reason or "failed")
     else:
-        _save_state(path, last["step"], None, done=True, reason="")
+        save(last["step"], None, True)
 
 
 def summarise_case(case: Case, csv_path: Path, n_runs: int) -> CaseResult:
@@ -539,6 +642,63 @@ def validate(cases: Iterable[Case | str] | None, out, *, quick: bool = False,
                         runner=runner, progress=progress)
     for r in results:
         make_figure(r.name, out)
-    write_summary(results, out, quick=quick)
-    write_report(results, out, quick=quick)
+    out = Path(out)
+    (out / ".state").mkdir(parents=True, exist_ok=True)
+    with FolderLock(out / ".state" / "summary.lock", f"the summary of {out}", wait=True):
+        every = folder_results(out, results)
+        write_summary(every, out, quick=quick)
+        write_report(every, out, quick=quick)
     return results
+
+
+def folder_results(out, results=()) -> list[CaseResult]:
+    """The results of every case present in ``out``: ``results`` and, for the other cases
+    with a CSV there, the summary computed from that CSV.
+
+    Parameters
+    ----------
+    out : path-like
+        Output folder of earlier :func:`validate` or :func:`run_case` calls.
+    results : sequence of CaseResult
+        Fresh results (they replace what the folder says about their cases).
+
+    Returns
+    -------
+    list of CaseResult
+        Registered cases in the order of :data:`~validation.cases.CASES`, then any
+        other case of ``results``. Runtime and resumed steps of a case not in
+        ``results`` come from the ``summary.json`` already in ``out`` (else 0).
+    """
+    out = Path(out)
+    fresh = {r.name: r for r in results}
+    try:
+        prev = json.loads((out / "summary.json").read_text())["cases"]
+        prev = prev if isinstance(prev, dict) else {}
+    except (OSError, ValueError, KeyError, TypeError):
+        prev = {}
+    every = []
+    for name, case in CASES.items():
+        if name in fresh:
+            every.append(fresh[name])
+            continue
+        csv_path = out / f"{name}.csv"
+        if not csv_path.is_file():
+            continue
+        try:
+            saved = json.loads((out / ".state" / name / "manifest.json").read_text())
+        except (OSError, ValueError):
+            saved = None
+        quick = None if saved is None else saved == _manifest(case, case.runs(True))
+        n_runs = len(saved["runs"]) if isinstance(saved, dict) and "runs" in saved \
+            else len(case.runs(bool(quick)))
+        try:
+            r = summarise_case(case, csv_path, n_runs=n_runs)
+        except (OSError, ValueError, csv.Error, UnicodeDecodeError):
+            continue
+        old = prev.get(name) if isinstance(prev.get(name), dict) else {}
+        r.runtime_s = float(old.get("runtime_s", 0.0) or 0.0)
+        r.resumed_steps = int(old.get("resumed_steps", 0) or 0)
+        r.quick = old.get("quick") if isinstance(old.get("quick"), bool) else quick
+        every.append(r)
+    every += [r for r in results if r.name not in CASES]
+    return every

@@ -1,0 +1,66 @@
+"""Sweeps on a dask.distributed cluster (the optional ``cluster`` extra).
+
+A ``LocalCluster`` of two worker processes runs real FE cases through the
+Executor-based sweep API and the ``validate --scheduler`` option; the CSVs must be
+byte-identical to the serial run's.
+"""
+
+from __future__ import annotations
+
+import sys
+
+import pytest
+
+from validation import cases as vc
+from validation.cli import main
+from validation.sweep import run_cases
+
+NO_DASK = "dask.distributed is not installed (pip install -e '.[cluster]')"
+
+
+def small_cases():
+    """Real quick runs, cut down: five homogeneous ramps in two cases (a few seconds)."""
+    nh, fig = vc.CASES["nh-d-e"], vc.CASES["figde"]
+    return [vc.Case(nh.name, nh.figure, nh.title, nh.geometry, quick=nh.quick[:3],
+                    full=nh.quick[:3]),
+            vc.Case(fig.name, fig.figure, fig.title, fig.geometry, quick=fig.quick[:2],
+                    full=fig.quick[:2])]
+
+
+def test_local_cluster_gives_the_serial_bytes(tmp_path):
+    distributed = pytest.importorskip("distributed", reason=NO_DASK)
+    cases = small_cases()
+    serial = run_cases(cases, tmp_path / "serial", quick=True, progress=False)
+    with distributed.LocalCluster(n_workers=2, processes=True, threads_per_worker=1,
+                                  dashboard_address=None) as cluster, \
+            distributed.Client(cluster) as client:
+        on_dask = run_cases(cases, tmp_path / "dask", quick=True,
+                            executor=client.get_executor(), progress=False)
+    assert [r.n_steps for r in on_dask] == [r.n_steps for r in serial] == [21, 14]
+    for c in cases:
+        a = (tmp_path / "serial" / f"{c.name}.csv").read_bytes()
+        b = (tmp_path / "dask" / f"{c.name}.csv").read_bytes()
+        assert a == b, c.name
+
+
+@pytest.mark.slow
+def test_validate_scheduler_local(tmp_path, capsys):
+    """``validate --quick --case nh-d-e --scheduler local --jobs 2`` against the serial run."""
+    pytest.importorskip("distributed", reason=NO_DASK)
+    args = ["validate", "--quick", "--case", "nh-d-e", "figde", "--no-progress"]
+    assert main(args + ["--out", str(tmp_path / "serial")]) == 0
+    assert main(args + ["--out", str(tmp_path / "dask"), "--scheduler", "local",
+                        "--jobs", "2"]) == 0
+    for name in ("nh-d-e", "figde"):
+        assert (tmp_path / "serial" / f"{name}.csv").read_bytes() == \
+            (tmp_path / "dask" / f"{name}.csv").read_bytes()
+
+
+def test_scheduler_without_dask_is_an_input_error(tmp_path, capsys, monkeypatch):
+    monkeypatch.setitem(sys.modules, "dask.distributed", None)     # import fails
+    code = main(["validate", "--quick", "--case", "nh-d-e", "--out", str(tmp_path),
+                 "--scheduler", "local"])
+    err = capsys.readouterr().err
+    assert code == 2 and len(err.strip().splitlines()) == 1
+    assert "--scheduler needs dask.distributed (pip install -e '.[cluster]')" in err
+    assert not (tmp_path / "nh-d-e.csv").exists()

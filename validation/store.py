@@ -1,0 +1,265 @@
+"""Files of a validation folder that must survive crashes and concurrent writers.
+
+* :class:`FolderLock` -- an exclusive ``flock`` on a lock file that is never deleted,
+  so that ``--force`` or a change of settings cannot make a second process lock a
+  fresh file while the first one still writes; the holder's pid and command line are
+  written into the file, so that a refused process can name it.
+* :func:`write_text_atomic`, :func:`write_csv_atomic` -- a temporary file in the same
+  folder, ``fsync``, then :func:`os.replace`: a reader (or a crash) sees the old or
+  the new file, never half of one.
+* :class:`RowDigest` -- row count and SHA-256 checksum of the CSV rows of one run.
+* :func:`save_state`, :func:`load_state` -- the resume state of one run: the last
+  saved step, the arrays that continue the ramp, the row count and checksum of the
+  run's rows in the CSVs, and the run's settings.
+"""
+
+from __future__ import annotations
+
+import csv
+import hashlib
+import io
+import json
+import os
+import shlex
+import sys
+import zipfile
+from pathlib import Path
+
+import numpy as np
+
+try:
+    import fcntl
+except ImportError:                   # pragma: no cover - Windows
+    fcntl = None
+
+__all__ = ["LockedError", "FolderLock", "write_text_atomic", "write_csv_atomic", "csv_line",
+           "RowDigest", "save_state", "load_state", "dumps", "STATE_VERSION"]
+
+#: Layout version of the state files; a state of another layout is not trusted.
+STATE_VERSION = 2
+
+
+class LockedError(ValueError):
+    """Another process holds the lock; the message names it (pid, command line)."""
+
+
+def _command() -> str:
+    argv = list(sys.argv) or ["python"]
+    argv[0] = os.path.basename(argv[0]) or "python"
+    return " ".join(shlex.quote(a) for a in argv)
+
+
+class FolderLock:
+    """Exclusive ``flock`` on ``path`` (created, never deleted) while a process writes.
+
+    Parameters
+    ----------
+    path : path-like
+        The lock file.
+    what : str
+        What the lock protects, for the message of :class:`LockedError`.
+    wait : bool
+        Block until the lock is free instead of raising :class:`LockedError`.
+
+    Notes
+    -----
+    The operating system releases an ``flock`` when its process dies, so a killed
+    run never blocks its own resume. Where ``fcntl`` is unavailable (Windows) the
+    lock is a no-op.
+    """
+
+    def __init__(self, path, what: str, *, wait: bool = False):
+        self.path, self.what, self.wait, self.fd = Path(path), what, wait, None
+
+    def holder(self) -> str:
+        """Pid and command line of the process that holds (or last held) the lock."""
+        try:
+            text = self.path.read_text(errors="replace").strip()
+        except OSError:
+            text = ""
+        return text.splitlines()[0] if text else "pid unknown"
+
+    def __enter__(self) -> "FolderLock":
+        if fcntl is None:             # pragma: no cover - Windows
+            return self
+        fd = os.open(self.path, os.O_RDWR | os.O_CREAT, 0o644)
+        try:
+            fcntl.flock(fd, fcntl.LOCK_EX | (0 if self.wait else fcntl.LOCK_NB))
+        except BlockingIOError:
+            os.close(fd)
+            raise LockedError(f"{self.what} is being written by another process "
+                              f"({self.holder()}); wait for it to end or choose another "
+                              f"--out") from None
+        except BaseException:
+            os.close(fd)
+            raise
+        os.ftruncate(fd, 0)
+        os.pwrite(fd, f"pid {os.getpid()}: {_command()}\n".encode(), 0)
+        self.fd = fd
+        return self
+
+    def __exit__(self, *exc) -> None:
+        if self.fd is not None:
+            os.close(self.fd)         # releases the lock; the file stays
+            self.fd = None
+
+
+def _tmp_path(path: Path) -> Path:
+    return path.with_name(f".{path.name}.{os.getpid()}.tmp")
+
+
+def _replace(tmp: Path, path: Path, fh) -> None:
+    fh.flush()
+    os.fsync(fh.fileno())
+    fh.close()
+    os.replace(tmp, path)
+
+
+def write_text_atomic(path, text: str) -> Path:
+    """Write ``text`` to ``path`` atomically (temporary file, ``fsync``, ``os.replace``)."""
+    path = Path(path)
+    tmp = _tmp_path(path)
+    try:
+        fh = open(tmp, "w")
+        fh.write(text)
+        _replace(tmp, path, fh)
+    finally:
+        if tmp.exists():
+            tmp.unlink()
+    return path
+
+
+def write_csv_atomic(path, header: list[str], rows) -> Path:
+    """Write a CSV (``header`` then ``rows``, ``\\n`` line ends) atomically."""
+    path = Path(path)
+    tmp = _tmp_path(path)
+    try:
+        fh = open(tmp, "w", newline="")
+        w = csv.writer(fh, lineterminator="\n")
+        w.writerow(header)
+        w.writerows(rows)
+        _replace(tmp, path, fh)
+    finally:
+        if tmp.exists():
+            tmp.unlink()
+    return path
+
+
+def csv_line(row) -> str:
+    """The text of one CSV row as the harness writes it (with its ``\\n``)."""
+    buf = io.StringIO()
+    csv.writer(buf, lineterminator="\n").writerow(row)
+    return buf.getvalue()
+
+
+class RowDigest:
+    """Row count and SHA-256 of the CSV rows of one run, in order.
+
+    Examples
+    --------
+    >>> d = RowDigest()
+    >>> d.add(["a", "1"]); d.add(["a", "2"])
+    >>> d.count, RowDigest.of([["a", "1"], ["a", "2"]]).hexdigest() == d.hexdigest()
+    (2, True)
+    """
+
+    def __init__(self):
+        self._h, self.count = hashlib.sha256(), 0
+
+    def add(self, row) -> None:
+        """Account for one more row."""
+        self._h.update(csv_line(row).encode())
+        self.count += 1
+
+    def hexdigest(self) -> str:
+        """The checksum of the rows so far."""
+        return self._h.hexdigest()
+
+    @classmethod
+    def of(cls, rows) -> "RowDigest":
+        """The digest of ``rows``."""
+        d = cls()
+        for r in rows:
+            d.add(r)
+        return d
+
+
+def save_state(path, *, step: int, state: dict | None, done: bool, reason: str,
+               rows: RowDigest, frows: RowDigest, spec: str) -> None:
+    """Save the resume state of one run atomically.
+
+    Parameters
+    ----------
+    path : path-like
+        The ``.npz`` file.
+    step : int
+        Last converged step (``-1``: none).
+    state : dict or None
+        Arrays that continue the ramp from ``step`` (``None`` for a finished run).
+    done : bool
+        The run is finished (last target, breakdown or solver failure).
+    reason : str
+        Why a finished run stopped early (empty otherwise).
+    rows, frows : RowDigest
+        The run's rows so far in the case CSV and in the fields CSV.
+    spec : str
+        The run's settings (JSON); a state saved for other settings is not trusted.
+    """
+    path = Path(path)
+    arrays = {f"x_{k}": np.asarray(v) for k, v in (state or {}).items()}
+    tmp = _tmp_path(path)
+    try:
+        fh = open(tmp, "wb")
+        np.savez(fh, __version__=STATE_VERSION, __step__=step, __done__=done,
+                 __reason__=reason, __rows__=rows.count, __sha__=rows.hexdigest(),
+                 __frows__=frows.count, __fsha__=frows.hexdigest(), __spec__=spec, **arrays)
+        _replace(tmp, path, fh)
+    finally:
+        if tmp.exists():
+            tmp.unlink()
+
+
+def load_state(path, spec: str) -> tuple[dict | None, str]:
+    """The saved state of one run, or ``None`` and why it cannot be trusted.
+
+    Parameters
+    ----------
+    path : path-like
+        The ``.npz`` file.
+    spec : str
+        The run's settings (JSON) as passed to :func:`save_state`.
+
+    Returns
+    -------
+    state : dict or None
+        ``step``, ``done``, ``reason``, ``rows``, ``sha``, ``frows``, ``fsha`` and the
+        arrays ``state``; ``None`` when the file is missing or not trustworthy.
+    why : str
+        Empty when ``state`` is usable or the file does not exist.
+    """
+    path = Path(path)
+    if not path.exists():
+        return None, ""
+    try:
+        with np.load(path, allow_pickle=False) as z:
+            if "__version__" not in z.files or int(z["__version__"]) != STATE_VERSION:
+                return None, f"{path} was written by another version of the harness"
+            if str(z["__spec__"]) != spec:
+                return None, f"{path} was saved for other settings of this run"
+            st = {"step": int(z["__step__"]), "done": bool(z["__done__"]),
+                  "reason": str(z["__reason__"]), "rows": int(z["__rows__"]),
+                  "sha": str(z["__sha__"]), "frows": int(z["__frows__"]),
+                  "fsha": str(z["__fsha__"]),
+                  "state": {k[2:]: np.array(z[k]) for k in z.files if k.startswith("x_")}}
+    except IsADirectoryError:
+        raise
+    except (OSError, ValueError, KeyError, EOFError, zipfile.BadZipFile) as exc:
+        return None, f"{path} is unreadable ({type(exc).__name__}: {exc})"
+    if st["step"] < -1 or st["rows"] < 0 or st["frows"] < 0:
+        return None, f"{path} holds an impossible step or row count"
+    return st, ""
+
+
+def dumps(obj) -> str:
+    """Compact, key-sorted JSON (the form compared and stored)."""
+    return json.dumps(obj, sort_keys=True, separators=(",", ":"))
