@@ -28,6 +28,8 @@ from .newton import NewtonResult, newton, segment_det_limit
 from .plate import PlateProblem
 from .problem import Layout, Problem
 from .ramp import RampResult, StepResult, ramp
+from .stability import StabilityResult, stability_analysis, tangent_inertia, tangent_stability
+from .wrinkling_fe import section_critical_load, wrinkling_section
 
 __all__ = [
     # the contract and the machinery
@@ -47,6 +49,9 @@ __all__ = [
     "equibiaxial_problem", "keplinger_problem", "plate_admissible", "run_ramp", "equibiaxial_plate",
     "keplinger_plate", "maxwell_equibiaxial", "maxwell_keplinger", "membrane_ramp",
     "membrane_keplinger", "cross_section_ramp",
+    # stability
+    "StabilityResult", "stability_analysis", "tangent_stability", "tangent_inertia",
+    "wrinkling_section", "section_critical_load",
     # export
     "step_mesh", "write_vtu_series", "write_xdmf",
 ]

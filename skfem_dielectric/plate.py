@@ -329,6 +329,16 @@ class PlateProblem(Problem):
             return (K + Kb).tocsr(), r + rb
         return K, r
 
+    def stabilised_tangent(self, x: np.ndarray, load, grad_div: float):
+        """Reduced tangent at ``(x, load)`` with the grad-div stabilisation ``grad_div``
+        (units of ``mu``) in place of the model's: the stiffness a stability analysis of a
+        state of the unstabilised model uses (:mod:`skfem_dielectric.stability`)."""
+        xf = self.full(x, load)
+        K = self.scatter.csr(self.form.assemble(xf, grad_div * self.material.mu)[0])
+        if self.boundary is not None:
+            K = (K + self.boundary.assemble(xf, self.sigma(load))[0]).tocsr()
+        return K
+
     def residual(self, x: np.ndarray, load) -> np.ndarray:
         """Reduced residual only (cheaper; used by the line search)."""
         xf = self.full(x, load)

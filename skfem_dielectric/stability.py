@@ -39,8 +39,8 @@ import scipy.sparse.linalg as spla
 from .linear import PardisoSolver, pardiso_available
 from .problem import Problem
 
-__all__ = ["tangent_inertia", "StabilityResult", "stability_analysis", "metric_matrix",
-           "lowest_modes"]
+__all__ = ["tangent_inertia", "StabilityResult", "stability_analysis", "tangent_stability",
+           "metric_matrix", "lowest_modes"]
 
 INERTIA_METHODS = ("auto", "superlu", "pardiso", "dense")
 #: systems up to this size may be counted densely
@@ -104,7 +104,7 @@ def metric_matrix(problem: Problem) -> sp.csr_matrix:
 
 
 def lowest_modes(K: sp.spmatrix, M: sp.spmatrix, k: int, n_negative: int = 0,
-                 sigma: float | None = None):
+                 sigma: float | None = None, tol: float = 1e-12):
     """The ``k`` lowest finite eigenpairs of the pencil ``K w = lambda M w``.
 
     ``M`` is diagonal with ones on the displacement-like unknowns (index set ``d``) and
@@ -115,6 +115,7 @@ def lowest_modes(K: sp.spmatrix, M: sp.spmatrix, k: int, n_negative: int = 0,
     ``d``-parts of the modes.  ``sigma`` defaults to just below zero (scaled to ``K``);
     the number of eigenpairs asked for grows until all ``n_negative`` negative eigenvalues
     (known from the inertia) are among them, so that the returned ones are the lowest.
+    ``tol`` is ARPACK's relative tolerance on ``theta``.
 
     Returns
     -------
@@ -132,12 +133,18 @@ def lowest_modes(K: sp.spmatrix, M: sp.spmatrix, k: int, n_negative: int = 0,
     K = sp.csc_matrix(K)
     if sigma is None:
         sigma = -1e-8 * float(abs(K).max())
-    lu = spla.splu(K - sigma * sp.csc_matrix(M), permc_spec="MMD_AT_PLUS_A")
+    Ks = K - sigma * sp.csc_matrix(M)
+    if pardiso_available() and n > DENSE_LIMIT:     # symmetric LDL^T, factorised once
+        pardiso = PardisoSolver()
+        pardiso.solve(Ks.tocsr(), np.zeros(n))
+        solve = pardiso.resolve
+    else:
+        solve = spla.splu(Ks, permc_spec="MMD_AT_PLUS_A").solve
 
     def solve_d(v):
         b = np.zeros(n)
         b[d] = v
-        return lu.solve(b)
+        return solve(b)
 
     op = spla.LinearOperator((nd, nd), matvec=lambda v: solve_d(v)[d], dtype=float)
     want = k + max(0, n_negative)
@@ -149,7 +156,7 @@ def lowest_modes(K: sp.spmatrix, M: sp.spmatrix, k: int, n_negative: int = 0,
             keep = np.argsort(-np.abs(theta))[:m]
             theta, V = theta[keep], V[:, keep]
         else:
-            theta, V = spla.eigsh(op, m, which="LM", tol=1e-12)
+            theta, V = spla.eigsh(op, m, which="LM", tol=tol)
         vals = sigma + 1.0 / theta
         order = np.argsort(vals)
         vals, V, theta = vals[order], V[:, order], theta[order]
@@ -247,12 +254,44 @@ def stability_analysis(problem: Problem, x: np.ndarray, load: Any, *, k: int = 0
     if not rn <= rtol * scale:
         raise ValueError(f"the state is not an equilibrium: ||r|| = {rn:.3e} > "
                          f"rtol * scale = {rtol * scale:.3e} (use a converged StepResult)")
+    return tangent_stability(problem, K, k=k, method=method)
+
+
+def tangent_stability(problem: Problem, K: sp.spmatrix, *, k: int = 0,
+                      method: str = "auto", all_negative: bool = False,
+                      tol: float = 1e-12) -> StabilityResult:
+    """:func:`stability_analysis` of a given tangent ``K`` of ``problem`` (no equilibrium
+    check): e.g. the grad-div stabilised tangent at a state of the unstabilised model.
+
+    Parameters
+    ----------
+    problem
+        Gives the layout (multiplier blocks, metric).
+    K
+        Symmetric reduced tangent in that layout.
+    k, method
+        As in :func:`stability_analysis`.
+    all_negative
+        Return at least as many modes as negative eigenvalues (``k = max(k, n_negative)``).
+    tol
+        Relative tolerance of the eigenvalues (:func:`lowest_modes`).
+
+    Returns
+    -------
+    StabilityResult
+    """
+    if int(k) != k or k < 0:
+        raise ValueError(f"k must be an integer >= 0, got {k!r}")
+    if K.shape != (problem.ndofs, problem.ndofs):
+        raise ValueError(f"K must have shape ({problem.ndofs}, {problem.ndofs}), got {K.shape}")
     if method == "auto" and not pardiso_available() and K.shape[0] <= DENSE_LIMIT // 10:
         method = "dense"
     inertia = tangent_inertia(K, method)
     n_m = problem.layout.n_multipliers
     out = StabilityResult(inertia[1] - n_m, inertia[2], tuple(inertia), n_m)
+    if all_negative:
+        k = max(int(k), out.n_negative)
     if k:
         out.eigenvalues, out.modes = lowest_modes(K, metric_matrix(problem), int(k),
-                                                  max(0, out.n_negative))
+                                                  max(0, out.n_negative), tol=tol)
     return out

@@ -24,6 +24,9 @@ class StepRecord:
     min_P33_interior: float = float("nan")
     stable: bool | None = None
     iterations: int = 0
+    n_negative: int | None = None
+    n_unstable: int | None = None
+    lowest_eig: float = float("nan")
     fields: dict | None = None
 
 

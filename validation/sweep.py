@@ -95,8 +95,10 @@ def csv_columns(case: Case) -> list[str]:
 
     The run (``case``, ``run``, ``step``, ``model``, ``variant``, ``alpha`` for the
     uni-axial cases, ``s``), the load ``D0``, FE and analytic stretches at the plate
-    centre, the ``P33/mu`` minima, the verdicts ``converged``, ``stable``,
-    ``breakdown`` and the Newton ``iterations``.
+    centre, the ``P33/mu`` minima, the verdicts ``converged``, ``stable``, the stability
+    counts ``n_negative`` (negative eigenvalues of the reduced stiffness), ``n_unstable``
+    (those not classified as clamp-corner artefacts) and ``lowest_eig``, ``breakdown`` and
+    the Newton ``iterations``.
 
     Parameters
     ----------
@@ -110,8 +112,8 @@ def csv_columns(case: Case) -> list[str]:
     if case.geometry == "uniaxial":
         cols.append("alpha")
     cols += ["s", "D0", "lam1_fe", "lam1_analytic", "lam3_fe", "lam3_analytic", "min_P33",
-             "min_P33_interior", "min_P33_clamp", "converged", "stable", "breakdown",
-             "iterations"]
+             "min_P33_interior", "min_P33_clamp", "converged", "stable", "n_negative",
+             "n_unstable", "lowest_eig", "breakdown", "iterations"]
     return cols
 
 
@@ -161,6 +163,9 @@ def _row(case: Case, spec: RunSpec, index: int, rec: StepRecord | None, converge
             "min_P33_interior": rec.min_P33_interior if rec else None,
             "min_P33_clamp": rec.min_P33_clamp if rec else None,
             "converged": converged, "stable": rec.stable if rec else None,
+            "n_negative": rec.n_negative if rec else None,
+            "n_unstable": rec.n_unstable if rec else None,
+            "lowest_eig": rec.lowest_eig if rec else None,
             "breakdown": breakdown, "iterations": rec.iterations if rec else None}
     return [_fmt(vals[c]) for c in csv_columns(case)]
 

@@ -209,16 +209,17 @@ class MixedUPPhiForm:
             p = np.einsum("ek,eqk->eq", pe, self.N1[sl])
         return F, G, p
 
-    def _response(self, xf, sl, need_tangent=True):
+    def _response(self, xf, sl, need_tangent=True, grad_div=None):
         """Material response of the elements ``sl``: tensor-first stresses, the tangent
         times the quadrature weights in the points-first layout `_element_blocks` uses."""
         F, G, p = self.quadrature_fields(xf, sl)
         w = self.w[sl] if need_tangent else None
+        gd = self.grad_div if grad_div is None else grad_div
         r = dielectric_response(self.material, F, G, p, self.kappa, self.formulation,
-                                need_tangent, True, w, self.grad_div)
+                                need_tangent, True, w, gd)
         if self.elastic_volume:   # equilibrium rows: elastic stress, Gauss rows: D_L(F, G)
             r0 = dielectric_response(self.material, F, np.zeros_like(G), p, self.kappa,
-                                     self.formulation, need_tangent, True, w, self.grad_div)
+                                     self.formulation, need_tangent, True, w, gd)
             r.P = r0.P
             if need_tangent:
                 r.A_FF = r0.A_FF
@@ -285,8 +286,8 @@ class MixedUPPhiForm:
                                                      self.N1[sl], w)).ravel()
         return buf
 
-    def _assemble_chunk(self, xf, sl):
-        r = self._response(xf, sl)
+    def _assemble_chunk(self, xf, sl, grad_div=None):
+        r = self._response(xf, sl, grad_div=grad_div)
         data = np.bincount(self._chunk_positions(sl), weights=self._element_blocks(r, sl),
                            minlength=self.scatter.nnz + 1)[: self.scatter.nnz]
         re = self._element_residual(r, sl)
@@ -294,17 +295,18 @@ class MixedUPPhiForm:
                                  minlength=self.n_full)
 
     # ------------------------------------------------------------------ assembly
-    def assemble(self, xf: np.ndarray):
+    def assemble(self, xf: np.ndarray, grad_div: float | None = None):
         """CSR data of the reduced tangent and the *full* internal force vector at the full
         dof vector ``xf`` (element chunks in ``threads`` worker threads; numpy releases the
-        GIL in the batched matmuls)."""
+        GIL in the batched matmuls); ``grad_div`` overrides the form's stabilisation."""
         chunks = list(self.chunks())
         if self.threads > 1 and len(chunks) > 1:
             if self._pool is None:
                 self._pool = ThreadPoolExecutor(self.threads)
-            parts = list(self._pool.map(lambda sl: self._assemble_chunk(xf, sl), chunks))
+            parts = list(self._pool.map(lambda sl: self._assemble_chunk(xf, sl, grad_div),
+                                        chunks))
         else:
-            parts = [self._assemble_chunk(xf, sl) for sl in chunks]
+            parts = [self._assemble_chunk(xf, sl, grad_div) for sl in chunks]
         data = parts[0][0]
         rf = parts[0][1]
         for d, r in parts[1:]:
