@@ -9,7 +9,11 @@ CSVs step by step (resumable), draws the figures and writes ``summary.json``
 and ``report.md``.
 """
 
-from .cases import CASES, get_case
+from .clash import PackageClash, check_packages
+
+check_packages()       # before anything imports analytic / skfem_dielectric
+
+from .cases import CASES, get_case  # noqa: E402
 from .fe import keplinger_s
 from .records import RunOutcome, StepRecord
 from .specs import ALPHAS, KEPLINGER, Case, RunSpec
@@ -19,5 +23,5 @@ from .sweep import (BREAKDOWN_TOL, CaseResult, make_figure, read_table, run_case
 __all__ = [
     "ALPHAS", "CASES", "KEPLINGER", "Case", "RunSpec", "get_case", "keplinger_s",
     "BREAKDOWN_TOL", "CaseResult", "RunOutcome", "StepRecord", "make_figure", "read_table",
-    "run_case", "run_cases", "validate",
+    "run_case", "run_cases", "validate", "PackageClash", "check_packages",
 ]

@@ -16,10 +16,11 @@ import matplotlib.pyplot as plt
 import matplotlib.tri as mtri
 import numpy as np
 from matplotlib.lines import Line2D
+from matplotlib.ticker import MaxNLocator
 
 import analytic as an
 
-from .cases import ALPHAS, analytic_model
+from .cases import ALPHAS, analytic_model, get_case
 from .fe import keplinger_s
 
 __all__ = [
@@ -32,13 +33,23 @@ __all__ = [
     "uniaxial_thick_limit_curve",
     "uniaxial_voltage_locus",
     "case_figure",
+    "figure_caption",
     "save_figure",
 ]
 
-_VARIANT_MARKER = {"coupled": dict(marker="o", mfc="none", ms=6, mew=1.2),
-                   "maxwell": dict(marker="s", mfc="none", ms=4, mew=1.0),
-                   "membrane": dict(marker="^", mfc="none", ms=5, mew=1.0),
-                   "membrane-maxwell": dict(marker="d", mfc="none", ms=5, mew=1.0)}
+#: The paper's figure numbers, in the order the paper shows them.
+PAPER_FIGURE = {"nh-d-e": 1, "gent-d-e": 2, "gent-equi-biaxial": 3, "figde": 4,
+                "uni-axial-ideal": 5, "lambda1-3": 6, "zs22": 7}
+
+# Concentric markers of decreasing size, so that models on the same point stay visible:
+# a large circle (3D coupled) holds a square (3D Maxwell), a triangle (membrane) and a
+# small filled diamond (membrane, Maxwell).
+_VARIANT_MARKER = {"coupled": dict(marker="o", mfc="none", ms=12, mew=1.3),
+                   "maxwell": dict(marker="s", mfc="none", ms=7.5, mew=1.2),
+                   "membrane": dict(marker="^", mfc="none", ms=5.5, mew=1.1),
+                   "membrane-maxwell": dict(marker="D", ms=3.4, mew=0.6)}
+_BREAKDOWN_MARKER = {"coupled": dict(marker="o", ms=19), "maxwell": dict(marker="s", ms=14),
+                     "membrane": dict(marker="^", ms=12)}
 _VARIANT_LABEL = {"coupled": "FE 3D, fully coupled", "maxwell": "FE 3D, Maxwell traction",
                   "membrane": "FE 2D membrane, coupled",
                   "membrane-maxwell": "FE 2D membrane, Maxwell (local field)"}
@@ -51,9 +62,14 @@ def _new_axes(ax, n=1, figsize=None):
     return axes
 
 
-def _colors(n):
+def _colors(n, values=None, palette=None):
+    """``n`` viridis colours; with ``palette``, the colour of each value of ``values``
+    within the palette (so that one ``s`` has one colour in every panel)."""
     cmap = plt.get_cmap("viridis")
-    return [cmap(x) for x in np.linspace(0.0, 0.85, n)]
+    if palette is None:
+        return [cmap(x) for x in np.linspace(0.0, 0.85, n)]
+    full = dict(zip(palette, _colors(len(palette))))
+    return [full[v] for v in values]
 
 
 def _fe_rows(fe, **match):
@@ -70,7 +86,9 @@ def _fe_rows(fe, **match):
 def _fe_dots(ax, fe, x, y, mask, variant, color, label=None):
     if mask is None or not mask.any():
         return
-    ax.plot(x[mask], y[mask], ls="none", color=color, label=label, **_VARIANT_MARKER[variant])
+    # not clipped: a dot on the frame (D0 = 0, or the top of the range) stays whole
+    ax.plot(x[mask], y[mask], ls="none", color=color, label=label, clip_on=False, zorder=3,
+            **_VARIANT_MARKER[variant])
 
 
 def _fe_E0(fe):
@@ -251,11 +269,12 @@ def uniaxial_voltage_locus(model="neo-Hookean", s=None):
 
 
 def plot_uniaxial_loading(model="neo-Hookean", s_values=(0, 1, 2, 3, 4), quantity="D0",
-                          fe=None, ax=None, lam1_max=6.0, locus=True):
+                          fe=None, ax=None, lam1_max=6.0, locus=True, palette=None):
     """Uni-axial dead-load curves ``D0(lam1)`` or ``E0(lam1)`` (paper Fig. figde, Eq. DEuniax).
 
     The dashed curve is the ``det H* = 0`` locus of :func:`uniaxial_voltage_locus`;
-    FE dots at ``(lam1_fe, D0)`` or ``(lam1_fe, D0/(lam1_fe lam3_fe)^2)``.
+    FE dots at ``(lam1_fe, D0)`` or ``(lam1_fe, D0/(lam1_fe lam3_fe)^2)``. ``palette``
+    (a superset of ``s_values``) fixes the colour of each ``s`` across panels.
 
     Returns
     -------
@@ -265,7 +284,7 @@ def plot_uniaxial_loading(model="neo-Hookean", s_values=(0, 1, 2, 3, 4), quantit
         raise ValueError(f"quantity must be 'D0' or 'E0', got {quantity!r}")
     ax = _new_axes(ax)
     m = analytic_model(model)
-    for s, c in zip(s_values, _colors(len(s_values))):
+    for s, c in zip(s_values, _colors(len(s_values), s_values, palette)):
         lam1, D0, E0 = _uniaxial_curve(s, m, lam1_max)
         ax.plot(lam1, D0 if quantity == "D0" else E0, color=c, label=f"$s = {s:g}$")
         mask = _fe_rows(fe, s=s, model=model)
@@ -327,8 +346,9 @@ def plot_uniaxial_wrinkling(fe=None, alphas=ALPHAS, ax=None, D0max=7.0):
     Neo-Hookean loading curves Eq. (DEuniax) for ``s = alpha m g/(mu A)``, the
     thick-plate limit (dashed blue, Eq. thick-uni-axial), the thin-plate limit
     (dashed black, Eq. thin-uni-axial, the ``s = 0`` curve), the wrinkling zone
-    between them, the FE dots of the clamped plate and a red cross where each
-    FE run breaks down (``P33`` near the clamps compressive, or no convergence).
+    between them, the FE dots of the clamped plate and a red open marker,
+    of the shape of the run's FE model, around the dot where each FE run breaks down
+    (``P33`` near the clamps compressive, or no convergence).
 
     Returns
     -------
@@ -347,7 +367,7 @@ def plot_uniaxial_wrinkling(fe=None, alphas=ALPHAS, ax=None, D0max=7.0):
         ax.fill(xs, ys, color="0.85", zorder=0, label="wrinkling zone")
     ax.plot(lk, thick, "--", color="tab:blue", label="thick-plate limit")
     ax.plot(ln, thin, "--", color="k", label="thin-plate limit ($s = 0$)")
-    first_cross = True
+    broken = set()
     for a, c in zip(alphas, _colors(len(alphas))):
         s = keplinger_s(a)
         l1, D0c, _ = _uniaxial_curve(s, m, 6.0)
@@ -366,16 +386,19 @@ def plot_uniaxial_wrinkling(fe=None, alphas=ALPHAS, ax=None, D0max=7.0):
                 # the first compressive step, else the last converged one before the failure
                 i = int(np.argmax(brk)) if brk.any() else max(int(np.argmin(conv)) - 1, 0)
                 x = lam_fe[i] if np.isfinite(lam_fe[i]) else fe["lam1_analytic"][sel][i]
-                ax.plot(x, D0_fe[i], "x", color="red", ms=10, mew=2.2,
-                        label="FE breakdown" if first_cross else None, zorder=5)
-                first_cross = False
+                ax.plot(x, D0_fe[i], ls="none", color="red", mfc="none", mew=1.6, zorder=5,
+                        clip_on=False, **_BREAKDOWN_MARKER.get(v, _BREAKDOWN_MARKER["coupled"]))
+                broken.add(v)
     ax.set_xlim(0.4, 6.0)
     ax.set_ylim(0, D0max)
     ax.set_xlabel(r"$\lambda_1$")
     ax.set_ylabel(r"$D_0$")
-    handles, labels = ax.get_legend_handles_labels()
-    order = sorted(range(len(labels)), key=lambda i: labels[i] == "FE breakdown")
-    ax.legend(handles=[handles[i] for i in order] + _variant_legend(ax, fe), fontsize=8,
+    handles, _ = ax.get_legend_handles_labels()
+    crosses = [Line2D([], [], ls="none", color="red", mfc="none", mew=1.6,
+                      label=f"breakdown, {_VARIANT_LABEL[v][3:]}",
+                      **dict(_BREAKDOWN_MARKER[v], ms=0.6 * _BREAKDOWN_MARKER[v]["ms"]))
+               for v in _BREAKDOWN_MARKER if v in broken]
+    ax.legend(handles=handles + _variant_legend(ax, fe) + crosses, fontsize=8,
               loc="center left", bbox_to_anchor=(1.01, 0.5))
     ax.set_title("Keplinger plate, uni-axial dead load (neo-Hookean)", fontsize=10)
     return ax
@@ -399,7 +422,8 @@ def plot_stretch_maps(fields, axes=None):
     ----------
     fields : dict
         Table with columns ``x1, x3`` (reference position in the mid-plane,
-        metres, origin at the plate centre) and ``lam1, lam3`` at ``D0 = 0``.
+        metres, origin at the plate centre) and ``lam1, lam3`` at ``D0 = 0`` (the
+        Keplinger plate under the full weight, ``alpha = 1``: 150 g).
     axes : pair of Axes, optional
 
     Returns
@@ -416,13 +440,15 @@ def plot_stretch_maps(fields, axes=None):
         tri = mtri.Triangulation(100 * x3[idx], 100 * x1[idx])   # cm, x1 vertical like the paper
         # colour range from the 5th-99th percentiles: the clamp edges are singular
         lo, hi = np.percentile(v[idx], [5, 99])
-        levels = np.linspace(lo, hi if hi > lo else lo + 1e-9, 21)
+        # round level boundaries, so that the colour bar reads 3.04, 3.06, ... not 3.0437
+        levels = MaxNLocator(nbins=16).tick_values(lo, hi if hi > lo else lo + 1e-9)
         pc = ax.tricontourf(tri, v[idx], levels=levels, cmap="viridis", extend="both")
-        plt.colorbar(pc, ax=ax, label=label, format="%.3g")
+        cb = plt.colorbar(pc, ax=ax, label=label, ticks=MaxNLocator(nbins=8))
+        cb.ax.tick_params(labelsize=8)
         ax.set_aspect("equal")
-        ax.set_xlabel(r"$x_3$ (cm)")
-        ax.set_ylabel(r"$x_1$ (cm)")
-        ax.set_title(f"{label}, $D_0 = 0$", fontsize=10)
+        ax.set_xlabel(r"$X_3$ (cm, reference)")
+        ax.set_ylabel(r"$X_1$ (cm, reference)")
+        ax.set_title(f"{label}, $D_0 = 0$, $\\alpha = 1$ (150 g)", fontsize=10)
     return axes
 
 
@@ -448,9 +474,10 @@ def plot_p33_profiles(fields, fe=None, ax=None, variant="coupled"):
         raise ValueError(f"variant {variant!r} has no profiles in the table")
     sel_run = (fields["run"] == runs[0]) & (fields["kind"] == 0)
     steps = np.unique(fields["step"][sel_run])
-    cmap = plt.get_cmap("coolwarm")
+    # a sequential map without white (no curve disappears on the background), up to orange
+    cmap = plt.get_cmap("plasma")
     D0s = np.array([fields["D0"][sel_run & (fields["step"] == k)][0] for k in steps])
-    norm = plt.Normalize(D0s.min(), max(D0s.max(), 1e-12))
+    norm = plt.Normalize(D0s.min(), max(D0s.max(), 1e-12) / 0.82)
     brk_step = None
     if fe is not None and len(fe.get("run", [])):
         sel = (fe["run"] == runs[0]) & np.array([bool(b) for b in fe["breakdown"]])
@@ -474,7 +501,7 @@ def plot_p33_profiles(fields, fe=None, ax=None, variant="coupled"):
         ax.set_ylim(top=1.3 * p95)
         ax.text(0.99, 0.02, f"clipped: $P_{{33}}/\\mu$ up to {top:.2g} at the clamps",
                 transform=ax.transAxes, ha="right", va="bottom", fontsize=7)
-    ax.set_xlabel(r"$x_1$ along the centre line (cm)")
+    ax.set_xlabel(r"$X_1$ along the centre line (cm, reference)")
     ax.set_ylabel(r"$P_{33}/\mu$")
     ax.legend(fontsize=7, ncol=2, loc="upper center")
     ax.set_title(f"Keplinger plate, $\\alpha = 1$: lateral stress, {_VARIANT_LABEL[variant]}",
@@ -483,43 +510,127 @@ def plot_p33_profiles(fields, fe=None, ax=None, variant="coupled"):
 
 
 # --------------------------------------------------------------------------- per case
+_MODEL_NAME = {"coupled": "3D fully coupled", "maxwell": "3D Maxwell traction",
+               "membrane": "2D membrane", "membrane-maxwell": "2D membrane (Maxwell)"}
+
+
+def _run_setting(name, fe, fields):
+    """``(quick, specs)``: which run setting produced the table (``None`` if unknown).
+
+    A table belongs to the quick setting when each run and ``D0`` value is one of its
+    targets (the full setting refines the quick steps); when both settings have the
+    same targets (``lambda1-3``), the 3D centre line, ``2 n1 + 1`` points, decides.
+    """
+    if fe is None or not len(fe.get("run", [])):
+        return None, ()
+    case = get_case(name)
+    fits = []
+    for quick in (True, False):
+        specs = {r.key: r for r in case.runs(quick)}
+        if all(str(k) in specs and np.any(np.isclose(d, specs[str(k)].D0))
+               for k, d in zip(fe["run"], fe["D0"])):
+            fits.append(quick)
+    if len(fits) > 1 and fields is not None and len(fields.get("run", [])):
+        run = str(fields["run"][0])
+        sel = (fields["run"] == run) & (fields["kind"] == 0) & (fields["step"] == fields["step"].min())
+        npts = len(np.unique(fields["x1"][sel]))
+        fits = [q for q in fits
+                if 2 * {r.key: r for r in case.runs(q)}[run].mesh_dict["n1"] + 1 == npts] or fits
+    if not fits:
+        return None, ()
+    keys = set(map(str, fe["run"]))
+    return fits[0], tuple(r for r in case.runs(fits[0]) if r.key in keys)
+
+
+def _mesh_text(specs) -> str:
+    groups: dict[str, list[str]] = {}
+    for r in specs:
+        m = r.mesh_dict
+        if (m.get("n1"), m.get("n2"), m.get("n3")) == (1, 1, 1):
+            text = "1 element (homogeneous state)"
+        elif r.variant.startswith("membrane"):
+            text = f"{m['n1']} x {m['n3']} elements (quarter plate)"
+        else:
+            text = f"{m['n1']} x {m['n2']} x {m['n3']} elements (eighth of the plate)"
+        names = groups.setdefault(text, [])
+        if _MODEL_NAME[r.variant] not in names:
+            names.append(_MODEL_NAME[r.variant])
+    return "; ".join(f"{', '.join(v)}: {k}" for k, v in groups.items())
+
+
+def figure_caption(name: str, fe=None, fields=None) -> str:
+    """One caption line: the paper's figure number, quick/full run and the FE meshes.
+
+    Parameters
+    ----------
+    name : str
+        Case name.
+    fe, fields : dict, optional
+        The case's tables (as for :func:`case_figure`).
+
+    Returns
+    -------
+    str
+    """
+    case = get_case(name)
+    head = f"Paper Fig. {PAPER_FIGURE[name]} ({case.figure.removeprefix('fig:')})"
+    quick, specs = _run_setting(name, fe, fields)
+    if fe is None or not len(fe.get("run", [])):
+        if fields is None:
+            return f"{head}. Analytic curves only (no FE run)."
+        return f"{head}. FE fields."
+    run = {True: "quick run", False: "full run", None: "FE run"}[quick]
+    return f"{head}. {run[0].upper() + run[1:]}; meshes: {_mesh_text(specs) or 'unknown'}."
+
+
 def case_figure(name: str, fe=None, fields=None):
     """The figure of case ``name`` (analytic curves, plus FE data if given).
+
+    Every figure carries a caption line (:func:`figure_caption`).
 
     Returns
     -------
     matplotlib Figure
     """
+    fig = _case_figure(name, fe, fields)
+    fig.supxlabel(figure_caption(name, fe, fields), fontsize=8, color="0.25")
+    return fig
+
+
+def _case_figure(name, fe, fields):
     if name in ("nh-d-e", "gent-d-e"):
         model, s_values = ("neo-Hookean", (0, 1, 2, 3)) if name == "nh-d-e" \
             else ("Gent", (0, 1, 2.3, 3))
-        fig, axes = plt.subplots(1, 2, figsize=(12.5, 4.4), layout="constrained")
+        fig, axes = plt.subplots(1, 2, figsize=(12.5, 4.6), layout="constrained")
         plot_equibiaxial_loading(model, s_values, "D0", fe=fe, ax=axes[0])
         plot_equibiaxial_loading(model, s_values, "E0", fe=fe, ax=axes[1])
         _shared_legend(fig, axes)
         _tag(axes)
         return fig
     if name == "gent-equi-biaxial":
-        fig, axes = plt.subplots(1, 2, figsize=(13, 4.8), layout="constrained")
+        fig, axes = plt.subplots(1, 2, figsize=(13, 5.0), layout="constrained", sharey=True)
         for ax, model in zip(axes, ("neo-Hookean", "Gent")):
             plot_equibiaxial_wrinkling(model, fe=fe, ax=ax)
         _shared_legend(fig, axes)             # clear of the s = 4.5 curve
         _tag(axes)
         return fig
     if name == "figde":
-        fig, axes = plt.subplots(1, 2, figsize=(10, 4.2), layout="constrained")
-        plot_uniaxial_loading("neo-Hookean", (0, 1, 2, 3, 4), "D0", fe=fe, ax=axes[0])
-        plot_uniaxial_loading("neo-Hookean", (0, 1, 2, 3), "E0", fe=fe, ax=axes[1])
+        fig, axes = plt.subplots(1, 2, figsize=(12, 4.6), layout="constrained")
+        palette = (0, 1, 2, 3, 4)
+        plot_uniaxial_loading("neo-Hookean", palette, "D0", fe=fe, ax=axes[0])
+        plot_uniaxial_loading("neo-Hookean", (0, 1, 2, 3), "E0", fe=fe, ax=axes[1],
+                              palette=palette)
+        _shared_legend(fig, axes)             # (a)'s legend covered the s = 3, 4 curves
         _tag(axes)
         return fig
     if name == "uni-axial-ideal":
-        fig, ax = plt.subplots(figsize=(9.5, 5), layout="constrained")
+        fig, ax = plt.subplots(figsize=(10, 5.4), layout="constrained")
         plot_uniaxial_wrinkling(fe=fe, ax=ax)
         return fig
     if name == "lambda1-3":
         if fields is None:
             raise ValueError("case 'lambda1-3' needs FE fields (run validate)")
-        fig, axes = plt.subplots(1, 2, figsize=(10, 5.5), layout="constrained")
+        fig, axes = plt.subplots(1, 2, figsize=(9, 5.8), layout="constrained")
         plot_stretch_maps(fields, axes=axes)
         _tag(axes)
         return fig
@@ -527,31 +638,38 @@ def case_figure(name: str, fe=None, fields=None):
         if fields is None:
             raise ValueError("case 'zs22' needs FE fields (run validate)")
         variants = [v for v in _VARIANT_MARKER if any(f"_{v}_" in r for r in set(fields["run"]))]
-        ncol = min(len(variants), 2)
-        nrow = -(-len(variants) // ncol)
-        fig, axes = plt.subplots(nrow, ncol, figsize=(6.5 * ncol, 4.5 * nrow),
-                                 layout="constrained", squeeze=False)
-        for ax, v in zip(axes.ravel(), variants):
+        fig, axes = plt.subplots(1, len(variants), figsize=(5.6 * len(variants), 4.8),
+                                 layout="constrained", squeeze=False, sharey=True)
+        axes = axes.ravel()
+        for ax, v in zip(axes, variants):
             plot_p33_profiles(fields, fe=fe, ax=ax, variant=v)
-        for ax in axes.ravel()[len(variants):]:
-            ax.set_axis_off()
+        lo = min(ax.get_ylim()[0] for ax in axes)
+        hi = max(ax.get_ylim()[1] for ax in axes)
+        for ax in axes:                       # one P33 scale for every model
+            ax.set_ylim(lo, hi)
+        _tag(axes)
         return fig
     raise ValueError(f"no figure for case {name!r}")
 
 
 def _shared_legend(fig, axes):
-    """Replace the panels' (identical) legends by one legend beside the figure."""
-    leg = axes[0].get_legend()
-    handles, labels = leg.legend_handles, [t.get_text() for t in leg.get_texts()]
+    """Replace the panels' legends by one legend beside the figure (entries of all
+    panels, each once)."""
+    handles, labels = [], []
     for ax in axes:
-        ax.get_legend().remove()
+        leg = ax.get_legend()
+        for h, txt in zip(leg.legend_handles, leg.get_texts()):
+            if txt.get_text() not in labels:
+                handles.append(h)
+                labels.append(txt.get_text())
+        leg.remove()
     fig.legend(handles, labels, loc="outside right center", fontsize=8)
 
 
 def _tag(axes):
-    for ax, t in zip(axes, "ab"):
-        ax.text(0.02, 0.98, f"({t})", transform=ax.transAxes, ha="left", va="top",
-                fontweight="bold")
+    """``(a)``, ``(b)``, ... in front of the panel titles, off the data."""
+    for ax, t in zip(axes, "abcdef"):
+        ax.set_title(f"({t}) " + ax.get_title(), fontsize=10)
 
 
 def save_figure(fig, folder, stem: str) -> list[Path]:

@@ -33,7 +33,7 @@ import analytic as an
 
 gent = an.Gent(Jm=97.2)
 s_values = [0.0, 1.0, 2.3, 3.0]
-lam = np.linspace(1.0, 4.0, 400)
+lam = np.linspace(1.0, 5.0, 500)     # covers every maximum of E0 below
 
 # equi-biaxial curves, neo-Hookean and Gent (nan below the mechanical stretch of s)
 curves = {
@@ -70,16 +70,20 @@ if __name__ == "__main__":
         axes[1].plot(lam, E0, style)
     axes[0].plot(lam, an.voltage_limit_D0(lam), "k:", label="det H* = 0 (nH)")
     axes[1].plot(lam, an.voltage_limit_E0(lam), "k:")
-    axes[1].plot(lam_max, E0_max, "ko")
-    axes[1].plot(lam_max_gent, E0_max_gent, "ks", mfc="none")
+    axes[1].plot(lam_max, E0_max, "ko", label="max of E0 (nH)")
+    axes[1].plot(lam_max_gent, E0_max_gent, "ks", mfc="none", ms=8, label="max of E0 (Gent)")
     for s, (D0, E0) in uni.items():
         axes[2].plot(lam1, E0, label=f"s={s}")
     axes[2].plot(lam1, an.uniaxial_voltage_limit_E0(lam1), "k:", label="det H* = 0")
-    axes[2].plot(lam1_max, E0_max_uni, "ko")
+    axes[2].plot(lam1_max, E0_max_uni, "ko", label="max of E0")
     axes[0].set(xlabel="lam", ylabel="D0", title="equi-biaxial, charge")
     axes[1].set(xlabel="lam", ylabel="E0", title="equi-biaxial, field", ylim=(0, 0.8))
     axes[2].set(xlabel="lam1", ylabel="E0", title="uni-axial dead load (nH)", ylim=(0, 0.8))
-    axes[0].legend(fontsize=7)
+    axes[0].set_xlim(1.0, 5.0)
+    axes[1].set_xlim(1.0, 5.0)
+    axes[0].legend(fontsize=7, ncol=2)
+    axes[1].legend(fontsize=7)
     axes[2].legend(fontsize=7)
     fig.tight_layout()
+    fig.savefig("ex01_loading_curves.png", dpi=120)
     plt.show()

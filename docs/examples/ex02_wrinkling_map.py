@@ -49,8 +49,10 @@ gent = wrinkling_map(lam, Gent(Jm=97.2))
 if __name__ == "__main__":
     import matplotlib.pyplot as plt
 
-    fig, ax = plt.subplots(figsize=(6, 4.5))
-    ax.fill_between(region.lam, region.lower, region.upper, color="0.85", label="wrinkling zone")
+    # (a) the paper's axes (linear D0); (b) D0 over the thin-plate limit, where the thin
+    # wrinkling zone between the two limits has a visible width at every stretch
+    fig, (ax, axr) = plt.subplots(1, 2, figsize=(11, 4.5))
+    ax.fill_between(region.lam, region.lower, region.upper, color="0.75", label="wrinkling zone")
     ax.plot(lam, region.thick, "k--", label="thick-plate limit")
     ax.plot(lam, gent.thick, ":", color="tab:red", label="thick limit, Gent $J_m=97.2$")
     for i, kh in enumerate(kh_values):
@@ -58,10 +60,24 @@ if __name__ == "__main__":
         ax.plot(lam_fin, finite[kh], ":", color="tab:blue", lw=1, label=label)
     for s in s_values:
         ax.plot(lam, curves[s], "-", lw=1.2, label=f"s = {s:g}")
-    ax.set_xlabel(r"$\lambda$")
-    ax.set_ylabel(r"$D_0$")
-    ax.set_yscale("log")
-    ax.set_ylim(0.05, 300)
-    ax.legend(fontsize=7, loc="upper left")
-    ax.set_title(f"max D0/thin limit on s>0 curves: {worst_ratio:.3f}")
+    ax.set(xlabel=r"$\lambda$", ylabel=r"$D_0$", xlim=(0.6, 4.0), ylim=(0, 12),
+           title="(a) loading curves and wrinkling limits")
+    ax.legend(fontsize=7, loc="lower right")
+
+    ok = region.thin > 0
+    thin = np.where(ok, region.thin, np.nan)
+    axr.fill_between(lam[ok], 1.0, (region.thick / thin)[ok], color="0.75",
+                     label="wrinkling zone")
+    for kh in kh_values:
+        thin_fin = np.interp(lam_fin, lam, thin)
+        axr.plot(lam_fin, finite[kh] / thin_fin, "o-", ms=3, lw=1, label=f"finite plate, kh = {kh:g}")
+    for s in s_values[1:]:
+        axr.plot(lam, curves[s] / thin, "-", lw=1.2, label=f"loading curve s = {s:g}")
+    axr.axhline(1.0, color="k", lw=0.8)
+    axr.set(xlabel=r"$\lambda$", ylabel=r"$D_0 / D_0^{\mathrm{thin}}$", xlim=(1.0, 6.0),
+            ylim=(0.0, 1.35),
+            title=f"(b) over the thin limit; s > 0 curves stay below: max {worst_ratio:.3f}")
+    axr.legend(fontsize=7, loc="lower right", ncol=2)
+    fig.tight_layout()
+    fig.savefig("ex02_wrinkling_map.png", dpi=120)
     plt.show()

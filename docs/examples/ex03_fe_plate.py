@@ -39,26 +39,34 @@ max_error = float(np.abs(D0_closed_form - D0).max())
 # --- 2. clamped Keplinger plate, coarse mesh ------------------------------------------
 kep = keplinger_plate(1.0, D0=[1, 2, 3, 4], elements=(6, 1, 3), linear_solver="superlu")
 s_kep = kep.steps[-1]["s"]
-lam1 = kep.column("lam1")
-D0_kep = np.array([st.load[1] for st in kep.steps])
+# the pre-load steps carry part of the weight (s < s_kep): they lie on other curves, so
+# only the fully loaded state (the last pre-load step, D0 = 0) and the charge steps are drawn
+on_curve = [st for st in kep.steps if np.isclose(st.load[0], s_kep)]
+lam1 = np.array([st["lam1"] for st in on_curve])
+D0_kep = np.array([st.load[1] for st in on_curve])
 lam1_final = float(lam1[-1])
 
 if __name__ == "__main__":
     import matplotlib.pyplot as plt
 
     fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(10, 4))
-    L = np.linspace(1.8, 2.3, 200)
+    # each curve from its D0 = 0 stretch (largest real root), denser near the vertical start
+    def start(coeffs):
+        return max(r.real for r in np.roots(coeffs) if abs(r.imag) < 1e-12)
+
+    u = np.linspace(0.0, 1.0, 300) ** 2
+    L = start([1, -s, 0, 0, 0, 0, -1]) + (2.3 - start([1, -s, 0, 0, 0, 0, -1])) * u
     ax1.plot(L, np.sqrt(np.maximum(L**6 - 1 - L**5 * s, 0)), "k-",
              label="Eq. (loading_gent), s = 1.5")
-    ax1.plot(lam, D0, "o", label="FE (1 element)")
-    L1 = np.linspace(3.05, 3.4, 200)
+    ax1.plot(lam, D0, "o", mfc="none", label="FE equi-biaxial (1 element)")
+    L1 = start([1, -s_kep, 0, -1]) + (3.4 - start([1, -s_kep, 0, -1])) * u
     ax1.plot(L1, np.sqrt(np.maximum(L1**4 * (L1 - s_kep) ** 2 - 1, 0)), "b-",
-             label="Eq. (DEuniax), s = 2.993")
-    ax1.plot(lam1, D0_kep, "bs", label="FE Keplinger plate, centre")
+             label=f"Eq. (DEuniax), s = {s_kep:.3f}")
+    ax1.plot(lam1, D0_kep, "bs", mfc="none", label="FE Keplinger plate, centre")
     ax1.set_xlabel("stretch")
     ax1.set_ylabel("D0")
     ax1.legend()
-    for st in kep.steps[2:]:
+    for st in on_curve:
         c = st["centre_line"]
         ax2.plot(c["x1"] / 10.0, c["P33"], label=f"D0 = {st.load[1]:g}")
     ax2.axhline(0.0, color="k", lw=0.5)
@@ -66,6 +74,7 @@ if __name__ == "__main__":
     ax2.set_ylabel("P33 / mu on the centre line")
     ax2.legend()
     fig.tight_layout()
+    fig.savefig("ex03_fe_plate.png", dpi=120)
     plt.show()
     print(f"equi-biaxial: max |D0_FE - D0_closed_form| = {max_error:.2e}; "
           f"Keplinger centre lam1(D0=4) = {lam1_final:.5f}")

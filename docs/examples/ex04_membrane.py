@@ -42,8 +42,11 @@ if __name__ == "__main__":
     import matplotlib.pyplot as plt
 
     fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(9, 3.5))
-    lam = np.linspace(lam1.min() * 0.99, lam1.max() * 1.01, 200)
-    ax1.plot(lam, np.sqrt(np.clip(lam**4 * (lam - s) ** 2 - 1, 0, None)), "k-",
+    # the curve starts at D0 = 0 (lam1 = largest root of lam1^3 - s lam1^2 - 1 = 0), so it
+    # is sampled from there: no flat piece where D0^2 < 0
+    lam_start = max(r.real for r in np.roots([1.0, -s, 0.0, -1.0]) if abs(r.imag) < 1e-12)
+    lam = lam_start + (lam1.max() * 1.01 - lam_start) * np.linspace(0.0, 1.0, 400) ** 2
+    ax1.plot(lam, np.sqrt(np.maximum(lam**4 * (lam - s) ** 2 - 1, 0.0)), "k-",
              label="homogeneous, Eq. (DEuniax)")
     ax1.plot(lam1, D0, "^", mfc="none", label="membrane FE, plate centre")
     ax1.set_xlabel(r"$\lambda_1$")
@@ -57,4 +60,5 @@ if __name__ == "__main__":
     ax2.set_ylabel(r"$P_{33}/\mu$ on the centre line")
     ax2.legend(fontsize=7)
     fig.tight_layout()
+    fig.savefig("ex04_membrane.png", dpi=120)
     plt.show()

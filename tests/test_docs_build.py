@@ -1,0 +1,63 @@
+"""The Sphinx site builds with ``-W`` (warnings are errors).
+
+The default test parses every page, docstring and gallery script without running the
+examples (``SKFEM_DOCS_NO_GALLERY=1``; ``tests/test_examples.py`` runs them); the slow
+test is the documented command, examples included. Both build a copy of ``docs/`` in a
+temporary folder, so nothing is generated inside the repository.
+"""
+
+from __future__ import annotations
+
+import os
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+pytest.importorskip("sphinx")
+pytest.importorskip("sphinx_gallery")
+
+ROOT = Path(__file__).resolve().parents[1]
+_GENERATED = shutil.ignore_patterns("_build", "auto_examples", "generated", "*.png",
+                                    "sg_execution_times.rst", "__pycache__")
+
+
+def _build(tmp_path: Path, run_examples: bool) -> Path:
+    src, out = tmp_path / "docs", tmp_path / "html"
+    shutil.copytree(ROOT / "docs", src, ignore=_GENERATED)
+    env = dict(os.environ, MPLBACKEND="Agg")
+    env.pop("SKFEM_DOCS_NO_GALLERY", None)
+    if not run_examples:
+        env["SKFEM_DOCS_NO_GALLERY"] = "1"
+    r = subprocess.run([sys.executable, "-m", "sphinx", "-W", "--keep-going", "-q", "-b",
+                        "html", str(src), str(out)], capture_output=True, text=True, env=env,
+                       cwd=tmp_path, timeout=900)
+    assert r.returncode == 0, r.stderr[-3000:]
+    return out
+
+
+def _check_site(out: Path):
+    for page in ("index.html", "theory.html", "api.html", "auto_examples/index.html",
+                 "api/generated/analytic.html", "api/generated/skfem_dielectric.plate.html",
+                 "api/generated/validation.clash.html"):
+        assert (out / page).exists(), page
+    index = " ".join((out / "index.html").read_text().split())
+    assert "Stability analysis of charge-controlled soft dielectric" in index
+    gallery = (out / "auto_examples" / "index.html").read_text()
+    for p in sorted((ROOT / "docs" / "examples").glob("ex*.py")):
+        assert f"{p.stem}.html" in gallery, p.stem
+
+
+def test_sphinx_build_warnings_are_errors(tmp_path):
+    _check_site(_build(tmp_path, run_examples=False))
+
+
+@pytest.mark.slow
+def test_sphinx_build_with_gallery(tmp_path):
+    out = _build(tmp_path, run_examples=True)
+    _check_site(out)
+    thumbs = list((out / "_images").glob("sphx_glr_ex*_thumb.png"))
+    assert len(thumbs) == len(list((ROOT / "docs" / "examples").glob("ex*.py")))
+    assert list((out / "_downloads").rglob("*.ipynb"))
