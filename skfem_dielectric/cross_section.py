@@ -120,9 +120,6 @@ class CrossSection(Problem):
         check_choice("field", field, FIELDS)
         check_choice("thickness", thickness, THICKNESSES)
         self.thickness = thickness
-        if not (math.isfinite(float(grad_div)) and float(grad_div) >= 0):
-            raise ValueError(f"grad_div must be a finite number >= 0, got {grad_div!r}")
-        self.grad_div = float(grad_div) * material.mu
         self.lam1_fixed = None if lam1 is None else check_positive("lam1", lam1)
         self.coupling, self.field = coupling, field
         self.symmetric = coupling == "full"
@@ -130,6 +127,9 @@ class CrossSection(Problem):
         self._local = coupling == "maxwell" and field == "local"
         self._elastic_volume = coupling == "maxwell" and field == "electrostatic"
         self.material = check_material("material", material)
+        if not (math.isfinite(float(grad_div)) and float(grad_div) >= 0):
+            raise ValueError(f"grad_div must be a finite number >= 0, got {grad_div!r}")
+        self.grad_div = float(grad_div) * material.mu
         self.L1, self.H = check_positive("L1", L1), check_positive("H", H)
         self.n1, self.n2 = check_count("n1", n1), check_count("n2", n2)
         self.lam3_fixed = None if lam3 is None else check_positive("lam3", lam3)
