@@ -116,11 +116,12 @@ def _replace(tmp: Path, path: Path, fh) -> None:
 
 
 def write_text_atomic(path, text: str) -> Path:
-    """Write ``text`` to ``path`` atomically (temporary file, ``fsync``, ``os.replace``)."""
+    """Write ``text`` to ``path`` atomically (temporary file, ``fsync``, ``os.replace``);
+    line ends are written as given (no newline translation)."""
     path = Path(path)
     tmp = _tmp_path(path)
     try:
-        fh = open(tmp, "w")
+        fh = open(tmp, "w", newline="")
         fh.write(text)
         _replace(tmp, path, fh)
     finally:
@@ -131,18 +132,11 @@ def write_text_atomic(path, text: str) -> Path:
 
 def write_csv_atomic(path, header: list[str], rows) -> Path:
     """Write a CSV (``header`` then ``rows``, ``\\n`` line ends) atomically."""
-    path = Path(path)
-    tmp = _tmp_path(path)
-    try:
-        fh = open(tmp, "w", newline="")
-        w = csv.writer(fh, lineterminator="\n")
-        w.writerow(header)
-        w.writerows(rows)
-        _replace(tmp, path, fh)
-    finally:
-        if tmp.exists():
-            tmp.unlink()
-    return path
+    buf = io.StringIO()
+    w = csv.writer(buf, lineterminator="\n")
+    w.writerow(header)
+    w.writerows(rows)
+    return write_text_atomic(path, buf.getvalue())
 
 
 def csv_line(row) -> str:
