@@ -20,6 +20,7 @@ import numpy as np
 from .cases import CASES
 from .fe import bench, pardiso_installed, run_fe, simulate
 from .figures import case_figure, save_figure
+from .wrinkling import run_wrinkling_fe
 from .specs import MODELS, VARIANTS
 from .store import write_text_atomic
 from .sweep import validate
@@ -112,6 +113,14 @@ def build_parser() -> argparse.ArgumentParser:
                    help="cases to draw (default: those that need no FE fields)")
     c.add_argument("--out", required=True, type=_out_dir, help="output folder")
 
+    w = add("wrinkling-fe", "FE wrinkling of a homogeneous plate against the Stroh analysis",
+            "The critical charge of one Fourier mode of the cross-section with sliding ends "
+            "(symmetric and antisymmetric, charge and voltage control) on a grid of lam and "
+            "kh, against the finite-thickness dispersion relation: DIR/wrinkling-fe.csv and "
+            "DIR/wrinkling-fe.png (full grid: several minutes).")
+    w.add_argument("--quick", action="store_true", help="lam = 1.5, kh in {0.5, 2}, coarser")
+    w.add_argument("--out", required=True, type=_out_dir, help="output folder")
+
     v = add("validate", "run FE sweeps, overlay them on the theory (main job)",
             "Run the FE ramps of the cases, write DIR/<case>.csv step by step, the figures "
             "(PNG, PDF), summary.json and report.md (covering every case in DIR). An "
@@ -196,6 +205,18 @@ def _cmd_list(args) -> int:
     for c in CASES.values():
         runs = f"{len(c.quick)}/{len(c.full)}"
         print(f"{c.name:<{w}}  {c.figure:<18} {runs:<16} {c.title}")
+    return 0
+
+
+def _cmd_wrinkling(args) -> int:
+    def show(row):
+        err = "" if row[6] is None else f"  rel. error {row[6]:+.2e}"
+        print(f"{row[0]:>7} {row[1]:>13} lam = {row[2]:g} kh = {row[3]:g}: "
+              + (f"D0_fe = {row[4]:.6g}, D0_stroh = {row[5]:.6g}{err}" if row[4] is not None
+                 else (row[9] or "no FE root")), flush=True)
+
+    paths = run_wrinkling_fe(args.out, quick=args.quick, on_row=show)
+    print("wrote " + ", ".join(str(p) for p in paths))
     return 0
 
 
@@ -358,7 +379,8 @@ def main(argv: list[str] | None = None) -> int:
     parser = build_parser()
     args = parser.parse_args(argv)
     cmd = {"list": _cmd_list, "curves": _cmd_curves, "validate": _cmd_validate,
-           "simulate": _cmd_simulate, "bench": _cmd_bench}[args.command]
+           "simulate": _cmd_simulate, "bench": _cmd_bench,
+           "wrinkling-fe": _cmd_wrinkling}[args.command]
     prefix = f"skfem-dielectric {args.command}: error:"
     try:
         if getattr(args, "jobs", 1) < 1:

@@ -1,0 +1,127 @@
+"""FE wrinkling of a homogeneous plate against the Stroh dispersion relation.
+
+For each stretch ``lam``, wavenumber ``kh`` (deformed thickness), mode (symmetric or
+antisymmetric) and control (charge or voltage) the FE critical charge of the section with
+sliding ends (:func:`skfem_dielectric.wrinkling_section`,
+:func:`skfem_dielectric.section_critical_load`) is compared with
+:func:`analytic.critical_D0`, the finite-thickness dispersion relation of the paper's
+Sec. 3 (under voltage control both are the critical ``D0 = lam^4 E0``).  Written as
+``DIR/wrinkling-fe.csv`` (one row per grid point; a point without a Stroh root says so)
+and ``DIR/wrinkling-fe.png`` (FE dots on the dispersion curves).
+"""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import matplotlib.pyplot as plt
+import numpy as np
+from matplotlib.ticker import NullFormatter, ScalarFormatter
+
+import analytic as an
+import skfem_dielectric as fe
+
+from .store import write_csv_atomic
+
+__all__ = ["WRINKLING_COLUMNS", "wrinkling_grid", "wrinkling_rows", "run_wrinkling_fe",
+           "wrinkling_figure"]
+
+WRINKLING_COLUMNS = ["control", "mode", "lam", "kh", "D0_fe", "D0_stroh", "rel_error", "mesh",
+                     "n_negative_below", "note"]
+MODES = ("symmetric", "antisymmetric")
+CONTROLS = ("charge", "voltage")
+
+
+def wrinkling_grid(quick: bool = False) -> dict:
+    """The grid: ``lam``, ``kh`` and the elements per half-wave ``n1`` (quick: a subset)."""
+    if quick:
+        return {"lam": (1.5,), "kh": (0.5, 2.0), "n1": 8}
+    return {"lam": (1.2, 1.5, 2.0), "kh": (0.5, 1.0, 2.0, 5.0), "n1": 8}
+
+
+def _row(control, mode, lam, kh, n1) -> list:
+    ref = float(an.critical_D0(lam, kh, mode=mode, control=control))
+    base = [control, mode, lam, kh]
+    if not math.isfinite(ref):
+        return base + [None, None, None, "", None, "no root of the dispersion relation"]
+    a = math.pi / (lam**3 * kh)
+    n2 = max(2, int(round((0.5 if mode == "symmetric" else 1.0) / (a / n1))))
+    pb = fe.wrinkling_section(lam, kh, mode, control, n1=n1, n2=n2)
+    ref_load = ref if control == "charge" else ref / lam**4
+    try:
+        r = fe.section_critical_load(pb, mode, 0.95 * ref_load, 1.05 * ref_load)
+    except ValueError as exc:
+        return base + [None, ref, None, f"{n1}x{n2}", None, str(exc).splitlines()[0][:160]]
+    d0 = r.load if control == "charge" else r.D0
+    return base + [d0, ref, d0 / ref - 1.0, f"{n1}x{n2}", r.n_negative_below, ""]
+
+
+def wrinkling_rows(quick: bool = False, on_row=None) -> list[list]:
+    """Every row of the grid (``on_row(row)`` after each, e.g. for progress)."""
+    g = wrinkling_grid(quick)
+    rows = []
+    for control in CONTROLS:
+        for mode in MODES:
+            for lam in g["lam"]:
+                for kh in g["kh"]:
+                    rows.append(_row(control, mode, lam, kh, g["n1"]))
+                    if on_row is not None:
+                        on_row(rows[-1])
+    return rows
+
+
+def _fmt(v) -> str:
+    if v is None:
+        return ""
+    if isinstance(v, str):
+        return v
+    return format(float(v), ".10g")
+
+
+def wrinkling_figure(rows: list[list], ax=None):
+    """FE dots on the Stroh dispersion curves ``D0(kh)``, one panel per control."""
+    if ax is None:
+        _, ax = plt.subplots(1, 2, figsize=(11, 4.2))
+    kh = np.logspace(np.log10(0.3), np.log10(8.0), 60)
+    lams = sorted({r[2] for r in rows})
+    colours = dict(zip(lams, plt.cm.viridis(np.linspace(0.1, 0.8, len(lams)))))
+    for a, control in zip(ax, CONTROLS):
+        for lam in lams:
+            for mode, ls, mk in (("symmetric", "-", "o"), ("antisymmetric", "--", "s")):
+                a.plot(kh, an.critical_D0(lam, kh, mode=mode, control=control), ls,
+                       color=colours[lam], lw=1.2,
+                       label=f"Stroh, lam = {lam:g}, {mode}" if control == "charge" else None)
+                pts = [(r[3], r[4]) for r in rows
+                       if r[0] == control and r[1] == mode and r[2] == lam and r[4] is not None]
+                if pts:
+                    x, y = zip(*pts)
+                    a.plot(x, y, mk, mfc="none", color=colours[lam], ms=7)
+        a.set_xscale("log")
+        a.set_xticks([0.3, 0.5, 1, 2, 5])
+        a.xaxis.set_major_formatter(ScalarFormatter())
+        a.xaxis.set_minor_formatter(NullFormatter())
+        a.set_xlabel("kh (deformed thickness)")
+        a.set_ylabel("critical D0" + (" = lam^4 E0" if control == "voltage" else ""))
+        a.set_title(f"{control} control")
+    ax[0].legend(fontsize=7, loc="upper right")
+    ax[0].figure.text(0.5, 0.005, "FE wrinkling of the section with sliding ends (open markers: "
+                      "circles symmetric, squares antisymmetric) on the finite-thickness "
+                      "dispersion relation (paper Sec. 3)", ha="center", fontsize=8)
+    return ax
+
+
+def run_wrinkling_fe(out, quick: bool = False, on_row=None) -> list[Path]:
+    """Write ``out/wrinkling-fe.csv`` and ``out/wrinkling-fe.png``; return their paths."""
+    out = Path(out)
+    out.mkdir(parents=True, exist_ok=True)
+    rows = wrinkling_rows(quick, on_row)
+    csv_path = write_csv_atomic(out / "wrinkling-fe.csv", WRINKLING_COLUMNS,
+                                [[_fmt(v) for v in r] for r in rows])
+    ax = wrinkling_figure(rows)
+    fig = ax[0].figure
+    fig.tight_layout(rect=(0, 0.03, 1, 1))
+    png = out / "wrinkling-fe.png"
+    fig.savefig(png, dpi=120)
+    plt.close(fig)
+    return [csv_path, png]
