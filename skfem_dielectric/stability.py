@@ -130,16 +130,23 @@ def lowest_modes(K: sp.spmatrix, M: sp.spmatrix, k: int, n_negative: int = 0,
     if not 1 <= k <= nd - 1:
         raise ValueError(f"k must be between 1 and {nd - 1} (the finite eigenvalues of "
                          f"this system less one), got {k}")
-    K = sp.csc_matrix(K)
     if sigma is None:
         sigma = -1e-8 * float(abs(K).max())
-    Ks = K - sigma * sp.csc_matrix(M)
+    # K - sigma M on K's own pattern: a sparse subtraction would drop the explicit zeros of
+    # the multiplier diagonal, which PARDISO needs
+    Ks = sp.csr_matrix(K, copy=True)
+    Ks.sort_indices()
+    rows = np.repeat(np.arange(n), np.diff(Ks.indptr))
+    on_diag = np.flatnonzero(Ks.indices == rows)
+    Ks.data[on_diag] -= sigma * M.diagonal()[rows[on_diag]]
+    if np.count_nonzero(Ks.indices == rows) < n:
+        Ks = sp.csr_matrix(K) - sigma * sp.csr_matrix(M)    # a pattern without diagonal
     if pardiso_available() and n > DENSE_LIMIT:     # symmetric LDL^T, factorised once
         pardiso = PardisoSolver()
-        pardiso.solve(Ks.tocsr(), np.zeros(n))
+        pardiso.solve(Ks, np.zeros(n))
         solve = pardiso.resolve
     else:
-        solve = spla.splu(Ks, permc_spec="MMD_AT_PLUS_A").solve
+        solve = spla.splu(sp.csc_matrix(Ks), permc_spec="MMD_AT_PLUS_A").solve
 
     def solve_d(v):
         b = np.zeros(n)
