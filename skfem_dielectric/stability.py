@@ -163,7 +163,10 @@ def lowest_modes(K: sp.spmatrix, M: sp.spmatrix, k: int, n_negative: int = 0,
             keep = np.argsort(-np.abs(theta))[:m]
             theta, V = theta[keep], V[:, keep]
         else:
-            theta, V = spla.eigsh(op, m, which="LM", tol=tol)
+            # a fixed start vector: ARPACK's default is random, and so would be which of
+            # nearly equal eigenvalues it returns first
+            v0 = np.random.default_rng(0).standard_normal(nd)
+            theta, V = spla.eigsh(op, m, which="LM", tol=tol, v0=v0)
         vals = sigma + 1.0 / theta
         order = np.argsort(vals)
         vals, V, theta = vals[order], V[:, order], theta[order]

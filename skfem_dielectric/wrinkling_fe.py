@@ -184,6 +184,8 @@ def section_critical_load(pb: CrossSection, mode: str, lo: float, hi: float, *,
     def g(v):
         solve(v)
         eig, n_neg, _ = section_mode_eigenvalue(pb, state["x"], state["load"], mode)
+        if not math.isfinite(eig):
+            raise ValueError(f"no {mode} mode n = 1 among the 64 lowest modes at load {v}")
         return eig, n_neg
 
     fa, nneg_lo = g(lo)

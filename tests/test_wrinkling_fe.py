@@ -24,7 +24,8 @@ def test_quick_grid_matches_the_dispersion_relation(tmp_path, capsys):
         rows += 1
         # quick grid: 8 Q2 elements per half-wave; the harness' quick tolerance is 3e-3
         # (measured <= 7e-5 on this grid)
-        assert abs(t["D0_fe"][i] / t["D0_stroh"][i] - 1) <= 3e-3
+        assert abs(t["D0_fe"][i] / t["D0_stroh"][i] - 1) <= 3e-3, (
+            t["control"][i], t["mode"][i], t["kh"][i], t["note"][i])
         # the count is consistent with the layout (a negative count would mean that the
         # multiplier blocks carry fewer negative eigenvalues than unknowns)
         assert t["n_negative_below"][i] >= 0
