@@ -10,8 +10,8 @@ from .assembly import DofReduction, ScatterMap
 from .cross_section import CrossSection
 from .drivers import (cross_section_ramp, equibiaxial_plate, equibiaxial_problem,
                       keplinger_plate, keplinger_problem, maxwell_equibiaxial,
-                      maxwell_keplinger, membrane_keplinger, membrane_ramp, plate_admissible,
-                      run_ramp)
+                      maxwell_keplinger, membrane_keplinger, membrane_ramp, newton_guards,
+                      plate_admissible, run_ramp)
 from .export import step_mesh, write_vtu_series, write_xdmf
 from .forms.maxwell_traction import maxwell_stress, maxwell_traction, maxwell_traction_field
 from .forms.membrane import membrane_kernel
@@ -46,7 +46,8 @@ __all__ = [
     "cross_section_kernel", "maxwell_stress", "maxwell_traction", "maxwell_traction_field",
     # loads and drivers
     "keplinger_s", "charge_targets", "preload_then_charge", "remaining_targets",
-    "equibiaxial_problem", "keplinger_problem", "plate_admissible", "run_ramp", "equibiaxial_plate",
+    "equibiaxial_problem", "keplinger_problem", "plate_admissible", "newton_guards", "run_ramp",
+    "equibiaxial_plate",
     "keplinger_plate", "maxwell_equibiaxial", "maxwell_keplinger", "membrane_ramp",
     "membrane_keplinger", "cross_section_ramp",
     # stability

@@ -34,7 +34,7 @@ from .plate import PlateProblem
 from .problem import Problem
 from .ramp import RampResult, StepResult, ramp
 
-__all__ = ["plate_admissible", "equibiaxial_problem", "keplinger_problem", "run_ramp",
+__all__ = ["plate_admissible", "newton_guards", "equibiaxial_problem", "keplinger_problem", "run_ramp",
            "equibiaxial_plate",
            "keplinger_plate", "maxwell_equibiaxial", "maxwell_keplinger", "membrane_ramp",
            "membrane_keplinger", "cross_section_ramp"]
@@ -72,6 +72,19 @@ def _triple(name: str, value, check) -> tuple:
     if len(items) != 3:
         raise ValueError(f"{name} must be a triple (x1, x2, x3), got {value!r}")
     return tuple(check(f"{name}[{i}]", v) for i, v in enumerate(items))
+
+
+def newton_guards(problem: Problem) -> dict:
+    """Ramp options that keep a plate's Newton iterates orientation preserving.
+
+    For a :class:`~skfem_dielectric.plate.PlateProblem`: ``step_limit=problem.max_step``
+    (``det F > 0`` along every Newton step) and ``admissible``: :func:`plate_admissible`
+    (no converged inverted state); ``{}`` for other problems.  Pass them to
+    :func:`~skfem_dielectric.ramp.ramp` (:func:`run_ramp` does).
+    """
+    if not isinstance(problem, PlateProblem):
+        return {}
+    return {"step_limit": problem.max_step, "admissible": partial(plate_admissible, problem)}
 
 
 def run_ramp(problem: Problem, targets: Sequence[Any], *,
@@ -112,9 +125,8 @@ def run_ramp(problem: Problem, targets: Sequence[Any], *,
         if x0 is None:
             raise ValueError("start given without x0")
     extra = dict(extra or {})
-    if isinstance(problem, PlateProblem):
-        ramp_options.setdefault("step_limit", problem.max_step)
-        ramp_options.setdefault("admissible", partial(plate_admissible, problem))
+    for key, value in newton_guards(problem).items():
+        ramp_options.setdefault(key, value)
 
     def hook(step: StepResult):
         step.quantities.update(extra)

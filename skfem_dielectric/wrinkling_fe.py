@@ -29,7 +29,7 @@ from .checks import check_choice, check_count, check_positive
 from .cross_section import CrossSection
 from .materials import NeoHookeanDielectric
 from .ramp import ramp
-from .stability import lowest_modes, metric_matrix, tangent_inertia
+from .stability import lowest_modes, metric_matrix, tangent_stability
 
 __all__ = ["wrinkling_section", "section_mode_eigenvalue", "section_critical_load",
            "SectionBifurcation"]
@@ -111,12 +111,11 @@ def section_mode_eigenvalue(pb: CrossSection, x: np.ndarray, load, mode: str,
     w : ndarray or None
         The mode (reduced vector).
     """
+    want = check_choice("mode", mode, MODES)
     K, _ = pb.assemble(x, load)
-    inertia = tangent_inertia(K, method)
-    n_neg = inertia[1] - pb.layout.n_multipliers
+    n_neg = tangent_stability(pb, K, method=method).n_negative
     M = metric_matrix(pb)
     a = pb.L1 / 2
-    want = "antisymmetric" if mode == "antisymmetric" else "symmetric"
     n_finite = int(M.diagonal().sum())
     while True:
         kk = min(k + max(0, n_neg), n_finite - 2)

@@ -118,7 +118,7 @@ def build_parser() -> argparse.ArgumentParser:
             "(symmetric and antisymmetric, charge and voltage control) on a grid of lam and "
             "kh, against the finite-thickness dispersion relation: DIR/wrinkling-fe.csv and "
             "DIR/wrinkling-fe.png (full grid: several minutes).")
-    w.add_argument("--quick", action="store_true", help="lam = 1.5, kh in {0.5, 2}, coarser")
+    w.add_argument("--quick", action="store_true", help="only lam = 1.5 and kh in {0.5, 2}")
     w.add_argument("--out", required=True, type=_out_dir, help="output folder")
 
     v = add("validate", "run FE sweeps, overlay them on the theory (main job)",

@@ -25,7 +25,6 @@ with ``mu = eps = 1``: every reported quantity is dimensionless.
 from __future__ import annotations
 
 import csv
-import functools
 import time
 import warnings
 from pathlib import Path
@@ -349,15 +348,6 @@ def _export(spec: RunSpec, problem, x, load):
                                    "lam3": maps["lam3"]})
 
 
-def _guards(problem) -> dict:
-    """The 3D plates' Newton guards: ``det F > 0`` along every step, no converged inverted
-    state (as :func:`skfem_dielectric.run_ramp` sets them)."""
-    if not isinstance(problem, fe.PlateProblem):
-        return {}
-    return {"step_limit": problem.max_step,
-            "admissible": functools.partial(fe.plate_admissible, problem)}
-
-
 # --------------------------------------------------------------------------- the runner
 def run_fe(spec, start, state, on_step, linear_solver="superlu"):
     """Run the FE ramp of ``spec`` from target ``start`` (runner protocol of :mod:`.sweep`).
@@ -402,7 +392,7 @@ def run_fe(spec, start, state, on_step, linear_solver="superlu"):
         with warnings.catch_warnings():
             warnings.simplefilter("ignore", RuntimeWarning)   # the failure is recorded
             res = fe.ramp(problem, targets, x0=x0, start=start_load, on_step=cb,
-                          **ramp_settings(spec, linear_solver), **_guards(problem))
+                          **ramp_settings(spec, linear_solver), **fe.newton_guards(problem))
     except _Stop:
         return RunOutcome(True)
     failed = None if res.failed_at is None else float(np.asarray(res.failed_at).ravel()[-1])
