@@ -61,17 +61,108 @@ from .newton import segment_det_limit
 from .plate_post import plate_quantities, plate_step_mesh, plate_stresses, evaluate_fields
 from .problem import Layout, Problem
 
-__all__ = ["PlateProblem"]
+__all__ = ["PlateProblem", "plate_reduction", "increment_classes"]
 
 LOADINGS = ("equibiaxial", "uniaxial", "uniaxial-free", "none")
 CONTROLS = ("charge", "voltage")
 COUPLINGS = ("full", "maxwell")
 FIELDS = ("electrostatic", "local")
+CLASSES = ("symmetric", "antisymmetric")
 
 
 def _nearest(basis, point) -> int:
     d = np.linalg.norm(basis.doflocs - np.asarray(point)[:, None], axis=0)
     return int(np.argmin(d))
+
+
+def _class_dofs(problem, name: str, comps) -> list[np.ndarray]:
+    return [3 * problem.b2.get_dofs(problem.plate.facets(name)).all() + c for c in comps]
+
+
+def plate_reduction(problem, increments=None) -> DofReduction:
+    """The dof reduction of a plate: symmetry planes, potential datum or electrodes, clamps
+    and rigid-motion pins -- of the model, or of one symmetry class of its increments.
+
+    On a plate cut by the symmetry planes ``x_i = 0`` the increments of a symmetric state
+    split into classes, one choice per plane (``increments = {i: "symmetric" |
+    "antisymmetric"}``).  Mirror-symmetric increments have ``u_i`` odd and the other
+    components even in ``x_i`` (so ``u_i = 0`` on the plane), ``p`` even, and ``phi`` even
+    for ``i = 1, 3`` but odd for ``i = 2`` (the charges change sign under that mirror):
+    these are the model's own conditions.  Antisymmetric ones have the opposite parities:
+    ``u_j = 0`` (``j != i``), ``p = 0`` and, for ``i = 1, 3``, ``phi = 0`` on the plane.
+    The full plate's increments are the direct sum of the classes and its tangent is
+    block diagonal in them, so its spectrum is the union of the classes' spectra.  An
+    antisymmetric class also fixes the rigid clamp's ``u1`` (the clamp then moves as a
+    rigid translation, which the fixed clamp of the full plate excludes), pins the
+    translation along ``x_i`` that it admits (free plates) and, for ``i = 2`` under charge
+    control, the potential datum.  ``increments = "union"``: every dof free in some class
+    (no clamp tie), the space on which the classes' tangents are assembled.
+
+    Parameters
+    ----------
+    problem
+        The :class:`PlateProblem` (its bases, mesh and loading).
+    increments
+        ``None``, ``"union"`` or a mapping of every symmetry axis to a class.
+
+    Returns
+    -------
+    DofReduction
+    """
+    sym = problem.plate.symmetry
+    if increments is None:
+        increments = {ax: "symmetric" for ax in sym}
+    if increments == "union":
+        reds = [plate_reduction(problem, c) for c in increment_classes(sym)]
+        fixed = reds[0].fixed
+        for r in reds[1:]:
+            fixed = np.intersect1d(fixed, r.fixed)
+        return DofReduction(problem.n_full, fixed)
+    if (not hasattr(increments, "keys") or sorted(increments) != sorted(sym)
+            or any(v not in CLASSES for v in increments.values())):
+        raise ValueError(f"increments must map every symmetry axis {sym} to one of "
+                         f"{CLASSES}, or be 'union', got {increments!r}")
+    names = set(problem.plate.mesh.boundaries)
+    fixed, tied = [], []
+    anti = [ax for ax in sym if increments[ax] == "antisymmetric"]
+    for ax in sym:
+        plane = f"sym_x{ax}"
+        if ax in anti:
+            fixed += _class_dofs(problem, plane, [c for c in range(3) if c != ax - 1])
+            if problem.n_p:
+                fixed.append(problem.boundary_dofs(plane, "p"))
+            if ax != 2:
+                fixed.append(problem.boundary_dofs(plane, "phi"))
+        else:
+            fixed += _class_dofs(problem, plane, [ax - 1])
+            if ax == 2:
+                fixed.append(problem.boundary_dofs(plane, "phi"))
+    if problem.control == "charge" and (2 not in sym or 2 in anti):
+        fixed.append(np.atleast_1d(problem.off_phi + _nearest(problem.bphi, np.zeros(3))))
+    if problem.control == "voltage":
+        fixed += [problem._phi_top, problem._phi_bottom]
+    if problem.loading == "uniaxial":
+        fixed += _class_dofs(problem, "x1_plus", (1, 2))
+        clamp = _class_dofs(problem, "x1_plus", (0,))[0]
+        (fixed if anti else tied).append(clamp)
+        if "x1_minus" in names:
+            fixed += _class_dofs(problem, "x1_minus", (0, 1, 2))
+    else:
+        # pin the rigid translations the symmetry planes (and classes) leave free
+        k = _nearest(problem.b2, np.zeros(3))
+        for ax in (1, 2, 3):
+            if ax not in sym or ax in anti:
+                fixed.append(np.array([3 * k + ax - 1]))
+    if problem.local_field:   # purely elastic: every potential dof fixed at 0
+        fixed.append(np.arange(problem.off_phi, problem.n_full))
+    return DofReduction(problem.n_full, np.concatenate(fixed) if fixed else None, tied)
+
+
+def increment_classes(sym) -> list[dict[int, str]]:
+    """Every symmetry class ``{axis: "symmetric" | "antisymmetric"}`` of the planes
+    ``x_i = 0``, ``i`` in ``sym``; the all-symmetric one (the model's own) first."""
+    return [{ax: CLASSES[(i >> j) & 1] for j, ax in enumerate(sym)}
+            for i in range(2 ** len(sym))]
 
 
 def _unit_loads(problem, intorder: int):
@@ -139,6 +230,9 @@ class PlateProblem(Problem):
         Grad-div stabilisation ``gamma (J - 1)^2 / 2`` (in units of ``mu``; mixed
         formulation): removes spurious mesh-scale modes from the stability analysis,
         leaves every homogeneous state unchanged (docs/stability.md).  Default 0.
+    increments
+        ``None`` (the model's own constraints) or the symmetry class of the increments
+        (:func:`plate_reduction`): a model whose tangent is that class's stiffness.
 
     Raises
     ------
@@ -151,7 +245,8 @@ class PlateProblem(Problem):
                  control: str = "charge", coupling: str = "full",
                  field: str = "electrostatic", formulation: str = "mixed",
                  kappa: float = math.inf, phi_element: str = "Q2", intorder: int = 4,
-                 chunk: int = 1500, threads: int | None = None, grad_div: float = 0.0):
+                 chunk: int = 1500, threads: int | None = None, grad_div: float = 0.0,
+                 increments=None):
         if not isinstance(plate, PlateMesh):
             raise ValueError(f"plate must be a PlateMesh, got {type(plate).__name__}")
         check_choice("loading", loading, LOADINGS)
@@ -174,6 +269,9 @@ class PlateProblem(Problem):
             raise ValueError("grad_div needs formulation='mixed' (the penalty form has its "
                              f"own kappa), got {formulation!r}")
         self.grad_div = grad_div
+        self.options = dict(loading=loading, control=control, coupling=coupling, field=field,
+                            formulation=formulation, kappa=kappa, phi_element=phi_element,
+                            intorder=intorder, chunk=chunk, threads=threads, grad_div=grad_div)
         check_material("material", material)
         intorder, chunk = check_count("intorder", intorder), check_count("chunk", chunk)
         threads = None if threads is None else check_count("threads", threads)
@@ -206,7 +304,7 @@ class PlateProblem(Problem):
         self.n_full = f.n_full
         self._phi_top = self._phidofs("top")
         self._phi_bottom = self._phidofs("bottom") if "bottom" in names else np.zeros(0, int)
-        self.red = self._reduction()
+        self.red = plate_reduction(self, increments)
         f.bind(self.red)
         self.scatter = f.scatter
         self._layout = Layout.from_reduction(self.red, f.fields, ("p", "phi"))
@@ -221,33 +319,6 @@ class PlateProblem(Problem):
 
     def _phidofs(self, name: str) -> np.ndarray:
         return self.off_phi + self.bphi.get_dofs(self.plate.facets(name)).all()
-
-    def _reduction(self) -> DofReduction:
-        """Symmetry planes, potential datum or electrodes, clamps and rigid-motion pins."""
-        sym, names = self.plate.symmetry, set(self.plate.mesh.boundaries)
-        fixed, tied = [], []
-        for ax in sym:
-            fixed.append(self._udofs(f"sym_x{ax}", ax - 1))
-        if 2 in sym:
-            fixed.append(self._phidofs("sym_x2"))
-        elif self.control == "charge":
-            fixed.append(np.atleast_1d(self.off_phi + _nearest(self.bphi, np.zeros(3))))
-        if self.control == "voltage":
-            fixed += [self._phi_top, self._phi_bottom]
-        if self.loading == "uniaxial":
-            fixed += [self._udofs("x1_plus", 1), self._udofs("x1_plus", 2)]
-            tied.append(self._udofs("x1_plus", 0))
-            if "x1_minus" in names:
-                fixed += [self._udofs("x1_minus", c) for c in range(3)]
-        else:
-            # pin the rigid translations the symmetry planes leave free
-            k = _nearest(self.b2, np.zeros(3))
-            for ax in (1, 2, 3):
-                if ax not in sym:
-                    fixed.append(np.array([3 * k + ax - 1]))
-        if self.local_field:   # purely elastic: every potential dof fixed at 0
-            fixed.append(np.arange(self.off_phi, self.n_full))
-        return DofReduction(self.n_full, np.concatenate(fixed) if fixed else None, tied)
 
     # ------------------------------------------------------------------ contract
     @property

@@ -107,12 +107,12 @@ def lowest_modes(K: sp.spmatrix, M: sp.spmatrix, k: int, n_negative: int = 0,
                  sigma: float | None = None, tol: float = 1e-12):
     """The ``k`` lowest finite eigenpairs of the pencil ``K w = lambda M w``.
 
-    ``M`` is diagonal with ones on the displacement-like unknowns (index set ``d``) and
-    zeros on the multipliers.  Shift-invert Lanczos (ARPACK, standard mode) on the
-    symmetric operator ``C = P (K - sigma M)^-1 P`` restricted to ``d`` (``P`` the
-    projection on ``d``): its eigenvalues are ``theta = 1/(lambda - sigma)`` for the
+    ``M`` is diagonal, positive on the displacement-like unknowns (index set ``d``) and
+    zero on the multipliers.  Shift-invert Lanczos (ARPACK, standard mode) on the
+    symmetric operator ``C = M^1/2 P (K - sigma M)^-1 P M^1/2`` restricted to ``d`` (``P``
+    the projection on ``d``): its eigenvalues are ``theta = 1/(lambda - sigma)`` for the
     finite ``lambda`` (the multiplier directions give ``theta = 0``), its eigenvectors the
-    ``d``-parts of the modes.  ``sigma`` defaults to just below zero (scaled to ``K``);
+    ``d``-parts of the modes scaled by ``M^1/2``.  ``sigma`` defaults to just below zero (scaled to ``K``);
     the number of eigenpairs asked for grows until all ``n_negative`` negative eigenvalues
     (known from the inertia) are among them, so that the returned ones are the lowest.
     ``tol`` is ARPACK's relative tolerance on ``theta``.
@@ -122,10 +122,12 @@ def lowest_modes(K: sp.spmatrix, M: sp.spmatrix, k: int, n_negative: int = 0,
     vals : ndarray, shape (k,)
         Ascending eigenvalues.
     vecs : ndarray, shape (n, k)
-        Modes (all unknowns, multipliers included), unit Euclidean norm on ``d``.
+        Modes (all unknowns, multipliers included), unit ``M``-norm.
     """
     n = K.shape[0]
-    d = np.flatnonzero(M.diagonal() > 0)
+    md = M.diagonal()
+    d = np.flatnonzero(md > 0)
+    sq = np.sqrt(md[d])
     nd = d.size
     if not 1 <= k <= nd - 1:
         raise ValueError(f"k must be between 1 and {nd - 1} (the finite eigenvalues of "
@@ -150,10 +152,10 @@ def lowest_modes(K: sp.spmatrix, M: sp.spmatrix, k: int, n_negative: int = 0,
 
     def solve_d(v):
         b = np.zeros(n)
-        b[d] = v
+        b[d] = sq * v
         return solve(b)
 
-    op = spla.LinearOperator((nd, nd), matvec=lambda v: solve_d(v)[d], dtype=float)
+    op = spla.LinearOperator((nd, nd), matvec=lambda v: sq * solve_d(v)[d], dtype=float)
     want = k + max(0, n_negative)
     while True:
         m = min(want, nd - 1)
@@ -172,7 +174,7 @@ def lowest_modes(K: sp.spmatrix, M: sp.spmatrix, k: int, n_negative: int = 0,
         vals, V, theta = vals[order], V[:, order], theta[order]
         if np.sum(vals < 0) >= n_negative or m == nd - 1:
             vecs = np.column_stack([solve_d(V[:, j]) * theta[j] for j in range(k)])
-            vecs /= np.linalg.norm(vecs[d], axis=0)
+            vecs /= np.sqrt(np.sum(md[d, None] * vecs[d] ** 2, axis=0))
             return vals[:k], vecs
         want *= 2
 
@@ -267,7 +269,8 @@ def stability_analysis(problem: Problem, x: np.ndarray, load: Any, *, k: int = 0
 
 def tangent_stability(problem: Problem, K: sp.spmatrix, *, k: int = 0,
                       method: str = "auto", all_negative: bool = False,
-                      tol: float = 1e-12) -> StabilityResult:
+                      tol: float = 1e-12, metric: sp.spmatrix | None = None
+                      ) -> StabilityResult:
     """:func:`stability_analysis` of a given tangent ``K`` of ``problem`` (no equilibrium
     check): e.g. the grad-div stabilised tangent at a state of the unstabilised model.
 
@@ -283,6 +286,9 @@ def tangent_stability(problem: Problem, K: sp.spmatrix, *, k: int = 0,
         Return at least as many modes as negative eigenvalues (``k = max(k, n_negative)``).
     tol
         Relative tolerance of the eigenvalues (:func:`lowest_modes`).
+    metric
+        Diagonal metric ``M`` of the modes (default :func:`metric_matrix`; positive on
+        the displacement-like unknowns, zero on the multipliers).
 
     Returns
     -------
@@ -300,6 +306,7 @@ def tangent_stability(problem: Problem, K: sp.spmatrix, *, k: int = 0,
     if all_negative:
         k = max(int(k), out.n_negative)
     if k:
-        out.eigenvalues, out.modes = lowest_modes(K, metric_matrix(problem), int(k),
-                                                  max(0, out.n_negative), tol=tol)
+        M = metric_matrix(problem) if metric is None else metric
+        out.eigenvalues, out.modes = lowest_modes(K, M, int(k), max(0, out.n_negative),
+                                                  tol=tol)
     return out

@@ -167,14 +167,29 @@ def section_critical_load(pb: CrossSection, mode: str, lo: float, hi: float, *,
     """
     check_choice("mode", mode, MODES)
     state = {"x": pb.initial_state(), "load": np.zeros(3)}
-    x_start = state["x"]
+    base = {}
+    phi = np.arange(pb.ndofs)[pb.layout.blocks["phi"]]
 
     def solve(v):
-        # from the unloaded homogeneous state every time: Newton keeps a homogeneous
-        # iterate homogeneous, so it cannot drift onto a bifurcated branch of the modes
-        # that are already unstable (short waves beyond the thick-plate limit)
+        # a homogeneous initial guess for every state: the state at a small load (its
+        # potential hardly departs from homogeneity at the charged or electroded face) with
+        # the potential scaled to the load; Newton keeps a homogeneous iterate homogeneous,
+        # so it cannot drift onto a bifurcated branch of the modes that are already unstable
+        # (short waves beyond the thick-plate limit).  A step from the unloaded plate puts
+        # the whole jump of the potential into the face elements and can end on such a
+        # branch (voltage control, lam = 2).
+        if not base:
+            v0 = lo / 64
+            res = ramp(pb, [np.array([0.0, 0.0, v0])], x0=pb.initial_state(),
+                       start=np.zeros(3), atol=1e-10, rtol=1e-11)
+            if not res.converged:
+                raise ValueError(f"no equilibrium at load {v0}: {res.reason}")
+            base.update(x=res.x, v=v0)
+        x0 = base["x"].copy()
+        x0[phi] *= v / base["v"]
         tgt = np.array([0.0, 0.0, v])
-        res = ramp(pb, [tgt], x0=x_start, start=np.zeros(3), atol=1e-10, rtol=1e-11)
+        res = ramp(pb, [tgt], x0=x0, start=np.array([0.0, 0.0, base["v"]]), atol=1e-10,
+                   rtol=1e-11)
         if not res.converged:
             raise ValueError(f"no equilibrium at load {v}: {res.reason}")
         state.update(x=res.x, load=tgt)

@@ -27,11 +27,15 @@ def test_quick_grid_matches_the_dispersion_relation(tmp_path, capsys):
         assert abs(t["D0_fe"][i] / t["D0_stroh"][i] - 1) <= 3e-3, (
             t["control"][i], t["mode"][i], t["kh"][i], t["note"][i])
         # the count is consistent with the layout (a negative count would mean that the
-        # multiplier blocks carry fewer negative eigenvalues than unknowns)
-        assert t["n_negative_below"][i] >= 0
-        # no spurious negative eigenvalue below the continuum's onset: under charge control
-        # where the lower bracket end 0.95 D0_stroh is below the thick-plate limit (every
-        # shorter wave is stable there too) the reduced stiffness must be positive definite
+        # multiplier blocks carry fewer negative eigenvalues than unknowns), and there is no
+        # spurious negative eigenvalue below the continuum's onset: at the lower bracket end
+        # 0.95 D0_stroh the FE count may not exceed the Fourier modes n = 1..8 of the
+        # section's classes that the Stroh analysis finds unstable there (validation side,
+        # analytic.critical_D0); the mesh resolves those at best
+        assert 0 <= t["n_negative_below"][i] <= t["n_stroh_below"][i], (
+            t["control"][i], t["mode"][i], t["kh"][i])
+        # and where 0.95 D0_stroh lies below the thick-plate limit every shorter wave is
+        # stable too: an independent bound from the closed form
         lo = 0.95 * t["D0_stroh"][i]
         if t["control"][i] == "charge" and lo < an.thick_limit_D0(t["lam"][i]):
             assert t["n_negative_below"][i] == 0

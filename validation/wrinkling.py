@@ -28,7 +28,7 @@ __all__ = ["WRINKLING_COLUMNS", "wrinkling_grid", "wrinkling_rows", "run_wrinkli
            "wrinkling_figure"]
 
 WRINKLING_COLUMNS = ["control", "mode", "lam", "kh", "D0_fe", "D0_stroh", "rel_error", "mesh",
-                     "n_negative_below", "note"]
+                     "n_negative_below", "n_stroh_below", "note"]
 MODES = ("symmetric", "antisymmetric")
 CONTROLS = ("charge", "voltage")
 
@@ -40,21 +40,38 @@ def wrinkling_grid(quick: bool = False) -> dict:
     return {"lam": (1.2, 1.5, 2.0), "kh": (0.5, 1.0, 2.0, 5.0), "n1": 8}
 
 
+def stroh_unstable_below(control, mode, lam, kh, n1, D0) -> int:
+    """Modes of the section other than the sought one that the Stroh analysis finds
+    unstable at ``D0``: the Fourier modes ``n = 1 .. n1`` (wavenumbers ``n kh``) of the
+    classes the section holds (symmetric on the half thickness, both on the full one).
+    A mesh of ``n1`` elements per half-wave of ``n = 1`` resolves these at best, so the FE
+    count below the onset must not exceed this number; more would be spurious."""
+    classes = ("symmetric",) if mode == "symmetric" else MODES
+    count = 0
+    for cls in classes:
+        ref = an.critical_D0(lam, kh * np.arange(1, n1 + 1), mode=cls, control=control)
+        ref = np.where(np.isfinite(ref), ref, np.inf)
+        count += int(np.sum(ref < D0)) - int(cls == mode and ref[0] < D0)
+    return count
+
+
 def _row(control, mode, lam, kh, n1) -> list:
     ref = float(an.critical_D0(lam, kh, mode=mode, control=control))
     base = [control, mode, lam, kh]
     if not math.isfinite(ref):
-        return base + [None, None, None, "", None, "no root of the dispersion relation"]
+        return base + [None, None, None, "", None, None, "no root of the dispersion relation"]
     a = math.pi / (lam**3 * kh)
     n2 = max(2, int(round((0.5 if mode == "symmetric" else 1.0) / (a / n1))))
     pb = fe.wrinkling_section(lam, kh, mode, control, n1=n1, n2=n2)
     ref_load = ref if control == "charge" else ref / lam**4
+    n_ref = stroh_unstable_below(control, mode, lam, kh, n1, 0.95 * ref)
     try:
         r = fe.section_critical_load(pb, mode, 0.95 * ref_load, 1.05 * ref_load)
     except ValueError as exc:
-        return base + [None, ref, None, f"{n1}x{n2}", None, str(exc).splitlines()[0][:160]]
+        return base + [None, ref, None, f"{n1}x{n2}", None, n_ref,
+                       str(exc).splitlines()[0][:160]]
     d0 = r.load if control == "charge" else r.D0
-    return base + [d0, ref, d0 / ref - 1.0, f"{n1}x{n2}", r.n_negative_below, ""]
+    return base + [d0, ref, d0 / ref - 1.0, f"{n1}x{n2}", r.n_negative_below, n_ref, ""]
 
 
 def wrinkling_rows(quick: bool = False, on_row=None) -> list[list]:

@@ -1,0 +1,100 @@
+"""Symmetry classes of a plate's increments: the full plate's spectrum from a reduced model."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+import skfem_dielectric as fe
+from skfem_dielectric.drivers import equibiaxial_problem, keplinger_problem
+from skfem_dielectric.plate import plate_reduction
+from skfem_dielectric.symmetry_classes import class_stability
+
+SIZE = (8.0, 1.0, 4.0)
+# the same plate on mirror-image meshes: eighth (x1, x2, x3 planes), half (x2) and full
+MODELS = {"eighth": (2, 1, 2), "half": (4, 1, 4), "full": (4, 2, 4)}
+
+
+def _state(pb, load):
+    tg = [np.asarray(load) * t for t in np.linspace(0.25, 1.0, 4)]
+    res = fe.ramp(pb, tg, x0=pb.initial_state(), start=np.zeros(2))
+    assert res.converged
+    return res.x, tg[-1]
+
+
+@pytest.fixture(scope="module")
+def clamped_spectra():
+    """A slender clamped plate under end compression s = -0.4 and charge D0 = 1 (past its
+    Euler load: four unstable modes, all bending), on the three meshes."""
+    out = {}
+    for sym, el in MODELS.items():
+        pb = keplinger_problem(size=SIZE, elements=el, symmetry=sym)
+        x, load = _state(pb, (-0.4, 1.0))
+        out[sym] = (pb, x, load, class_stability(pb, x, load, k=4, method="dense"))
+    return out
+
+
+def test_class_counts_add_up_to_the_full_plate(clamped_spectra):
+    full = clamped_spectra["full"][3]
+    assert [r.n_negative for r in full.results] == [4]
+    for sym in ("eighth", "half"):
+        cs = clamped_spectra[sym][3]
+        assert cs.n_negative == full.n_negative, sym
+        # the reduced model's own (mirror-symmetric) class cannot bend: stable
+        assert cs.results[0].n_negative == 0
+    # every unstable mode bends: antisymmetric in x2
+    for c, r in zip(clamped_spectra["eighth"][3].classes, clamped_spectra["eighth"][3].results):
+        if r.n_negative:
+            assert c.increments[2] == "antisymmetric", c.name
+
+
+def test_class_spectra_are_the_full_plates(clamped_spectra):
+    ref = np.array([v for v, _, _ in clamped_spectra["full"][3].lowest(4)])
+    for sym in ("eighth", "half"):
+        got = np.array([v for v, _, _ in clamped_spectra[sym][3].lowest(4)])
+        # the same discrete operator split into blocks, in a metric that restricts the
+        # full plate's: equal to the eigensolver's accuracy (dense, 1e-12 relative) times
+        # the conditioning of the saddle-point solves
+        np.testing.assert_allclose(got, ref, rtol=1e-8)
+
+
+def test_voltage_control_counts_add_up():
+    """Voltage control (phi prescribed on the faces): the classes of the eighth model
+    against the full plate's own count (dense eigenvalues)."""
+    counts = {}
+    for sym in ("eighth", "full"):
+        pb = keplinger_problem(size=SIZE, elements=MODELS[sym], symmetry=sym,
+                               control="voltage")
+        x, load = _state(pb, (-0.4, 0.2))
+        counts[sym] = class_stability(pb, x, load, k=0, method="dense").n_negative
+    assert counts["eighth"] == counts["full"] > 0
+
+
+def test_free_plate_pins_the_class_translations():
+    """An equi-biaxially compressed free plate (s = -0.3, D0 = 0.5): the antisymmetric
+    classes admit rigid translations, which are pinned (no zero pivot), and the eighth
+    model's classes give the quarter model's (planes x1, x3) spectrum."""
+    spectra = {}
+    for sym, el in (("eighth", (2, 1, 2)), ("quarter", (2, 2, 2))):
+        pb = equibiaxial_problem(size=SIZE, elements=el, symmetry=sym)
+        x, load = _state(pb, (-0.3, 0.5))
+        cs = class_stability(pb, x, load, k=3, method="dense")
+        assert cs.n_zero == 0, sym
+        spectra[sym] = cs
+    assert spectra["eighth"].n_negative == spectra["quarter"].n_negative > 0
+    np.testing.assert_allclose([v for v, _, _ in spectra["eighth"].lowest(3)],
+                               [v for v, _, _ in spectra["quarter"].lowest(3)], rtol=1e-8)
+
+
+def test_bad_classes_and_couplings():
+    pb = keplinger_problem(size=SIZE, elements=MODELS["eighth"], symmetry="eighth")
+    with pytest.raises(ValueError, match="increments must map every symmetry axis"):
+        plate_reduction(pb, {1: "antisymmetric"})
+    with pytest.raises(ValueError, match="increments must map"):
+        plate_reduction(pb, {1: "anti", 2: "symmetric", 3: "symmetric"})
+    mx = keplinger_problem(size=SIZE, elements=MODELS["eighth"], symmetry="eighth",
+                           coupling="maxwell")
+    with pytest.raises(ValueError, match="Maxwell coupling"):
+        class_stability(mx, mx.initial_state(), (0.0, 0.0))
+    with pytest.raises(ValueError, match="x must have shape"):
+        class_stability(pb, np.zeros(3), (0.0, 0.0))
