@@ -29,6 +29,7 @@ from .plate import PlateProblem
 from .problem import Layout, Problem
 from .ramp import RampResult, StepResult, ramp
 from .stability import StabilityResult, stability_analysis, tangent_inertia, tangent_stability
+from .modes import classify_mode, mode_mesh, write_mode_vtu
 from .symmetry_classes import ClassStability, class_stability, symmetry_classes
 from .wrinkling_fe import section_critical_load, wrinkling_section
 
@@ -53,7 +54,8 @@ __all__ = [
     "membrane_keplinger", "cross_section_ramp",
     # stability
     "StabilityResult", "stability_analysis", "tangent_stability", "tangent_inertia",
-    "ClassStability", "class_stability", "symmetry_classes",
+    "ClassStability", "class_stability", "symmetry_classes", "classify_mode", "mode_mesh",
+    "write_mode_vtu",
     "wrinkling_section", "section_critical_load",
     # export
     "step_mesh", "write_vtu_series", "write_xdmf",

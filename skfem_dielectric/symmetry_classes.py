@@ -204,11 +204,21 @@ def class_stability(problem: PlateProblem, x: np.ndarray, load: Any, *, k: int =
     K = union.scatter.csr(union.form.assemble(xf, gd * problem.material.mu)[0])
     out = ClassStability(classes)
     for c in classes:
-        Kc = (c.P.T @ K @ c.P).tocsr()
+        Kc = _with_diagonal((c.P.T @ K @ c.P).tocoo())
         out.results.append(tangent_stability(c, Kc, k=k, method=method,
                                              all_negative=all_negative, tol=tol,
                                              metric=c.metric))
     return out
+
+
+def _with_diagonal(K: sp.coo_matrix) -> sp.csr_matrix:
+    """CSR with every diagonal entry stored (explicit zeros of the multiplier block:
+    PARDISO reports a row without its diagonal as empty)."""
+    n = K.shape[0]
+    i = np.arange(n)
+    return sp.csr_matrix((np.concatenate([K.data, np.zeros(n)]),
+                          (np.concatenate([K.row, i]), np.concatenate([K.col, i]))),
+                         shape=K.shape)
 
 
 def class_mode_full(c: SymmetryClass, w: np.ndarray) -> np.ndarray:

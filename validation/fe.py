@@ -33,6 +33,7 @@ import meshio
 import numpy as np
 
 import skfem_dielectric as fe
+import skfem_dielectric.modes as fe_modes
 
 from .records import RunOutcome, StepRecord
 from .specs import GENT_JM, KEPLINGER, RunSpec
@@ -191,22 +192,6 @@ def pardiso_installed() -> bool:
 #: columns: it removes the spurious mesh-scale surface modes of Q2/Q1 and, J = 1 holding
 #: exactly there, is the Hessian of the same state (docs/stability.md)
 STABILITY_GRAD_DIV = 10.0
-#: a negative mode is a clamp-corner artefact when this share of its displacement norm
-#: lies within two thicknesses of a corner where the clamp meets the free edge
-CORNER_SHARE = 0.5
-
-
-def _corner_share(problem, w) -> float:
-    """Share of ``|u|^2`` of a plate mode within ``2 H`` of the clamp/free-edge corners."""
-    full = problem.red.expand(w, np.zeros(problem.red.n_full))
-    u = full[: problem.n_u].reshape(-1, 3)
-    X = problem.b2.doflocs
-    pl = problem.plate
-    near = ((np.abs(X[0]) >= pl.L1 / 2 - 2 * pl.H) & (np.abs(X[2]) >= pl.L3 / 2 - 2 * pl.H))
-    e = (u * u).sum(axis=1)
-    return float(e[near].sum() / max(e.sum(), 1e-300))
-
-
 def stability_columns(spec: RunSpec, problem, x, load) -> dict:
     """Stability of a converged state: ``n_negative``, ``n_unstable``, ``lowest_eig`` and
     the verdict ``stable``.
@@ -215,8 +200,8 @@ def stability_columns(spec: RunSpec, problem, x, load) -> dict:
     (:func:`skfem_dielectric.tangent_stability`; of the model's own tangent, for the
     homogeneous equi-biaxial plate of the grad-div stabilised one,
     :data:`STABILITY_GRAD_DIV`, which has the same state), ``n_unstable`` those whose mode
-    does not sit at a
-    clamp/free-edge corner (:data:`CORNER_SHARE`), ``lowest_eig`` the lowest eigenvalue
+    is classified physical (:func:`skfem_dielectric.modes.classify_mode`: not at a
+    clamp/free-edge corner, not mesh-scale), ``lowest_eig`` the lowest eigenvalue
     (Euclidean metric of the displacement unknowns); ``stable`` is ``n_unstable == 0``.
     All ``None`` for the Maxwell-traction variants (non-symmetric tangent).
 
@@ -240,11 +225,12 @@ def stability_columns(spec: RunSpec, problem, x, load) -> dict:
         K = problem.assemble(x, load)[0]
     # lowest_eig to 1e-6 (a column of the table; the count is exact)
     st = fe.tangent_stability(problem, K, k=1, method="auto", all_negative=True, tol=1e-6)
-    corner = 0
-    if not _is_membrane(spec) and spec.geometry == "uniaxial":
-        corner = sum(_corner_share(problem, st.modes[:, j]) > CORNER_SHARE
-                     for j in range(st.n_negative))
-    n_unstable = st.n_negative - corner
+    artefacts = 0
+    if not _is_membrane(spec) and spec.geometry == "uniaxial" and st.n_negative:
+        xf = problem.full(x, load)
+        artefacts = sum(fe_modes.classify_mode(problem, xf, problem.red.expand(
+            st.modes[:, j]))["kind"] != "physical" for j in range(st.n_negative))
+    n_unstable = st.n_negative - artefacts
     return {"stable": bool(n_unstable == 0 and st.n_zero == 0), "n_negative": st.n_negative,
             "n_unstable": n_unstable, "lowest_eig": st.lowest_eig}
 

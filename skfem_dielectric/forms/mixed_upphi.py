@@ -320,6 +320,12 @@ class MixedUPPhiForm:
             rf += r
         return data, rf
 
+    def element_residuals(self, xf: np.ndarray) -> np.ndarray:
+        """Internal force vectors of every element, shape ``(nel, m)``, in the order of
+        the element dofs ``edofs`` (``u`` node-major, ``p``, ``phi``)."""
+        return np.concatenate([self._element_residual(
+            self._response(xf, sl, need_tangent=False), sl) for sl in self.chunks()])
+
     def residual(self, xf: np.ndarray) -> np.ndarray:
         """Full internal force vector only (cheaper; the line search)."""
         rf = np.zeros(self.n_full)
