@@ -29,7 +29,8 @@ from .plate import PlateProblem
 from .problem import Layout, Problem
 from .ramp import RampResult, StepResult, ramp
 from .stability import StabilityResult, stability_analysis, tangent_inertia, tangent_stability
-from .modes import classify_mode, mode_mesh, write_mode_vtu
+from .critical import CriticalLoad, critical_load
+from .modes import classify_mode, lowest_physical_eigenvalue, mode_mesh, write_mode_vtu
 from .symmetry_classes import ClassStability, class_stability, symmetry_classes
 from .wrinkling_fe import section_critical_load, wrinkling_section
 
@@ -55,7 +56,7 @@ __all__ = [
     # stability
     "StabilityResult", "stability_analysis", "tangent_stability", "tangent_inertia",
     "ClassStability", "class_stability", "symmetry_classes", "classify_mode", "mode_mesh",
-    "write_mode_vtu",
+    "write_mode_vtu", "lowest_physical_eigenvalue", "CriticalLoad", "critical_load",
     "wrinkling_section", "section_critical_load",
     # export
     "step_mesh", "write_vtu_series", "write_xdmf",

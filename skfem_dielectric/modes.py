@@ -29,9 +29,11 @@ import numpy as np
 from skfem import Functional
 
 from .plate import PlateProblem
+from .symmetry_classes import class_mode_full, class_stability
 
 __all__ = ["element_energies", "energy_share", "corner_elements", "corner_share",
-           "mesh_scale", "classify_mode", "mode_mesh", "write_mode_vtu", "top_deflection",
+           "mesh_scale", "classify_mode", "lowest_physical_eigenvalue", "mode_mesh",
+           "write_mode_vtu", "top_deflection",
            "MESH_SCALE_LIMIT", "CORNER_LIMIT"]
 
 #: a mode with a larger mesh-scale indicator is under-resolved (fewer than two elements
@@ -197,3 +199,27 @@ def top_deflection(problem: PlateProblem, w_full: np.ndarray,
                 X1, X3, u2 = (np.concatenate([X1, X1[keep]]), np.concatenate([X3, -X3[keep]]),
                               np.concatenate([u2, sign * u2[keep]]))
     return X1, X3, u2
+
+
+def lowest_physical_eigenvalue(problem: PlateProblem, x: np.ndarray, load: Any, *,
+                               k: int = 4, grad_div: float | None = None,
+                               radius: float | None = None) -> tuple[float, dict]:
+    """The lowest eigenvalue over every symmetry class whose mode is classified
+    ``"physical"`` (:func:`classify_mode`), and that mode's labels.
+
+    The ``k`` lowest modes of each class (at least all negative ones) are classified in
+    ascending order.  If none of them is physical, the largest computed eigenvalue is
+    returned (a lower bound of the lowest physical one) with ``kind = "none found"``.
+    The indicator of :func:`~skfem_dielectric.critical.critical_load` for a plate.
+    """
+    cs = class_stability(problem, x, load, k=k, grad_div=grad_div, all_negative=True)
+    xf = problem.full(x, load)
+    names = [c.name for c in cs.classes]
+    vals = cs.lowest()
+    for v, name, j in vals:
+        i = names.index(name)
+        w = class_mode_full(cs.classes[i], cs.results[i].modes[:, j])
+        lab = classify_mode(problem, xf, w, symmetry=name, radius=radius)
+        if lab["kind"] == "physical":
+            return float(v), lab
+    return float(vals[-1][0]), {"kind": "none found", "symmetry": ""}

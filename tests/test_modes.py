@@ -10,6 +10,7 @@ import pytest
 import skfem_dielectric as fe
 from skfem_dielectric.drivers import keplinger_problem
 from skfem_dielectric.modes import (classify_mode, corner_elements, element_energies,
+                                    lowest_physical_eigenvalue,
                                     energy_share, mesh_scale, top_deflection, write_mode_vtu)
 from skfem_dielectric.symmetry_classes import class_mode_full, class_stability
 
@@ -90,3 +91,26 @@ def test_mode_vtu_and_unfolded_deflection(buckled, tmp_path):
         write_mode_vtu(tmp_path / "mode.txt", pb, x, load, w)
     with pytest.raises(ValueError, match="w_full must be a full dof vector"):
         mesh_scale(pb, w[:10])
+
+
+def test_critical_end_load_of_the_clamped_plate(buckled):
+    """The lowest physical eigenvalue along the end compression s (D0 = 1) crosses zero at
+    the plate's first buckling load; critical_load finds it to 1e-4 in s, and it is the
+    load where the classes' count first turns positive."""
+    pb = buckled[0]
+    res = fe.ramp(pb, [np.array([-0.02, 1.0])], x0=pb.initial_state(), start=np.zeros(2))
+
+    def eig(x, load):
+        return lowest_physical_eigenvalue(pb, x, load, k=2)[0]
+
+    out = fe.critical_load(pb, res.x, np.array([-0.02, 1.0]), np.array([-0.4, 1.0]), eig,
+                           tol=1e-4)
+    s_c = out.load[0]
+    lo, hi = [np.array([s, 1.0]) for s in (s_c + 2e-4, s_c - 2e-4)]
+    counts = []
+    for ld in (lo, hi):
+        r = fe.ramp(pb, [ld], x0=res.x, start=np.array([-0.02, 1.0]))
+        counts.append(class_stability(pb, r.x, ld, k=0).n_negative)
+    # stable 2e-4 before the located load (twice the tolerance), one negative eigenvalue
+    # 2e-4 after it
+    assert counts == [0, 1]

@@ -1,0 +1,145 @@
+"""Critical load on a load path: where an eigenvalue of the reduced stiffness crosses zero.
+
+Between a stable state ``(x_a, load_a)`` and a load ``load_b`` where the indicator
+``eig(x, load)`` (the lowest *physical* eigenvalue, e.g.
+:func:`~skfem_dielectric.modes.lowest_physical_eigenvalue`) is negative, the load is
+parametrised as ``load(t) = load_a + t (load_b - load_a)``, ``t in [0, 1]``, and the root of
+``t -> eig`` is bracketed by safeguarded secant (Illinois) steps.  Every trial state is
+solved by :func:`~skfem_dielectric.ramp` from the stable state ``x_a`` (not from the last
+trial, which may lie beyond the critical load: a state there can have left the branch).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Any, Callable
+
+import numpy as np
+
+from .checks import check_callable, check_positive
+from .problem import Problem
+from .ramp import ramp
+
+__all__ = ["CriticalLoad", "critical_load"]
+
+
+@dataclass
+class CriticalLoad:
+    """A located critical load.
+
+    Attributes
+    ----------
+    load
+        The critical load (same shape as ``load_a``).
+    t
+        Its path parameter in ``[0, 1]``.
+    eigenvalue
+        The indicator at ``load``.
+    bracket
+        ``(t_lo, t_hi)``: the final bracket (stable, unstable side).
+    x
+        The state at ``load`` (reduced vector).
+    evaluations
+        ``(t, eig)`` of every trial, in order.
+    """
+
+    load: Any
+    t: float
+    eigenvalue: float
+    bracket: tuple[float, float]
+    x: np.ndarray
+    evaluations: list[tuple[float, float]] = field(default_factory=list)
+
+
+def critical_load(problem: Problem, x_a: np.ndarray, load_a: Any, load_b: Any,
+                  eig: Callable[[np.ndarray, Any], float], *, tol: float = 1e-4,
+                  maxiter: int = 40, **ramp_options) -> CriticalLoad:
+    """Locate the load between ``load_a`` and ``load_b`` where ``eig`` vanishes.
+
+    Parameters
+    ----------
+    problem
+        Any :class:`~skfem_dielectric.problem.Problem`.
+    x_a, load_a
+        A converged state on the stable side (``eig > 0``).
+    load_b
+        A load on the unstable side (``eig < 0``).
+    eig
+        ``eig(x, load) -> float``, continuous along the path.
+    tol
+        Width of the final bracket in the load (largest component, absolute): the
+        critical load is located to ``tol``.
+    maxiter
+        Maximum number of trial states.
+    ramp_options
+        Passed to :func:`~skfem_dielectric.ramp` (``linear_solver``, ``step_limit``, ...).
+
+    Returns
+    -------
+    CriticalLoad
+
+    Raises
+    ------
+    ValueError
+        If ``eig`` does not change sign from ``load_a`` to ``load_b``, if a trial state
+        cannot be solved, or on bad arguments.
+    """
+    if not isinstance(problem, Problem):
+        raise ValueError(f"problem must be a skfem_dielectric.Problem, got "
+                         f"{type(problem).__name__}")
+    check_callable("eig", eig, optional=False)
+    tol = check_positive("tol", tol)
+    la = np.asarray(load_a, dtype=float)
+    lb = np.asarray(load_b, dtype=float)
+    if la.shape != lb.shape:
+        raise ValueError(f"load_a and load_b must have the same shape, got {la.shape} and "
+                         f"{lb.shape}")
+    span = float(np.max(np.abs(lb - la)))
+    if span == 0.0:
+        raise ValueError("load_a and load_b must differ")
+    x_a = np.asarray(x_a, dtype=float)
+    evals: list[tuple[float, float]] = []
+
+    def at(t):
+        return la + t * (lb - la) if la.ndim else float(la + t * (lb - la))
+
+    def g(t):
+        res = ramp(problem, [at(t)], x0=x_a, start=at(0.0), **ramp_options)
+        if not res.converged:
+            raise ValueError(f"no equilibrium at load {at(t)}: {res.reason}")
+        v = float(eig(res.x, at(t)))
+        evals.append((t, v))
+        return v, res.x
+
+    fa = float(eig(x_a, at(0.0)))
+    evals.append((0.0, fa))
+    fb, xb = g(1.0)
+    if not (fa > 0 > fb):
+        raise ValueError(f"eig does not change sign from load_a to load_b: {fa:.3e} at "
+                         f"{at(0.0)}, {fb:.3e} at {at(1.0)}")
+    a, b, side = 0.0, 1.0, 0
+    fa_, fb_ = fa, fb               # the Illinois-weighted values
+    best = (1.0, fb, xb)
+    for _ in range(maxiter):
+        if (b - a) * span <= tol:
+            break
+        c = b - fb_ * (b - a) / (fb_ - fa_)
+        # safeguard: stay inside the bracket, away from its ends
+        c = min(max(c, a + 0.01 * (b - a)), b - 0.01 * (b - a))
+        fc, xc = g(c)
+        if fc > 0:
+            a, fa_ = c, fc
+            if side == -1:
+                fb_ *= 0.5
+            side = -1
+        else:
+            b, fb_ = c, fc
+            if side == 1:
+                fa_ *= 0.5
+            side = 1
+        best = (c, fc, xc)
+        if fc == 0.0:
+            a = b = c
+            break
+    t, v, x = best
+    return CriticalLoad(at(t), t, v, (a, b), x, evals)
