@@ -32,7 +32,7 @@ from .stability import StabilityResult, stability_analysis, tangent_inertia, tan
 from .critical import CriticalLoad, critical_load
 from .modes import classify_mode, lowest_physical_eigenvalue, mode_mesh, write_mode_vtu
 from .symmetry_classes import ClassStability, class_stability, symmetry_classes
-from .wrinkling_fe import section_critical_load, wrinkling_section
+from .wrinkling_fe import section_critical_load, section_critical_stretch, wrinkling_section
 
 __all__ = [
     # the contract and the machinery
@@ -57,7 +57,7 @@ __all__ = [
     "StabilityResult", "stability_analysis", "tangent_stability", "tangent_inertia",
     "ClassStability", "class_stability", "symmetry_classes", "classify_mode", "mode_mesh",
     "write_mode_vtu", "lowest_physical_eigenvalue", "CriticalLoad", "critical_load",
-    "wrinkling_section", "section_critical_load",
+    "wrinkling_section", "section_critical_load", "section_critical_stretch",
     # export
     "step_mesh", "write_vtu_series", "write_xdmf",
 ]

@@ -32,7 +32,7 @@ from .ramp import ramp
 from .stability import lowest_modes, metric_matrix, tangent_stability
 
 __all__ = ["wrinkling_section", "section_mode_eigenvalue", "section_critical_load",
-           "SectionBifurcation"]
+           "SectionBifurcation", "section_critical_stretch"]
 
 MODES = ("symmetric", "antisymmetric")
 CONTROLS = ("charge", "voltage")
@@ -225,3 +225,64 @@ def section_critical_load(pb: CrossSection, mode: str, lo: float, hi: float, *,
             break
     res = solve(c)
     return SectionBifurcation(float(c), float(res.steps[-1]["D0"]), it, int(nneg_lo))
+
+
+def section_critical_stretch(kh: float, mode: str, lo: float, hi: float, *, n1: int = 8,
+                             n2: int = 8, material=None, grad_div: float = 10.0,
+                             tol: float = 1e-8, maxiter: int = 60) -> tuple[float, int]:
+    """Critical equi-biaxial stretch of the purely elastic plate (``D0 = 0``) for the mode
+    ``n = 1`` of wavenumber ``kh`` (deformed thickness) and class ``mode``.
+
+    The compressed plate (``lam < 1``) buckles where the mode's eigenvalue vanishes: for
+    every trial stretch the section of :func:`wrinkling_section` (``n1 x n2`` elements,
+    the same for every trial, so that the eigenvalue is a smooth function of ``lam``) is
+    solved uncharged and its mode's eigenvalue computed; Illinois iterations on ``lam``
+    between ``lo`` (unstable, more compressed) and ``hi`` (stable).
+
+    Returns
+    -------
+    lam : float
+        The critical stretch (to ``tol``).
+    iterations : int
+
+    Raises
+    ------
+    ValueError
+        If ``[lo, hi]`` does not bracket a sign change of the eigenvalue.
+    """
+    check_choice("mode", mode, MODES)
+    kh = check_positive("kh", kh)
+
+    def g(lam):
+        pb = wrinkling_section(lam, kh, mode, "charge", material=material, n1=n1, n2=n2,
+                               grad_div=grad_div)
+        res = ramp(pb, [np.zeros(3)], x0=pb.initial_state(), start=np.zeros(3),
+                   atol=1e-10, rtol=1e-11)
+        if not res.converged:
+            raise ValueError(f"no equilibrium at lam = {lam}: {res.reason}")
+        eig = section_mode_eigenvalue(pb, res.x, np.zeros(3), mode)[0]
+        if not math.isfinite(eig):
+            raise ValueError(f"no {mode} mode n = 1 among the 64 lowest modes at lam = {lam}")
+        return eig
+
+    fa, fb = g(hi), g(lo)
+    if not (fa > 0 > fb):
+        raise ValueError(f"[{lo}, {hi}] does not bracket the buckling of the {mode} mode: "
+                         f"eigenvalues {fb:.3e} at {lo}, {fa:.3e} at {hi}")
+    a, b, side, c = hi, lo, 0, hi
+    for it in range(1, maxiter + 1):
+        c = b - fb * (b - a) / (fb - fa)
+        fc = g(c)
+        if fc > 0:
+            a, fa = c, fc
+            if side == -1:
+                fb *= 0.5
+            side = -1
+        else:
+            b, fb = c, fc
+            if side == 1:
+                fa *= 0.5
+            side = 1
+        if abs(b - a) <= tol or fc == 0:
+            break
+    return float(c), it

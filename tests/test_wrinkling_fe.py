@@ -7,7 +7,7 @@ import math
 import analytic as an
 from validation.cli import main
 from validation.sweep import read_table
-from validation.wrinkling import WRINKLING_COLUMNS
+from validation.wrinkling import ELASTIC_COLUMNS, WRINKLING_COLUMNS
 
 
 def test_quick_grid_matches_the_dispersion_relation(tmp_path, capsys):
@@ -29,7 +29,7 @@ def test_quick_grid_matches_the_dispersion_relation(tmp_path, capsys):
         # the count is consistent with the layout (a negative count would mean that the
         # multiplier blocks carry fewer negative eigenvalues than unknowns), and there is no
         # spurious negative eigenvalue below the continuum's onset: at the lower bracket end
-        # 0.95 D0_stroh the FE count may not exceed the Fourier modes n = 1..8 of the
+        # 0.95 D0_stroh the FE count may not exceed the Fourier modes n = 1..16 of the
         # section's classes that the Stroh analysis finds unstable there (validation side,
         # analytic.critical_D0); the mesh resolves those at best
         assert 0 <= t["n_negative_below"][i] <= t["n_stroh_below"][i], (
@@ -40,3 +40,12 @@ def test_quick_grid_matches_the_dispersion_relation(tmp_path, capsys):
         if t["control"][i] == "charge" and lo < an.thick_limit_D0(t["lam"][i]):
             assert t["n_negative_below"][i] == 0
     assert rows == 7
+    # the uncharged plate in compression: the critical stretch of the flexural mode at
+    # kh = 1 (Euler-like) and kh = 20 (near the thick-plate limit 0.666), against the
+    # root of the dispersion relation; the 1e-3 (measured 1.3e-4, 1.4e-4)
+    el = read_table(tmp_path / "wrinkling-fe-elastic.csv")
+    assert list(el) == ELASTIC_COLUMNS
+    assert list(el["kh"]) == [1.0, 20.0]
+    for i in range(2):
+        assert abs(el["lam_fe"][i] / el["lam_stroh"][i] - 1) <= 1e-3, el["kh"][i]
+        assert 0.666 < el["lam_stroh"][i] < 1.0

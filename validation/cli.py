@@ -213,9 +213,14 @@ def _cmd_wrinkling(args) -> int:
         err = "" if row[6] is None else f"  rel. error {row[6]:+.2e}"
         print(f"{row[0]:>7} {row[1]:>13} lam = {row[2]:g} kh = {row[3]:g}: "
               + (f"D0_fe = {row[4]:.6g}, D0_stroh = {row[5]:.6g}{err}" if row[4] is not None
-                 else (row[9] or "no FE root")), flush=True)
+                 else (row[10] or "no FE root")), flush=True)
 
-    paths = run_wrinkling_fe(args.out, quick=args.quick, on_row=show)
+    def show_elastic(row):
+        print(f"{'D0 = 0':>7} {row[0]:>13} kh = {row[1]:g}: "
+              + (f"lam_fe = {row[2]:.6g}, lam_stroh = {row[3]:.6g}  rel. error {row[4]:+.2e}"
+                 if row[2] is not None else (row[6] or "no FE root")), flush=True)
+
+    paths = run_wrinkling_fe(args.out, quick=args.quick, on_row=show, on_elastic_row=show_elastic)
     print("wrote " + ", ".join(str(p) for p in paths))
     return 0
 

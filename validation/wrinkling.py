@@ -18,17 +18,20 @@ from pathlib import Path
 import matplotlib.pyplot as plt
 import numpy as np
 from matplotlib.ticker import NullFormatter, ScalarFormatter
+from scipy.optimize import brentq
 
 import analytic as an
 import skfem_dielectric as fe
 
 from .store import write_csv_atomic
 
-__all__ = ["WRINKLING_COLUMNS", "wrinkling_grid", "wrinkling_rows", "run_wrinkling_fe",
+__all__ = ["WRINKLING_COLUMNS", "ELASTIC_COLUMNS", "wrinkling_grid", "wrinkling_rows",
+           "elastic_grid", "elastic_rows", "stroh_critical_stretch", "run_wrinkling_fe",
            "wrinkling_figure"]
 
 WRINKLING_COLUMNS = ["control", "mode", "lam", "kh", "D0_fe", "D0_stroh", "rel_error", "mesh",
                      "n_negative_below", "n_stroh_below", "note"]
+ELASTIC_COLUMNS = ["mode", "kh", "lam_fe", "lam_stroh", "rel_error", "mesh", "note"]
 MODES = ("symmetric", "antisymmetric")
 CONTROLS = ("charge", "voltage")
 
@@ -42,14 +45,15 @@ def wrinkling_grid(quick: bool = False) -> dict:
 
 def stroh_unstable_below(control, mode, lam, kh, n1, D0) -> int:
     """Modes of the section other than the sought one that the Stroh analysis finds
-    unstable at ``D0``: the Fourier modes ``n = 1 .. n1`` (wavenumbers ``n kh``) of the
-    classes the section holds (symmetric on the half thickness, both on the full one).
-    A mesh of ``n1`` elements per half-wave of ``n = 1`` resolves these at best, so the FE
-    count below the onset must not exceed this number; more would be spurious."""
+    unstable at ``D0``: the Fourier modes ``n = 1 .. 2 n1`` (wavenumbers ``n kh``; the
+    ``2 n1 + 1`` Q2 nodes along the section carry no shorter cosine) of the classes the
+    section holds (symmetric on the half thickness, both on the full one).  The FE
+    resolves these at best (under-resolved modes are stiffer), so its count below the
+    onset must not exceed this number; more would be spurious."""
     classes = ("symmetric",) if mode == "symmetric" else MODES
     count = 0
     for cls in classes:
-        ref = an.critical_D0(lam, kh * np.arange(1, n1 + 1), mode=cls, control=control)
+        ref = an.critical_D0(lam, kh * np.arange(1, 2 * n1 + 1), mode=cls, control=control)
         ref = np.where(np.isfinite(ref), ref, np.inf)
         count += int(np.sum(ref < D0)) - int(cls == mode and ref[0] < D0)
     return count
@@ -88,6 +92,61 @@ def wrinkling_rows(quick: bool = False, on_row=None) -> list[list]:
     return rows
 
 
+def elastic_grid(quick: bool = False) -> dict:
+    """The purely elastic rows (``D0 = 0``): ``(mode, kh)`` pairs and elements per
+    half-wave.  Symmetric modes have no root above ``lam = 0.3`` for ``kh <= 5``."""
+    if quick:
+        return {"rows": (("antisymmetric", 1.0), ("antisymmetric", 20.0)), "n1": 8}
+    return {"rows": tuple(("antisymmetric", kh) for kh in (0.5, 1.0, 2.0, 5.0, 20.0))
+            + (("symmetric", 5.0), ("symmetric", 20.0)), "n1": 8}
+
+
+def stroh_critical_stretch(kh: float, mode: str, lo: float = 0.3) -> float:
+    """Largest equi-biaxial stretch ``lam < 1`` at which the uncharged plate's dispersion
+    relation (:func:`analytic.dispersion_function`, ``D0 = 0``) has the root ``kh``; the
+    first buckling under increasing compression.  ``nan`` without a root in
+    ``(lo, 1)``."""
+    lams = np.linspace(0.999, lo, 400)
+
+    def f(lam):
+        return float(an.dispersion_function(lam, lam, 0.0, kh, mode=mode))
+
+    vals = [f(v) for v in lams]
+    for i in range(len(lams) - 1):
+        if np.sign(vals[i]) != np.sign(vals[i + 1]):
+            return float(brentq(f, lams[i + 1], lams[i], xtol=1e-14))
+    return float("nan")
+
+
+def _elastic_row(mode, kh, n1) -> list:
+    ref = stroh_critical_stretch(kh, mode)
+    if not math.isfinite(ref):
+        return [mode, kh, None, None, None, "", "no root of the dispersion relation above "
+                "lam = 0.3"]
+    a = math.pi / (ref**3 * kh)
+    thickness = 0.5 if mode == "symmetric" else 1.0
+    # elements of about the size along x1 and, for short waves, at most 2/3 of the depth
+    # H/kh (reference) over which the mode decays from the faces
+    n2 = max(2, int(round(thickness / (a / n1))), math.ceil(1.5 * kh * thickness))
+    try:
+        lam, _ = fe.section_critical_stretch(kh, mode, 0.97 * ref, min(1.03 * ref, 0.9995),
+                                             n1=n1, n2=n2)
+    except ValueError as exc:
+        return [mode, kh, None, ref, None, f"{n1}x{n2}", str(exc).splitlines()[0][:160]]
+    return [mode, kh, lam, ref, lam / ref - 1.0, f"{n1}x{n2}", ""]
+
+
+def elastic_rows(quick: bool = False, on_row=None) -> list[list]:
+    """The rows of :func:`elastic_grid` (``on_row(row)`` after each)."""
+    g = elastic_grid(quick)
+    rows = []
+    for mode, kh in g["rows"]:
+        rows.append(_elastic_row(mode, kh, g["n1"]))
+        if on_row is not None:
+            on_row(rows[-1])
+    return rows
+
+
 def _fmt(v) -> str:
     if v is None:
         return ""
@@ -96,10 +155,35 @@ def _fmt(v) -> str:
     return format(float(v), ".10g")
 
 
-def wrinkling_figure(rows: list[list], ax=None):
-    """FE dots on the Stroh dispersion curves ``D0(kh)``, one panel per control."""
+def _elastic_panel(a, rows):
+    kh = np.logspace(np.log10(0.3), np.log10(30.0), 40)
+    for mode, ls, mk in (("antisymmetric", "--", "s"), ("symmetric", "-", "o")):
+        a.plot(kh, [stroh_critical_stretch(k, mode) for k in kh], ls, color="k", lw=1.2,
+               label=f"Stroh, {mode}")
+        pts = [(r[1], r[2]) for r in rows if r[0] == mode and r[2] is not None]
+        if pts:
+            x, y = zip(*pts)
+            a.plot(x, y, mk, mfc="none", color="C3", ms=7,
+                   label=f"FE, {mode}")
+    a.axhline(an.surface_instability_stretch(), color="0.5", lw=0.8, ls=":",
+              label="thick limit 0.666")
+    thin = kh[kh < 2.5]
+    a.plot(thin, 1 - thin**2 / 18, ":", color="C0", lw=1.0, label="Euler: 1 - (kh)^2/18")
+    a.set_xscale("log")
+    a.set_xlabel("kh (deformed thickness)")
+    a.set_ylabel("critical stretch lam (D0 = 0)")
+    a.set_title("uncharged plate in compression")
+    a.legend(fontsize=7, loc="upper right")
+
+
+def wrinkling_figure(rows: list[list], ax=None, elastic: list[list] | None = None):
+    """FE dots on the Stroh dispersion curves ``D0(kh)``, one panel per control, and (with
+    ``elastic`` rows) a third panel of the uncharged plate's critical stretch."""
     if ax is None:
-        _, ax = plt.subplots(1, 2, figsize=(11, 4.2))
+        _, ax = plt.subplots(1, 3 if elastic is not None else 2,
+                             figsize=(16 if elastic is not None else 11, 4.2))
+    if elastic is not None:
+        _elastic_panel(ax[2], elastic)
     kh = np.logspace(np.log10(0.3), np.log10(8.0), 60)
     lams = sorted({r[2] for r in rows})
     colours = dict(zip(lams, plt.cm.viridis(np.linspace(0.1, 0.8, len(lams)))))
@@ -128,17 +212,22 @@ def wrinkling_figure(rows: list[list], ax=None):
     return ax
 
 
-def run_wrinkling_fe(out, quick: bool = False, on_row=None) -> list[Path]:
-    """Write ``out/wrinkling-fe.csv`` and ``out/wrinkling-fe.png``; return their paths."""
+def run_wrinkling_fe(out, quick: bool = False, on_row=None,
+                     on_elastic_row=None) -> list[Path]:
+    """Write ``out/wrinkling-fe.csv``, ``out/wrinkling-fe-elastic.csv`` and
+    ``out/wrinkling-fe.png``; return their paths."""
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
     rows = wrinkling_rows(quick, on_row)
     csv_path = write_csv_atomic(out / "wrinkling-fe.csv", WRINKLING_COLUMNS,
                                 [[_fmt(v) for v in r] for r in rows])
-    ax = wrinkling_figure(rows)
+    elastic = elastic_rows(quick, on_elastic_row)
+    csv_elastic = write_csv_atomic(out / "wrinkling-fe-elastic.csv", ELASTIC_COLUMNS,
+                                   [[_fmt(v) for v in r] for r in elastic])
+    ax = wrinkling_figure(rows, elastic=elastic)
     fig = ax[0].figure
     fig.tight_layout(rect=(0, 0.03, 1, 1))
     png = out / "wrinkling-fe.png"
     fig.savefig(png, dpi=120)
     plt.close(fig)
-    return [csv_path, png]
+    return [csv_path, csv_elastic, png]
