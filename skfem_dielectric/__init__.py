@@ -7,6 +7,8 @@ solver, the load ramp and the export work on any of them.  Models: :class:`Plate
 """
 
 from .assembly import DofReduction, ScatterMap
+from .continuation import (ContinuationEvent, ContinuationPoint, ContinuationResult,
+                           continuation)
 from .cross_section import CrossSection
 from .drivers import (cross_section_ramp, equibiaxial_plate, equibiaxial_problem,
                       keplinger_plate, keplinger_problem, maxwell_equibiaxial,
@@ -34,7 +36,7 @@ from .wrinkling_fe import section_critical_load, wrinkling_section
 __all__ = [
     # the contract and the machinery
     "Problem", "Layout", "newton", "NewtonResult", "segment_det_limit", "ramp", "RampResult",
-    "StepResult",
+    "StepResult", "continuation", "ContinuationResult", "ContinuationPoint", "ContinuationEvent",
     "LinearSolver", "SuperLUSolver", "PardisoSolver", "PardisoLUSolver", "get_linear_solver",
     "nonsymmetric_solver", "pardiso_available", "DofReduction", "ScatterMap",
     # materials and meshes
