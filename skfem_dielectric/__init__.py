@@ -30,6 +30,7 @@ from .newton import NewtonResult, newton, segment_det_limit
 from .plate import PlateProblem
 from .problem import Layout, Problem
 from .ramp import RampResult, StepResult, ramp
+from .snap_through import SnapThrough, homogeneous_plate, voltage_snap_through
 from .stability import StabilityResult, stability_analysis, tangent_inertia, tangent_stability
 from .wrinkling_fe import section_critical_load, wrinkling_section
 
@@ -55,6 +56,8 @@ __all__ = [
     # stability
     "StabilityResult", "stability_analysis", "tangent_stability", "tangent_inertia",
     "wrinkling_section", "section_critical_load",
+    # voltage control through the snap-through
+    "homogeneous_plate", "voltage_snap_through", "SnapThrough",
     # export
     "step_mesh", "write_vtu_series", "write_xdmf",
 ]
