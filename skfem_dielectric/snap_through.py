@@ -120,7 +120,8 @@ def voltage_snap_through(s: float, *, loading: str = "equibiaxial",
                          model: Any = "neo-Hookean", Jm: float = 97.2,
                          grad_div: float = 10.0, ds: float = 0.05, lam_factor: float = 2.0,
                          E0_max: float = 10.0, max_steps: int = 150, charge: bool = True,
-                         stop_after_limit: bool = False, **options) -> SnapThrough:
+                         stop_after_limit: bool = False, coupling: str = "full",
+                         **options) -> SnapThrough:
     """Voltage-controlled path of the homogeneous plate at dead load ``s`` through the
     maximum of ``E0``, with the stability counts under voltage and charge control.
 
@@ -142,9 +143,12 @@ def voltage_snap_through(s: float, *, loading: str = "equibiaxial",
     max_steps
         Largest number of continuation steps.
     charge
-        Also count the charge-controlled stiffness at every state.
+        Also count the charge-controlled stiffness at every state (full coupling).
     stop_after_limit
         End the path at the first point after the first limit point.
+    coupling
+        ``"full"`` or ``"maxwell"`` (the Maxwell traction of the solved field; its tangent
+        is not symmetric, so no counts are taken).
     **options
         :func:`~skfem_dielectric.continuation.continuation` options.
 
@@ -158,7 +162,8 @@ def voltage_snap_through(s: float, *, loading: str = "equibiaxial",
     check_choice("loading", loading, HOMOGENEOUS_LOADINGS)
     grad_div = check_positive("grad_div", grad_div)
     lam_factor = check_positive("lam_factor", lam_factor)
-    pb = homogeneous_plate(loading, "voltage", model=model, Jm=Jm)
+    pb = homogeneous_plate(loading, "voltage", model=model, Jm=Jm, coupling=coupling)
+    full = coupling == "full"
     guards = newton_guards(pb)
     pre = ramp(pb, [np.array([s, 0.0])], **guards)
     lam0 = pre.steps[-1]["lam1"] if pre.steps else 1.0
@@ -171,10 +176,11 @@ def voltage_snap_through(s: float, *, loading: str = "equibiaxial",
     options.setdefault("max_steps", max_steps)
     path = continuation(pb, np.array([s, 0.0]), np.array([0.0, 1.0]),
                         x0=pre.x if pre.steps else None, ds=ds, t_max=E0_max,
-                        count=_counter(pb, grad_div), stop=stop, **guards, **options)
+                        count=_counter(pb, grad_div) if full else False, stop=stop,
+                        **guards, **options)
     n_c: list[int | None] = []
     D0, res = [], []
-    cpb = homogeneous_plate(loading, "charge", model=model, Jm=Jm) if charge else None
+    cpb = homogeneous_plate(loading, "charge", model=model, Jm=Jm) if charge and full else None
     for p in path.points:
         D0.append(np.sign(p.t) * p["D0_centre"])
         if cpb is None:

@@ -63,6 +63,18 @@ def test_gent_without_maximum_has_no_limit_point():
                                an.equibiaxial_E0(lam, 3.0, an.Gent(97.2)), atol=1e-8)
 
 
+def test_maxwell_coupling_under_voltage_control_limit_point():
+    # the Maxwell traction of the solved field discretises the same equations as the full
+    # coupling: the same limit point, neo-Hookean equi-biaxial s = 1, root of
+    # 2 lam^6 - 3 s lam^5 - 8 = 0 (Sec. 3.1), solved here; tolerances as above
+    s = 1.0
+    lam = brentq(lambda x: 2 * x ** 6 - 3 * s * x ** 5 - 8, 1.0, 3.0, xtol=1e-14)
+    st = fe.voltage_snap_through(s, coupling="maxwell", stop_after_limit=True)
+    assert st.lam1_max == pytest.approx(lam, abs=1e-6)
+    assert st.E0_max == pytest.approx(float(an.equibiaxial_E0(lam, s)), abs=1e-8)
+    assert st.n_negative_voltage[0] is None       # non-symmetric tangent: no count
+
+
 def test_bad_loading():
     with pytest.raises(ValueError, match="loading"):
         fe.voltage_snap_through(0.0, loading="uniaxial")
