@@ -48,7 +48,7 @@ VOLTAGE_COLUMNS = ["case", "run", "point", "model", "loading", "variant", "s", "
                    "lam1_max_analytic", "E0_max_analytic", "iterations", "note"]
 #: verdict tolerance on the relative lam1 error of the homogeneous limit points (the
 #: stated target is 1e-4 in lam1 and 1e-6 in E0; the limit point is located to
-#: |dE0/ds| <= 1e-9, so the measured errors are near 1e-10)
+#: ``|dE0/ds| <= 1e-9``, so the measured errors are near 1e-10)
 LIMIT_TOL = 1e-6
 #: Keplinger plate under voltage control: elements of the eighth model
 KEPLINGER_MESH = (10, 1, 5)
