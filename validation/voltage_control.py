@@ -174,23 +174,26 @@ def voltage_figure(rows: list[list], ax=None):
     col = {c: VOLTAGE_COLUMNS.index(c) for c in VOLTAGE_COLUMNS}
     runs = list(dict.fromkeys(r[1] for r in rows))
     panels = {"equibiaxial": ax[0], "uniaxial-free": ax[1], "uniaxial": ax[1]}
-    colours = plt.cm.viridis(np.linspace(0.0, 0.85, max(len(runs), 1)))
-    for k, run in enumerate(runs):
+    in_panel: dict = {}
+    for run in runs:
         rr = [r for r in rows if r[1] == run]
         model, loading, s, alpha = (rr[0][col[c]] for c in ("model", "loading", "s", "alpha"))
         a = panels[loading]
+        k = in_panel.setdefault(id(a), [0])
+        colour = plt.cm.tab10(k[0] % 10)
+        k[0] += 1
         lam = np.array([r[col["lam1_fe"]] for r in rr])
         style = "--" if model == "Gent" else "-"
         if alpha is None:
-            _curve(a, analytic_model(model), loading, s, 1.02 * lam.max(), style, colours[k])
+            _curve(a, analytic_model(model), loading, s, 1.02 * lam.max(), style, colour)
         E0 = np.array([r[col["E0"]] for r in rr])
         D0 = np.array([r[col["D0"]] for r in rr])
         stable = np.array([r[col["stable"]] is True for r in rr])
-        mk = "s" if alpha is not None else "o"
+        mk = "s" if alpha is not None else ("^" if model == "Gent" else "o")
         label = (f"{'NH' if model == 'neo-Hookean' else 'Gent'}, "
                  + (f"alpha = {alpha:g}" if alpha is not None else f"s = {s:g}"))
-        a.plot(E0[stable], D0[stable], mk, color=colours[k], ms=5, label=label)
-        a.plot(E0[~stable], D0[~stable], mk, mfc="none", color=colours[k], ms=5)
+        a.plot(E0[stable], D0[stable], mk, color=colour, ms=5, label=label)
+        a.plot(E0[~stable], D0[~stable], mk, mfc="none", color=colour, ms=5)
         lim = [i for i, r in enumerate(rr) if r[col["kind"]] == "limit"]
         a.plot(E0[lim], D0[lim], "*", color="crimson", ms=12, mec="k", mew=0.5)
     lam = np.linspace(1.0, 6.0, 400)
@@ -206,10 +209,11 @@ def voltage_figure(rows: list[list], ax=None):
         a.set_xlim(0.0, 0.8)
         a.set_yscale("log")
         a.set_ylim(0.02, 200.0)
-        a.legend(fontsize=7, loc="upper left")
+        a.legend(fontsize=7, loc="lower right", ncol=2)
     ax[0].figure.text(0.5, 0.005, "FE continuation under voltage control: filled = stable, "
                       "open = unstable (voltage-controlled stiffness), star = limit point "
-                      "(snap-through); lines: analytic loading curves (dashed: Gent)",
+                      "(snap-through); lines: analytic loading curves (dashed and triangles: "
+                      "Gent)",
                       ha="center", fontsize=8)
     return ax
 
