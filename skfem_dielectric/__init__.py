@@ -7,6 +7,9 @@ solver, the load ramp and the export work on any of them.  Models: :class:`Plate
 """
 
 from .assembly import DofReduction, ScatterMap
+from .continuation import (ContinuationEvent, ContinuationPoint, ContinuationResult,
+                           continuation)
+from .critical import CriticalLoad, critical_load
 from .cross_section import CrossSection
 from .drivers import (cross_section_ramp, equibiaxial_plate, equibiaxial_problem,
                       keplinger_plate, keplinger_problem, maxwell_equibiaxial,
@@ -24,20 +27,20 @@ from .materials import (GentDielectric, IdealDielectric, NeoHookeanDielectric, P
 from .membrane import MembranePlate
 from .mesh import PlateMesh, plate_mesh
 from .mesh2d import point_gradients
+from .modes import classify_mode, lowest_physical_eigenvalue, mode_mesh, write_mode_vtu
 from .newton import NewtonResult, newton, segment_det_limit
 from .plate import PlateProblem
 from .problem import Layout, Problem
 from .ramp import RampResult, StepResult, ramp
+from .snap_through import SnapThrough, homogeneous_plate, voltage_snap_through
 from .stability import StabilityResult, stability_analysis, tangent_inertia, tangent_stability
-from .critical import CriticalLoad, critical_load
-from .modes import classify_mode, lowest_physical_eigenvalue, mode_mesh, write_mode_vtu
 from .symmetry_classes import ClassStability, class_stability, symmetry_classes
 from .wrinkling_fe import section_critical_load, section_critical_stretch, wrinkling_section
 
 __all__ = [
     # the contract and the machinery
     "Problem", "Layout", "newton", "NewtonResult", "segment_det_limit", "ramp", "RampResult",
-    "StepResult",
+    "StepResult", "continuation", "ContinuationResult", "ContinuationPoint", "ContinuationEvent",
     "LinearSolver", "SuperLUSolver", "PardisoSolver", "PardisoLUSolver", "get_linear_solver",
     "nonsymmetric_solver", "pardiso_available", "DofReduction", "ScatterMap",
     # materials and meshes
@@ -58,6 +61,8 @@ __all__ = [
     "ClassStability", "class_stability", "symmetry_classes", "classify_mode", "mode_mesh",
     "write_mode_vtu", "lowest_physical_eigenvalue", "CriticalLoad", "critical_load",
     "wrinkling_section", "section_critical_load", "section_critical_stretch",
+    # voltage control through the snap-through
+    "homogeneous_plate", "voltage_snap_through", "SnapThrough",
     # export
     "step_mesh", "write_vtu_series", "write_xdmf",
 ]

@@ -10,8 +10,9 @@ One model, two couplings of the electric field (the paper's Sec. 6):
     the elastic problem loaded on its deformed boundary by the Maxwell traction
     (:mod:`skfem_dielectric.forms.maxwell_traction`), with the field of the potential
     solved on the deformed body (``field="electrostatic"``) or the local field of the
-    charge (``field="local"``, no potential unknowns).  Charge control only; the tangent is
-    not symmetric.
+    charge (``field="local"``, no potential unknowns; charge control only).  Voltage control
+    of the electrostatic field prescribes the potential on the faces as in the full
+    coupling; the traction follows from the solved field.  The tangent is not symmetric.
 
 Energy of the full coupling::
 
@@ -210,7 +211,8 @@ class PlateProblem(Problem):
     control
         ``"charge"`` (load ``(s, D0)``) or ``"voltage"`` (load ``(s, E0)``).
     coupling
-        ``"full"`` (default) or ``"maxwell"`` (charge control, mixed formulation).
+        ``"full"`` (default) or ``"maxwell"`` (mixed formulation; with ``field="local"``
+        charge control only).
     field
         Field of the Maxwell traction: ``"electrostatic"`` (default) or ``"local"``.
     formulation
@@ -254,8 +256,9 @@ class PlateProblem(Problem):
         check_choice("coupling", coupling, COUPLINGS)
         check_choice("field", field, FIELDS)
         check_choice("formulation", formulation, ("mixed", "penalty"))
-        if coupling == "maxwell" and control != "charge":
-            raise ValueError(f"coupling 'maxwell' needs control='charge', got {control!r}")
+        if coupling == "maxwell" and field == "local" and control != "charge":
+            raise ValueError("the local Maxwell field is the field of the charge: it needs "
+                             f"control='charge', got {control!r}")
         if coupling == "maxwell" and formulation != "mixed":
             raise ValueError(f"coupling 'maxwell' needs formulation='mixed', got {formulation!r}")
         kappa = math.inf if kappa == math.inf else check_positive("kappa", kappa)

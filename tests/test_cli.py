@@ -29,8 +29,9 @@ def test_list_names_every_case(capsys):
 
     assert main(["list"]) == 0
     out = capsys.readouterr().out.splitlines()
-    assert len(out) == 1 + len(CASES) == 8          # header + the 7 figures of the paper
-    assert [ln.split()[0] for ln in out[1:]] == list(CASES)
+    # header + the 7 figures of the paper + the voltage-control continuation
+    assert len(out) == 1 + len(CASES) + 1 == 9
+    assert [ln.split()[0] for ln in out[1:]] == list(CASES) + ["voltage-control"]
 
 
 def test_validate_quick_homogeneous_case(tmp_path):

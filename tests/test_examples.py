@@ -99,6 +99,10 @@ PINNED: dict[str, tuple[str, float, float, str]] = {
     "ex09_maxwell_vs_coupled": ("lam_maxwell_final", _equibiaxial_lam_nh(1.5, 6.0), 1e-8,
                                 "homogeneous Maxwell-traction plate at s = 1.5, D0 = 6 on "
                                 "Eq. (loading_gent); Newton tolerance 1e-11"),
+    "ex10_snap_through": ("E0max_fe", np.sqrt(3.0) / 2 ** (4.0 / 3.0), 1e-9,
+                          "literature: neo-Hookean s = 0 voltage-control maximum "
+                          "sqrt(3)/2^(4/3); the FE limit point is located to |dE0/ds| <= "
+                          "1e-9, second order in E0 at the maximum (measured 3e-11)"),
 }
 
 

@@ -89,7 +89,7 @@ def test_maxwell_bad_input():
     with pytest.raises(ValueError, match="field"):
         maxwell_plate(pm, mat, field="nonlocal")
     with pytest.raises(ValueError, match="control"):
-        maxwell_plate(pm, mat, control="voltage")
+        maxwell_plate(pm, mat, control="voltage", field="local")
     with pytest.raises(ValueError, match="formulation"):
         maxwell_plate(pm, mat, formulation="penalty", kappa=1e3)
     with pytest.raises(ValueError, match="linear solver"):

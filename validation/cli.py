@@ -24,6 +24,7 @@ from .wrinkling import run_wrinkling_fe
 from .specs import MODELS, VARIANTS
 from .store import write_text_atomic
 from .sweep import validate
+from .voltage_control import VOLTAGE_CONTROL, VOLTAGE_TITLE, voltage_runs
 
 __all__ = ["main", "build_parser", "EXIT_CODES"]
 
@@ -127,8 +128,10 @@ def build_parser() -> argparse.ArgumentParser:
             "interrupted run resumes when rerun with the same --out; a case is locked while "
             "a process writes it.")
     v.add_argument("--quick", action="store_true", help="coarse meshes and few D0 steps")
-    v.add_argument("--case", nargs="+", choices=list(CASES), metavar="NAME",
-                   help=f"cases to run (default: all of {', '.join(CASES)})")
+    v.add_argument("--case", nargs="+", choices=list(CASES) + [VOLTAGE_CONTROL],
+                   metavar="NAME",
+                   help=f"cases to run (default: all of {', '.join(CASES)}, "
+                        f"{VOLTAGE_CONTROL})")
     v.add_argument("--out", required=True, type=_out_dir, help="output folder")
     v.add_argument("--jobs", type=int, default=1,
                    help="worker processes (a process pool, or the workers of "
@@ -205,6 +208,8 @@ def _cmd_list(args) -> int:
     for c in CASES.values():
         runs = f"{len(c.quick)}/{len(c.full)}"
         print(f"{c.name:<{w}}  {c.figure:<18} {runs:<16} {c.title}")
+    runs = f"{len(voltage_runs(True))}/{len(voltage_runs(False))}"
+    print(f"{VOLTAGE_CONTROL:<{w}}  {'(Hessian)':<18} {runs:<16} {VOLTAGE_TITLE}")
     return 0
 
 

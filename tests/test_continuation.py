@@ -1,0 +1,126 @@
+"""Pseudo-arclength continuation: limit points of problems with closed forms."""
+
+import math
+
+import numpy as np
+import pytest
+import scipy.sparse as sp
+
+import skfem_dielectric as fe
+from skfem_dielectric.continuation import continuation
+from skfem_dielectric.problem import Layout, Problem
+
+
+class Truss(Problem):
+    """Two-bar (von Mises) truss of half-span ``a``, apex height ``h``, axial stiffness
+    ``EA``, linear in the bar strain; unknown: the apex deflection ``v`` under the downward
+    load ``P``.  Internal force ``f(y) = 2 EA/L (L/l - 1) y`` with ``y = h - v``,
+    ``l = sqrt(a^2 + y^2)``, ``L = l(h)``."""
+
+    def __init__(self, a=1.0, h=0.5, EA=1.0):
+        self.a, self.h, self.EA, self.L = a, h, EA, math.hypot(a, h)
+
+    @property
+    def layout(self):
+        return Layout.single(1)
+
+    def initial_state(self):
+        return np.zeros(1)
+
+    def assemble(self, x, load):
+        y = self.h - x[0]
+        l, L = math.hypot(self.a, y), self.L
+        f = 2 * self.EA / L * (L / l - 1) * y
+        df_dy = 2 * self.EA / L * (L * self.a ** 2 / l ** 3 - 1)
+        return sp.csr_matrix(np.array([[-df_dy]])), np.array([f - float(load)])
+
+    def closed_form_limit(self):
+        """``dP/dy = 0``: ``(a^2 + y^2)^(3/2) = L a^2``."""
+        a, L = self.a, self.L
+        y = math.sqrt((L * a * a) ** (2 / 3) - a * a)
+        return 2 * self.EA / L * (L / (L * a * a) ** (1 / 3) - 1) * y, self.h - y
+
+
+class Pitchfork(Problem):
+    """``r = (u1 - t, (1 - t) u2 + u2^3)``: the trivial branch ``u2 = 0`` loses stability
+    at ``t = 1`` with the load still increasing (a branch point, no limit point)."""
+
+    @property
+    def layout(self):
+        return Layout.single(2)
+
+    def initial_state(self):
+        return np.zeros(2)
+
+    def assemble(self, x, load):
+        t = float(load)
+        K = np.array([[1.0, 0.0], [0.0, 1.0 - t + 3 * x[1] ** 2]])
+        return sp.csr_matrix(K), np.array([x[0] - t, (1.0 - t) * x[1] + x[1] ** 3])
+
+
+class WrongLoadVector(Pitchfork):
+    def load_vector(self, x, load, h=1e-6):
+        return np.zeros((3, 1))
+
+
+def test_truss_passes_both_limit_points_and_returns_to_stable_branch():
+    pb = Truss()
+    P_max, v_max = pb.closed_form_limit()
+    res = continuation(pb, 0.0, 1.0, ds=0.05, stop=lambda p: p.x[0] > 1.3)
+    assert res.converged, res.reason
+    limits = [e for e in res.events if e.kind == "limit"]
+    assert len(limits) == 2 and all(e.located for e in limits)
+    up, down = res.limit_points
+    # the corrector converges to atol 1e-10 and the limit to |dt/ds| <= 1e-9: the load
+    # is at a maximum, so its error is second order in the location error
+    assert up.t == pytest.approx(P_max, rel=1e-8)
+    assert up.x[0] == pytest.approx(v_max, rel=1e-6)      # first order in the location
+    # the path is point symmetric about v = h: the second limit load is -P_max at 2h - v*
+    assert down.t == pytest.approx(-P_max, rel=1e-8)
+    assert down.x[0] == pytest.approx(2 * pb.h - v_max, rel=1e-6)
+    # stable (count 0) before the first and after the second limit point, unstable between
+    assert limits[0].n_negative_before == 0 and limits[0].n_negative_after == 1
+    assert limits[1].n_negative_before == 1 and limits[1].n_negative_after == 0
+    last = res.points[-1]
+    assert last.stable and last.tangent_t > 0 and last.x[0] > 2 * pb.h
+    # every point is an equilibrium of the closed form: P = f(h - v)
+    y = pb.h - np.array([p.x[0] for p in res.points])
+    l = np.hypot(pb.a, y)
+    np.testing.assert_allclose(res.column("t"), 2 / pb.L * (pb.L / l - 1) * y, atol=1e-10)
+
+
+def test_bifurcation_is_reported_with_the_load_increasing():
+    res = continuation(Pitchfork(), 0.0, 1.0, ds=0.1, t_max=1.5)
+    assert [e.kind for e in res.events] == ["bifurcation"]
+    ev = res.events[0]
+    before = res.points[ev.index - 1]
+    # the closed-form branch point t = 1 lies between the bracketing points
+    assert before.t < 1.0 < ev.t
+    assert (ev.n_negative_before, ev.n_negative_after) == (0, 1)
+    assert np.all(res.column("tangent_t") > 0)
+
+
+@pytest.mark.parametrize("kwargs, match", [
+    ({"ds": 0.0}, "ds must be"),
+    ({"ds": -0.1}, "ds must be"),
+    ({"direction": np.array([1.0, 0.0])}, "direction"),
+    ({"predictor": "cubic"}, "predictor"),
+])
+def test_bad_arguments(kwargs, match):
+    args = {"load0": 0.0, "direction": 1.0, **kwargs}
+    with pytest.raises(ValueError, match=match):
+        continuation(Pitchfork(), **args)
+
+
+def test_load_vector_of_wrong_size():
+    with pytest.raises(ValueError, match=r"load_vector of WrongLoadVector must have shape"):
+        continuation(WrongLoadVector(), 0.0, 1.0)
+
+
+def test_problem_without_the_contract():
+    class NotAProblem:
+        def assemble(self, x, load):
+            return sp.eye(1), x
+
+    with pytest.raises(ValueError, match="problem must be a skfem_dielectric.Problem"):
+        continuation(NotAProblem(), 0.0, 1.0)
