@@ -29,9 +29,11 @@ def test_list_names_every_case(capsys):
 
     assert main(["list"]) == 0
     out = capsys.readouterr().out.splitlines()
-    # header + the 7 figures of the paper + the voltage-control continuation
-    assert len(out) == 1 + len(CASES) + 1 == 9
-    assert [ln.split()[0] for ln in out[1:]] == list(CASES) + ["voltage-control"]
+    # header + the 7 figures of the paper + the voltage-control continuation + the FE
+    # wrinkling against Stroh
+    assert len(out) == 1 + len(CASES) + 2 == 10
+    assert [ln.split()[0] for ln in out[1:]] == list(CASES) + ["voltage-control",
+                                                              "wrinkling-fe"]
 
 
 def test_validate_quick_homogeneous_case(tmp_path):

@@ -24,7 +24,7 @@ from .wrinkling import run_wrinkling_fe
 from .specs import MODELS, VARIANTS
 from .store import write_text_atomic
 from .sweep import validate
-from .voltage_control import VOLTAGE_CONTROL, VOLTAGE_TITLE, voltage_runs
+from .extra_cases import EXTRA_CASES
 
 __all__ = ["main", "build_parser", "EXIT_CODES"]
 
@@ -128,10 +128,10 @@ def build_parser() -> argparse.ArgumentParser:
             "interrupted run resumes when rerun with the same --out; a case is locked while "
             "a process writes it.")
     v.add_argument("--quick", action="store_true", help="coarse meshes and few D0 steps")
-    v.add_argument("--case", nargs="+", choices=list(CASES) + [VOLTAGE_CONTROL],
+    v.add_argument("--case", nargs="+", choices=list(CASES) + list(EXTRA_CASES),
                    metavar="NAME",
                    help=f"cases to run (default: all of {', '.join(CASES)}, "
-                        f"{VOLTAGE_CONTROL})")
+                        f"{', '.join(EXTRA_CASES)})")
     v.add_argument("--out", required=True, type=_out_dir, help="output folder")
     v.add_argument("--jobs", type=int, default=1,
                    help="worker processes (a process pool, or the workers of "
@@ -203,13 +203,14 @@ def _check_mesh(name: str, mesh) -> None:
 
 
 def _cmd_list(args) -> int:
-    w = max(len(n) for n in CASES)
+    w = max(len(n) for n in list(CASES) + list(EXTRA_CASES))
     print(f"{'case':<{w}}  {'paper figure':<18} {'runs quick/full':<16} description")
     for c in CASES.values():
         runs = f"{len(c.quick)}/{len(c.full)}"
         print(f"{c.name:<{w}}  {c.figure:<18} {runs:<16} {c.title}")
-    runs = f"{len(voltage_runs(True))}/{len(voltage_runs(False))}"
-    print(f"{VOLTAGE_CONTROL:<{w}}  {'(Hessian)':<18} {runs:<16} {VOLTAGE_TITLE}")
+    for c in EXTRA_CASES.values():
+        runs = f"{c.count(True)}/{c.count(False)}"
+        print(f"{c.name:<{w}}  {c.figure[:18]:<18} {runs:<16} {c.title}")
     return 0
 
 

@@ -6,10 +6,10 @@ import json
 from dataclasses import asdict
 from pathlib import Path
 
-from .cases import CASES, get_case
+from .cases import get_case
 from .figures import PAPER_FIGURE
 from .store import write_text_atomic
-from .voltage_control import LIMIT_TOL, VOLTAGE_CONTROL, VOLTAGE_TITLE
+from .extra_cases import EXTRA_CASES
 
 __all__ = ["summary_dict", "write_summary", "write_report", "HOMOGENEOUS_TOL", "CLAMPED_TOL"]
 
@@ -81,14 +81,14 @@ _ERROR_DEFINITION = (
 
 
 def _title(name: str) -> str:
-    return VOLTAGE_TITLE if name == VOLTAGE_CONTROL else get_case(name).title
+    return EXTRA_CASES[name].title if name in EXTRA_CASES else get_case(name).title
 
 
 def _tolerance(name: str) -> float:
     """The verdict tolerance of a case: homogeneous (every run on one element) or clamped;
     for ``voltage-control`` that of its homogeneous limit points."""
-    if name == VOLTAGE_CONTROL:
-        return LIMIT_TOL
+    if name in EXTRA_CASES:
+        return EXTRA_CASES[name].tolerance
     runs = get_case(name).quick + get_case(name).full
     homogeneous = all(r.mesh_dict == {"n1": 1, "n2": 1, "n3": 1} for r in runs)
     return HOMOGENEOUS_TOL if homogeneous else CLAMPED_TOL
@@ -122,10 +122,9 @@ def write_report(results, folder, *, quick: bool) -> Path:
     lines = [f"# skfem-dielectric validation ({kind})", "",
              _ERROR_DEFINITION + f" Tolerances: {HOMOGENEOUS_TOL:g} for the homogeneous "
              f"cases (one element, any FE model), {CLAMPED_TOL:g} (1 %) for the clamped "
-             "Keplinger plate." + (f" For {VOLTAGE_CONTROL} the error is that of lam1 at the "
-             "limit points (maximum of E0 under voltage control) of the homogeneous plates "
-             "against analytic.max_E0, tolerance "
-             f"{LIMIT_TOL:g}." if any(r.name not in CASES for r in results) else ""), "",
+             "Keplinger plate." + "".join(
+                 f" {c.error_note} Tolerance {c.tolerance:g}." for c in EXTRA_CASES.values()
+                 if any(r.name == c.name for r in results)), "",
              "| case | paper figure | FE runs | FE steps | max rel. error lam1 | tolerance "
              "| verdict | runtime (s) |",
              "| --- | --- | --- | --- | --- | --- | --- | --- |"]

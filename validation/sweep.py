@@ -46,7 +46,7 @@ from .records import StepRecord
 from .report import write_report, write_summary
 from .store import (FolderLock, RowDigest, dumps, load_state, save_state, write_csv_atomic,
                     write_text_atomic)
-from .voltage_control import VOLTAGE_CONTROL, run_voltage_control
+from .extra_cases import EXTRA_CASES
 
 __all__ = [
     "CaseResult",
@@ -643,14 +643,14 @@ def validate(cases: Iterable[Case | str] | None, out, *, quick: bool = False,
     -------
     list of CaseResult
     """
-    cases = list(CASES) + [VOLTAGE_CONTROL] if cases is None else list(cases)
-    registered = [c for c in cases if c != VOLTAGE_CONTROL]
+    cases = list(CASES) + list(EXTRA_CASES) if cases is None else list(cases)
+    registered = [c for c in cases if c not in EXTRA_CASES]
     results = run_cases(registered, out, quick=quick, force=force, jobs=jobs,
                         executor=executor, runner=runner, progress=progress)
     for r in results:
         make_figure(r.name, out)
-    if len(registered) < len(cases):
-        results.append(voltage_control_result(out, quick=quick))
+    for name in (c for c in cases if c in EXTRA_CASES):
+        results.append(extra_case_result(name, out, quick=quick))
     out = Path(out)
     (out / ".state").mkdir(parents=True, exist_ok=True)
     with FolderLock(out / ".state" / "summary.lock", f"the summary of {out}", wait=True):
@@ -710,26 +710,23 @@ def folder_results(out, results=()) -> list[CaseResult]:
         r.quick = old.get("quick") if isinstance(old.get("quick"), bool) else quick
         every.append(r)
     every += [r for r in results if r.name not in CASES]
-    old = prev.get(VOLTAGE_CONTROL)
-    if VOLTAGE_CONTROL not in fresh and isinstance(old, dict) \
-            and (out / f"{VOLTAGE_CONTROL}.csv").is_file():
-        try:
-            every.append(CaseResult(**{k: old[k] for k in CaseResult.__dataclass_fields__
-                                       if k in old}))
-        except TypeError:
-            pass
+    for name in EXTRA_CASES:
+        old = prev.get(name)
+        if name not in fresh and isinstance(old, dict) and (out / f"{name}.csv").is_file():
+            try:
+                every.append(CaseResult(**{k: old[k] for k in CaseResult.__dataclass_fields__
+                                           if k in old}))
+            except TypeError:
+                pass
     return every
 
 
-def voltage_control_result(out, *, quick: bool = False) -> CaseResult:
-    """Run the case ``voltage-control`` (:mod:`validation.voltage_control`: continuation
-    through the snap-through, not a charge ramp) into ``out`` and summarise it.
-
-    Its error measure is the relative ``lam1`` error of the homogeneous limit points
-    against :func:`analytic.max_E0`.
-    """
-    paths, summ = run_voltage_control(out, quick=quick)
-    return CaseResult(VOLTAGE_CONTROL, "nh-d-e, gent-d-e, figde (Hessian)", str(paths[0]),
-                      summ["n_runs"], summ["n_points"], summ["max_rel_error"],
-                      max_rel_error_by_run=summ["max_rel_error_by_run"],
+def extra_case_result(name: str, out, *, quick: bool = False) -> CaseResult:
+    """Run the case ``name`` of :data:`~validation.extra_cases.EXTRA_CASES` (not a charge
+    ramp: the continuation through the snap-through, the FE wrinkling against Stroh) into
+    ``out`` and summarise it with its own error measure."""
+    case = EXTRA_CASES[name]
+    paths, summ = case.run(out, quick=quick)
+    return CaseResult(name, case.figure, str(paths[0]), summ["n_runs"], summ["n_points"],
+                      summ["max_rel_error"], max_rel_error_by_run=summ["max_rel_error_by_run"],
                       reasons=summ["reasons"], runtime_s=summ["runtime_s"], quick=quick)

@@ -1,0 +1,103 @@
+"""Cases of ``skfem-dielectric validate`` that are not charge ramps.
+
+The registered :data:`~validation.cases.CASES` are FE charge ramps drawn over a paper
+figure.  The cases here compute other things -- the continuation through the voltage-
+controlled snap-through (:mod:`validation.voltage_control`) and the FE wrinkling of the
+cross-section against the Stroh analysis (:mod:`validation.wrinkling`) -- and report one
+error measure with its own tolerance.  Each writes ``DIR/<name>.csv`` and
+``DIR/<name>.png``.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Callable
+
+from .voltage_control import (LIMIT_TOL, VOLTAGE_CONTROL, VOLTAGE_TITLE, run_voltage_control,
+                              voltage_runs)
+from .wrinkling import (ELASTIC_COLUMNS, WRINKLING_COLUMNS, elastic_grid, run_wrinkling_fe,
+                        wrinkling_grid)
+
+__all__ = ["ExtraCase", "EXTRA_CASES", "WRINKLING_FE", "WRINKLING_TOL"]
+
+WRINKLING_FE = "wrinkling-fe"
+#: relative error of the FE critical D0 (or stretch) against the dispersion relation
+WRINKLING_TOL = 1e-3
+
+
+@dataclass(frozen=True)
+class ExtraCase:
+    """A validation case that is not a charge ramp.
+
+    Attributes
+    ----------
+    name, figure, title
+        Case name (file stem), what it compares with, one-line description.
+    tolerance
+        Tolerance of its error measure.
+    error_note
+        One sentence for the report: what its error measure is.
+    run
+        ``run(out, quick) -> (paths, summary)`` with ``summary`` holding ``n_runs``,
+        ``n_points``, ``max_rel_error``, ``max_rel_error_by_run``, ``reasons``,
+        ``runtime_s``.
+    count
+        ``count(quick) -> int``: its number of FE runs (for ``skfem-dielectric list``).
+    """
+
+    name: str
+    figure: str
+    title: str
+    tolerance: float
+    error_note: str
+    run: Callable
+    count: Callable
+
+
+def _run_wrinkling(out, quick: bool = False):
+    t0 = time.perf_counter()
+    paths = run_wrinkling_fe(out, quick=quick)
+    col = {c: i for i, c in enumerate(WRINKLING_COLUMNS)}
+    errors, reasons = {}, {}
+    with open(paths[0]) as fh:
+        lines = [ln.rstrip("\n").split(",") for ln in fh][1:]
+    with open(paths[1]) as fh:
+        elastic = [ln.rstrip("\n").split(",") for ln in fh][1:]
+    ecol = {c: i for i, c in enumerate(ELASTIC_COLUMNS)}
+    runs = [(f"{r[0]} {r[1]} lam={r[2]} kh={r[3]}", r[col["rel_error"]], r[col["note"]])
+            for r in lines]
+    runs += [(f"D0=0 {r[0]} kh={r[1]}", r[ecol["rel_error"]], r[ecol["note"]])
+             for r in elastic]
+    for key, err, note in runs:
+        if err:
+            errors[key] = abs(float(err))
+        elif not note.startswith("no root"):
+            reasons[key] = note
+            errors[key] = math.inf
+    return paths, {"n_runs": len(errors), "n_points": len(runs),
+                   "max_rel_error": max(errors.values()) if errors else None,
+                   "max_rel_error_by_run": errors, "reasons": reasons,
+                   "runtime_s": time.perf_counter() - t0}
+
+
+def _wrinkling_count(quick: bool) -> int:
+    g = wrinkling_grid(quick)
+    return 4 * len(g["lam"]) * len(g["kh"]) + len(elastic_grid(quick)["rows"])
+
+
+EXTRA_CASES: dict[str, ExtraCase] = {c.name: c for c in (
+    ExtraCase(VOLTAGE_CONTROL, "Hessian: nh-d-e, gent-d-e, figde", VOLTAGE_TITLE, LIMIT_TOL,
+              f"For {VOLTAGE_CONTROL} the error is that of lam1 at the limit points (maximum "
+              "of E0 under voltage control) of the homogeneous plates against "
+              "analytic.max_E0.", run_voltage_control,
+              lambda quick: len(voltage_runs(quick))),
+    ExtraCase(WRINKLING_FE, "Sec. 3 (Stroh)", "FE wrinkling of the cross-section (sliding "
+              "ends, one Fourier mode) against the Stroh dispersion relation: charge and "
+              "voltage control, both modes, and the uncharged compressed plate",
+              WRINKLING_TOL, f"For {WRINKLING_FE} the error is that of the critical D0 (the "
+              "critical stretch at D0 = 0) against the root of the dispersion relation.",
+              _run_wrinkling, _wrinkling_count),
+)}
