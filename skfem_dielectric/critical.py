@@ -20,7 +20,48 @@ from .checks import check_callable, check_positive
 from .problem import Problem
 from .ramp import ramp
 
-__all__ = ["CriticalLoad", "critical_load"]
+__all__ = ["CriticalLoad", "critical_load", "illinois"]
+
+
+def illinois(g: Callable[[float], float], a: float, fa: float, b: float, fb: float, *,
+             done: Callable[[float, float, float], bool], maxiter: int,
+             safeguard: float = 0.0) -> tuple[float, float, float, float, int]:
+    """Illinois (modified regula falsi) iterations for a root of ``g`` between ``a``
+    (``g(a) = fa > 0``) and ``b`` (``fb < 0``).
+
+    Each step takes the secant point ``c`` of the bracket (kept at least ``safeguard``
+    times the bracket's width from its ends) and halves the retained end's value after two
+    steps on the same side.  Stops when ``done(a, b, c)``, at an exact zero or after
+    ``maxiter`` steps.
+
+    Returns
+    -------
+    c, fc : float
+        The last trial point and its value.
+    a, b : float
+        The final bracket (``g > 0`` at ``a``, ``< 0`` at ``b``).
+    iterations : int
+    """
+    side, c, fc, it = 0, b, fb, 0
+    for it in range(1, maxiter + 1):
+        c = b - fb * (b - a) / (fb - fa)
+        if safeguard:
+            lo, hi = sorted((a, b))
+            c = min(max(c, lo + safeguard * (hi - lo)), hi - safeguard * (hi - lo))
+        fc = g(c)
+        if fc > 0:
+            a, fa = c, fc
+            if side == -1:
+                fb *= 0.5
+            side = -1
+        else:
+            b, fb = c, fc
+            if side == 1:
+                fa *= 0.5
+            side = 1
+        if fc == 0 or done(a, b, c):
+            break
+    return c, fc, a, b, it
 
 
 @dataclass
@@ -117,29 +158,16 @@ def critical_load(problem: Problem, x_a: np.ndarray, load_a: Any, load_b: Any,
     if not (fa > 0 > fb):
         raise ValueError(f"eig does not change sign from load_a to load_b: {fa:.3e} at "
                          f"{at(0.0)}, {fb:.3e} at {at(1.0)}")
-    a, b, side = 0.0, 1.0, 0
-    fa_, fb_ = fa, fb               # the Illinois-weighted values
-    best = (1.0, fb, xb)
-    for _ in range(maxiter):
-        if (b - a) * span <= tol:
-            break
-        c = b - fb_ * (b - a) / (fb_ - fa_)
-        # safeguard: stay inside the bracket, away from its ends
-        c = min(max(c, a + 0.01 * (b - a)), b - 0.01 * (b - a))
-        fc, xc = g(c)
-        if fc > 0:
-            a, fa_ = c, fc
-            if side == -1:
-                fb_ *= 0.5
-            side = -1
-        else:
-            b, fb_ = c, fc
-            if side == 1:
-                fa_ *= 0.5
-            side = 1
-        best = (c, fc, xc)
-        if fc == 0.0:
-            a = b = c
-            break
-    t, v, x = best
+    last = {"x": xb}
+
+    def trial(t):
+        v, x = g(t)
+        last["x"] = x
+        return v
+
+    if span <= tol:
+        return CriticalLoad(at(1.0), 1.0, fb, (0.0, 1.0), xb, evals)
+    t, v, a, b, _ = illinois(trial, 0.0, fa, 1.0, fb, maxiter=maxiter, safeguard=0.01,
+                             done=lambda a, b, c: abs(b - a) * span <= tol)
+    x = last["x"]
     return CriticalLoad(at(t), t, v, (a, b), x, evals)

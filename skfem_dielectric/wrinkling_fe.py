@@ -26,6 +26,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .checks import check_choice, check_count, check_positive
+from .critical import illinois
 from .cross_section import CrossSection
 from .materials import NeoHookeanDielectric
 from .ramp import ramp
@@ -207,22 +208,8 @@ def section_critical_load(pb: CrossSection, mode: str, lo: float, hi: float, *,
     if not (fa > 0 > fb):
         raise ValueError(f"[{lo}, {hi}] does not bracket the bifurcation of the {mode} "
                          f"mode: eigenvalues {fa:.3e}, {fb:.3e}")
-    a, b, side = lo, hi, 0
-    for it in range(1, maxiter + 1):
-        c = b - fb * (b - a) / (fb - fa)
-        fc, _ = g(c)
-        if fc > 0:
-            a, fa = c, fc
-            if side == -1:
-                fb *= 0.5
-            side = -1
-        else:
-            b, fb = c, fc
-            if side == 1:
-                fa *= 0.5
-            side = 1
-        if abs(b - a) <= tol * max(1.0, abs(c)) or fc == 0:
-            break
+    c, _, _, _, it = illinois(lambda v: g(v)[0], lo, fa, hi, fb, maxiter=maxiter,
+                              done=lambda a, b, c: abs(b - a) <= tol * max(1.0, abs(c)))
     res = solve(c)
     return SectionBifurcation(float(c), float(res.steps[-1]["D0"]), it, int(nneg_lo))
 
@@ -269,20 +256,6 @@ def section_critical_stretch(kh: float, mode: str, lo: float, hi: float, *, n1: 
     if not (fa > 0 > fb):
         raise ValueError(f"[{lo}, {hi}] does not bracket the buckling of the {mode} mode: "
                          f"eigenvalues {fb:.3e} at {lo}, {fa:.3e} at {hi}")
-    a, b, side, c = hi, lo, 0, hi
-    for it in range(1, maxiter + 1):
-        c = b - fb * (b - a) / (fb - fa)
-        fc = g(c)
-        if fc > 0:
-            a, fa = c, fc
-            if side == -1:
-                fb *= 0.5
-            side = -1
-        else:
-            b, fb = c, fc
-            if side == 1:
-                fa *= 0.5
-            side = 1
-        if abs(b - a) <= tol or fc == 0:
-            break
+    c, _, _, _, it = illinois(g, hi, fa, lo, fb, maxiter=maxiter,
+                              done=lambda a, b, c: abs(b - a) <= tol)
     return float(c), it
