@@ -37,7 +37,7 @@ from concurrent.futures import ThreadPoolExecutor
 import numpy as np
 from skfem import Basis, ElementHex1, ElementHex2
 
-from ..assembly import DofReduction, ScatterMap
+from ..assembly import DofReduction, ScatterMap, single_threaded_blas
 from ..materials import dielectric_response
 
 __all__ = ["MixedUPPhiForm"]
@@ -87,19 +87,14 @@ class MixedUPPhiForm:
         self.bphi = self.b2 if phi_element == "Q2" else self.b1
         nel, nq = self.b2.nelems, self.b2.X.shape[1]
         self.nel, self.nq = nel, nq
-        self.dN = np.ascontiguousarray(np.moveaxis(
-            np.array([f[0].grad for f in self.b2.basis]), (0, 1), (2, 3)))   # (e,q,i,K)
         self.N1 = np.ascontiguousarray(np.moveaxis(
             np.array([np.array(f[0]) for f in self.b1.basis]), 0, 2))           # (e,q,k)
-        dNphi = self.dN if phi_element == "Q2" else np.ascontiguousarray(np.moveaxis(
-            np.array([f[0].grad for f in self.b1.basis]), (0, 1), (2, 3)))
         self.w = np.asarray(self.b2.dx)                                       # (e,q)
-        # matmul-friendly layouts of the shape-function gradients (computed once)
-        self.dNt = np.ascontiguousarray(self.dN.transpose(0, 1, 3, 2))       # (e,q,K,i)
-        self.dNi = np.ascontiguousarray(self.dN.transpose(0, 2, 1, 3)).reshape(nel, 27, nq * 3)
-        self.dNphit = np.ascontiguousarray(dNphi.transpose(0, 1, 3, 2))
-        self.dNphii = np.ascontiguousarray(dNphi.transpose(0, 2, 1, 3)).reshape(
-            nel, dNphi.shape[2], nq * 3)
+        # matmul-friendly layouts of the shape-function gradients (computed once; the
+        # Q2 potential shares the displacement's arrays)
+        self.dNt, self.dNi = self._gradient_layouts(self.b2)      # (e,q,K,i), (e,i,q*K)
+        self.dNphit, self.dNphii = ((self.dNt, self.dNi) if phi_element == "Q2"
+                                    else self._gradient_layouts(self.b1))
         N2 = self.b2.N
         self.n_u = 3 * N2
         self.n_p = self.b1.N if formulation == "mixed" else 0
@@ -115,6 +110,16 @@ class MixedUPPhiForm:
         self.m_u, self.m_p = eu.shape[1], (8 if self.n_p else 0)
         self.m_phi = self.bphi.element_dofs.shape[0]
         self.red: DofReduction | None = None
+
+    @staticmethod
+    def _gradient_layouts(basis) -> tuple[np.ndarray, np.ndarray]:
+        """Shape-function gradients of ``basis`` as ``(e, q, K, i)`` and
+        ``(e, i, q * 3)`` (``i`` the local function, ``K`` the reference direction)."""
+        g = np.array([f[0].grad for f in basis.basis])                        # (i,K,e,q)
+        nf, _, ne, nq = g.shape
+        dNt = np.ascontiguousarray(g.transpose(2, 3, 1, 0))
+        dNi = np.ascontiguousarray(g.transpose(2, 0, 3, 1)).reshape(ne, nf, nq * 3)
+        return dNt, dNi
 
     @property
     def fields(self) -> dict[str, slice]:
@@ -132,6 +137,10 @@ class MixedUPPhiForm:
         self._block_pos = self._block_positions()
         self._pos_cache: dict[tuple[int, int], np.ndarray] = {}
         self._work: dict[tuple[int, int, int], np.ndarray] = {}
+        for sl in self.chunks():        # the chunks' flat positions replace the blocks'
+            self._chunk_positions(sl)
+        self._block_pos = None
+        self.scatter.compact()
 
     # ------------------------------------------------------------------ layout
     def _block_positions(self) -> dict[str, np.ndarray]:
@@ -168,7 +177,7 @@ class MixedUPPhiForm:
         key = (sl.start, sl.stop)
         pos = self._pos_cache.get(key)
         if pos is None:
-            P = self._block_pos
+            P = self._block_pos if self._block_pos is not None else self._block_positions()
             # intp: np.bincount would otherwise convert the int32 positions on every call
             pos = np.concatenate([P[name][sl].ravel() for name, _ in self._block_sizes()]
                                  ).astype(np.intp)
@@ -300,13 +309,14 @@ class MixedUPPhiForm:
         dof vector ``xf`` (element chunks in ``threads`` worker threads; numpy releases the
         GIL in the batched matmuls); ``grad_div`` overrides the form's stabilisation."""
         chunks = list(self.chunks())
-        if self.threads > 1 and len(chunks) > 1:
-            if self._pool is None:
-                self._pool = ThreadPoolExecutor(self.threads)
-            parts = list(self._pool.map(lambda sl: self._assemble_chunk(xf, sl, grad_div),
-                                        chunks))
-        else:
-            parts = [self._assemble_chunk(xf, sl, grad_div) for sl in chunks]
+        with single_threaded_blas():   # small products: BLAS threads cost more than they gain
+            if self.threads > 1 and len(chunks) > 1:
+                if self._pool is None:
+                    self._pool = ThreadPoolExecutor(self.threads)
+                parts = list(self._pool.map(
+                    lambda sl: self._assemble_chunk(xf, sl, grad_div), chunks))
+            else:
+                parts = [self._assemble_chunk(xf, sl, grad_div) for sl in chunks]
         data = parts[0][0]
         rf = parts[0][1]
         for d, r in parts[1:]:
