@@ -22,7 +22,7 @@ from contextlib import contextmanager
 import numpy as np
 import scipy.sparse as sp
 
-__all__ = ["DofReduction", "ScatterMap", "single_threaded_blas"]
+__all__ = ["DofReduction", "ScatterMap", "blas_threads", "single_threaded_blas"]
 
 _OPENBLAS: list = []      # [(get_num_threads, set_num_threads) or None], found on first use
 
@@ -52,6 +52,12 @@ def _openblas_threads():
     return _OPENBLAS[0]
 
 
+def blas_threads() -> int | None:
+    """Threads of numpy's bundled OpenBLAS (``None`` where numpy uses another BLAS)."""
+    f = _openblas_threads()
+    return None if f is None else int(f[0]())
+
+
 @contextmanager
 def single_threaded_blas():
     """Run the block in one OpenBLAS thread (restored afterwards).
@@ -64,7 +70,7 @@ def single_threaded_blas():
     2 OpenBLAS threads 25 s).  A no-op where numpy uses another BLAS.
     """
     f = _openblas_threads()
-    n = int(f[0]()) if f is not None else 1
+    n = blas_threads() or 1
     if n <= 1:
         yield
         return

@@ -316,6 +316,7 @@ def newton(assemble: Callable[[np.ndarray], tuple[sp.spmatrix, np.ndarray]],
                 res.reason = f"linear solve failed: {exc}"
                 return res
             res.solve_seconds.append(time.perf_counter() - t)
+            K = None            # factorised: free its data before the next assembly
             res.factorisations += 1
             res.inertia = getattr(solver, "inertia", None)
             res.iterations = it
