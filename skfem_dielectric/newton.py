@@ -127,6 +127,12 @@ def segment_det_limit(F0: np.ndarray, dF: np.ndarray, tol: float = 1e-8) -> floa
     c2 = np.einsum("nij,nij->n", _cof(dF), F0)
     c3 = np.linalg.det(dF)
     g0 = (1.0 - tol) * c0
+    # on [0, 1] the cubic is at least g0 - |c1| - |c2| - |c3|: where that is positive the
+    # point cannot cross the floor (most points of a Newton step), the others are analysed
+    near = np.flatnonzero(np.abs(c1) + np.abs(c2) + np.abs(c3) >= g0)
+    if near.size == 0:
+        return 1.0
+    c0, c1, c2, c3, g0 = c0[near], c1[near], c2[near], c3[near], g0[near]
 
     def g(a, i=slice(None)):
         return ((c3[i] * a + c2[i]) * a + c1[i]) * a + g0[i]

@@ -195,19 +195,26 @@ class MixedUPPhiForm:
                 yield slice(int(a), int(b))
 
     # ------------------------------------------------------------- kinematics
+    def deformation_gradient(self, xf: np.ndarray, sl: slice) -> np.ndarray:
+        """``F[a, K, e, q]`` of the elements ``sl`` from the full dof vector ``xf``."""
+        ed = self.edofs[sl]
+        ne = ed.shape[0]
+        # one (nq*3 x 27) @ (27 x 3) product per element, not one tiny one per point
+        ue = xf[ed[:, : self.m_u]].reshape(ne, 27, 3)
+        FT = (self.dNt[sl].reshape(ne, self.nq * 3, 27) @ ue).reshape(ne, self.nq, 3, 3)
+        F = np.ascontiguousarray(FT.transpose(3, 2, 0, 1))                    # (a, K, e, q)
+        F[0, 0] += 1.0
+        F[1, 1] += 1.0
+        F[2, 2] += 1.0
+        return F
+
     def quadrature_fields(self, xf: np.ndarray, sl: slice):
         """``F[a, K, e, q]``, ``Grad phi[K, e, q]`` and ``p[e, q]`` (``None`` for the
         penalty) of the elements ``sl`` from the full dof vector ``xf``."""
         ed = self.edofs[sl]
         ne = ed.shape[0]
         nq = self.nq
-        # one (nq*3 x 27) @ (27 x 3) product per element, not one tiny one per point
-        ue = xf[ed[:, : self.m_u]].reshape(ne, 27, 3)
-        FT = (self.dNt[sl].reshape(ne, nq * 3, 27) @ ue).reshape(ne, nq, 3, 3)  # (e, q, K, a)
-        F = np.ascontiguousarray(FT.transpose(3, 2, 0, 1))                    # (a, K, e, q)
-        F[0, 0] += 1.0
-        F[1, 1] += 1.0
-        F[2, 2] += 1.0
+        F = self.deformation_gradient(xf, sl)
         phie = xf[ed[:, self.m_u + self.m_p:]]
         mf = phie.shape[1]
         G = np.ascontiguousarray((self.dNphit[sl].reshape(ne, nq * 3, mf) @ phie[:, :, None])
