@@ -43,6 +43,16 @@ from ..materials import dielectric_response
 __all__ = ["MixedUPPhiForm"]
 
 
+def _gradient_layouts(basis) -> tuple[np.ndarray, np.ndarray]:
+    """Shape-function gradients of ``basis`` as ``(e, q, K, i)`` and ``(e, i, q * 3)``
+    (``i`` the local function, ``K`` the reference direction)."""
+    g = np.array([f[0].grad for f in basis.basis])                            # (i,K,e,q)
+    nf, _, ne, nq = g.shape
+    dNt = np.ascontiguousarray(g.transpose(2, 3, 1, 0))
+    dNi = np.ascontiguousarray(g.transpose(2, 0, 3, 1)).reshape(ne, nf, nq * 3)
+    return dNt, dNi
+
+
 class MixedUPPhiForm:
     """Volume terms of the mixed u-p-phi plate on a hexahedral mesh.
 
@@ -92,9 +102,9 @@ class MixedUPPhiForm:
         self.w = np.asarray(self.b2.dx)                                       # (e,q)
         # matmul-friendly layouts of the shape-function gradients (computed once; the
         # Q2 potential shares the displacement's arrays)
-        self.dNt, self.dNi = self._gradient_layouts(self.b2)      # (e,q,K,i), (e,i,q*K)
+        self.dNt, self.dNi = _gradient_layouts(self.b2)      # (e,q,K,i), (e,i,q*K)
         self.dNphit, self.dNphii = ((self.dNt, self.dNi) if phi_element == "Q2"
-                                    else self._gradient_layouts(self.b1))
+                                    else _gradient_layouts(self.b1))
         N2 = self.b2.N
         self.n_u = 3 * N2
         self.n_p = self.b1.N if formulation == "mixed" else 0
@@ -110,16 +120,6 @@ class MixedUPPhiForm:
         self.m_u, self.m_p = eu.shape[1], (8 if self.n_p else 0)
         self.m_phi = self.bphi.element_dofs.shape[0]
         self.red: DofReduction | None = None
-
-    @staticmethod
-    def _gradient_layouts(basis) -> tuple[np.ndarray, np.ndarray]:
-        """Shape-function gradients of ``basis`` as ``(e, q, K, i)`` and
-        ``(e, i, q * 3)`` (``i`` the local function, ``K`` the reference direction)."""
-        g = np.array([f[0].grad for f in basis.basis])                        # (i,K,e,q)
-        nf, _, ne, nq = g.shape
-        dNt = np.ascontiguousarray(g.transpose(2, 3, 1, 0))
-        dNi = np.ascontiguousarray(g.transpose(2, 0, 3, 1)).reshape(ne, nf, nq * 3)
-        return dNt, dNi
 
     @property
     def fields(self) -> dict[str, slice]:
