@@ -148,7 +148,7 @@ def main(argv=None) -> int:
     ap.add_argument("--preload-steps", type=int, default=6)
     ap.add_argument("--D0-step", type=float, default=0.25)
     ap.add_argument("--D0-max", type=float, default=5.0)
-    ap.add_argument("--chord", type=float, default=0.03,
+    ap.add_argument("--chord", type=float, default=0.1,
                     help="chord contraction of the Newton solves (keplinger_plate's default)")
     ap.add_argument("--predictor", choices=["none", "secant"], default="secant")
     ap.add_argument("--plain", action="store_true",

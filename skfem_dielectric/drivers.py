@@ -256,7 +256,7 @@ def keplinger_plate(alpha: float | None = 1.0, D0: Sequence[float] = (1, 2, 3, 4
                     x0: np.ndarray | None = None, start: Any = None, rtol: float = 1e-9,
                     max_cutbacks: int = 4, max_iter: int = 12,
                     threads: int | None = None,
-                    stop_on_instability: bool = False, chord: float = 0.03,
+                    stop_on_instability: bool = False, chord: float = 0.1,
                     predictor: str = "none") -> RampResult:
     """The uni-axial Keplinger plate: weight on a rigid clamp, then the charge ramp.
 
