@@ -14,10 +14,71 @@ These classes are problem-agnostic and shared by all FE models of the package.
 
 from __future__ import annotations
 
+import ctypes
+import glob
+import os
+from contextlib import contextmanager
+
 import numpy as np
 import scipy.sparse as sp
 
-__all__ = ["DofReduction", "ScatterMap"]
+__all__ = ["DofReduction", "ScatterMap", "blas_threads", "single_threaded_blas"]
+
+_OPENBLAS: list = []      # [(get_num_threads, set_num_threads) or None], found on first use
+
+
+def _openblas_threads():
+    """The thread-count functions of numpy's bundled OpenBLAS, or ``None`` (another BLAS,
+    or a layout this does not know)."""
+    if not _OPENBLAS:
+        found = None
+        here = os.path.dirname(np.__file__)
+        paths = sorted(glob.glob(os.path.join(os.path.dirname(here), "numpy.libs", "*openblas*"))
+                       + glob.glob(os.path.join(here, ".dylibs", "*openblas*")))
+        names = [(f"{p}_get_num_threads{s}", f"{p}_set_num_threads{s}")
+                 for p in ("scipy_openblas", "openblas") for s in ("64_", "")]
+        for path in paths:
+            try:
+                lib = ctypes.CDLL(path)
+            except OSError:
+                continue
+            for get, put in names:
+                if hasattr(lib, get) and hasattr(lib, put):
+                    found = (getattr(lib, get), getattr(lib, put))
+                    break
+            if found:
+                break
+        _OPENBLAS.append(found)
+    return _OPENBLAS[0]
+
+
+def blas_threads() -> int | None:
+    """Threads of numpy's bundled OpenBLAS (``None`` where numpy uses another BLAS)."""
+    f = _openblas_threads()
+    return None if f is None else int(f[0]())
+
+
+@contextmanager
+def single_threaded_blas():
+    """Run the block in one OpenBLAS thread (restored afterwards).
+
+    The batched assembly does many small matrix products (27 x 81 by 81 x 243 per
+    element), in worker threads; OpenBLAS's own threads on top of them cost more than
+    they gain, the more so on a machine whose cores are busy (measured on the 2-core
+    machine under a load average of ~15: one tangent assembly of the 40 x 1 x 20 plate
+    2-15 s with OpenBLAS's default 2 threads, 0.2-0.5 s with one; one worker thread with
+    2 OpenBLAS threads 25 s).  A no-op where numpy uses another BLAS.
+    """
+    f = _openblas_threads()
+    n = blas_threads() or 1
+    if n <= 1:
+        yield
+        return
+    f[1](1)
+    try:
+        yield
+    finally:
+        f[1](n)
 
 
 class DofReduction:
@@ -107,7 +168,7 @@ class ScatterMap:
         keys = np.sort(keys[keys >= 0])
         ukeys = keys[np.r_[True, keys[1:] != keys[:-1]]] if keys.size else keys
         self.nnz = int(ukeys.size)
-        self._ukeys = ukeys
+        self._ukeys: np.ndarray | None = ukeys
         self._dtype = np.int32 if self.nnz < 2**31 - 1 else np.int64
         self._pos = None
         r = ukeys // self.n
@@ -119,6 +180,19 @@ class ScatterMap:
         # read-only so that no caller can corrupt the pattern of the others
         self.indices.flags.writeable = False
         self.indptr.flags.writeable = False
+
+    def compact(self) -> None:
+        """Release the sorted keys of the pattern (8 bytes per nonzero) once the scatter
+        positions are known; :meth:`positions` rebuilds them from ``indptr`` and
+        ``indices`` when it is called again."""
+        self._ukeys = None
+
+    def _sorted_keys(self) -> np.ndarray:
+        """Sorted row-major keys of the pattern (rebuilt after :meth:`compact`)."""
+        if self._ukeys is None:
+            rows = np.repeat(np.arange(self.n, dtype=np.int64), np.diff(self.indptr))
+            self._ukeys = rows * self.n + self.indices
+        return self._ukeys
 
     def _keys(self, rows, cols) -> np.ndarray:
         """Row-major keys ``row * n + col`` of broadcast index arrays, ``-1`` where either
@@ -149,7 +223,7 @@ class ScatterMap:
         pos = self._search(keys)
         pos[~valid] = self.nnz
         if np.any(valid) and (self.nnz == 0 or np.any(
-                valid & (self._ukeys[np.minimum(pos, self.nnz - 1)] != keys))):
+                valid & (self._sorted_keys()[np.minimum(pos, self.nnz - 1)] != keys))):
             raise ValueError("block entries outside the sparsity pattern")
         return pos.astype(self._dtype)
 
@@ -160,13 +234,14 @@ class ScatterMap:
         flat = keys.ravel()
         nbits = max(1, int(flat.size - 1).bit_length())
         top = int(self.n) * int(self.n)
+        ukeys = self._sorted_keys()
         if flat.size < 2**20 or top.bit_length() + nbits > 62:
-            return np.searchsorted(self._ukeys, keys)
+            return np.searchsorted(ukeys, keys)
         code = (np.maximum(flat, 0) << nbits) | np.arange(flat.size, dtype=np.int64)
         code.sort()
         order = code & ((1 << nbits) - 1)
         out = np.empty(flat.size, dtype=np.int64)
-        out[order] = np.searchsorted(self._ukeys, code >> nbits)
+        out[order] = np.searchsorted(ukeys, code >> nbits)
         return out.reshape(keys.shape)
 
     def block_data(self, blocks: list[tuple[np.ndarray, np.ndarray]]) -> np.ndarray:

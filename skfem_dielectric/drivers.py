@@ -256,7 +256,8 @@ def keplinger_plate(alpha: float | None = 1.0, D0: Sequence[float] = (1, 2, 3, 4
                     x0: np.ndarray | None = None, start: Any = None, rtol: float = 1e-9,
                     max_cutbacks: int = 4, max_iter: int = 12,
                     threads: int | None = None,
-                    stop_on_instability: bool = False) -> RampResult:
+                    stop_on_instability: bool = False, chord: float = 0.1,
+                    predictor: str = "none") -> RampResult:
     """The uni-axial Keplinger plate: weight on a rigid clamp, then the charge ramp.
 
     Parameters
@@ -287,6 +288,11 @@ def keplinger_plate(alpha: float | None = 1.0, D0: Sequence[float] = (1, 2, 3, 4
         Newton tolerance, cut-back limit and Newton iterations per attempt (converged
         steps need <= 6 on the 40 x 20 eighth model up to D0 = 5, up to 9 right before the
         breakdown; a low limit makes the attempts beyond the breakdown cheap).
+    chord, predictor
+        Reuse of the factorisation while the residual contracts by this factor per step
+        (0: factorise in every iteration) and the start of each Newton solve (``"none"``
+        or ``"secant"``; a resumed ramp then repeats the uninterrupted one only within the
+        Newton tolerance); see :func:`~skfem_dielectric.ramp.ramp`.
 
     Returns
     -------
@@ -310,7 +316,8 @@ def keplinger_plate(alpha: float | None = 1.0, D0: Sequence[float] = (1, 2, 3, 4
     return run_ramp(prob, preload_then_charge(s, D0, preload_steps), on_step=on_step, x0=x0,
                     start=start, linear_solver=linear_solver, extra=extra, atol=0.0,
                     rtol=rtol, max_cutbacks=max_cutbacks, max_iter=max_iter,
-                    stop_on_instability=stop_on_instability)
+                    stop_on_instability=stop_on_instability, chord=chord,
+                    predictor=predictor)
 
 
 def maxwell_equibiaxial(s: float, D0, *, field: str = "electrostatic", **options) -> RampResult:

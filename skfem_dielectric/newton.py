@@ -59,6 +59,13 @@ class NewtonResult:
     inertia
         Inertia ``(n_pos, n_neg, n_zero)`` of the last factorised tangent if the linear
         solver reports it (PARDISO), else ``None``.
+    factorisations
+        Number of tangents factorised (``iterations`` minus the chord steps).
+    chord_steps
+        Iterations that reused the last factorisation (``chord > 0``).
+    residual_seconds, chord_seconds
+        Wall time of every residual-only evaluation of a trial point (``chord > 0`` with
+        ``residual``) and of every chord back-substitution.
     """
 
     x: np.ndarray
@@ -70,6 +77,10 @@ class NewtonResult:
     assembly_seconds: list[float] = field(default_factory=list)
     solve_seconds: list[float] = field(default_factory=list)
     inertia: tuple[int, int, int] | None = None
+    factorisations: int = 0
+    chord_steps: int = 0
+    residual_seconds: list[float] = field(default_factory=list)
+    chord_seconds: list[float] = field(default_factory=list)
 
 
 def _norm(r: np.ndarray) -> float:
@@ -116,6 +127,12 @@ def segment_det_limit(F0: np.ndarray, dF: np.ndarray, tol: float = 1e-8) -> floa
     c2 = np.einsum("nij,nij->n", _cof(dF), F0)
     c3 = np.linalg.det(dF)
     g0 = (1.0 - tol) * c0
+    # on [0, 1] the cubic is at least g0 - |c1| - |c2| - |c3|: where that is positive the
+    # point cannot cross the floor (most points of a Newton step), the others are analysed
+    near = np.flatnonzero(np.abs(c1) + np.abs(c2) + np.abs(c3) >= g0)
+    if near.size == 0:
+        return 1.0
+    c0, c1, c2, c3, g0 = c0[near], c1[near], c2[near], c3[near], g0[near]
 
     def g(a, i=slice(None)):
         return ((c3[i] * a + c2[i]) * a + c1[i]) * a + g0[i]
@@ -153,7 +170,8 @@ def newton(assemble: Callable[[np.ndarray], tuple[sp.spmatrix, np.ndarray]],
            rtol: float = 1e-10, xtol: float = 1e-13, scale: float | None = None,
            max_iter: int = 25, line_search: bool = True, max_backtracks: int = 8,
            step_limit: Callable[[np.ndarray, np.ndarray], float] | None = None,
-           admissible: Callable[[np.ndarray], str] | None = None) -> NewtonResult:
+           admissible: Callable[[np.ndarray], str] | None = None,
+           chord: float = 0.0) -> NewtonResult:
     """Solve ``r(x) = 0`` by Newton's method with a backtracking line search.
 
     Parameters
@@ -175,7 +193,7 @@ def newton(assemble: Callable[[np.ndarray], tuple[sp.spmatrix, np.ndarray]],
         Also converged when ``||dx|| <= xtol (1 + ||x||)`` and
         ``||r|| <= 1e3 (atol + rtol scale)`` (stagnation at round-off).
     max_iter
-        Maximum number of Newton iterations.
+        Maximum number of iterations (Newton and chord steps).
     line_search
         Backtrack (halve) a step that does not reduce ``||r||``; otherwise take full steps.
     max_backtracks
@@ -190,6 +208,16 @@ def newton(assemble: Callable[[np.ndarray], tuple[sp.spmatrix, np.ndarray]],
         Optional ``admissible(x) -> reason``: empty for an admissible state; a converged
         state it rejects gives ``converged=False`` with ``reason`` (e.g. an inverted
         deformation).
+    chord
+        Contraction below which the factorisation is reused, in ``[0, 1)``; 0 (default)
+        factorises the tangent in every iteration.  After a full step that reduced
+        ``||r||`` by at least this factor the next step is a chord step ``dx = -K_old^-1
+        r`` with the factors at hand (a back-substitution, no new tangent), and so on while
+        each chord step contracts as much; a chord step that contracts less is kept if it
+        reduces ``||r||`` (the next step factorises again), else it is discarded.  With
+        ``residual`` given, the trial points are then evaluated by ``residual`` and the
+        tangent is assembled only where it is factorised.  The converged state satisfies
+        the same test, so the solution changes only within the tolerance.
 
     Returns
     -------
@@ -202,7 +230,7 @@ def newton(assemble: Callable[[np.ndarray], tuple[sp.spmatrix, np.ndarray]],
     ValueError
         Invalid arguments, each named: a callable that is not, ``x0`` not a finite 1-D
         vector, negative or non-finite tolerances (or ``atol = rtol = 0``, which can never
-        be met), ``max_iter < 1``, ``max_backtracks < 0``.
+        be met), ``max_iter < 1``, ``max_backtracks < 0``, ``chord`` outside ``[0, 1)``.
     """
     check_callable("assemble", assemble, optional=False)
     for name, f in (("residual", residual), ("step_limit", step_limit),
@@ -213,6 +241,9 @@ def newton(assemble: Callable[[np.ndarray], tuple[sp.spmatrix, np.ndarray]],
     scale = None if scale is None else check_nonnegative("scale", scale)
     max_iter = check_count("max_iter", max_iter)
     max_backtracks = check_nonnegative_int("max_backtracks", max_backtracks)
+    chord = check_nonnegative("chord", chord)
+    if not chord < 1.0:
+        raise ValueError(f"chord must be in [0, 1), got {chord!r}")
     solver = get_linear_solver(linear_solver)
     try:
         x = np.array(x0, dtype=float, copy=True)
@@ -221,6 +252,7 @@ def newton(assemble: Callable[[np.ndarray], tuple[sp.spmatrix, np.ndarray]],
     if x.ndim != 1 or not np.all(np.isfinite(x)):
         raise ValueError(f"x0 must be a finite 1-D vector, got shape {x.shape}")
     res = NewtonResult(x=x, converged=False, iterations=0, residual_norms=[])
+    lazy = chord > 0 and residual is not None   # tangent only where it is factorised
 
     def _assemble(xx):
         t = time.perf_counter()
@@ -233,6 +265,22 @@ def newton(assemble: Callable[[np.ndarray], tuple[sp.spmatrix, np.ndarray]],
         if not np.all(np.isfinite(r)):
             return None, None, "non-finite residual"
         return K, r, ""
+
+    def _trial(xx):
+        """``(K or None, r, ||r||, error)`` at a trial point (``||r|| = inf`` on error)."""
+        if lazy:
+            t = time.perf_counter()
+            try:
+                rt = residual(xx)
+            except (FloatingPointError, ValueError, ZeroDivisionError) as exc:
+                return None, None, np.inf, f"residual failed: {exc}"
+            finally:
+                res.residual_seconds.append(time.perf_counter() - t)
+            if not np.all(np.isfinite(rt)):
+                return None, None, np.inf, "non-finite residual"
+            return None, rt, _norm(rt), ""
+        Kt, rt, e = _assemble(xx)
+        return Kt, rt, (_norm(rt) if not e else np.inf), e
 
     K, r, err = _assemble(x)
     if err:
@@ -248,17 +296,36 @@ def newton(assemble: Callable[[np.ndarray], tuple[sp.spmatrix, np.ndarray]],
         res.converged = not why
         res.reason = f"inadmissible state: {why}" if why else ""
         return res
+    use_chord = False
     for it in range(1, max_iter + 1):
-        t = time.perf_counter()
-        try:
-            dx = -solver.solve(K, r)
-        except Exception as exc:  # singular matrix, PARDISO error, ...
+        dx = None
+        if use_chord:
+            t = time.perf_counter()
+            dxc = solver.resolve(r)
+            res.chord_seconds.append(time.perf_counter() - t)
+            if dxc is not None and np.all(np.isfinite(dxc)):
+                dx = -dxc
+                res.chord_steps += 1
+                res.iterations = it
+        if dx is None:
+            use_chord = False
+            if K is None:                   # a chord step came here: the tangent at x
+                K, r, err = _assemble(x)
+                if err:
+                    res.reason = err
+                    return res
+            t = time.perf_counter()
+            try:
+                dx = -solver.solve(K, r)
+            except Exception as exc:  # singular matrix, PARDISO error, ...
+                res.solve_seconds.append(time.perf_counter() - t)
+                res.reason = f"linear solve failed: {exc}"
+                return res
             res.solve_seconds.append(time.perf_counter() - t)
-            res.reason = f"linear solve failed: {exc}"
-            return res
-        res.solve_seconds.append(time.perf_counter() - t)
-        res.inertia = getattr(solver, "inertia", None)
-        res.iterations = it
+            K = None            # factorised: free its data before the next assembly
+            res.factorisations += 1
+            res.inertia = getattr(solver, "inertia", None)
+            res.iterations = it
         if not np.all(np.isfinite(dx)):
             res.reason = "non-finite Newton increment (singular tangent?)"
             return res
@@ -271,53 +338,61 @@ def newton(assemble: Callable[[np.ndarray], tuple[sp.spmatrix, np.ndarray]],
                 return res
             if amax < 1.0:
                 alpha = 0.5 * amax
-        K1, r1, err = _assemble(x + alpha * dx)
-        rn1 = _norm(r1) if not err else np.inf
-        dxn = _norm(dx)
+        K1, r1, rn1, err = _trial(x + alpha * dx)
+        if use_chord:
+            if not rn1 < rn:        # discard the chord step: factorise at x instead
+                use_chord = False
+                continue
+        else:
+            dxn = _norm(dx)
 
-        def acceptable(r_trial, rn_trial, a):
-            # residual decrease, or Deuflhard's natural monotonicity test: the simplified
-            # Newton correction with the current factorisation shrinks (affine invariant;
-            # it accepts the full steps that penalty / saddle-point problems need although
-            # their residual norm grows on the first iterations)
-            if rn_trial < rn:
-                return True
-            if not np.isfinite(rn_trial):
-                return False
-            dxbar = solver.resolve(r_trial)
-            return dxbar is not None and _norm(dxbar) <= (1.0 - 0.5 * a) * dxn
+            def acceptable(r_trial, rn_trial, a):
+                # residual decrease, or Deuflhard's natural monotonicity test: the
+                # simplified Newton correction with the current factorisation shrinks
+                # (affine invariant; it accepts the full steps that penalty / saddle-point
+                # problems need although their residual norm grows on the first iterations)
+                if rn_trial < rn:
+                    return True
+                if not np.isfinite(rn_trial):
+                    return False
+                dxbar = solver.resolve(r_trial)
+                return dxbar is not None and _norm(dxbar) <= (1.0 - 0.5 * a) * dxn
 
-        if line_search and not acceptable(r1, rn1, alpha):
-            accepted = False
-            for _ in range(max_backtracks):
-                alpha *= 0.5
-                xt = x + alpha * dx
-                if residual is not None:
-                    try:
-                        rt = residual(xt)
-                    except (FloatingPointError, ValueError, ZeroDivisionError):
-                        continue
-                    rnt = _norm(rt) if np.all(np.isfinite(rt)) else np.inf
-                else:
-                    _, rt, e2 = _assemble(xt)
-                    rnt = _norm(rt) if not e2 else np.inf
-                if acceptable(rt, rnt, alpha):
-                    accepted = True
-                    break
-            if not accepted:
-                res.reason = (f"line search failed at iteration {it}: no decrease of "
-                              f"||r|| = {rn:.3e} after {max_backtracks} halvings")
-                return res
-            K1, r1, err = _assemble(x + alpha * dx)
-            if err:
+            if line_search and not acceptable(r1, rn1, alpha):
+                accepted = False
+                for _ in range(max_backtracks):
+                    alpha *= 0.5
+                    xt = x + alpha * dx
+                    if residual is not None:
+                        try:
+                            rt = residual(xt)
+                        except (FloatingPointError, ValueError, ZeroDivisionError):
+                            continue
+                        rnt = _norm(rt) if np.all(np.isfinite(rt)) else np.inf
+                    else:
+                        _, rt, e2 = _assemble(xt)
+                        rnt = _norm(rt) if not e2 else np.inf
+                    if acceptable(rt, rnt, alpha):
+                        accepted = True
+                        break
+                if not accepted:
+                    res.reason = (f"line search failed at iteration {it}: no decrease of "
+                                  f"||r|| = {rn:.3e} after {max_backtracks} halvings")
+                    return res
+                if lazy:
+                    K1, r1, rn1 = None, rt, rnt
+                else:   # the tangent at the accepted point
+                    K1, r1, err = _assemble(x + alpha * dx)
+                    if err:
+                        res.reason = err
+                        return res
+                    rn1 = _norm(r1)
+            elif err:
                 res.reason = err
                 return res
-            rn1 = _norm(r1)
-        elif err:
-            res.reason = err
-            return res
         x = x + alpha * dx
         res.x = x
+        use_chord = chord > 0 and alpha == 1.0 and rn1 <= chord * rn
         K, r, rn = K1, r1, rn1
         res.residual_norms.append(rn)
         dn = alpha * _norm(dx)

@@ -436,7 +436,7 @@ class PlateProblem(Problem):
         :func:`~skfem_dielectric.newton.segment_det_limit`); 0.0 if ``det F(x) <= 0``."""
         x0, x1, alpha = self.full(x, load), self.full(x + dx, load), 1.0
         for sl in self.form.chunks():
-            F0, F1 = (self.form.quadrature_fields(v, sl)[0].reshape(3, 3, -1) for v in (x0, x1))
+            F0, F1 = (self.form.deformation_gradient(v, sl).reshape(3, 3, -1) for v in (x0, x1))
             alpha = min(alpha, segment_det_limit(np.moveaxis(F0, 2, 0),
                                                  np.moveaxis(F1 - F0, 2, 0)))
         return alpha

@@ -35,8 +35,8 @@ from typing import Any, Callable, Sequence
 
 import numpy as np
 
-from .checks import (check_callable, check_count, check_nonnegative_int, check_tolerances,
-                     check_vector)
+from .checks import (check_callable, check_choice, check_count, check_nonnegative,
+                     check_nonnegative_int, check_tolerances, check_vector)
 from .linear import LinearSolver, get_linear_solver
 from .newton import newton
 from .problem import Problem
@@ -55,7 +55,10 @@ class StepResult:
     converged
         True for every step stored in ``RampResult.steps``.
     iterations
-        Newton iterations summed over the sub-steps that reached this target.
+        Newton iterations (with the chord steps) summed over the sub-steps that reached
+        this target.
+    factorisations
+        Tangents factorised in those iterations.
     substeps
         Number of converged sub-steps used (1 = reached in one step).
     cutbacks
@@ -88,6 +91,7 @@ class StepResult:
     solve_seconds: float = 0.0
     inertia: tuple[int, int, int] | None = None
     target_reached: bool = True
+    factorisations: int = 0
 
     def __getitem__(self, key: str) -> Any:
         return self.quantities[key]
@@ -118,6 +122,11 @@ class RampResult:
     assembly_times, solve_times
         Wall time of every assembly call and every linear solve, in order (for medians
         and profiles; their sums are ``assembly_seconds`` and ``solve_seconds``).
+    factorisations, chord_steps
+        Tangents factorised and chord steps (reused factorisation, ``chord > 0``) over
+        all Newton attempts.
+    residual_times, chord_times
+        Wall time of every residual-only evaluation and every chord back-substitution.
     unstable_at
         With ``stop_on_instability``: load of the converged (sub-)step whose tangent was
         judged unstable, where the ramp stopped (``None`` otherwise).
@@ -136,18 +145,23 @@ class RampResult:
     assembly_times: list[float] = field(default_factory=list)
     solve_times: list[float] = field(default_factory=list)
     unstable_at: Any = None
+    factorisations: int = 0
+    chord_steps: int = 0
+    residual_times: list[float] = field(default_factory=list)
+    chord_times: list[float] = field(default_factory=list)
 
     def column(self, name: str) -> np.ndarray:
         """Array of quantity ``name`` over the converged steps (``"load"`` and
         ``"iterations"`` are also accepted)."""
         if name == "load":
             return np.array([st.load for st in self.steps], dtype=float)
-        if name == "iterations":
-            return np.array([st.iterations for st in self.steps], dtype=int)
+        if name in ("iterations", "factorisations"):
+            return np.array([getattr(st, name) for st in self.steps], dtype=int)
         known = set().union(*(st.quantities for st in self.steps)) if self.steps else set()
         if name not in known:
             raise ValueError(
-                f"name must be 'load', 'iterations' or a post-processed quantity "
+                f"name must be 'load', 'iterations', 'factorisations' or a post-processed "
+                f"quantity "
                 f"{sorted(known)}, got {name!r}")
         return np.array([st.quantities[name] for st in self.steps])
 
@@ -167,13 +181,37 @@ def _as_load(load: Any) -> Any:
     return float(arr) if arr.ndim == 0 else arr.copy()
 
 
+def _secant_guess(problem: Problem, x: np.ndarray, at: Any, back: tuple | None,
+                  load: Any) -> np.ndarray:
+    """Start of the Newton solve at ``load`` from the converged ``x`` at load ``at``: the
+    secant extrapolation through the converged state ``back = (x_old, load_old)`` when the
+    new load increment continues the last one (same direction) and lowers the residual,
+    else ``x``."""
+    if back is None:
+        return x
+    d_old = np.atleast_1d(np.asarray(at, float) - np.asarray(back[1], float))
+    d_new = np.atleast_1d(np.asarray(load, float) - np.asarray(at, float))
+    n_old, n_new = float(np.linalg.norm(d_old)), float(np.linalg.norm(d_new))
+    if not (n_old > 0 and n_new > 0) or abs(d_old @ d_new - n_old * n_new) > 1e-9 * n_old * n_new:
+        return x
+    guess = x + (n_new / n_old) * (x - back[0])
+    try:
+        r_guess, r_x = problem.residual(guess, load), problem.residual(x, load)
+    except (FloatingPointError, ValueError, ZeroDivisionError):
+        return x
+    if np.all(np.isfinite(r_guess)) and np.linalg.norm(r_guess) < np.linalg.norm(r_x):
+        return guess
+    return x
+
+
 def ramp(problem: Problem, loads: Sequence[Any], *, x0: np.ndarray | None = None,
          start: Any = None, on_step: Callable[[StepResult], Any] | None = None,
          linear_solver: str | LinearSolver = "superlu", max_cutbacks: int = 6,
          atol: float = 1e-10, rtol: float = 1e-10, max_iter: int = 25,
          line_search: bool = True, stop_on_instability: bool = False,
          step_limit: Callable[[np.ndarray, np.ndarray, Any], float] | None = None,
-         admissible: Callable[[np.ndarray, Any], str] | None = None) -> RampResult:
+         admissible: Callable[[np.ndarray, Any], str] | None = None,
+         chord: float = 0.0, predictor: str = "none") -> RampResult:
     """Run ``problem`` through the target ``loads`` with adaptive sub-stepping.
 
     Parameters
@@ -195,10 +233,17 @@ def ramp(problem: Problem, loads: Sequence[Any], *, x0: np.ndarray | None = None
         instance is used for the whole ramp.
     max_cutbacks
         How many times a failing sub-step may be halved before the ramp stops.
-    atol, rtol, max_iter, line_search
-        Newton settings (see :func:`newton`); ``rtol`` is relative to
+    atol, rtol, max_iter, line_search, chord
+        Newton settings (see :func:`newton`; ``chord > 0`` reuses a factorisation while
+        the residual contracts at least that much per step); ``rtol`` is relative to
         ``problem.residual_scale(load)``, or to the first residual of each sub-step
         where that is ``None``.
+    predictor
+        Start of each Newton solve: ``"none"`` (default; the last converged state) or
+        ``"secant"`` (extrapolated through the last two converged states when the load
+        keeps its direction and the extrapolation lowers the residual).  The secant
+        start depends on the state before the last one, so a resumed ramp repeats the
+        uninterrupted one only within the Newton tolerance.
     stop_on_instability
         Stop at the first converged sub-step that ``problem.stability(inertia)`` judges
         unstable (needs a solver that reports the inertia, i.e. PARDISO; otherwise the
@@ -222,7 +267,7 @@ def ramp(problem: Problem, loads: Sequence[Any], *, x0: np.ndarray | None = None
         Invalid arguments, each named: ``problem`` not a ``Problem``, non-finite loads,
         ``x0`` not a finite vector of the problem's length, a callable that is not,
         ``max_cutbacks < 0``, ``max_iter < 1``, negative tolerances or
-        ``atol = rtol = 0``.
+        ``atol = rtol = 0``, ``chord`` outside ``[0, 1)``.
     """
     if not isinstance(problem, Problem):
         raise ValueError("problem must be a skfem_dielectric.Problem (see "
@@ -233,6 +278,10 @@ def ramp(problem: Problem, loads: Sequence[Any], *, x0: np.ndarray | None = None
     atol, rtol = check_tolerances(atol, rtol)
     max_iter = check_count("max_iter", max_iter)
     max_cutbacks = check_nonnegative_int("max_cutbacks", max_cutbacks)
+    check_choice("predictor", predictor, ("none", "secant"))
+    chord = check_nonnegative("chord", chord)
+    if not chord < 1.0:
+        raise ValueError(f"chord must be in [0, 1), got {chord!r}")
     t_start = time.perf_counter()
     solver = get_linear_solver(linear_solver, symmetric=problem.symmetric)
     try:
@@ -249,6 +298,7 @@ def ramp(problem: Problem, loads: Sequence[Any], *, x0: np.ndarray | None = None
     else:
         cur = _as_load(start)
     no_verdict_warned = False
+    back = None          # the converged state before x and its load (secant predictor)
     out = RampResult(steps=[], converged=True)
 
     def record(load, target_reached):
@@ -257,7 +307,7 @@ def ramp(problem: Problem, loads: Sequence[Any], *, x0: np.ndarray | None = None
         step = StepResult(load=load, converged=True, iterations=iters, substeps=subs,
                           cutbacks=cuts, residual_norms=hist, x=x.copy(),
                           assembly_seconds=t_asm, solve_seconds=t_sol, inertia=inertia,
-                          target_reached=target_reached)
+                          target_reached=target_reached, factorisations=facts)
         step.quantities = dict(problem.postprocess(x, load))
         step.quantities.setdefault("stable", problem.stability(inertia))
         out.steps.append(step)
@@ -267,7 +317,7 @@ def ramp(problem: Problem, loads: Sequence[Any], *, x0: np.ndarray | None = None
     for target in targets:
         a, b = np.asarray(cur, dtype=float), np.asarray(target, dtype=float)
         frac, dfrac = 0.0, 1.0
-        iters = subs = cuts = 0
+        iters = subs = cuts = facts = 0
         inertia = None
         hist: list[list[float]] = []
         t_asm = t_sol = 0.0
@@ -277,15 +327,22 @@ def ramp(problem: Problem, loads: Sequence[Any], *, x0: np.ndarray | None = None
             f_new = min(1.0, frac + dfrac)
             load = _as_load(b if f_new >= 1.0 else a + f_new * (b - a))
             scale = problem.residual_scale(load)
-            nr = newton(lambda xx: problem.assemble(xx, load), x,
+            at = _as_load(a + frac * (b - a)) if frac > 0 else cur
+            x_start = _secant_guess(problem, x, at, back, load) if predictor == "secant" else x
+            nr = newton(lambda xx: problem.assemble(xx, load), x_start,
                         residual=lambda xx: problem.residual(xx, load),
                         linear_solver=solver, atol=atol, rtol=rtol, scale=scale,
                         max_iter=max_iter, line_search=line_search,
                         step_limit=None if step_limit is None else
                         (lambda xx, dd: step_limit(xx, dd, load)),
                         admissible=None if admissible is None else
-                        (lambda xx: admissible(xx, load)))
+                        (lambda xx: admissible(xx, load)), chord=chord)
             iters += nr.iterations
+            facts += nr.factorisations
+            out.factorisations += nr.factorisations
+            out.chord_steps += nr.chord_steps
+            out.residual_times.extend(nr.residual_seconds)
+            out.chord_times.extend(nr.chord_seconds)
             t_asm += sum(nr.assembly_seconds)
             t_sol += sum(nr.solve_seconds)
             out.iterations_total += nr.iterations
@@ -295,6 +352,7 @@ def ramp(problem: Problem, loads: Sequence[Any], *, x0: np.ndarray | None = None
             out.assembly_times.extend(nr.assembly_seconds)
             out.solve_times.extend(nr.solve_seconds)
             if nr.converged:
+                back = (x, at)
                 x = nr.x
                 inertia = nr.inertia
                 frac = f_new

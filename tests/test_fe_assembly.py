@@ -4,7 +4,8 @@ import numpy as np
 import pytest
 import scipy.sparse as sp
 
-from skfem_dielectric.assembly import DofReduction, ScatterMap
+from skfem_dielectric.assembly import (DofReduction, ScatterMap, blas_threads,
+                                       single_threaded_blas)
 
 
 def _connectivity(rng, nel=3000, m=20, n_full=4000):
@@ -64,3 +65,22 @@ def test_shared_pattern_is_protected_and_copies_are_free():
     K2.data[:] = 0.0
     K2.eliminate_zeros()
     assert K2.nnz == 0 and K.nnz == 7        # 3x3 tridiagonal pattern untouched
+
+
+def test_compact_scatter_map_gives_the_same_positions():
+    rng = np.random.default_rng(3)
+    dofs = rng.integers(-1, 40, size=(30, 6))
+    sc = ScatterMap(dofs, 40)
+    before = sc.positions(dofs[:, :, None], dofs[:, None, :])
+    sc.compact()
+    # rebuilt from indptr/indices: the same positions as from the kept keys
+    np.testing.assert_array_equal(sc.positions(dofs[:, :, None], dofs[:, None, :]), before)
+
+
+def test_single_threaded_blas_restores_the_thread_count():
+    n = blas_threads()
+    if n is None:
+        pytest.skip("numpy does not use a bundled OpenBLAS here")
+    with single_threaded_blas():
+        assert blas_threads() == 1
+    assert blas_threads() == n

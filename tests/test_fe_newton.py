@@ -208,3 +208,51 @@ def test_newton_step_limit_and_admissible_state():
     assert not rejected.converged and rejected.reason.endswith("x2 too large")
     with pytest.raises(ValueError, match="atol and rtol must not both be 0"):
         newton(lambda x: prob.assemble(x, 2.0), np.zeros(3), atol=0.0, rtol=0.0)
+
+
+@pytest.mark.parametrize("solver", ["superlu"] + (["pardiso"] if pardiso_available() else []))
+def test_chord_steps_reach_the_same_root_with_fewer_factorisations(solver):
+    prob = Cubic()
+    x0 = np.full(3, 0.5)
+    plain = newton(lambda x: prob.assemble(x, 2.0), x0, atol=1e-13, rtol=0,
+                   linear_solver=solver)
+    chord = newton(lambda x: prob.assemble(x, 2.0), x0, atol=1e-13, rtol=0, chord=0.3,
+                   residual=lambda x: prob.assemble(x, 2.0)[1], linear_solver=solver)
+    ref = cardano(2.0 * prob.c)
+    for res in (plain, chord):
+        assert res.converged
+        # |r| <= 1e-13 and r' = 3x^2 + 1 >= 1: the root to 1e-13
+        np.testing.assert_allclose(res.x, ref, rtol=0, atol=1e-13)
+    # plain Newton factorises in every iteration; the chord run reuses factors
+    assert plain.factorisations == plain.iterations and plain.chord_steps == 0
+    assert chord.chord_steps >= 1
+    assert chord.factorisations + chord.chord_steps == chord.iterations
+    assert chord.factorisations < plain.factorisations
+    # a chord step contracts the residual by at least the chord factor, or it is the
+    # last one before a new factorisation
+    r = np.array(chord.residual_norms)
+    assert np.all(r[1:] < r[:-1])
+
+
+def test_secant_predictor_ramp_matches_cardano_with_fewer_iterations():
+    prob = Cubic()
+    loads = np.linspace(1.0, 8.0, 8)
+    plain = ramp(prob, loads, atol=1e-12, rtol=0)
+    pred = ramp(prob, loads, atol=1e-12, rtol=0, predictor="secant", chord=0.1)
+    ref = cardano(5.0 * loads)
+    for res in (plain, pred):
+        assert res.converged
+        np.testing.assert_allclose(res.column("x2"), ref, rtol=0, atol=1e-12)
+    assert pred.factorisations < plain.factorisations
+    assert pred.column("factorisations").sum() == pred.factorisations
+    assert plain.factorisations == plain.iterations_total
+
+
+def test_chord_and_predictor_bad_input():
+    prob = Cubic()
+    with pytest.raises(ValueError, match="chord"):
+        newton(lambda x: prob.assemble(x, 1.0), np.zeros(3), chord=1.0)
+    with pytest.raises(ValueError, match="chord"):
+        ramp(prob, [1.0], chord=-0.1)
+    with pytest.raises(ValueError, match="predictor"):
+        ramp(prob, [1.0], predictor="cubic")

@@ -37,10 +37,20 @@ from concurrent.futures import ThreadPoolExecutor
 import numpy as np
 from skfem import Basis, ElementHex1, ElementHex2
 
-from ..assembly import DofReduction, ScatterMap
+from ..assembly import DofReduction, ScatterMap, single_threaded_blas
 from ..materials import dielectric_response
 
 __all__ = ["MixedUPPhiForm"]
+
+
+def _gradient_layouts(basis) -> tuple[np.ndarray, np.ndarray]:
+    """Shape-function gradients of ``basis`` as ``(e, q, K, i)`` and ``(e, i, q * 3)``
+    (``i`` the local function, ``K`` the reference direction)."""
+    g = np.array([f[0].grad for f in basis.basis])                            # (i,K,e,q)
+    nf, _, ne, nq = g.shape
+    dNt = np.ascontiguousarray(g.transpose(2, 3, 1, 0))
+    dNi = np.ascontiguousarray(g.transpose(2, 0, 3, 1)).reshape(ne, nf, nq * 3)
+    return dNt, dNi
 
 
 class MixedUPPhiForm:
@@ -87,19 +97,14 @@ class MixedUPPhiForm:
         self.bphi = self.b2 if phi_element == "Q2" else self.b1
         nel, nq = self.b2.nelems, self.b2.X.shape[1]
         self.nel, self.nq = nel, nq
-        self.dN = np.ascontiguousarray(np.moveaxis(
-            np.array([f[0].grad for f in self.b2.basis]), (0, 1), (2, 3)))   # (e,q,i,K)
         self.N1 = np.ascontiguousarray(np.moveaxis(
             np.array([np.array(f[0]) for f in self.b1.basis]), 0, 2))           # (e,q,k)
-        dNphi = self.dN if phi_element == "Q2" else np.ascontiguousarray(np.moveaxis(
-            np.array([f[0].grad for f in self.b1.basis]), (0, 1), (2, 3)))
         self.w = np.asarray(self.b2.dx)                                       # (e,q)
-        # matmul-friendly layouts of the shape-function gradients (computed once)
-        self.dNt = np.ascontiguousarray(self.dN.transpose(0, 1, 3, 2))       # (e,q,K,i)
-        self.dNi = np.ascontiguousarray(self.dN.transpose(0, 2, 1, 3)).reshape(nel, 27, nq * 3)
-        self.dNphit = np.ascontiguousarray(dNphi.transpose(0, 1, 3, 2))
-        self.dNphii = np.ascontiguousarray(dNphi.transpose(0, 2, 1, 3)).reshape(
-            nel, dNphi.shape[2], nq * 3)
+        # matmul-friendly layouts of the shape-function gradients (computed once; the
+        # Q2 potential shares the displacement's arrays)
+        self.dNt, self.dNi = _gradient_layouts(self.b2)      # (e,q,K,i), (e,i,q*K)
+        self.dNphit, self.dNphii = ((self.dNt, self.dNi) if phi_element == "Q2"
+                                    else _gradient_layouts(self.b1))
         N2 = self.b2.N
         self.n_u = 3 * N2
         self.n_p = self.b1.N if formulation == "mixed" else 0
@@ -132,6 +137,10 @@ class MixedUPPhiForm:
         self._block_pos = self._block_positions()
         self._pos_cache: dict[tuple[int, int], np.ndarray] = {}
         self._work: dict[tuple[int, int, int], np.ndarray] = {}
+        for sl in self.chunks():        # the chunks' flat positions replace the blocks'
+            self._chunk_positions(sl)
+        self._block_pos = None
+        self.scatter.compact()
 
     # ------------------------------------------------------------------ layout
     def _block_positions(self) -> dict[str, np.ndarray]:
@@ -168,7 +177,7 @@ class MixedUPPhiForm:
         key = (sl.start, sl.stop)
         pos = self._pos_cache.get(key)
         if pos is None:
-            P = self._block_pos
+            P = self._block_pos if self._block_pos is not None else self._block_positions()
             # intp: np.bincount would otherwise convert the int32 positions on every call
             pos = np.concatenate([P[name][sl].ravel() for name, _ in self._block_sizes()]
                                  ).astype(np.intp)
@@ -186,19 +195,26 @@ class MixedUPPhiForm:
                 yield slice(int(a), int(b))
 
     # ------------------------------------------------------------- kinematics
+    def deformation_gradient(self, xf: np.ndarray, sl: slice) -> np.ndarray:
+        """``F[a, K, e, q]`` of the elements ``sl`` from the full dof vector ``xf``."""
+        ed = self.edofs[sl]
+        ne = ed.shape[0]
+        # one (nq*3 x 27) @ (27 x 3) product per element, not one tiny one per point
+        ue = xf[ed[:, : self.m_u]].reshape(ne, 27, 3)
+        FT = (self.dNt[sl].reshape(ne, self.nq * 3, 27) @ ue).reshape(ne, self.nq, 3, 3)
+        F = np.ascontiguousarray(FT.transpose(3, 2, 0, 1))                    # (a, K, e, q)
+        F[0, 0] += 1.0
+        F[1, 1] += 1.0
+        F[2, 2] += 1.0
+        return F
+
     def quadrature_fields(self, xf: np.ndarray, sl: slice):
         """``F[a, K, e, q]``, ``Grad phi[K, e, q]`` and ``p[e, q]`` (``None`` for the
         penalty) of the elements ``sl`` from the full dof vector ``xf``."""
         ed = self.edofs[sl]
         ne = ed.shape[0]
         nq = self.nq
-        # one (nq*3 x 27) @ (27 x 3) product per element, not one tiny one per point
-        ue = xf[ed[:, : self.m_u]].reshape(ne, 27, 3)
-        FT = (self.dNt[sl].reshape(ne, nq * 3, 27) @ ue).reshape(ne, nq, 3, 3)  # (e, q, K, a)
-        F = np.ascontiguousarray(FT.transpose(3, 2, 0, 1))                    # (a, K, e, q)
-        F[0, 0] += 1.0
-        F[1, 1] += 1.0
-        F[2, 2] += 1.0
+        F = self.deformation_gradient(xf, sl)
         phie = xf[ed[:, self.m_u + self.m_p:]]
         mf = phie.shape[1]
         G = np.ascontiguousarray((self.dNphit[sl].reshape(ne, nq * 3, mf) @ phie[:, :, None])
@@ -300,13 +316,14 @@ class MixedUPPhiForm:
         dof vector ``xf`` (element chunks in ``threads`` worker threads; numpy releases the
         GIL in the batched matmuls); ``grad_div`` overrides the form's stabilisation."""
         chunks = list(self.chunks())
-        if self.threads > 1 and len(chunks) > 1:
-            if self._pool is None:
-                self._pool = ThreadPoolExecutor(self.threads)
-            parts = list(self._pool.map(lambda sl: self._assemble_chunk(xf, sl, grad_div),
-                                        chunks))
-        else:
-            parts = [self._assemble_chunk(xf, sl, grad_div) for sl in chunks]
+        with single_threaded_blas():   # small products: BLAS threads cost more than they gain
+            if self.threads > 1 and len(chunks) > 1:
+                if self._pool is None:
+                    self._pool = ThreadPoolExecutor(self.threads)
+                parts = list(self._pool.map(
+                    lambda sl: self._assemble_chunk(xf, sl, grad_div), chunks))
+            else:
+                parts = [self._assemble_chunk(xf, sl, grad_div) for sl in chunks]
         data = parts[0][0]
         rf = parts[0][1]
         for d, r in parts[1:]:

@@ -1,0 +1,173 @@
+"""Benchmark: the full Keplinger plate ramp (alpha = 1), its counts, times and memory.
+
+The reference ramp: the full plate (``symmetry="full"``), 40 x 1 x 20 Q2/Q1/Q2 elements
+(40 836 unknowns), pre-load in 6 steps of ``s``, then ``D0 = 0.25, 0.5, ..., 5`` (26 load
+steps), ``keplinger_plate``'s Newton settings.  It prints the unknowns, Newton iterations,
+factorisations and chord steps (per load step and in total), the medians of one assembly,
+one factorisation + solve, one residual-only evaluation and one chord back-substitution,
+the wall time, the peak resident memory and the load average of the machine.  Counts and
+memory are deterministic; wall times depend on what else runs on the machine (compare
+runs in alternating pairs under the same load).
+
+Each run is its own subprocess, so that its peak resident memory is its own.
+
+Usage::
+
+    python benchmarks/bench_fe_ramp.py                       # the reference ramp, PARDISO
+    python benchmarks/bench_fe_ramp.py --solver superlu      # the default install
+    python benchmarks/bench_fe_ramp.py --elements 80 1 40    # the 160k-unknown plate
+    python benchmarks/bench_fe_ramp.py --plain               # every iteration factorises
+    python benchmarks/bench_fe_ramp.py --scaling             # s/iteration vs unknowns
+    python benchmarks/bench_fe_ramp.py --save ramp.npz       # lam1, fields per step
+
+``--scaling`` runs the pre-load and the first charge steps (``--D0-max 0.5``) on four
+meshes (20 x 10, 40 x 20, 56 x 28, 80 x 40) and fits ``t = c n^k`` to the time per
+iteration (assembly + factorisation + solve medians) against the unknowns ``n``.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import resource
+import subprocess
+import sys
+import time
+import warnings
+
+
+def run(a) -> dict:
+    import numpy as np
+
+    from skfem_dielectric import get_linear_solver, keplinger_plate
+
+    load0 = os.getloadavg()
+    solver = get_linear_solver(a.solver)
+    t0 = time.perf_counter()
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        res = keplinger_plate(1.0, D0=np.arange(a.D0_step, a.D0_max + 1e-9, a.D0_step),
+                              elements=tuple(a.elements), symmetry=a.symmetry,
+                              preload_steps=a.preload_steps, linear_solver=solver,
+                              chord=0.0 if a.plain else a.chord,
+                              predictor="none" if a.plain else a.predictor)
+    wall = time.perf_counter() - t0
+
+    def med(v):
+        return float(np.median(v)) if len(v) else float("nan")
+
+    if a.save:
+        np.savez(a.save, x=np.array([st.x for st in res.steps]), load=res.column("load"),
+                 lam1=res.column("lam1"), lam3=res.column("lam3"),
+                 min_P33=res.column("min_P33"))
+    steps = len(res.steps)
+    return {
+        "dofs": int(res.problem.red.n), "elements": list(a.elements), "solver": solver.name,
+        "steps": steps, "converged": bool(res.converged), "reason": res.reason,
+        "iterations": int(res.iterations_total), "factorisations": int(res.factorisations),
+        "chord_steps": int(res.chord_steps),
+        "iterations_per_step": res.column("iterations").tolist(),
+        "factorisations_per_step": res.column("factorisations").tolist(),
+        "assembly_calls": int(res.assembly_calls),
+        "assembly_median_s": med(res.assembly_times), "solve_median_s": med(res.solve_times),
+        "residual_median_s": med(res.residual_times), "chord_median_s": med(res.chord_times),
+        "assembly_s": res.assembly_seconds, "solve_s": res.solve_seconds,
+        "residual_s": float(sum(res.residual_times)), "chord_s": float(sum(res.chord_times)),
+        "wall_s": wall, "peak_rss_MB": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024,
+        "load_average": [load0, os.getloadavg()],
+        "lam1_last": float(res.steps[-1]["lam1"]) if steps else float("nan"),
+    }
+
+
+def report(r: dict) -> None:
+    n = max(1, r["steps"])
+    print(f"[{r['solver']}] elements {r['elements']}, {r['dofs']} unknowns, {r['steps']} load "
+          f"steps, converged {r['converged']} {r['reason'][:120]}")
+    print(f"  iterations {r['iterations']} ({r['iterations'] / n:.2f}/step), factorisations "
+          f"{r['factorisations']} ({r['factorisations'] / n:.2f}/step), chord steps "
+          f"{r['chord_steps']}, assembly calls {r['assembly_calls']}")
+    print(f"  per step: iterations {r['iterations_per_step']}")
+    print(f"            factorisations {r['factorisations_per_step']}")
+    print(f"  medians: assembly {r['assembly_median_s']:.3f} s, factorisation + solve "
+          f"{r['solve_median_s']:.3f} s, residual {r['residual_median_s']:.4f} s, chord "
+          f"back-substitution {r['chord_median_s']:.4f} s")
+    print(f"  totals: assembly {r['assembly_s']:.1f} s, factorisation + solve "
+          f"{r['solve_s']:.1f} s, residuals {r['residual_s']:.1f} s, chord {r['chord_s']:.1f} s")
+    la = r["load_average"]
+    print(f"  wall {r['wall_s']:.1f} s, peak RSS {r['peak_rss_MB']:.0f} MB, load average "
+          f"{la[0][0]:.2f} -> {la[1][0]:.2f} (1 min), lam1 at the last step "
+          f"{r['lam1_last']:.8f}")
+
+
+def child(a, **over) -> dict:
+    """Run one benchmark in a subprocess (its own peak memory); returns its JSON."""
+    d = dict(vars(a), **over)
+    cmd = [sys.executable, __file__, "--json", "--solver", d["solver"], "--symmetry",
+           d["symmetry"], "--elements", *map(str, d["elements"]), "--preload-steps",
+           str(d["preload_steps"]), "--D0-step", str(d["D0_step"]), "--D0-max",
+           str(d["D0_max"]), "--chord", str(d["chord"]), "--predictor", d["predictor"]]
+    if d["plain"]:
+        cmd.append("--plain")
+    if d["save"]:
+        cmd += ["--save", d["save"]]
+    p = subprocess.run(cmd, capture_output=True, text=True)
+    if p.returncode != 0:
+        raise RuntimeError(p.stderr[-2000:])
+    return json.loads(p.stdout.strip().splitlines()[-1])
+
+
+def scaling(a) -> None:
+    import numpy as np
+
+    meshes = [(20, 1, 10), (40, 1, 20), (56, 1, 28), (80, 1, 40)]
+    rows = []
+    print("time per iteration against unknowns (pre-load + charge to D0 = "
+          f"{min(a.D0_max, 0.5)}), solver {a.solver}")
+    print(f"{'elements':>12} {'unknowns':>9} {'assembly s':>10} {'fact+solve s':>12} "
+          f"{'s/iteration':>11} {'peak MB':>8} {'load':>5}")
+    for el in meshes:
+        r = child(a, elements=list(el), D0_max=min(a.D0_max, 0.5), save=None)
+        t = r["assembly_median_s"] + r["solve_median_s"]
+        rows.append((r["dofs"], t, r["assembly_median_s"], r["solve_median_s"]))
+        print(f"{'x'.join(map(str, el)):>12} {r['dofs']:>9} {r['assembly_median_s']:>10.3f} "
+              f"{r['solve_median_s']:>12.3f} {t:>11.3f} {r['peak_rss_MB']:>8.0f} "
+              f"{r['load_average'][1][0]:>5.2f}")
+    n, t, ta, ts = (np.array(v) for v in zip(*rows))
+    for name, y in (("s/iteration", t), ("assembly", ta), ("factorisation + solve", ts)):
+        k = np.polyfit(np.log(n), np.log(y), 1)[0]
+        print(f"fitted exponent of {name}: {k:.2f}")
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--solver", choices=["auto", "pardiso", "superlu"], default="auto")
+    ap.add_argument("--elements", type=int, nargs=3, default=[40, 1, 20],
+                    metavar=("N1", "N2", "N3"))
+    ap.add_argument("--symmetry", default="full")
+    ap.add_argument("--preload-steps", type=int, default=6)
+    ap.add_argument("--D0-step", type=float, default=0.25)
+    ap.add_argument("--D0-max", type=float, default=5.0)
+    ap.add_argument("--chord", type=float, default=0.1,
+                    help="chord contraction of the Newton solves (keplinger_plate's default)")
+    ap.add_argument("--predictor", choices=["none", "secant"], default="secant")
+    ap.add_argument("--plain", action="store_true",
+                    help="plain Newton: factorise in every iteration, no predictor")
+    ap.add_argument("--save", default=None, help="write lam1, lam3, min P33 and x to NPZ")
+    ap.add_argument("--scaling", action="store_true",
+                    help="time per iteration on four meshes and the fitted exponent")
+    ap.add_argument("--json", action="store_true", help="run here, print JSON (internal)")
+    a = ap.parse_args(argv)
+    if a.json:
+        print(json.dumps(run(a)))
+        return 0
+    print("NOTE: counts and memory are deterministic; wall times depend on the machine's load.")
+    if a.scaling:
+        scaling(a)
+        return 0
+    report(child(a))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
