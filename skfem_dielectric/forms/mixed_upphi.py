@@ -53,7 +53,8 @@ class MixedUPPhiForm:
     material
         Ideal dielectric (``mu``, ``eps``, ``energy_derivatives``).
     formulation, kappa
-        ``"mixed"`` (u-p-phi) or ``"penalty"`` (u-phi with ``kappa (J-1)^2/2``).
+        ``"mixed"`` (u-p-phi), ``"penalty"`` (u-phi, ``W(I1) + kappa (J-1)^2/2``) or
+        ``"isochoric"`` (u-phi, ``W(J^(-2/3) I1) + kappa (J-1)^2/2``).
     phi_element
         ``"Q2"`` or ``"Q1"``.
     intorder, chunk, threads
