@@ -25,6 +25,7 @@ import numpy as np
 
 from .checks import check_count, check_finite, check_positive
 from .cross_section import CrossSection
+from .failure import StepLimitCounter, describe_failure, plate_failure_cause
 from .linear import LinearSolver
 from .loads import charge_targets, keplinger_s, preload_then_charge, remaining_targets
 from .materials import NeoHookeanDielectric, make_material
@@ -117,7 +118,12 @@ def run_ramp(problem: Problem, targets: Sequence[Any], *,
     Returns
     -------
     RampResult
-        With ``problem`` set (for evaluation and export of the stored states).
+        With ``problem`` set (for evaluation and export of the stored states).  When
+        Newton fails on a plate, ``failure`` holds
+        :func:`~skfem_dielectric.failure.plate_failure_cause` of the last converged state
+        and how often the step limit shortened the Newton steps towards the failed target
+        (``step_limited`` of ``newton_steps``, ``smallest_step_limit``), and ``reason``
+        ends with that sentence (docs/validation.md, the corner failure).
     """
     targets = list(targets)
     if start is not None:
@@ -127,16 +133,27 @@ def run_ramp(problem: Problem, targets: Sequence[Any], *,
     extra = dict(extra or {})
     for key, value in newton_guards(problem).items():
         ramp_options.setdefault(key, value)
+    counter = None
+    if isinstance(problem, PlateProblem) and ramp_options.get("step_limit") is not None:
+        counter = ramp_options["step_limit"] = StepLimitCounter(ramp_options["step_limit"])
 
     def hook(step: StepResult):
         step.quantities.update(extra)
         step.quantities["phase"] = _phase(step.load)
+        if counter is not None and step.target_reached:
+            counter.reset()
         if on_step is not None:
             on_step(step)
 
     out = ramp(problem, targets, x0=x0, start=start, on_step=hook,
                linear_solver=linear_solver, **ramp_options)
     out.problem = problem
+    if out.failed_at is not None and out.steps and isinstance(problem, PlateProblem):
+        out.failure = plate_failure_cause(problem, out.steps[-1].x, out.steps[-1].load)
+        if counter is not None:
+            out.failure.update(step_limited=counter.limited, newton_steps=counter.calls,
+                               smallest_step_limit=counter.smallest)
+        out.reason += "; " + describe_failure(out.failure)
     return out
 
 

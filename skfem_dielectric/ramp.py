@@ -121,6 +121,9 @@ class RampResult:
     unstable_at
         With ``stop_on_instability``: load of the converged (sub-)step whose tangent was
         judged unstable, where the ramp stopped (``None`` otherwise).
+    failure
+        Where a model's driver diagnoses a Newton failure (the 3D plate:
+        :func:`~skfem_dielectric.drivers.run_ramp`), its measured cause, else empty.
     """
 
     steps: list[StepResult]
@@ -136,6 +139,7 @@ class RampResult:
     assembly_times: list[float] = field(default_factory=list)
     solve_times: list[float] = field(default_factory=list)
     unstable_at: Any = None
+    failure: dict[str, Any] = field(default_factory=dict)
 
     def column(self, name: str) -> np.ndarray:
         """Array of quantity ``name`` over the converged steps (``"load"`` and
