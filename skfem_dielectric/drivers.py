@@ -273,7 +273,7 @@ def keplinger_plate(alpha: float | None = 1.0, D0: Sequence[float] = (1, 2, 3, 4
                     x0: np.ndarray | None = None, start: Any = None, rtol: float = 1e-9,
                     max_cutbacks: int = 4, max_iter: int = 12,
                     threads: int | None = None,
-                    stop_on_instability: bool = False) -> RampResult:
+                    stop_on_instability: bool = False, grad_div: float = 0.0) -> RampResult:
     """The uni-axial Keplinger plate: weight on a rigid clamp, then the charge ramp.
 
     Parameters
@@ -300,6 +300,11 @@ def keplinger_plate(alpha: float | None = 1.0, D0: Sequence[float] = (1, 2, 3, 4
     stop_on_instability
         Stop at the first step whose tangent inertia says unstable (PARDISO only; see
         :func:`~skfem_dielectric.ramp.ramp`): the discrete breakdown near the clamps.
+    grad_div
+        Grad-div stabilisation of the mixed form (units of ``mu``, see
+        :class:`~skfem_dielectric.plate.PlateProblem`); ``10`` lets Newton pass the
+        clamp/free-edge corner where the plain form stalls on fine meshes
+        (docs/validation.md, the corner failure).  Default 0.
     rtol, max_cutbacks, max_iter
         Newton tolerance, cut-back limit and Newton iterations per attempt (converged
         steps need <= 6 on the 40 x 20 eighth model up to D0 = 5, up to 9 right before the
@@ -320,7 +325,8 @@ def keplinger_plate(alpha: float | None = 1.0, D0: Sequence[float] = (1, 2, 3, 4
     prob = keplinger_problem(model=model, Jm=Jm, size=size, elements=elements,
                              symmetry=symmetry, grading=grading, control=control,
                              coupling=coupling, field=field, formulation=formulation,
-                             kappa=kappa, phi_element=phi_element, threads=threads)
+                             kappa=kappa, phi_element=phi_element, threads=threads,
+                             grad_div=grad_div)
     extra = {"alpha": alpha if alpha is not None else float("nan"), "g": g}
     if coupling == "maxwell":
         extra["variant"] = f"maxwell-{field}"
