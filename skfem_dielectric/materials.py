@@ -17,7 +17,9 @@ incompressible mixed form.  The *penalty* form drops ``p`` and uses
 ``W + kappa (J - 1)^2 / 2`` instead (the paper's COMSOL choice, Sec. 6); its error is
 ``O(mu/kappa)``.  ``I1 = tr C`` is the full (not isochoric) invariant, as in the paper.
 The *isochoric* form (``formulation="isochoric"``, no ``p`` either) is COMSOL's nearly
-incompressible hyperelastic law ``W(J^(-2/3) I1) + kappa (J - 1)^2 / 2``: the strain energy
+incompressible hyperelastic law ``W(J^(-2/3) I1) + kappa (J - 1)^2 / 2``, and
+``"mixed-isochoric"`` the same energy in the mixed form (``W(J^(-2/3) I1) + p (J - 1) -
+p^2/(2 kappa)``: no volumetric locking of the displacement-only form); the strain energy
 sees only the distortional invariant ``Ib1 = J^(-2/3) I1``, so the reference state is
 stress free without the ``-mu0 ln J`` term and a state with ``J != 1`` has a different
 stress than under the penalty form (docs/fe_variants.md compares the two).
@@ -48,7 +50,8 @@ from .checks import check_energy, check_positive
 from .kinematics import det_inv3
 
 __all__ = ["NeoHookeanDielectric", "GentDielectric", "IdealDielectric", "PointResponse",
-           "FORMULATIONS", "ideal_dielectric_response", "dielectric_response", "make_material"]
+           "FORMULATIONS", "MIXED_FORMULATIONS", "ideal_dielectric_response",
+           "dielectric_response", "make_material"]
 
 
 @dataclass(frozen=True)
@@ -198,7 +201,9 @@ class PointResponse:
 
 #: the volumetric treatments: mixed u-p, penalty ``kappa (J-1)^2/2`` on ``W(I1)``, and
 #: COMSOL's isochoric ``W(J^(-2/3) I1) + kappa (J-1)^2/2``
-FORMULATIONS = ("mixed", "penalty", "isochoric")
+FORMULATIONS = ("mixed", "penalty", "isochoric", "mixed-isochoric")
+#: the formulations with the pressure-like unknown ``p``
+MIXED_FORMULATIONS = ("mixed", "mixed-isochoric")
 
 
 def _check_form(formulation: str, kappa: float) -> float:
@@ -207,7 +212,7 @@ def _check_form(formulation: str, kappa: float) -> float:
     kappa = float(kappa)
     if not kappa > 0:
         raise ValueError(f"kappa must be > 0, got {kappa}")
-    if formulation != "mixed" and not math.isfinite(kappa):
+    if formulation not in MIXED_FORMULATIONS and not math.isfinite(kappa):
         raise ValueError(f"kappa must be finite for the {formulation} formulation, got inf")
     return kappa
 
@@ -274,10 +279,11 @@ def dielectric_response(material, F: np.ndarray, G: np.ndarray, p: np.ndarray | 
     bvec = (Finv * a[None]).sum(axis=1)                  # C^-1 G
     aa = (a * a).sum(axis=0)
     FinvT = np.swapaxes(Finv, 0, 1)                      # FinvT[a, K] = Finv[K, a]
-    iso = formulation == "isochoric"
+    iso = formulation in ("isochoric", "mixed-isochoric")
+    mixed = formulation in MIXED_FORMULATIONS
     W, W1, c_iso, T = _strain_energy(material, F, I1, J, FinvT, iso)
     finite_k = math.isfinite(kappa)
-    if formulation == "mixed":
+    if mixed:
         if p is None:
             p = np.zeros_like(J)
         pe = p
@@ -311,7 +317,7 @@ def dielectric_response(material, F: np.ndarray, G: np.ndarray, p: np.ndarray | 
     Y = coef * FinvT + eJ * M                                      # [b, L]
     # dyads X_aK Y_bL: X stored [m, K, a], Y stored [m, b, L]
     Xd = [Finv, np.swapaxes(M, 0, 1)]
-    stiff = kappa if formulation != "mixed" else grad_div       # d(pe)/dJ
+    stiff = grad_div if mixed else kappa                         # d(pe)/dJ
     Y0 = Y + stiff * J * J * FinvT if stiff else Y
     if iso:     # d(c_iso)/dF = -2/3 (I1 T + 2 W1e F)
         Y0 = Y0 - (2.0 / 3.0) * (I1 * T + 2.0 * W1 * F)
@@ -341,7 +347,7 @@ def dielectric_response(material, F: np.ndarray, G: np.ndarray, p: np.ndarray | 
     A_FG = eJ * (bvec[:, None, None] * FinvT[None]
                  + a[None, :, None] * Cinv[:, None, :] - Finv[:, :, None] * bvec[None, None])
     A_GG = -eps * J * Cinv
-    A_Fp = J * Finv if formulation == "mixed" else np.zeros_like(Finv)
+    A_Fp = J * Finv if mixed else np.zeros_like(Finv)
     return PointResponse(psi, P, dpsi_dp, D_L, A, _points_first(A_FG, s, 3),
                          _points_first(A_GG, s, 2), _points_first(A_Fp, s, 2), A_pp, J)
 
@@ -367,8 +373,9 @@ def ideal_dielectric_response(material, F: np.ndarray, G: np.ndarray,
         Bulk modulus; ``inf`` = exactly incompressible (mixed only).
     formulation
         ``"mixed"`` (``W(I1) + p (J-1) - p^2/(2 kappa)``), ``"penalty"``
-        (``W(I1) + kappa (J-1)^2 / 2``) or ``"isochoric"``
-        (``W(J^(-2/3) I1) + kappa (J-1)^2 / 2``, COMSOL's nearly incompressible form).
+        (``W(I1) + kappa (J-1)^2 / 2``), ``"isochoric"``
+        (``W(J^(-2/3) I1) + kappa (J-1)^2 / 2``, COMSOL's nearly incompressible form) or
+        ``"mixed-isochoric"`` (``W(J^(-2/3) I1) + p (J-1) - p^2/(2 kappa)``).
     need_tangent
         If False only ``psi``, ``P``, ``dpsi_dp`` and ``D_L`` are computed (the tangent
         fields are empty arrays).

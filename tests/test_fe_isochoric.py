@@ -63,10 +63,14 @@ def isochoric_state(s, D0, kappa, model):
     return sol.x
 
 
-@pytest.mark.parametrize("model", ["neo-Hookean", "Gent"])
-def test_isochoric_equibiaxial_matches_its_closed_form(model):
+@pytest.mark.parametrize("model,formulation", [("neo-Hookean", "isochoric"),
+                                               ("Gent", "isochoric"),
+                                               ("neo-Hookean", "mixed-isochoric")])
+def test_isochoric_equibiaxial_matches_its_closed_form(model, formulation):
+    # the mixed form's p (J - 1) - p^2/(2 kappa) is stationary in p at p = kappa (J - 1),
+    # where it equals kappa (J - 1)^2 / 2: both formulations have the same state
     s, kappa, D0 = 1.5, 100.0, [1.0, 3.0]
-    res = equibiaxial_plate(s, D0, model=model, formulation="isochoric", kappa=kappa,
+    res = equibiaxial_plate(s, D0, model=model, formulation=formulation, kappa=kappa,
                             preload_steps=4, linear_solver="superlu", rtol=1e-12)
     assert res.converged, res.reason
     for st in res.steps[-2:]:
