@@ -67,9 +67,10 @@ def main(argv=None) -> int:
             K, _ = prob.assemble(st.x, st.load)
             stb = tangent_stability(prob, K, k=a.k)
             q = prob.load_vector(st.x, st.load)[:, 1]
+            overlap = [abs(w @ q) / (np.linalg.norm(q) * np.linalg.norm(w)) for w in stb.modes.T]
             line += f"  n_neg {stb.n_negative}  eig " + ", ".join(
-                f"{v:.3e} (c {corner_fraction(w):.2f}, f {abs(w @ q) / np.linalg.norm(q) / np.linalg.norm(w):.1e})"
-                for v, w in zip(stb.eigenvalues, stb.modes.T))
+                f"{v:.3e} (c {corner_fraction(w):.2f}, f {o:.1e})"
+                for v, w, o in zip(stb.eigenvalues, stb.modes.T, overlap))
         print(line + f"  [{time.perf_counter() - t0:.0f} s]", flush=True)
 
     s = keplinger_s(a.alpha, g=9.81)
