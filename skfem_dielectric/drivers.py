@@ -25,6 +25,7 @@ import numpy as np
 
 from .checks import check_count, check_finite, check_positive
 from .cross_section import CrossSection
+from .failure import StepLimitCounter, describe_failure, plate_failure_cause
 from .linear import LinearSolver
 from .loads import charge_targets, keplinger_s, preload_then_charge, remaining_targets
 from .materials import NeoHookeanDielectric, make_material
@@ -117,7 +118,12 @@ def run_ramp(problem: Problem, targets: Sequence[Any], *,
     Returns
     -------
     RampResult
-        With ``problem`` set (for evaluation and export of the stored states).
+        With ``problem`` set (for evaluation and export of the stored states).  When
+        Newton fails on a plate, ``failure`` holds
+        :func:`~skfem_dielectric.failure.plate_failure_cause` of the last converged state
+        and how often the step limit shortened the Newton steps towards the failed target
+        (``step_limited`` of ``newton_steps``, ``smallest_step_limit``), and ``reason``
+        ends with that sentence (docs/validation.md, the corner failure).
     """
     targets = list(targets)
     if start is not None:
@@ -127,16 +133,27 @@ def run_ramp(problem: Problem, targets: Sequence[Any], *,
     extra = dict(extra or {})
     for key, value in newton_guards(problem).items():
         ramp_options.setdefault(key, value)
+    counter = None
+    if isinstance(problem, PlateProblem) and ramp_options.get("step_limit") is not None:
+        counter = ramp_options["step_limit"] = StepLimitCounter(ramp_options["step_limit"])
 
     def hook(step: StepResult):
         step.quantities.update(extra)
         step.quantities["phase"] = _phase(step.load)
+        if counter is not None and step.target_reached:
+            counter.reset()
         if on_step is not None:
             on_step(step)
 
     out = ramp(problem, targets, x0=x0, start=start, on_step=hook,
                linear_solver=linear_solver, **ramp_options)
     out.problem = problem
+    if out.failed_at is not None and out.steps and isinstance(problem, PlateProblem):
+        out.failure = plate_failure_cause(problem, out.steps[-1].x, out.steps[-1].load)
+        if counter is not None:
+            out.failure.update(step_limited=counter.limited, newton_steps=counter.calls,
+                               smallest_step_limit=counter.smallest)
+        out.reason += "; " + describe_failure(out.failure)
     return out
 
 
@@ -257,7 +274,7 @@ def keplinger_plate(alpha: float | None = 1.0, D0: Sequence[float] = (1, 2, 3, 4
                     max_cutbacks: int = 4, max_iter: int = 12,
                     threads: int | None = None,
                     stop_on_instability: bool = False, chord: float = 0.1,
-                    predictor: str = "none") -> RampResult:
+                    predictor: str = "none", grad_div: float = 0.0) -> RampResult:
     """The uni-axial Keplinger plate: weight on a rigid clamp, then the charge ramp.
 
     Parameters
@@ -284,6 +301,11 @@ def keplinger_plate(alpha: float | None = 1.0, D0: Sequence[float] = (1, 2, 3, 4
     stop_on_instability
         Stop at the first step whose tangent inertia says unstable (PARDISO only; see
         :func:`~skfem_dielectric.ramp.ramp`): the discrete breakdown near the clamps.
+    grad_div
+        Grad-div stabilisation of the mixed form (units of ``mu``, see
+        :class:`~skfem_dielectric.plate.PlateProblem`); ``10`` lets Newton pass the
+        clamp/free-edge corner where the plain form stalls on fine meshes
+        (docs/validation.md, the corner failure).  Default 0.
     rtol, max_cutbacks, max_iter
         Newton tolerance, cut-back limit and Newton iterations per attempt (converged
         steps need <= 6 on the 40 x 20 eighth model up to D0 = 5, up to 9 right before the
@@ -309,7 +331,8 @@ def keplinger_plate(alpha: float | None = 1.0, D0: Sequence[float] = (1, 2, 3, 4
     prob = keplinger_problem(model=model, Jm=Jm, size=size, elements=elements,
                              symmetry=symmetry, grading=grading, control=control,
                              coupling=coupling, field=field, formulation=formulation,
-                             kappa=kappa, phi_element=phi_element, threads=threads)
+                             kappa=kappa, phi_element=phi_element, threads=threads,
+                             grad_div=grad_div)
     extra = {"alpha": alpha if alpha is not None else float("nan"), "g": g}
     if coupling == "maxwell":
         extra["variant"] = f"maxwell-{field}"

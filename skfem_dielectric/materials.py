@@ -16,6 +16,13 @@ that makes ``D = eps E`` hold exactly also where the discrete ``J`` differs from
 incompressible mixed form.  The *penalty* form drops ``p`` and uses
 ``W + kappa (J - 1)^2 / 2`` instead (the paper's COMSOL choice, Sec. 6); its error is
 ``O(mu/kappa)``.  ``I1 = tr C`` is the full (not isochoric) invariant, as in the paper.
+The *isochoric* form (``formulation="isochoric"``, no ``p`` either) is COMSOL's nearly
+incompressible hyperelastic law ``W(J^(-2/3) I1) + kappa (J - 1)^2 / 2``, and
+``"mixed-isochoric"`` the same energy in the mixed form (``W(J^(-2/3) I1) + p (J - 1) -
+p^2/(2 kappa)``: no volumetric locking of the displacement-only form); the strain energy
+sees only the distortional invariant ``Ib1 = J^(-2/3) I1``, so the reference state is
+stress free without the ``-mu0 ln J`` term and a state with ``J != 1`` has a different
+stress than under the penalty form (docs/fe_variants.md compares the two).
 
 Derived quantities (``Finv = F^-1``, ``a = F^-T G = -E``, ``b = C^-1 G``):
 
@@ -43,7 +50,8 @@ from .checks import check_energy, check_positive
 from .kinematics import det_inv3
 
 __all__ = ["NeoHookeanDielectric", "GentDielectric", "IdealDielectric", "PointResponse",
-           "ideal_dielectric_response", "dielectric_response", "make_material"]
+           "FORMULATIONS", "MIXED_FORMULATIONS", "ideal_dielectric_response",
+           "dielectric_response", "make_material"]
 
 
 @dataclass(frozen=True)
@@ -165,7 +173,7 @@ class PointResponse:
     P
         ``dpsi/dF`` (first Piola stress incl. pressure and electric part), ``(3, 3, ...)``.
     dpsi_dp
-        ``J - 1 - p/kappa`` (mixed form; zero array for the penalty form).
+        ``J - 1 - p/kappa`` (mixed form; zero array for the penalty and isochoric forms).
     D_L
         ``dpsi/dG``, the Lagrangian electric displacement, ``(3, ...)``.
     A_FF, A_FG, A_GG, A_Fp
@@ -191,15 +199,43 @@ class PointResponse:
     J: np.ndarray
 
 
+#: the volumetric treatments: mixed u-p, penalty ``kappa (J-1)^2/2`` on ``W(I1)``, and
+#: COMSOL's isochoric ``W(J^(-2/3) I1) + kappa (J-1)^2/2``
+FORMULATIONS = ("mixed", "penalty", "isochoric", "mixed-isochoric")
+#: the formulations with the pressure-like unknown ``p``
+MIXED_FORMULATIONS = ("mixed", "mixed-isochoric")
+
+
 def _check_form(formulation: str, kappa: float) -> float:
-    if formulation not in ("mixed", "penalty"):
-        raise ValueError(f"formulation must be 'mixed' or 'penalty', got {formulation!r}")
+    if formulation not in FORMULATIONS:
+        raise ValueError(f"formulation must be one of {FORMULATIONS}, got {formulation!r}")
     kappa = float(kappa)
     if not kappa > 0:
         raise ValueError(f"kappa must be > 0, got {kappa}")
-    if formulation == "penalty" and not math.isfinite(kappa):
-        raise ValueError("kappa must be finite for the penalty formulation, got inf")
+    if formulation not in MIXED_FORMULATIONS and not math.isfinite(kappa):
+        raise ValueError(f"kappa must be finite for the {formulation} formulation, got inf")
     return kappa
+
+
+def _strain_energy(material, F: np.ndarray, I1: np.ndarray, J: np.ndarray,
+                   FinvT: np.ndarray, isochoric: bool):
+    """``W``, and the strain-energy stress ``2 W1e F + c FinvT`` with the derivative
+    ``T = dW1e/dF`` (``[b, L, ...]``) that its tangent needs.
+
+    Full invariant: ``W(I1)``, ``W1e = W'``, ``c = 0``, ``T = 2 W'' F``.  Isochoric:
+    ``W(Ib1)``, ``Ib1 = J^(-2/3) I1``, ``W1e = J^(-2/3) W'``, ``c = -2/3 W1e I1`` and
+    ``T = W'' J^(-2/3) dIb1/dF - 2/3 W1e F^-T`` with
+    ``dIb1/dF = 2 J^(-2/3) (F - I1/3 F^-T)``.
+    """
+    if not isochoric:
+        W, W1, W11 = material.energy_derivatives(I1)
+        return W, W1, 0.0, 2.0 * W11 * F
+    with np.errstate(invalid="ignore", divide="ignore"):   # J <= 0 -> nan -> Newton rejects
+        j23 = np.where(J > 0, np.cbrt(J) ** -2, np.nan)
+    W, W1, W11 = material.energy_derivatives(j23 * I1)
+    W1e = j23 * W1
+    dIb = 2.0 * j23 * (F - (I1 / 3.0) * FinvT)
+    return W, W1e, -2.0 / 3.0 * W1e * I1, W11 * j23 * dIb - (2.0 / 3.0) * W1e * FinvT
 
 
 def _points_first(T: np.ndarray, s: np.ndarray | None, nt: int) -> np.ndarray:
@@ -227,22 +263,27 @@ def dielectric_response(material, F: np.ndarray, G: np.ndarray, p: np.ndarray | 
     ``A_Fp[..., K, a]``.
 
     The fourth-order tangent is two batched products of small matrices: the dyads
-    ``X_aK Y_bL`` (``4 W'' F F``, the pressure / ``|a|^2`` terms, ``M F^-T``, and
-    ``-eps J a a C^-1`` written as three dyads through ``C^-1 = F^-1 F^-T``) and the two
-    crossed terms ``X_aL Y_bK``, plus ``2 W' I``.  ``grad_div`` adds ``gamma (J - 1)^2 / 2``
-    to the mixed form (see :func:`ideal_dielectric_response`).
+    ``X_aK Y_bL`` (``2 F (x) dW1e/dF``, i.e. ``4 W'' F F`` for the full invariant, the
+    pressure / ``|a|^2`` terms, ``M F^-T``, and ``-eps J a a C^-1`` written as three dyads
+    through ``C^-1 = F^-1 F^-T``) and the two crossed terms ``X_aL Y_bK``, plus
+    ``2 W1e I`` (``W1e = W'``, or ``J^(-2/3) W'(Ib1)`` for the isochoric form, whose
+    ``F^-T`` coefficient ``-2/3 W1e I1`` adds its own derivative to the first dyad).
+    ``grad_div`` adds ``gamma (J - 1)^2 / 2`` to the mixed form (see
+    :func:`ideal_dielectric_response`).
     """
     kappa = _check_form(formulation, kappa)
     eps = material.eps
     J, Finv = det_inv3(F)
     I1 = (F * F).sum(axis=(0, 1))
-    W, W1, W11 = material.energy_derivatives(I1)
     a = (Finv * G[:, None]).sum(axis=0)                  # F^-T G
     bvec = (Finv * a[None]).sum(axis=1)                  # C^-1 G
     aa = (a * a).sum(axis=0)
     FinvT = np.swapaxes(Finv, 0, 1)                      # FinvT[a, K] = Finv[K, a]
+    iso = formulation in ("isochoric", "mixed-isochoric")
+    mixed = formulation in MIXED_FORMULATIONS
+    W, W1, c_iso, T = _strain_energy(material, F, I1, J, FinvT, iso)
     finite_k = math.isfinite(kappa)
-    if formulation == "mixed":
+    if mixed:
         if p is None:
             p = np.zeros_like(J)
         pe = p
@@ -257,14 +298,14 @@ def dielectric_response(material, F: np.ndarray, G: np.ndarray, p: np.ndarray | 
         vol = 0.5 * kappa * (J - 1.0) ** 2
         dpsi_dp = np.zeros_like(J)
         A_pp = 0.0
-    mu0 = 2.0 * float(material.energy_derivatives(np.array(3.0))[1]) if stress_free_reference \
-        else 0.0
+    mu0 = 2.0 * float(material.energy_derivatives(np.array(3.0))[1]) \
+        if stress_free_reference and not iso else 0.0
     eJ = eps * J
     with np.errstate(invalid="ignore", divide="ignore"):   # J <= 0 -> nan -> Newton rejects
         psi = W + vol - 0.5 * eJ * aa - mu0 * np.log(J)
     coef = pe * J - 0.5 * eJ * aa
     M = a[:, None] * bvec[None]                                    # M[a, K] = a_a b_K
-    P = 2.0 * W1 * F + (coef - mu0) * FinvT + eJ * M
+    P = 2.0 * W1 * F + (coef + c_iso - mu0) * FinvT + eJ * M
     D_L = -eJ * bvec
     if not need_tangent:
         e = np.empty(0)
@@ -276,14 +317,17 @@ def dielectric_response(material, F: np.ndarray, G: np.ndarray, p: np.ndarray | 
     Y = coef * FinvT + eJ * M                                      # [b, L]
     # dyads X_aK Y_bL: X stored [m, K, a], Y stored [m, b, L]
     Xd = [Finv, np.swapaxes(M, 0, 1)]
-    stiff = kappa if formulation == "penalty" else grad_div     # d(pe)/dJ
-    Yd = [Y + stiff * J * J * FinvT if stiff else Y, eJ * FinvT]
+    stiff = grad_div if mixed else kappa                         # d(pe)/dJ
+    Y0 = Y + stiff * J * J * FinvT if stiff else Y
+    if iso:     # d(c_iso)/dF = -2/3 (I1 T + 2 W1e F)
+        Y0 = Y0 - (2.0 / 3.0) * (I1 * T + 2.0 * W1 * F)
+    Yd = [Y0, eJ * FinvT]
     for m in range(3):     # -eJ a_a a_b Cinv_KL = sum_m (Finv_Km a_a)(-eJ a_b Finv_Lm)
         Xd.append(Finv[:, m][:, None] * a[None])
         Yd.append(-eJ * a[:, None] * Finv[:, m][None])
-    if np.any(W11 != 0.0):
+    if iso or np.any(T != 0.0):      # 2 F_aK dW1e/dF_bL
         Xd.append(np.swapaxes(F, 0, 1))
-        Yd.append(4.0 * W11 * F)
+        Yd.append(2.0 * T)
     nm = len(Xd)
     X = _points_first(np.array(Xd).reshape((nm, 9) + shp), None, 2).swapaxes(-1, -2)
     Yw = _points_first(np.array(Yd).reshape((nm, 9) + shp), s, 2)
@@ -291,7 +335,8 @@ def dielectric_response(material, F: np.ndarray, G: np.ndarray, p: np.ndarray | 
     # crossed terms -(X_aL Y_bK): X stored [L, a], Y stored [b, K]; product [L, a, b, K]
     Xc = _points_first(np.array([Finv, bvec[:, None] * a[None]]).reshape((2, 9) + shp),
                        None, 2).swapaxes(-1, -2)
-    Yc = _points_first(np.array([Y - mu0 * FinvT, eJ * FinvT]).reshape((2, 9) + shp), s, 2)
+    Yc = _points_first(np.array([Y + (c_iso - mu0) * FinvT, eJ * FinvT]).reshape((2, 9) + shp),
+                       s, 2)
     A -= np.swapaxes((Xc @ Yc).reshape(shp + (3, 3, 3, 3)), -4, -1)
     d = 2.0 * W1 * sw
     for i in range(3):
@@ -302,7 +347,7 @@ def dielectric_response(material, F: np.ndarray, G: np.ndarray, p: np.ndarray | 
     A_FG = eJ * (bvec[:, None, None] * FinvT[None]
                  + a[None, :, None] * Cinv[:, None, :] - Finv[:, :, None] * bvec[None, None])
     A_GG = -eps * J * Cinv
-    A_Fp = J * Finv if formulation == "mixed" else np.zeros_like(Finv)
+    A_Fp = J * Finv if mixed else np.zeros_like(Finv)
     return PointResponse(psi, P, dpsi_dp, D_L, A, _points_first(A_FG, s, 3),
                          _points_first(A_GG, s, 2), _points_first(A_Fp, s, 2), A_pp, J)
 
@@ -323,11 +368,14 @@ def ideal_dielectric_response(material, F: np.ndarray, G: np.ndarray,
     G
         Referential potential gradient ``Grad phi = -E_L``, ``(3, ...)``.
     p
-        Pressure-like multiplier (mixed form), shape ``(...)``; ignored for the penalty.
+        Pressure-like multiplier (mixed form), shape ``(...)``; ignored otherwise.
     kappa
         Bulk modulus; ``inf`` = exactly incompressible (mixed only).
     formulation
-        ``"mixed"`` (``p (J-1) - p^2/(2 kappa)``) or ``"penalty"`` (``kappa (J-1)^2 / 2``).
+        ``"mixed"`` (``W(I1) + p (J-1) - p^2/(2 kappa)``), ``"penalty"``
+        (``W(I1) + kappa (J-1)^2 / 2``), ``"isochoric"``
+        (``W(J^(-2/3) I1) + kappa (J-1)^2 / 2``, COMSOL's nearly incompressible form) or
+        ``"mixed-isochoric"`` (``W(J^(-2/3) I1) + p (J-1) - p^2/(2 kappa)``).
     need_tangent
         If False only ``psi``, ``P``, ``dpsi_dp`` and ``D_L`` are computed (the tangent
         fields are empty arrays).
@@ -340,6 +388,7 @@ def ideal_dielectric_response(material, F: np.ndarray, G: np.ndarray,
         modes at free corners unstable (observed: spurious negative eigenvalues and Newton
         stagnation on the clamped plate at ``s ~ 0.2``).  For the penalty form it gives the
         usual compressible neo-Hookean ``mu/2 (I1 - 3) - mu ln J + kappa (J-1)^2/2``.
+        Not used by the isochoric form, whose reference state is stress free as it is.
     grad_div
         ``gamma >= 0``: adds ``gamma (J - 1)^2 / 2`` to the mixed form (grad-div
         stabilisation).  It vanishes with its first derivative where ``J = 1``, so exact

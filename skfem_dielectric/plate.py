@@ -57,6 +57,7 @@ from .assembly import DofReduction
 from .checks import check_choice, check_count, check_material, check_positive
 from .forms.maxwell_traction import MaxwellBoundary
 from .forms.mixed_upphi import MixedUPPhiForm
+from .materials import FORMULATIONS, MIXED_FORMULATIONS
 from .mesh import PlateMesh
 from .newton import segment_det_limit
 from .plate_post import plate_quantities, plate_step_mesh, plate_stresses, evaluate_fields
@@ -216,9 +217,12 @@ class PlateProblem(Problem):
     field
         Field of the Maxwell traction: ``"electrostatic"`` (default) or ``"local"``.
     formulation
-        ``"mixed"`` (u-p-phi, default) or ``"penalty"`` (u-phi with ``kappa (J-1)^2/2``).
+        ``"mixed"`` (u-p-phi, default), ``"penalty"`` (u-phi, ``W(I1) + kappa (J-1)^2/2``),
+        ``"isochoric"`` (u-phi, COMSOL's ``W(J^(-2/3) I1) + kappa (J-1)^2/2``) or
+        ``"mixed-isochoric"`` (u-p-phi, the same energy without volumetric locking;
+        :mod:`skfem_dielectric.materials`).
     kappa
-        Bulk modulus; ``inf`` (mixed only) = exactly incompressible.
+        Bulk modulus; ``inf`` (the mixed forms only) = exactly incompressible.
     phi_element
         ``"Q2"`` (default) or ``"Q1"``.
     intorder
@@ -255,20 +259,20 @@ class PlateProblem(Problem):
         check_choice("control", control, CONTROLS)
         check_choice("coupling", coupling, COUPLINGS)
         check_choice("field", field, FIELDS)
-        check_choice("formulation", formulation, ("mixed", "penalty"))
+        check_choice("formulation", formulation, FORMULATIONS)
         if coupling == "maxwell" and field == "local" and control != "charge":
             raise ValueError("the local Maxwell field is the field of the charge: it needs "
                              f"control='charge', got {control!r}")
         if coupling == "maxwell" and formulation != "mixed":
             raise ValueError(f"coupling 'maxwell' needs formulation='mixed', got {formulation!r}")
         kappa = math.inf if kappa == math.inf else check_positive("kappa", kappa)
-        if formulation == "penalty" and not math.isfinite(kappa):
-            raise ValueError("kappa must be finite for the penalty formulation, got inf")
+        if formulation not in MIXED_FORMULATIONS and not math.isfinite(kappa):
+            raise ValueError(f"kappa must be finite for the {formulation} formulation, got inf")
         check_choice("phi_element", phi_element, ("Q1", "Q2"))
         grad_div = float(grad_div)
         if not (math.isfinite(grad_div) and grad_div >= 0):
             raise ValueError(f"grad_div must be a finite number >= 0, got {grad_div!r}")
-        if grad_div and formulation != "mixed":
+        if grad_div and formulation not in MIXED_FORMULATIONS:
             raise ValueError("grad_div needs formulation='mixed' (the penalty form has its "
                              f"own kappa), got {formulation!r}")
         self.grad_div = grad_div

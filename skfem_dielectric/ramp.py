@@ -130,6 +130,9 @@ class RampResult:
     unstable_at
         With ``stop_on_instability``: load of the converged (sub-)step whose tangent was
         judged unstable, where the ramp stopped (``None`` otherwise).
+    failure
+        Where a model's driver diagnoses a Newton failure (the 3D plate:
+        :func:`~skfem_dielectric.drivers.run_ramp`), its measured cause, else empty.
     """
 
     steps: list[StepResult]
@@ -149,6 +152,7 @@ class RampResult:
     chord_steps: int = 0
     residual_times: list[float] = field(default_factory=list)
     chord_times: list[float] = field(default_factory=list)
+    failure: dict[str, Any] = field(default_factory=dict)
 
     def column(self, name: str) -> np.ndarray:
         """Array of quantity ``name`` over the converged steps (``"load"`` and

@@ -19,7 +19,8 @@ MATERIALS = [NeoHookeanDielectric(mu=1.3, eps=0.7), GentDielectric(mu=1.3, eps=0
              IdealDielectric(W=lambda I: 0.5 * (I - 3) + 0.01 * (I - 3) ** 2,
                              dW=lambda I: 0.5 + 0.02 * (I - 3), d2W=lambda I: 0.02 + 0 * I,
                              mu=1.0, eps=2.0)]
-FORMS = [("mixed", math.inf), ("mixed", 50.0), ("penalty", 50.0)]
+FORMS = [("mixed", math.inf), ("mixed", 50.0), ("penalty", 50.0), ("isochoric", 50.0),
+         ("mixed-isochoric", 50.0), ("mixed-isochoric", math.inf)]
 
 
 def flat(F, G, p):

@@ -38,7 +38,7 @@ import numpy as np
 from skfem import Basis, ElementHex1, ElementHex2
 
 from ..assembly import DofReduction, ScatterMap, single_threaded_blas
-from ..materials import dielectric_response
+from ..materials import MIXED_FORMULATIONS, dielectric_response
 
 __all__ = ["MixedUPPhiForm"]
 
@@ -63,7 +63,9 @@ class MixedUPPhiForm:
     material
         Ideal dielectric (``mu``, ``eps``, ``energy_derivatives``).
     formulation, kappa
-        ``"mixed"`` (u-p-phi) or ``"penalty"`` (u-phi with ``kappa (J-1)^2/2``).
+        ``"mixed"`` (u-p-phi), ``"penalty"`` (u-phi, ``W(I1) + kappa (J-1)^2/2``) or
+        ``"isochoric"`` (u-phi, ``W(J^(-2/3) I1) + kappa (J-1)^2/2``) or
+        ``"mixed-isochoric"`` (u-p-phi, ``W(J^(-2/3) I1) + p (J-1) - p^2/(2 kappa)``).
     phi_element
         ``"Q2"`` or ``"Q1"``.
     intorder, chunk, threads
@@ -107,7 +109,7 @@ class MixedUPPhiForm:
                                     else _gradient_layouts(self.b1))
         N2 = self.b2.N
         self.n_u = 3 * N2
-        self.n_p = self.b1.N if formulation == "mixed" else 0
+        self.n_p = self.b1.N if formulation in MIXED_FORMULATIONS else 0
         self.off_p = self.n_u
         self.off_phi = self.n_u + self.n_p
         self.n_phi = self.bphi.N
@@ -168,7 +170,7 @@ class MixedUPPhiForm:
         sizes = [("uu", 81 * 81), ("uf", 81 * mf), ("fu", 81 * mf), ("ff", mf * mf)]
         if mp:
             sizes += [("up", 81 * mp), ("pu", 81 * mp)]
-            if math.isfinite(self.kappa) and self.formulation == "mixed":
+            if math.isfinite(self.kappa) and self.formulation in MIXED_FORMULATIONS:
                 sizes.append(("pp", mp * mp))
         return sizes
 
