@@ -45,7 +45,7 @@ def wrinkling_grid(quick: bool = False) -> dict:
 
 def stroh_unstable_below(control, mode, lam, kh, n1, D0) -> int:
     """Modes of the section other than the sought one that the Stroh analysis finds
-    unstable at ``D0``: the Fourier modes ``n = 1 .. 2 n1`` (wavenumbers ``n kh``; the
+    unstable at ``D0``: the Fourier modes ``1 <= n <= 2 n1`` (wavenumbers ``n kh``; the
     ``2 n1 + 1`` Q2 nodes along the section carry no shorter cosine) of the classes the
     section holds (symmetric on the half thickness, both on the full one).  The FE
     resolves these at best (under-resolved modes are stiffer), so its count below the
