@@ -300,7 +300,18 @@ def tangent_stability(problem: Problem, K: sp.spmatrix, *, k: int = 0,
         raise ValueError(f"K must have shape ({problem.ndofs}, {problem.ndofs}), got {K.shape}")
     if method == "auto" and not pardiso_available() and K.shape[0] <= DENSE_LIMIT // 10:
         method = "dense"
-    inertia = tangent_inertia(K, method)
+    try:
+        inertia = tangent_inertia(K, method)
+    except ValueError as exc:
+        # SuperLU met a zero pivot (a multiplier eliminated before its displacements);
+        # small systems are counted densely instead, large ones need PARDISO
+        if not (method in ("auto", "superlu") and "off-diagonal pivots" in str(exc)):
+            raise
+        if K.shape[0] > DENSE_LIMIT:
+            raise ValueError(f"{exc}; this tangent ({K.shape[0]} unknowns) is too large "
+                             "to be counted densely: install the 'fast' extra (PARDISO)"
+                             ) from None
+        inertia = tangent_inertia(K, "dense")
     n_m = problem.layout.n_multipliers
     out = StabilityResult(inertia[1] - n_m, inertia[2], tuple(inertia), n_m)
     if all_negative:
