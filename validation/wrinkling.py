@@ -111,7 +111,7 @@ def stroh_critical_stretch(kh: float, mode: str, lo: float = 0.3) -> float:
     def f(lam):
         return float(an.dispersion_function(lam, lam, 0.0, kh, mode=mode))
 
-    vals = [f(v) for v in lams]
+    vals = np.asarray(an.dispersion_function(lams, lams, 0.0, kh, mode=mode), dtype=float)
     for i in range(len(lams) - 1):
         if np.sign(vals[i]) != np.sign(vals[i + 1]):
             return float(brentq(f, lams[i + 1], lams[i], xtol=1e-14))
