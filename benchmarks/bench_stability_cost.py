@@ -57,6 +57,8 @@ def main(argv=None) -> None:
         res = keplinger_plate(1.0, D0=np.arange(0.5, 5.0001, 0.5), elements=(a.n1, n2, a.n3),
                               symmetry=a.symmetry, linear_solver=a.solver, on_step=on_step)
         ramp_wall = time.perf_counter() - t0
+    print(f"ramp done in {ramp_wall:.1f} s; stability at each of {len(targets)} targets:",
+          flush=True)
     pb = res.problem
     method = "pardiso" if a.solver in ("pardiso", "auto") else "superlu"
     for step in targets:
@@ -69,6 +71,8 @@ def main(argv=None) -> None:
         st5 = tangent_stability(pb, K, k=5, method=method, tol=1e-6)
         t_modes = time.perf_counter() - t
         row = [step.load, step.iterations, st0.n_negative, st5.eigenvalues[0], t_count, t_modes]
+        print(f"  target ({step.load[0]:.4f}, {step.load[1]:.2f}): count {t_count:.2f} s, "
+              f"count + 5 modes {t_modes:.2f} s, n_negative {st0.n_negative}", flush=True)
         if a.classes:
             t = time.perf_counter()
             cs = class_stability(pb, step.x, step.load, k=0, method=method)
