@@ -113,8 +113,11 @@ def lowest_modes(K: sp.spmatrix, M: sp.spmatrix, k: int, n_negative: int = 0,
     the projection on ``d``): its eigenvalues are ``theta = 1/(lambda - sigma)`` for the
     finite ``lambda`` (the multiplier directions give ``theta = 0``), its eigenvectors the
     ``d``-parts of the modes scaled by ``M^1/2``.  ``sigma`` defaults to just below zero (scaled to ``K``);
-    the number of eigenpairs asked for grows until all ``n_negative`` negative eigenvalues
-    (known from the inertia) are among them, so that the returned ones are the lowest.
+    with ``n_negative > 0`` (known from the inertia) the shift first moves down by decades
+    until the inertia of ``K - sigma M`` shows no eigenvalue below it (spectrum slicing), so
+    that the eigenvalues nearest to it are the lowest; where that cannot be shown, the
+    number of eigenpairs asked for grows until all ``n_negative`` negative eigenvalues are
+    among them, so that the returned ones are the lowest.
     ``tol`` is ARPACK's relative tolerance on ``theta``.
 
     Returns
@@ -132,17 +135,39 @@ def lowest_modes(K: sp.spmatrix, M: sp.spmatrix, k: int, n_negative: int = 0,
     if not 1 <= k <= nd - 1:
         raise ValueError(f"k must be between 1 and {nd - 1} (the finite eigenvalues of "
                          f"this system less one), got {k}")
-    if sigma is None:
-        sigma = -1e-8 * float(abs(K).max())
     # K - sigma M on K's own pattern: a sparse subtraction would drop the explicit zeros of
     # the multiplier diagonal, which PARDISO needs
-    Ks = sp.csr_matrix(K, copy=True)
-    Ks.sort_indices()
-    rows = np.repeat(np.arange(n), np.diff(Ks.indptr))
-    on_diag = np.flatnonzero(Ks.indices == rows)
-    Ks.data[on_diag] -= sigma * M.diagonal()[rows[on_diag]]
-    if on_diag.size < n:
-        Ks = sp.csr_matrix(K) - sigma * sp.csr_matrix(M)    # a pattern without diagonal
+    K0 = sp.csr_matrix(K, copy=True)
+    K0.sort_indices()
+    rows = np.repeat(np.arange(n), np.diff(K0.indptr))
+    on_diag = np.flatnonzero(K0.indices == rows)
+
+    def shifted(sig):
+        if on_diag.size < n:                        # a pattern without diagonal
+            return sp.csr_matrix(K) - sig * sp.csr_matrix(M)
+        Ks = K0.copy()
+        Ks.data[on_diag] -= sig * md[rows[on_diag]]
+        return Ks
+
+    below_all = False        # no eigenvalue below the shift: the nearest ones are the lowest
+    if sigma is None:
+        sigma = -1e-8 * float(abs(K).max())
+        if n_negative > 0:
+            # spectrum slicing: move the shift below the lowest eigenvalue (no eigenvalue
+            # under it: n_neg(K - sigma M) = n - nd, the multipliers' count), so that the
+            # negative eigenvalues are the ones nearest to it and come first -- a shift near
+            # zero would first return every soft positive mode closer to zero than them
+            for _ in range(16):
+                try:
+                    below = tangent_inertia(shifted(sigma), "auto" if n > DENSE_LIMIT // 10
+                                            else "dense")[1] - (n - nd)
+                except ValueError:      # SuperLU without diagonal pivots: keep this shift
+                    break
+                if below <= 0:
+                    below_all = True
+                    break
+                sigma *= 10.0
+    Ks = shifted(sigma)
     if pardiso_available() and n > DENSE_LIMIT:     # symmetric LDL^T, factorised once
         pardiso = PardisoSolver()
         pardiso.solve(Ks, np.zeros(n))
@@ -156,7 +181,7 @@ def lowest_modes(K: sp.spmatrix, M: sp.spmatrix, k: int, n_negative: int = 0,
         return solve(b)
 
     op = spla.LinearOperator((nd, nd), matvec=lambda v: sq * solve_d(v)[d], dtype=float)
-    want = k + max(0, n_negative)
+    want = k if below_all else k + max(0, n_negative)
     while True:
         m = min(want, nd - 1)
         if nd <= 2 * m + 20:     # ARPACK needs ncv < n: small systems densely
@@ -172,7 +197,7 @@ def lowest_modes(K: sp.spmatrix, M: sp.spmatrix, k: int, n_negative: int = 0,
         vals = sigma + 1.0 / theta
         order = np.argsort(vals)
         vals, V, theta = vals[order], V[:, order], theta[order]
-        if np.sum(vals < 0) >= n_negative or m == nd - 1:
+        if below_all or np.sum(vals < 0) >= n_negative or m == nd - 1:
             vecs = np.column_stack([solve_d(V[:, j]) * theta[j] for j in range(k)])
             vecs /= np.sqrt(np.sum(md[d, None] * vecs[d] ** 2, axis=0))
             return vals[:k], vecs
