@@ -149,6 +149,8 @@ def lowest_modes(K: sp.spmatrix, M: sp.spmatrix, k: int, n_negative: int = 0,
         Ks.data[on_diag] -= sig * md[rows[on_diag]]
         return Ks
 
+    use_pardiso = pardiso_available() and n > DENSE_LIMIT    # symmetric LDL^T
+    pardiso = None           # PARDISO's factors of the current shift, once computed
     below_all = False        # no eigenvalue below the shift: the nearest ones are the lowest
     if sigma is None:
         sigma = -1e-8 * float(abs(K).max())
@@ -158,19 +160,26 @@ def lowest_modes(K: sp.spmatrix, M: sp.spmatrix, k: int, n_negative: int = 0,
             # negative eigenvalues are the ones nearest to it and come first -- a shift near
             # zero would first return every soft positive mode closer to zero than them
             for _ in range(16):
-                try:
-                    below = tangent_inertia(shifted(sigma), "auto" if n > DENSE_LIMIT // 10
-                                            else "dense")[1] - (n - nd)
-                except ValueError:      # SuperLU without diagonal pivots: keep this shift
-                    break
+                if use_pardiso:     # the factors that give the inertia serve the solves
+                    pardiso = PardisoSolver()
+                    pardiso.solve(shifted(sigma), np.zeros(n))
+                    below = pardiso.inertia[1] - (n - nd)
+                else:
+                    try:
+                        below = tangent_inertia(shifted(sigma), "auto" if n > DENSE_LIMIT
+                                                // 10 else "dense")[1] - (n - nd)
+                    except ValueError:   # SuperLU without diagonal pivots: keep this shift
+                        break
                 if below <= 0:
                     below_all = True
                     break
                 sigma *= 10.0
+                pardiso = None
     Ks = shifted(sigma)
-    if pardiso_available() and n > DENSE_LIMIT:     # symmetric LDL^T, factorised once
-        pardiso = PardisoSolver()
-        pardiso.solve(Ks, np.zeros(n))
+    if use_pardiso:                                 # factorised once per shift
+        if pardiso is None:
+            pardiso = PardisoSolver()
+            pardiso.solve(Ks, np.zeros(n))
         solve = pardiso.resolve
     else:
         solve = spla.splu(sp.csc_matrix(Ks), permc_spec="MMD_AT_PLUS_A").solve
