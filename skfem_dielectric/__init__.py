@@ -27,6 +27,7 @@ from .materials import (GentDielectric, IdealDielectric, NeoHookeanDielectric, P
 from .membrane import MembranePlate
 from .mesh import PlateMesh, plate_mesh
 from .mesh2d import point_gradients
+from .monitor import StabilityMonitor
 from .modes import classify_mode, lowest_physical_eigenvalue, mode_mesh, write_mode_vtu
 from .newton import NewtonResult, newton, segment_det_limit
 from .plate import PlateProblem
@@ -57,7 +58,7 @@ __all__ = [
     "keplinger_plate", "maxwell_equibiaxial", "maxwell_keplinger", "membrane_ramp",
     "membrane_keplinger", "cross_section_ramp",
     # stability
-    "StabilityResult", "stability_analysis", "tangent_stability", "tangent_inertia",
+    "StabilityResult", "StabilityMonitor", "stability_analysis", "tangent_stability", "tangent_inertia",
     "ClassStability", "class_stability", "symmetry_classes", "classify_mode", "mode_mesh",
     "write_mode_vtu", "lowest_physical_eigenvalue", "CriticalLoad", "critical_load",
     "wrinkling_section", "section_critical_load", "section_critical_stretch",

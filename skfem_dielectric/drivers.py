@@ -274,7 +274,8 @@ def keplinger_plate(alpha: float | None = 1.0, D0: Sequence[float] = (1, 2, 3, 4
                     max_cutbacks: int = 4, max_iter: int = 12,
                     threads: int | None = None,
                     stop_on_instability: bool = False, chord: float = 0.1,
-                    predictor: str = "none", grad_div: float = 0.0) -> RampResult:
+                    predictor: str = "none", grad_div: float = 0.0,
+                    state_analysis: Callable[..., dict] | None = None) -> RampResult:
     """The uni-axial Keplinger plate: weight on a rigid clamp, then the charge ramp.
 
     Parameters
@@ -315,6 +316,10 @@ def keplinger_plate(alpha: float | None = 1.0, D0: Sequence[float] = (1, 2, 3, 4
         (0: factorise in every iteration) and the start of each Newton solve (``"none"``
         or ``"secant"``; a resumed ramp then repeats the uninterrupted one only within the
         Newton tolerance); see :func:`~skfem_dielectric.ramp.ramp`.
+    state_analysis
+        Analysis of every converged state on the factorisation of its tangent, e.g.
+        ``StabilityMonitor(k=5)`` (:mod:`skfem_dielectric.monitor`); see
+        :func:`~skfem_dielectric.ramp.ramp`.
 
     Returns
     -------
@@ -340,7 +345,7 @@ def keplinger_plate(alpha: float | None = 1.0, D0: Sequence[float] = (1, 2, 3, 4
                     start=start, linear_solver=linear_solver, extra=extra, atol=0.0,
                     rtol=rtol, max_cutbacks=max_cutbacks, max_iter=max_iter,
                     stop_on_instability=stop_on_instability, chord=chord,
-                    predictor=predictor)
+                    predictor=predictor, state_analysis=state_analysis)
 
 
 def maxwell_equibiaxial(s: float, D0, *, field: str = "electrostatic", **options) -> RampResult:

@@ -59,6 +59,11 @@ class LinearSolver:
         """Solve with the last factorised matrix (``None`` if not supported)."""
         return None
 
+    def factor_inertia(self) -> tuple[int, int, int] | None:
+        """Inertia ``(n_positive, n_negative, n_zero)`` of the last factorised matrix if
+        the factors show it (``None`` otherwise)."""
+        return self.inertia
+
 
 class SuperLUSolver(LinearSolver):
     """scipy SuperLU direct solver.
@@ -101,6 +106,16 @@ class SuperLUSolver(LinearSolver):
         """Solve with the last LU factors."""
         lu = getattr(self, "_lu", None)
         return None if lu is None else lu.solve(np.asarray(b, dtype=float))
+
+    def factor_inertia(self) -> tuple[int, int, int] | None:
+        """Inertia of the last factorised (symmetric) matrix when SuperLU kept to
+        diagonal pivots (equal row and column permutations, so ``U = D L^T`` and
+        Sylvester's law gives the inertia from the signs of ``diag(U)``), else ``None``."""
+        lu = getattr(self, "_lu", None)
+        if lu is None or not np.array_equal(lu.perm_r, lu.perm_c):
+            return None
+        d = lu.U.diagonal()
+        return int(np.sum(d > 0)), int(np.sum(d < 0)), int(np.sum(d == 0))
 
 
 def _same_memory(a: np.ndarray, b: np.ndarray) -> bool:

@@ -171,7 +171,7 @@ def newton(assemble: Callable[[np.ndarray], tuple[sp.spmatrix, np.ndarray]],
            max_iter: int = 25, line_search: bool = True, max_backtracks: int = 8,
            step_limit: Callable[[np.ndarray, np.ndarray], float] | None = None,
            admissible: Callable[[np.ndarray], str] | None = None,
-           chord: float = 0.0) -> NewtonResult:
+           chord: float = 0.0, reuse_factors: bool = False) -> NewtonResult:
     """Solve ``r(x) = 0`` by Newton's method with a backtracking line search.
 
     Parameters
@@ -218,6 +218,13 @@ def newton(assemble: Callable[[np.ndarray], tuple[sp.spmatrix, np.ndarray]],
         ``residual`` given, the trial points are then evaluated by ``residual`` and the
         tangent is assembled only where it is factorised.  The converged state satisfies
         the same test, so the solution changes only within the tolerance.
+    reuse_factors
+        Start with a chord step on the factorisation ``linear_solver`` already holds (e.g.
+        the tangent of the converged state before a load step, which a stability analysis
+        factorised): a back-substitution instead of the first assembly and factorisation.
+        It is kept if it reduces ``||r||`` (and followed by chord steps while they contract
+        by ``chord``), else discarded.  Needs a solver instance that supports
+        ``resolve``; otherwise the first step factorises as usual.
 
     Returns
     -------
@@ -282,7 +289,10 @@ def newton(assemble: Callable[[np.ndarray], tuple[sp.spmatrix, np.ndarray]],
         Kt, rt, e = _assemble(xx)
         return Kt, rt, (_norm(rt) if not e else np.inf), e
 
-    K, r, err = _assemble(x)
+    if reuse_factors and lazy:          # the first (chord) step needs no tangent
+        K, r, _, err = _trial(x)
+    else:
+        K, r, err = _assemble(x)
     if err:
         res.reason = err
         return res
@@ -296,7 +306,7 @@ def newton(assemble: Callable[[np.ndarray], tuple[sp.spmatrix, np.ndarray]],
         res.converged = not why
         res.reason = f"inadmissible state: {why}" if why else ""
         return res
-    use_chord = False
+    use_chord = bool(reuse_factors)
     for it in range(1, max_iter + 1):
         dx = None
         if use_chord:

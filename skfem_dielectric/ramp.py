@@ -215,7 +215,8 @@ def ramp(problem: Problem, loads: Sequence[Any], *, x0: np.ndarray | None = None
          line_search: bool = True, stop_on_instability: bool = False,
          step_limit: Callable[[np.ndarray, np.ndarray, Any], float] | None = None,
          admissible: Callable[[np.ndarray, Any], str] | None = None,
-         chord: float = 0.0, predictor: str = "none") -> RampResult:
+         chord: float = 0.0, predictor: str = "none",
+         state_analysis: Callable[..., dict] | None = None) -> RampResult:
     """Run ``problem`` through the target ``loads`` with adaptive sub-stepping.
 
     Parameters
@@ -259,6 +260,15 @@ def ramp(problem: Problem, loads: Sequence[Any], *, x0: np.ndarray | None = None
         Optional ``step_limit(x, dx, load) -> alpha_max`` and ``admissible(x, load) ->
         reason`` of the admissible states (see the module docstring and :func:`newton`);
         a sub-step that converges to a state ``admissible`` rejects is cut back.
+    state_analysis
+        Optional ``state_analysis(problem, x, load, K, solver) -> dict``, called for every kept
+        step with the tangent ``K`` of the converged state, which ``solver`` has just
+        factorised (e.g. :class:`~skfem_dielectric.monitor.StabilityMonitor`: the
+        negative-eigenvalue count from the factors, the lowest modes by
+        back-substitutions); the dict is added to the step's ``quantities``,
+        ``StepResult.inertia`` is that of the converged state's tangent where the factors
+        show it, and the next load step starts with a chord step on these factors
+        (``reuse_factors`` of :func:`newton`), so that the factorisation is not wasted.
 
     Returns
     -------
@@ -279,6 +289,7 @@ def ramp(problem: Problem, loads: Sequence[Any], *, x0: np.ndarray | None = None
     for name, f in (("on_step", on_step), ("step_limit", step_limit),
                     ("admissible", admissible)):
         check_callable(name, f)
+    check_callable("state_analysis", state_analysis)
     atol, rtol = check_tolerances(atol, rtol)
     max_iter = check_count("max_iter", max_iter)
     max_cutbacks = check_nonnegative_int("max_cutbacks", max_cutbacks)
@@ -304,15 +315,40 @@ def ramp(problem: Problem, loads: Sequence[Any], *, x0: np.ndarray | None = None
     no_verdict_warned = False
     back = None          # the converged state before x and its load (secant predictor)
     out = RampResult(steps=[], converged=True)
+    reuse = False        # the solver holds the factors of the converged state's tangent
+
+    def analyse(load):
+        """``state_analysis`` of the converged ``x``: its tangent factorised by the ramp's
+        solver (counted with the step); returns ``(quantities, inertia)``."""
+        nonlocal reuse, facts, t_asm, t_sol
+        t = time.perf_counter()
+        K, _ = problem.assemble(x, load)
+        t_asm += time.perf_counter() - t
+        t = time.perf_counter()
+        try:
+            solver.solve(K, np.zeros(K.shape[0]))
+        except Exception as exc:  # a singular tangent: an exactly critical state
+            reuse = False
+            return {"state_analysis_error": f"factorisation failed: {exc}"}, None
+        t_sol += time.perf_counter() - t
+        facts += 1
+        out.factorisations += 1
+        reuse = True
+        return dict(state_analysis(problem, x, load, K, solver)), solver.factor_inertia()
 
     def record(load, target_reached):
         """Keep the converged state ``x`` at ``load`` as a step (post-processed, with the
         stability verdict of its last tangent) and report it to ``on_step``."""
+        nonlocal inertia
+        extra = {}
+        if state_analysis is not None:
+            extra, inertia = analyse(load)
         step = StepResult(load=load, converged=True, iterations=iters, substeps=subs,
                           cutbacks=cuts, residual_norms=hist, x=x.copy(),
                           assembly_seconds=t_asm, solve_seconds=t_sol, inertia=inertia,
                           target_reached=target_reached, factorisations=facts)
         step.quantities = dict(problem.postprocess(x, load))
+        step.quantities.update(extra)
         step.quantities.setdefault("stable", problem.stability(inertia))
         out.steps.append(step)
         if on_step is not None:
@@ -340,7 +376,9 @@ def ramp(problem: Problem, loads: Sequence[Any], *, x0: np.ndarray | None = None
                         step_limit=None if step_limit is None else
                         (lambda xx, dd: step_limit(xx, dd, load)),
                         admissible=None if admissible is None else
-                        (lambda xx: admissible(xx, load)), chord=chord)
+                        (lambda xx: admissible(xx, load)), chord=chord,
+                        reuse_factors=reuse)
+            reuse = False
             iters += nr.iterations
             facts += nr.factorisations
             out.factorisations += nr.factorisations

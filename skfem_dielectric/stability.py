@@ -36,7 +36,7 @@ import numpy as np
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
-from .linear import PardisoSolver, pardiso_available
+from .linear import LinearSolver, PardisoSolver, pardiso_available
 from .problem import Problem
 
 __all__ = ["tangent_inertia", "StabilityResult", "stability_analysis", "tangent_stability",
@@ -103,8 +103,54 @@ def metric_matrix(problem: Problem) -> sp.csr_matrix:
     return sp.diags(diag).tocsr()
 
 
+def _pencil_solve(Ks: sp.spmatrix, use_pardiso: bool, solver: PardisoSolver | None = None):
+    """A solve with ``Ks`` factorised: PARDISO (``solver`` keeps its analysis) or SuperLU."""
+    if use_pardiso:
+        solver = solver if solver is not None else PardisoSolver()
+        solver.solve(Ks, np.zeros(Ks.shape[0]))
+        return solver.resolve
+    return spla.splu(sp.csc_matrix(Ks), permc_spec="MMD_AT_PLUS_A").solve
+
+
+def _eig_near(solve, sigma: float, d: np.ndarray, sq: np.ndarray, n: int, m: int,
+              which: str, tol: float, v0: np.ndarray | None):
+    """``m`` eigenpairs of ``C = M^1/2 P (K - sigma M)^-1 P M^1/2`` (``solve`` applies the
+    inverse; ``which`` as ARPACK's, on ``theta = 1/(lambda - sigma)``): ascending
+    ``lambda`` and the full modes, unit ``M``-norm."""
+    nd = d.size
+
+    def solve_d(v):
+        b = np.zeros(n)
+        b[d] = sq * v
+        return solve(b)
+
+    op = spla.LinearOperator((nd, nd), matvec=lambda v: sq * solve_d(v)[d], dtype=float)
+    m = min(m, nd - 1)
+    if nd <= 2 * m + 20:         # ARPACK needs ncv < n: small systems densely
+        C = np.column_stack([op.matvec(e) for e in np.eye(nd)])
+        theta, V = np.linalg.eigh(0.5 * (C + C.T))
+        key = {"LM": -np.abs(theta), "LA": -theta, "SA": theta}[which]
+        keep = np.argsort(key, kind="stable")[:m]
+        theta, V = theta[keep], V[:, keep]
+    else:
+        # a fixed start vector: ARPACK's default is random, and so would be which of
+        # nearly equal eigenvalues it returns first
+        start = (np.random.default_rng(0).standard_normal(nd) if v0 is None or
+                 np.shape(v0) != (nd,) else np.asarray(v0, dtype=float))
+        theta, V = spla.eigsh(op, m, which=which, tol=tol, v0=start)
+    vals = sigma + 1.0 / theta
+    order = np.argsort(vals)
+    vecs = np.column_stack([solve_d(V[:, j]) * theta[j] for j in order]) if m else \
+        np.zeros((n, 0))
+    if m:
+        vecs /= np.sqrt(np.sum((sq[:, None] * vecs[d]) ** 2, axis=0))
+    return vals[order], vecs
+
+
 def lowest_modes(K: sp.spmatrix, M: sp.spmatrix, k: int, n_negative: int = 0,
-                 sigma: float | None = None, tol: float = 1e-12):
+                 sigma: float | None = None, tol: float = 1e-12, *,
+                 factors: LinearSolver | None = None, sigma_start: float | None = None,
+                 shift_solver: PardisoSolver | None = None, v0: np.ndarray | None = None):
     """The ``k`` lowest finite eigenpairs of the pencil ``K w = lambda M w``.
 
     ``M`` is diagonal, positive on the displacement-like unknowns (index set ``d``) and
@@ -112,13 +158,26 @@ def lowest_modes(K: sp.spmatrix, M: sp.spmatrix, k: int, n_negative: int = 0,
     symmetric operator ``C = M^1/2 P (K - sigma M)^-1 P M^1/2`` restricted to ``d`` (``P``
     the projection on ``d``): its eigenvalues are ``theta = 1/(lambda - sigma)`` for the
     finite ``lambda`` (the multiplier directions give ``theta = 0``), its eigenvectors the
-    ``d``-parts of the modes scaled by ``M^1/2``.  ``sigma`` defaults to just below zero (scaled to ``K``);
-    with ``n_negative > 0`` (known from the inertia) the shift first moves down by decades
-    until the inertia of ``K - sigma M`` shows no eigenvalue below it (spectrum slicing), so
-    that the eigenvalues nearest to it are the lowest; where that cannot be shown, the
-    number of eigenpairs asked for grows until all ``n_negative`` negative eigenvalues are
-    among them, so that the returned ones are the lowest.
-    ``tol`` is ARPACK's relative tolerance on ``theta``.
+    ``d``-parts of the modes scaled by ``M^1/2``.
+
+    With a given ``sigma`` the ``k`` eigenvalues nearest to it are returned.  Otherwise the
+    spectrum is taken in two parts, each where Lanczos separates it well:
+
+    * the non-negative eigenvalues at the shift 0 (``factors``, a solver that holds the
+      factorisation of ``K`` itself, serves it without a new factorisation; else ``K`` is
+      factorised, with a shift just below zero when it is singular), as the largest
+      positive ``theta``: the soft modes nearest to zero come first;
+    * the ``n_negative`` negative ones (known from the inertia) by spectrum slicing: the
+      shift moves down by decades (from ``sigma_start`` by factors of 2 when given, e.g.
+      1.5 times the previous state's lowest eigenvalue) until the inertia of
+      ``K - sigma M`` shows no eigenvalue below it, and the ones nearest to it are the
+      lowest; the number asked for grows until all the negative ones wanted are found.
+
+    ``shift_solver``, a :class:`~skfem_dielectric.linear.PardisoSolver`, factorises the
+    shifted matrices with its symbolic analysis kept from call to call; ``v0`` (length
+    ``nd``: the displacement-like unknowns scaled by ``M^1/2``, e.g. the previous lowest
+    mode) starts the Lanczos iteration of the negative part (of the other where there is
+    none).  ``tol`` is ARPACK's relative tolerance on ``theta``.
 
     Returns
     -------
@@ -150,67 +209,62 @@ def lowest_modes(K: sp.spmatrix, M: sp.spmatrix, k: int, n_negative: int = 0,
         return Ks
 
     use_pardiso = pardiso_available() and n > DENSE_LIMIT    # symmetric LDL^T
-    pardiso = None           # PARDISO's factors of the current shift, once computed
-    below_all = False        # no eigenvalue below the shift: the nearest ones are the lowest
-    if sigma is None:
-        sigma = -1e-8 * float(abs(K).max())
-        if n_negative > 0:
-            # spectrum slicing: move the shift below the lowest eigenvalue (no eigenvalue
-            # under it: n_neg(K - sigma M) = n - nd, the multipliers' count), so that the
-            # negative eigenvalues are the ones nearest to it and come first -- a shift near
-            # zero would first return every soft positive mode closer to zero than them
-            for _ in range(16):
-                if use_pardiso:     # the factors that give the inertia serve the solves
-                    pardiso = PardisoSolver()
-                    pardiso.solve(shifted(sigma), np.zeros(n))
-                    below = pardiso.inertia[1] - (n - nd)
-                else:
-                    try:
-                        below = tangent_inertia(shifted(sigma), "auto" if n > DENSE_LIMIT
-                                                // 10 else "dense")[1] - (n - nd)
-                    except ValueError:   # SuperLU without diagonal pivots: keep this shift
-                        break
-                if below <= 0:
-                    below_all = True
-                    break
-                sigma *= 10.0
-                pardiso = None
-    Ks = shifted(sigma)
-    if use_pardiso:                                 # factorised once per shift
-        if pardiso is None:
-            pardiso = PardisoSolver()
-            pardiso.solve(Ks, np.zeros(n))
-        solve = pardiso.resolve
-    else:
-        solve = spla.splu(sp.csc_matrix(Ks), permc_spec="MMD_AT_PLUS_A").solve
-
-    def solve_d(v):
-        b = np.zeros(n)
-        b[d] = sq * v
-        return solve(b)
-
-    op = spla.LinearOperator((nd, nd), matvec=lambda v: sq * solve_d(v)[d], dtype=float)
-    want = k if below_all else k + max(0, n_negative)
-    while True:
-        m = min(want, nd - 1)
-        if nd <= 2 * m + 20:     # ARPACK needs ncv < n: small systems densely
-            C = np.column_stack([op.matvec(e) for e in np.eye(nd)])
-            theta, V = np.linalg.eigh(0.5 * (C + C.T))
-            keep = np.argsort(-np.abs(theta))[:m]
-            theta, V = theta[keep], V[:, keep]
+    if sigma is not None:
+        return _eig_near(_pencil_solve(shifted(sigma), use_pardiso, shift_solver), sigma,
+                         d, sq, n, k, "LM", tol, v0)
+    tiny = -1e-8 * float(abs(K).max())
+    parts = []
+    n_neg = max(0, int(n_negative))
+    if n_neg:
+        sig, grow, solve = tiny, 10.0, None
+        if sigma_start is not None and sigma_start < sig:
+            sig, grow = float(sigma_start), 2.0
+        for _ in range(40):
+            # spectrum slicing: the shift below the lowest eigenvalue (no eigenvalue under
+            # it: n_neg(K - sigma M) = n - nd, the multipliers' count); a shift near zero
+            # would return every soft positive mode nearer to zero than the negative ones
+            if use_pardiso:     # the factors that give the inertia serve the solves
+                ps = shift_solver if shift_solver is not None else PardisoSolver()
+                ps.solve(shifted(sig), np.zeros(n))
+                below, solve = ps.inertia[1] - (n - nd), ps.resolve
+            else:
+                try:
+                    below = tangent_inertia(shifted(sig), "auto" if n > DENSE_LIMIT // 10
+                                            else "dense")[1] - (n - nd)
+                except ValueError:   # SuperLU without diagonal pivots: keep this shift
+                    below = 0
+            if below <= 0:
+                break
+            sig *= grow
+        if solve is None:
+            solve = _pencil_solve(shifted(sig), use_pardiso, shift_solver)
+        # the ``want`` eigenvalues nearest the shift below them all are the lowest (asking
+        # for more would add soft positive ones, clustered at theta ~ 1/|sigma|, which
+        # Lanczos converges to slowly)
+        want = min(k, n_neg)
+        m = want
+        while True:
+            vals, vecs = _eig_near(solve, sig, d, sq, n, m, "LM", tol, v0)
+            neg = vals < 0
+            if np.sum(neg) >= want or m >= nd - 1:
+                parts.append((vals[neg][:want], vecs[:, neg][:, :want]))
+                break
+            m *= 2
+    if n_neg < k:
+        sig0, solve0 = 0.0, None
+        if factors is not None and factors.resolve(np.zeros(n)) is not None:
+            solve0 = factors.resolve
         else:
-            # a fixed start vector: ARPACK's default is random, and so would be which of
-            # nearly equal eigenvalues it returns first
-            v0 = np.random.default_rng(0).standard_normal(nd)
-            theta, V = spla.eigsh(op, m, which="LM", tol=tol, v0=v0)
-        vals = sigma + 1.0 / theta
-        order = np.argsort(vals)
-        vals, V, theta = vals[order], V[:, order], theta[order]
-        if below_all or np.sum(vals < 0) >= n_negative or m == nd - 1:
-            vecs = np.column_stack([solve_d(V[:, j]) * theta[j] for j in range(k)])
-            vecs /= np.sqrt(np.sum(md[d, None] * vecs[d] ** 2, axis=0))
-            return vals[:k], vecs
-        want *= 2
+            sig0 = tiny
+            solve0 = _pencil_solve(shifted(sig0), use_pardiso, shift_solver)
+        vals, vecs = _eig_near(solve0, sig0, d, sq, n, k - n_neg, "LA", tol,
+                               None if n_neg else v0)
+        keep = vals >= 0 if n_neg else np.ones(vals.size, bool)
+        parts.append((vals[keep], vecs[:, keep]))
+    vals = np.concatenate([p[0] for p in parts])
+    vecs = np.column_stack([p[1] for p in parts])
+    order = np.argsort(vals)[:k]
+    return vals[order], vecs[:, order]
 
 
 @dataclass
@@ -303,7 +357,8 @@ def stability_analysis(problem: Problem, x: np.ndarray, load: Any, *, k: int = 0
 
 def tangent_stability(problem: Problem, K: sp.spmatrix, *, k: int = 0,
                       method: str = "auto", all_negative: bool = False,
-                      tol: float = 1e-12, metric: sp.spmatrix | None = None
+                      tol: float = 1e-12, metric: sp.spmatrix | None = None,
+                      factors: LinearSolver | None = None, **reuse: Any
                       ) -> StabilityResult:
     """:func:`stability_analysis` of a given tangent ``K`` of ``problem`` (no equilibrium
     check): e.g. the grad-div stabilised tangent at a state of the unstabilised model.
@@ -323,6 +378,13 @@ def tangent_stability(problem: Problem, K: sp.spmatrix, *, k: int = 0,
     metric
         Diagonal metric ``M`` of the modes (default :func:`metric_matrix`; positive on
         the displacement-like unknowns, zero on the multipliers).
+    factors
+        A linear solver that has just factorised ``K`` (e.g. the ramp's, see
+        ``state_analysis`` of :func:`~skfem_dielectric.ramp.ramp`): its inertia is the
+        count where the factors show it (no new factorisation), and its back-substitutions
+        serve the modes of a state without negative eigenvalues.
+    **reuse
+        ``sigma_start``, ``shift_solver``, ``v0`` of :func:`lowest_modes`.
 
     Returns
     -------
@@ -332,10 +394,16 @@ def tangent_stability(problem: Problem, K: sp.spmatrix, *, k: int = 0,
         raise ValueError(f"k must be an integer >= 0, got {k!r}")
     if K.shape != (problem.ndofs, problem.ndofs):
         raise ValueError(f"K must have shape ({problem.ndofs}, {problem.ndofs}), got {K.shape}")
+    unknown = set(reuse) - {"sigma_start", "shift_solver", "v0"}
+    if unknown:
+        raise ValueError(f"unknown keyword arguments {sorted(unknown)} (allowed: "
+                         "sigma_start, shift_solver, v0)")
     if method == "auto" and not pardiso_available() and K.shape[0] <= DENSE_LIMIT // 10:
         method = "dense"
+    inertia = factors.factor_inertia() if factors is not None else None
     try:
-        inertia = tangent_inertia(K, method)
+        if inertia is None:
+            inertia = tangent_inertia(K, method)
     except ValueError as exc:
         # SuperLU met a zero pivot (a multiplier eliminated before its displacements);
         # small systems are counted densely instead, large ones need PARDISO
@@ -352,6 +420,7 @@ def tangent_stability(problem: Problem, K: sp.spmatrix, *, k: int = 0,
         k = max(int(k), out.n_negative)
     if k:
         M = metric_matrix(problem) if metric is None else metric
-        out.eigenvalues, out.modes = lowest_modes(K, M, int(k), max(0, out.n_negative),
-                                                  tol=tol)
+        out.eigenvalues, out.modes = lowest_modes(
+            K, M, int(k), max(0, out.n_negative), tol=tol,
+            factors=factors if out.n_zero == 0 else None, **reuse)
     return out

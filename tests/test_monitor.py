@@ -1,0 +1,121 @@
+"""Stability of every converged ramp state on the ramp's own factorisation.
+
+References: dense eigenvalues of the same tangents (the count by Sylvester's law; the
+lowest pencil eigenvalues from the inverse of the dense tangent, as in test_stability.py),
+the states of the same ramp without the analysis (Newton tolerance), and a dense inertia
+for the SuperLU factors.
+"""
+
+from __future__ import annotations
+
+import warnings
+
+import numpy as np
+import pytest
+import scipy.sparse as sp
+
+import skfem_dielectric as fe
+from skfem_dielectric.linear import SuperLUSolver, get_linear_solver
+from skfem_dielectric.stability import metric_matrix, tangent_inertia
+
+SOLVERS = ["superlu"] + (["pardiso"] if fe.pardiso_available() else [])
+
+
+def _pencil_eigenvalues(pb, K):
+    """Finite eigenvalues of ``K w = lambda M w`` from the dense inverse (ascending)."""
+    d = np.flatnonzero(metric_matrix(pb).diagonal() > 0)
+    theta = np.linalg.eigvalsh(np.linalg.inv(K.toarray())[np.ix_(d, d)])
+    theta = theta[np.abs(theta) > 1e-9 * np.abs(theta).max()]
+    return np.sort(1.0 / theta)
+
+
+def _quarter_ramp(solver, state_analysis=None):
+    # the clamped quarter plate (full thickness, 4 x 1 x 2): clamp-corner modes make the
+    # count 0 after the first pre-load step and > 0 later, so both branches of the modes
+    # (shift 0 on the ramp's factors; spectrum slicing) are exercised
+    pb = fe.keplinger_problem(elements=(4, 1, 2), symmetry="quarter")
+    s = fe.keplinger_s(1.0, g=9.81)
+    loads = [np.array([s * k / 3, 0.0]) for k in (1, 2, 3)] + [np.array([s, 1.0]),
+                                                               np.array([s, 2.0])]
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", RuntimeWarning)
+        res = fe.ramp(pb, loads, atol=1e-10, rtol=1e-11, chord=0.1,
+                      linear_solver=solver, state_analysis=state_analysis)
+    assert res.converged, res.reason
+    return pb, res
+
+
+@pytest.mark.parametrize("solver", SOLVERS)
+def test_monitor_counts_and_modes_equal_the_dense_spectrum(solver):
+    mon = fe.StabilityMonitor(k=6, tol=1e-12)
+    pb, res = _quarter_ramp(solver, mon)
+    plain = _quarter_ramp(solver)[1]
+    counts = []
+    for st, st0, (load, n_neg, n_zero, ev) in zip(res.steps, plain.steps, mon.history):
+        K, _ = pb.assemble(st.x, st.load)
+        dense = tangent_inertia(K, "dense")
+        ref = _pencil_eigenvalues(pb, K)
+        # the count is exact (Sylvester): the inertia of the ramp's factors
+        assert st["n_negative"] == n_neg == dense[1] - pb.layout.n_multipliers
+        assert st.inertia is None or tuple(st.inertia) == dense
+        # Lanczos tolerance 1e-12 relative in theta = 1/(lambda - sigma); the dense
+        # inverse of a tangent with condition ~1e8 is good to ~1e-8 relative
+        assert ev == pytest.approx(ref[:6], rel=1e-7, abs=1e-12)
+        assert st["lowest_eig"] == pytest.approx(ref[0], rel=1e-7)
+        # the factorisation only starts the next Newton solve: the same states within the
+        # Newton tolerance (1e-11 relative to the load scale)
+        assert np.abs(st.x - st0.x).max() <= 1e-8 * max(1.0, np.abs(st0.x).max())
+        counts.append(n_neg)
+    assert min(counts) == 0 and max(counts) > 0
+    # the state's factorisation replaces the next step's first one (at most one more per
+    # target, and with chord steps usually none)
+    assert res.factorisations <= plain.factorisations + len(res.steps)
+
+
+def test_reuse_factors_starts_with_a_chord_step():
+    pb = fe.keplinger_problem(elements=(4, 1, 2))
+    s = fe.keplinger_s(1.0, g=9.81)
+    a, b = np.array([s, 0.0]), np.array([s, 0.5])
+    x_a = fe.ramp(pb, [a / 2, a], atol=1e-10, rtol=1e-11).x
+    ref = fe.newton(lambda x: pb.assemble(x, b), x_a, atol=1e-10, rtol=1e-11,
+                    scale=pb.residual_scale(b))
+    solver = get_linear_solver("superlu")
+    K, _ = pb.assemble(x_a, a)
+    solver.solve(K, np.zeros(pb.ndofs))
+    nr = fe.newton(lambda x: pb.assemble(x, b), x_a, residual=lambda x: pb.residual(x, b),
+                   linear_solver=solver, atol=1e-10, rtol=1e-11, chord=0.1,
+                   scale=pb.residual_scale(b), reuse_factors=True)
+    assert nr.converged and ref.converged
+    assert nr.chord_steps >= 1 and nr.factorisations < ref.factorisations
+    # both converge to the same state within the Newton tolerance
+    assert np.abs(nr.x - ref.x).max() <= 1e-8 * np.abs(ref.x).max()
+
+
+def test_superlu_factor_inertia_is_the_dense_inertia():
+    rng = np.random.default_rng(2)
+    A = rng.standard_normal((30, 30))
+    A = A @ A.T + 30 * np.eye(30) - 40 * np.diag(rng.random(30) < 0.3)
+    B = rng.standard_normal((5, 30))
+    K = sp.csr_matrix(np.block([[A, B.T], [B, -np.eye(5)]]))
+    sol = SuperLUSolver()
+    assert sol.factor_inertia() is None          # nothing factorised yet
+    sol.solve(K, np.ones(35))
+    # this matrix keeps to diagonal pivots (equal row and column permutations), so
+    # U = D L^T and the signs of diag(U) are the eigenvalue signs (30 positive, 5 negative)
+    assert sol.factor_inertia() == tangent_inertia(K, "dense") == (30, 5, 0)
+
+
+def test_monitor_bad_input():
+    with pytest.raises(ValueError, match="k"):
+        fe.StabilityMonitor(k=-1)
+    with pytest.raises(ValueError, match="tol"):
+        fe.StabilityMonitor(tol=0.0)
+    pb = fe.keplinger_problem(elements=(2, 1, 1), coupling="maxwell")
+    with pytest.raises(ValueError, match="not symmetric"):
+        fe.StabilityMonitor()(pb, pb.initial_state(), (0.0, 0.0), None, None)
+    pb = fe.keplinger_problem(elements=(2, 1, 1))
+    K, _ = pb.assemble(pb.initial_state(), (0.0, 0.0))
+    with pytest.raises(ValueError, match="sigma_start, shift_solver, v0"):
+        fe.tangent_stability(pb, K, k=1, sigma0=1.0)
+    with pytest.raises(ValueError, match="state_analysis"):
+        fe.ramp(pb, [(0.1, 0.0)], state_analysis=3)
