@@ -49,3 +49,30 @@ def test_quick_grid_matches_the_dispersion_relation(tmp_path, capsys):
     for i in range(2):
         assert abs(el["lam_fe"][i] / el["lam_stroh"][i] - 1) <= 1e-3, el["kh"][i]
         assert 0.666 < el["lam_stroh"][i] < 1.0
+
+
+def test_wrinkling_rows_resume_from_the_csv(tmp_path, monkeypatch):
+    # the FE row is replaced by a cheap stand-in that records its calls: what is tested is
+    # the bookkeeping (an interrupted run keeps its rows, a rerun computes only the rest)
+    import validation.wrinkling as wr
+    calls = []
+
+    def fake_row(control, mode, lam, kh, n1):
+        calls.append((control, mode, lam, kh))
+        return [control, mode, lam, kh, 1.0 + lam * kh / 7, 1.0, lam * kh / 7, f"{n1}x2",
+                0, 0, ""]
+
+    monkeypatch.setattr(wr, "_row", fake_row)
+    path = tmp_path / "wrinkling-fe.csv"
+    first = wr.wrinkling_rows(quick=True, path=path)
+    n = len(first)
+    assert len(calls) == n == 8      # 2 controls x 2 modes x 1 lam x 2 kh
+    lines = path.read_text().splitlines()
+    assert len(lines) == n + 1       # written as it went: header and every row
+    path.write_text("\n".join(lines[:-3]) + "\n")    # a run killed three rows early
+    calls.clear()
+    again = wr.wrinkling_rows(quick=True, path=path)
+    assert len(calls) == 3 and again == first
+    path.write_text("control,mode,other\n")          # another file: recomputed
+    calls.clear()
+    assert wr.wrinkling_rows(quick=True, path=path) == first and len(calls) == n

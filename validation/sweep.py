@@ -724,9 +724,13 @@ def folder_results(out, results=()) -> list[CaseResult]:
 def extra_case_result(name: str, out, *, quick: bool = False) -> CaseResult:
     """Run the case ``name`` of :data:`~validation.extra_cases.EXTRA_CASES` (not a charge
     ramp: the continuation through the snap-through, the FE wrinkling against Stroh) into
-    ``out`` and summarise it with its own error measure."""
+    ``out`` and summarise it with its own error measure.  The case is locked like a
+    registered one (``out/.state/<name>.lock``): a second process writing it is refused."""
     case = EXTRA_CASES[name]
-    paths, summ = case.run(out, quick=quick)
+    state_root = Path(out) / ".state"
+    state_root.mkdir(parents=True, exist_ok=True)
+    with FolderLock(state_root / f"{name}.lock", f"case {name!r} in {out}"):
+        paths, summ = case.run(out, quick=quick)
     return CaseResult(name, case.figure, str(paths[0]), summ["n_runs"], summ["n_points"],
                       summ["max_rel_error"], max_rel_error_by_run=summ["max_rel_error_by_run"],
                       reasons=summ["reasons"], runtime_s=summ["runtime_s"], quick=quick)

@@ -7,7 +7,10 @@ sliding ends (:func:`skfem_dielectric.wrinkling_section`,
 :func:`analytic.critical_D0`, the finite-thickness dispersion relation of the paper's
 Sec. 3 (under voltage control both are the critical ``D0 = lam^4 E0``).  Written as
 ``DIR/wrinkling-fe.csv`` (one row per grid point; a point without a Stroh root says so)
-and ``DIR/wrinkling-fe.png`` (FE dots on the dispersion curves).
+and ``DIR/wrinkling-fe.png`` (FE dots on the dispersion curves).  The CSVs are rewritten
+(atomically) after every row, and a rerun into the same folder keeps the rows it finds
+there (same columns and grid point) and computes only the missing ones: an interrupted run
+resumes.
 """
 
 from __future__ import annotations
@@ -22,6 +25,8 @@ from scipy.optimize import brentq
 
 import analytic as an
 import skfem_dielectric as fe
+
+import csv
 
 from .store import write_csv_atomic
 
@@ -78,15 +83,59 @@ def _row(control, mode, lam, kh, n1) -> list:
     return base + [d0, ref, d0 / ref - 1.0, f"{n1}x{n2}", r.n_negative_below, n_ref, ""]
 
 
-def wrinkling_rows(quick: bool = False, on_row=None) -> list[list]:
-    """Every row of the grid (``on_row(row)`` after each, e.g. for progress)."""
+def _cell(text: str):
+    """A CSV cell back as the row value: ``None`` (empty), a float, or the text."""
+    if text == "":
+        return None
+    try:
+        return float(text)
+    except ValueError:
+        return text
+
+
+class _RowFile:
+    """Rows of one CSV, kept by key (the first ``nkey`` cells as written), rewritten
+    atomically after every new row.  Rows of an existing file with the same header are
+    reused; a file with other columns is ignored (and replaced)."""
+
+    def __init__(self, path: Path | None, columns: list[str], nkey: int):
+        self.path, self.columns, self.nkey = path, columns, nkey
+        self.known: dict[tuple, list[str]] = {}
+        if path is not None and path.is_file():
+            with open(path, newline="") as fh:
+                lines = list(csv.reader(fh))
+            if lines and lines[0] == columns:
+                self.known = {tuple(r[:nkey]): r for r in lines[1:] if len(r) == len(columns)}
+        self.rows: list[list[str]] = []
+
+    def get(self, key: tuple, compute) -> list:
+        """The row of ``key`` (cells formatted as the CSV's): reused, or computed and
+        written."""
+        k = tuple(_fmt(v) for v in key)
+        row = self.known.get(k)
+        if row is None:
+            row = [_fmt(v) for v in compute()]
+            self.known[k] = row
+            self.rows.append(row)
+            if self.path is not None:
+                write_csv_atomic(self.path, self.columns, self.rows)
+        else:
+            self.rows.append(row)
+        return [_cell(c) for c in row]
+
+
+def wrinkling_rows(quick: bool = False, on_row=None, path: Path | None = None) -> list[list]:
+    """Every row of the grid (``on_row(row)`` after each, e.g. for progress); with
+    ``path`` the CSV is written after every row and the rows already in it are reused."""
     g = wrinkling_grid(quick)
+    store = _RowFile(path, WRINKLING_COLUMNS, 4)
     rows = []
     for control in CONTROLS:
         for mode in MODES:
             for lam in g["lam"]:
                 for kh in g["kh"]:
-                    rows.append(_row(control, mode, lam, kh, g["n1"]))
+                    rows.append(store.get((control, mode, lam, kh), lambda: _row(
+                        control, mode, lam, kh, g["n1"])))
                     if on_row is not None:
                         on_row(rows[-1])
     return rows
@@ -136,12 +185,14 @@ def _elastic_row(mode, kh, n1) -> list:
     return [mode, kh, lam, ref, lam / ref - 1.0, f"{n1}x{n2}", ""]
 
 
-def elastic_rows(quick: bool = False, on_row=None) -> list[list]:
-    """The rows of :func:`elastic_grid` (``on_row(row)`` after each)."""
+def elastic_rows(quick: bool = False, on_row=None, path: Path | None = None) -> list[list]:
+    """The rows of :func:`elastic_grid` (``on_row(row)`` after each; ``path`` as in
+    :func:`wrinkling_rows`)."""
     g = elastic_grid(quick)
+    store = _RowFile(path, ELASTIC_COLUMNS, 2)
     rows = []
     for mode, kh in g["rows"]:
-        rows.append(_elastic_row(mode, kh, g["n1"]))
+        rows.append(store.get((mode, kh), lambda: _elastic_row(mode, kh, g["n1"])))
         if on_row is not None:
             on_row(rows[-1])
     return rows
@@ -218,12 +269,11 @@ def run_wrinkling_fe(out, quick: bool = False, on_row=None,
     ``out/wrinkling-fe.png``; return their paths."""
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
-    rows = wrinkling_rows(quick, on_row)
-    csv_path = write_csv_atomic(out / "wrinkling-fe.csv", WRINKLING_COLUMNS,
-                                [[_fmt(v) for v in r] for r in rows])
-    elastic = elastic_rows(quick, on_elastic_row)
-    csv_elastic = write_csv_atomic(out / "wrinkling-fe-elastic.csv", ELASTIC_COLUMNS,
-                                   [[_fmt(v) for v in r] for r in elastic])
+    csv_path, csv_elastic = out / "wrinkling-fe.csv", out / "wrinkling-fe-elastic.csv"
+    rows = wrinkling_rows(quick, on_row, path=csv_path)
+    write_csv_atomic(csv_path, WRINKLING_COLUMNS, [[_fmt(v) for v in r] for r in rows])
+    elastic = elastic_rows(quick, on_elastic_row, path=csv_elastic)
+    write_csv_atomic(csv_elastic, ELASTIC_COLUMNS, [[_fmt(v) for v in r] for r in elastic])
     ax = wrinkling_figure(rows, elastic=elastic)
     fig = ax[0].figure
     fig.tight_layout(rect=(0, 0.03, 1, 1))
