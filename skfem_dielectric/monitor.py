@@ -24,6 +24,7 @@ tangent (the count exactly, the eigenvalues to the Lanczos tolerance ``tol``).
 
 from __future__ import annotations
 
+import time
 from typing import Any
 
 import numpy as np
@@ -56,6 +57,8 @@ class StabilityMonitor:
     last
         The :class:`~skfem_dielectric.stability.StabilityResult` of the last state (with
         its modes).
+    seconds
+        Wall time of each analysis (the factorisation of the tangent is the ramp's).
 
     Raises
     ------
@@ -79,6 +82,7 @@ class StabilityMonitor:
         self.method = method
         self.history: list[tuple[Any, int, int, np.ndarray]] = []
         self.last: StabilityResult | None = None
+        self.seconds: list[float] = []
         self._shift: PardisoSolver | None = None
         self._metric = None
 
@@ -91,6 +95,7 @@ class StabilityMonitor:
             raise ValueError(f"the tangent of {type(problem).__name__} is not symmetric "
                              "(follower loads of the Maxwell coupling): its eigenvalues are "
                              "no stability statement")
+        t0 = time.perf_counter()
         reuse: dict[str, Any] = {}
         if self.k:
             if self._metric is None or self._metric[0] is not problem:
@@ -103,13 +108,19 @@ class StabilityMonitor:
             _, M, d, sq = self._metric
             prev = self.last
             if prev is not None and prev.eigenvalues.size and prev.modes.shape[0] == K.shape[0]:
-                if prev.eigenvalues[0] < 0:
-                    reuse["sigma_start"] = 1.5 * float(prev.eigenvalues[0])
+                low = float(prev.eigenvalues[0])
+                if low < 0:     # the trend of the last two states, never above the last
+                    trend = [h[3][0] for h in self.history[-2:] if h[3].size]
+                    guess = min(low, 2 * low - trend[0]) if len(trend) == 2 else low
+                    reuse["sigma_start"], reuse["sigma_growth"] = 1.5 * guess, 2.0
+                elif low > 0:   # an onset: negative ones just crossed zero
+                    reuse["sigma_start"], reuse["sigma_growth"] = -10.0 * low, 10.0
                 reuse["v0"] = sq * prev.modes[d, 0]
             reuse["shift_solver"] = self._shift
         st = tangent_stability(problem, K, k=self.k, method=self.method, tol=self.tol,
                                factors=solver, metric=M if self.k else None, **reuse)
         self.last = st
         self.history.append((load, st.n_negative, st.n_zero, st.eigenvalues.copy()))
+        self.seconds.append(time.perf_counter() - t0)
         return {"n_negative": st.n_negative, "n_zero": st.n_zero,
                 "lowest_eig": st.lowest_eig}

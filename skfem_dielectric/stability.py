@@ -137,7 +137,10 @@ def _eig_near(solve, sigma: float, d: np.ndarray, sq: np.ndarray, n: int, m: int
         # nearly equal eigenvalues it returns first
         start = (np.random.default_rng(0).standard_normal(nd) if v0 is None or
                  np.shape(v0) != (nd,) else np.asarray(v0, dtype=float))
-        theta, V = spla.eigsh(op, m, which=which, tol=tol, v0=start)
+        # Lanczos basis 2m + 1, at least 8 (ARPACK's default 20 costs 22 back-
+        # substitutions for one well-separated eigenvalue; 8: 10, same eigenvalue)
+        theta, V = spla.eigsh(op, m, which=which, tol=tol, v0=start,
+                              ncv=min(nd - 1, max(2 * m + 1, 8)))
     vals = sigma + 1.0 / theta
     order = np.argsort(vals)
     vecs = np.column_stack([solve_d(V[:, j]) * theta[j] for j in order]) if m else \
@@ -150,7 +153,8 @@ def _eig_near(solve, sigma: float, d: np.ndarray, sq: np.ndarray, n: int, m: int
 def lowest_modes(K: sp.spmatrix, M: sp.spmatrix, k: int, n_negative: int = 0,
                  sigma: float | None = None, tol: float = 1e-12, *,
                  factors: LinearSolver | None = None, sigma_start: float | None = None,
-                 shift_solver: PardisoSolver | None = None, v0: np.ndarray | None = None):
+                 sigma_growth: float = 2.0, shift_solver: PardisoSolver | None = None,
+                 v0: np.ndarray | None = None):
     """The ``k`` lowest finite eigenpairs of the pencil ``K w = lambda M w``.
 
     ``M`` is diagonal, positive on the displacement-like unknowns (index set ``d``) and
@@ -168,8 +172,8 @@ def lowest_modes(K: sp.spmatrix, M: sp.spmatrix, k: int, n_negative: int = 0,
       factorised, with a shift just below zero when it is singular), as the largest
       positive ``theta``: the soft modes nearest to zero come first;
     * the ``n_negative`` negative ones (known from the inertia) by spectrum slicing: the
-      shift moves down by decades (from ``sigma_start`` by factors of 2 when given, e.g.
-      1.5 times the previous state's lowest eigenvalue) until the inertia of
+      shift moves down by decades (from ``sigma_start`` by factors of ``sigma_growth``
+      when given, e.g. 1.5 times the previous state's lowest eigenvalue) until the inertia of
       ``K - sigma M`` shows no eigenvalue below it, and the ones nearest to it are the
       lowest; the number asked for grows until all the negative ones wanted are found.
 
@@ -218,7 +222,7 @@ def lowest_modes(K: sp.spmatrix, M: sp.spmatrix, k: int, n_negative: int = 0,
     if n_neg:
         sig, grow, solve = tiny, 10.0, None
         if sigma_start is not None and sigma_start < sig:
-            sig, grow = float(sigma_start), 2.0
+            sig, grow = float(sigma_start), float(sigma_growth)
         for _ in range(40):
             # spectrum slicing: the shift below the lowest eigenvalue (no eigenvalue under
             # it: n_neg(K - sigma M) = n - nd, the multipliers' count); a shift near zero
@@ -384,7 +388,8 @@ def tangent_stability(problem: Problem, K: sp.spmatrix, *, k: int = 0,
         count where the factors show it (no new factorisation), and its back-substitutions
         serve the modes of a state without negative eigenvalues.
     **reuse
-        ``sigma_start``, ``shift_solver``, ``v0`` of :func:`lowest_modes`.
+        ``sigma_start``, ``sigma_growth``, ``shift_solver``, ``v0`` of
+        :func:`lowest_modes`.
 
     Returns
     -------
@@ -394,10 +399,10 @@ def tangent_stability(problem: Problem, K: sp.spmatrix, *, k: int = 0,
         raise ValueError(f"k must be an integer >= 0, got {k!r}")
     if K.shape != (problem.ndofs, problem.ndofs):
         raise ValueError(f"K must have shape ({problem.ndofs}, {problem.ndofs}), got {K.shape}")
-    unknown = set(reuse) - {"sigma_start", "shift_solver", "v0"}
+    unknown = set(reuse) - {"sigma_start", "sigma_growth", "shift_solver", "v0"}
     if unknown:
         raise ValueError(f"unknown keyword arguments {sorted(unknown)} (allowed: "
-                         "sigma_start, shift_solver, v0)")
+                         "sigma_start, sigma_growth, shift_solver, v0)")
     if method == "auto" and not pardiso_available() and K.shape[0] <= DENSE_LIMIT // 10:
         method = "dense"
     inertia = factors.factor_inertia() if factors is not None else None

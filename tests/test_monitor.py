@@ -115,7 +115,7 @@ def test_monitor_bad_input():
         fe.StabilityMonitor()(pb, pb.initial_state(), (0.0, 0.0), None, None)
     pb = fe.keplinger_problem(elements=(2, 1, 1))
     K, _ = pb.assemble(pb.initial_state(), (0.0, 0.0))
-    with pytest.raises(ValueError, match="sigma_start, shift_solver, v0"):
+    with pytest.raises(ValueError, match="sigma_start, sigma_growth, shift_solver, v0"):
         fe.tangent_stability(pb, K, k=1, sigma0=1.0)
     with pytest.raises(ValueError, match="state_analysis"):
         fe.ramp(pb, [(0.1, 0.0)], state_analysis=3)
