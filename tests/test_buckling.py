@@ -10,6 +10,7 @@ import skfem_dielectric as fe
 from skfem_dielectric.buckling import buckling_load, corner_radius, physical_modes
 from skfem_dielectric.drivers import equibiaxial_problem, keplinger_problem
 from skfem_dielectric.symmetry_classes import class_stability
+from validation.cli import main
 
 SIZE = (8.0, 1.0, 4.0)
 
@@ -104,3 +105,13 @@ def test_bad_input(end_compression):
                   [np.zeros(3)])
     with pytest.raises(ValueError, match="result must come from a plate driver"):
         buckling_load(res)
+
+
+def test_cli_rejects_bad_options(tmp_path, capsys):
+    with pytest.raises(SystemExit) as exc:      # argparse: usage error, exit code 2
+        main(["buckling", "--meshes", "10x1", "--out", str(tmp_path)])
+    assert exc.value.code == 2 and "N1xN2xN3" in capsys.readouterr().err
+    assert main(["buckling", "--quick", "--D0-step", "0", "--out", str(tmp_path)]) == 2
+    assert "--D0-step must be > 0" in capsys.readouterr().err
+    assert main(["buckling", "--quick", "--alpha", "-1", "--out", str(tmp_path)]) == 2
+    assert "--alpha must be > 0" in capsys.readouterr().err
