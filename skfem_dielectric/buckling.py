@@ -359,9 +359,11 @@ def buckling_load(result: RampResult | PlateProblem,
 def _locate(problem, a, b, phys_b, opts, scan, tol, maxiter, ramp_options) -> BucklingLoad:
     """:func:`critical_load` of the physical mode found at ``b``, tracked back to ``a``.
 
-    Re-classifying at every trial would make the indicator jump where a mode's
-    indicators cross a threshold; instead the eigenvalue of the critical class whose mode
-    overlaps most with the physical mode at ``b`` is followed (one class per trial).
+    Taking the lowest physical mode over all classes at every trial would make the
+    indicator jump where another mode's indicators cross a threshold; instead, among the
+    modes of the critical class classified physical, the one that overlaps most with the
+    physical mode at ``b`` is followed (one class per trial; a flagged mode that mixes
+    with it is not followed).
     """
     for key, value in newton_guards(problem).items():
         ramp_options.setdefault(key, value)
@@ -369,10 +371,19 @@ def _locate(problem, a, b, phys_b, opts, scan, tol, maxiter, ramp_options) -> Bu
     ref = phys_b.mode[:n_u] / np.linalg.norm(phys_b.mode[:n_u])
     spec = dict(extra=opts["extra"], grad_div=opts["grad_div"], method=opts["method"])
 
+    r = corner_radius(problem) if opts["radius"] is None else opts["radius"]
+
     def eig(x, load):
+        # among the class's modes classified physical, the one most like the mode at b
         c, _, vals, vecs = class_spectra(problem, x, load, only=[phys_b.symmetry], **spec)[0]
-        ov = [abs(ref @ class_mode_full(c, vecs[:, j])[:n_u]) for j in range(vals.size)]
-        return float(vals[int(np.argmax(ov))])
+        xf = problem.full(x, load)
+        best, value = -1.0, np.inf
+        for j in range(vals.size):
+            w = class_mode_full(c, vecs[:, j])
+            ov = abs(ref @ w[:n_u]) / max(np.linalg.norm(w[:n_u]), 1e-300)
+            if ov > best and classify_mode(problem, xf, w, radius=r)["kind"] == "physical":
+                best, value = ov, float(vals[j])
+        return value
 
     crit = critical_load(problem, a[0], np.asarray(a[1], float), np.asarray(b[1], float), eig,
                          tol=tol, maxiter=maxiter, **ramp_options)
