@@ -1,4 +1,5 @@
-"""The ``skfem-dielectric`` command line: ``list | curves | simulate | validate | bench``.
+"""The ``skfem-dielectric`` command line: ``list | curves | simulate | validate | bench |
+wrinkling-fe | buckling``.
 
 Every subcommand has ``--help``. Only this module prints, and it writes files
 only into the folder given by ``--out``.
@@ -17,6 +18,7 @@ from pathlib import Path
 
 import numpy as np
 
+from .buckling import FULL as BUCKLING_FULL, QUICK as BUCKLING_QUICK, run_buckling
 from .cases import CASES
 from .fe import bench, pardiso_installed, run_fe, simulate
 from .figures import case_figure, save_figure
@@ -122,6 +124,25 @@ def build_parser() -> argparse.ArgumentParser:
     w.add_argument("--quick", action="store_true", help="only lam = 1.5 and kh in {0.5, 2}")
     w.add_argument("--out", required=True, type=_out_dir, help="output folder")
 
+    k = add("buckling", "first physical buckling load of the clamped plate per weight",
+            "Ramp the clamped Keplinger plate (eighth model, grad-div 10) for each --alpha on "
+            "each mesh, scan its states with the whole plate's spectrum (every symmetry "
+            "class), locate the first physical buckling load D0_b to 1e-4 and compare it with "
+            "the onsets of compressive P33 and the Newton limit: DIR/buckling.csv (one row "
+            "per alpha x mesh, written as each is done; a rerun skips the rows present), "
+            "DIR/buckling-scan.csv and DIR/buckling.png. Default: alpha = 1, 0.3, 1.5, 0.7, "
+            "0.05 on 10x1x5, 20x1x10, 40x1x20, D0 step 0.25 (hours on 2 cores); --quick: "
+            "alpha = 1 on 10x1x5 and 20x1x10, D0 step 0.5 (minutes).")
+    k.add_argument("--quick", action="store_true", help="alpha = 1, two coarse meshes")
+    k.add_argument("--alpha", nargs="+", type=float, metavar="A", help="weight fractions")
+    k.add_argument("--meshes", nargs="+", type=_mesh_triple, metavar="N1xN2xN3",
+                   help="eighth-model meshes, e.g. 10x1x5 20x1x10")
+    k.add_argument("--D0-step", dest="D0_step", type=float, help="charge step of the scan")
+    k.add_argument("--D0-max", dest="D0_max", type=float, help="last charge target")
+    k.add_argument("--solver", choices=["auto", "superlu", "pardiso"], default="pardiso",
+                   help="linear solver and inertia method (PARDISO: the fast extra)")
+    k.add_argument("--out", required=True, type=_out_dir, help="output folder")
+
     v = add("validate", "run FE sweeps, overlay them on the theory (main job)",
             "Run the FE ramps of the cases, write DIR/<case>.csv step by step, the figures "
             "(PNG, PDF), summary.json and report.md (covering every case in DIR). An "
@@ -200,6 +221,42 @@ def _check_mesh(name: str, mesh) -> None:
     if mesh is not None and any(n < 1 for n in mesh):
         raise ValueError(f"{name} must be three element counts >= 1, got "
                          f"{' '.join(map(str, mesh))}")
+
+
+def _mesh_triple(text: str) -> tuple[int, int, int]:
+    """``"20x1x10"`` -> ``(20, 1, 10)`` (argparse type of ``--meshes``)."""
+    try:
+        el = tuple(int(v) for v in text.lower().split("x"))
+    except ValueError:
+        el = ()
+    if len(el) != 3 or min(el) < 1:
+        raise argparse.ArgumentTypeError(f"a mesh is N1xN2xN3 with counts >= 1, got {text!r}")
+    return el
+
+
+def _cmd_buckling(args) -> int:
+    opts = dict(BUCKLING_QUICK if args.quick else BUCKLING_FULL)
+    for key in ("alpha", "meshes", "D0_step", "D0_max"):
+        value = getattr(args, key)
+        if value is not None:
+            opts["alphas" if key == "alpha" else key] = value
+    _positive("--D0-step", opts["D0_step"])
+    _positive("--D0-max", opts["D0_max"])
+    for a in opts["alphas"]:
+        _positive("--alpha", a)
+    if args.solver == "pardiso" and not pardiso_installed():
+        raise ValueError("--solver pardiso needs the fast extra (pypardiso); use "
+                         "--solver superlu")
+
+    def show(row):
+        print(f"alpha = {row['alpha']:g} {row['mesh']}: D0_b = {row['D0_b']:.4f} "
+              f"({row['class'] or 'none found'}), P33 onset (interior) "
+              f"{row['P33_onset_interior']:.3f}, Newton limit {row['newton_limit']:.3f}, "
+              f"{row['seconds']:.0f} s", flush=True)
+
+    run_buckling(args.out, **opts, solver=args.solver, progress=show)
+    print(f"wrote {args.out / 'buckling.csv'}, {args.out / 'buckling.png'}")
+    return 0
 
 
 def _cmd_list(args) -> int:
@@ -391,7 +448,7 @@ def main(argv: list[str] | None = None) -> int:
     args = parser.parse_args(argv)
     cmd = {"list": _cmd_list, "curves": _cmd_curves, "validate": _cmd_validate,
            "simulate": _cmd_simulate, "bench": _cmd_bench,
-           "wrinkling-fe": _cmd_wrinkling}[args.command]
+           "wrinkling-fe": _cmd_wrinkling, "buckling": _cmd_buckling}[args.command]
     prefix = f"skfem-dielectric {args.command}: error:"
     try:
         if getattr(args, "jobs", 1) < 1:

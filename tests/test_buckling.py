@@ -1,0 +1,117 @@
+"""First physical buckling load of a plate (skfem_dielectric.buckling)."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+import analytic as an
+import skfem_dielectric as fe
+from skfem_dielectric.buckling import buckling_load, corner_radius, physical_modes
+from skfem_dielectric.drivers import equibiaxial_problem, keplinger_problem
+from skfem_dielectric.symmetry_classes import class_stability
+from validation.cli import main
+
+SIZE = (8.0, 1.0, 4.0)
+
+
+def _states(pb, loads, start=np.zeros(2)):
+    res = fe.ramp(pb, loads, x0=pb.initial_state(), start=start)
+    assert res.converged
+    return [(st.x, st.load) for st in res.steps]
+
+
+def test_homogeneous_equibiaxial_plate_has_no_buckling_load():
+    """Charge control with a dead load s = 1: the homogeneous thin plate never reaches the
+    Stroh threshold (the paper's claim), so the scan of every symmetry class finds no
+    physical negative eigenvalue -- through the same code path as the clamped plate."""
+    pb = equibiaxial_problem(size=(20.0, 1.0, 20.0), elements=(4, 1, 4), grad_div=10.0)
+    D0 = np.array([2.0, 4.0, 6.0])
+    states = _states(pb, [np.array([1.0, 0.0])] + [np.array([1.0, d]) for d in D0])
+    out = buckling_load(pb, states)
+    assert not out.found and np.isnan(out.D0_b) and "no negative physical" in out.reason
+    # no negative eigenvalue of any kind on the whole plate (exact count, inertia)
+    assert [r["n_negative"] for r in out.scan] == [0, 0, 0, 0]
+    assert out.eigenvalue > 0
+    # the analytic side: the loading curve stays below the thin-plate limit of the
+    # Stroh analysis at every state (independent of the FE)
+    lam = [pb.postprocess(x, ld)["lam1"] for x, ld in states[1:]]
+    assert np.all(D0 < an.thin_limit_D0(np.array(lam), an.NeoHookean()))
+
+
+@pytest.fixture(scope="module")
+def end_compression():
+    """The slender clamped plate 8 x 1 x 4 charged to D0 = 1 and compressed end to end:
+    the eighth model's states along s = -0.02 ... -0.4 (2 x 1 x 2 elements: the mirror
+    images of the full mesh 4 x 2 x 4 below)."""
+    pb = keplinger_problem(size=SIZE, elements=(2, 1, 2), symmetry="eighth")
+    loads = [np.array([s, 1.0]) for s in np.linspace(-0.02, -0.4, 5)]
+    first = _states(pb, [np.array([-0.02, 1.0]) * t for t in (0.5, 1.0)])[-1]
+    rest = fe.ramp(pb, loads[1:], x0=first[0], start=loads[0])
+    assert rest.converged
+    return pb, [first] + [(st.x, st.load) for st in rest.steps]
+
+
+def test_buckling_load_is_the_full_plates_eigenvalue_crossing(end_compression):
+    pb, states = end_compression
+    out = buckling_load(pb, states, tol=1e-5)
+    assert out.found and out.label.kind == "physical"
+    # bending: antisymmetric through the thickness
+    assert out.label.increments[2] == "antisymmetric"
+    # reference: the full (unreduced) mesh of the same plate, its lowest eigenvalue
+    # (dense, no symmetry classes, no classification) located by critical_load
+    full = keplinger_problem(size=SIZE, elements=(4, 2, 4), symmetry="full")
+    xa = _states(full, [np.array([-0.02, 1.0]) * t for t in (0.5, 1.0)])[-1][0]
+
+    def lowest(x, load):
+        return class_stability(full, x, load, k=1, method="dense").lowest(1)[0][0]
+
+    ref = fe.critical_load(full, xa, np.array([-0.02, 1.0]), np.array([-0.4, 1.0]), lowest,
+                           tol=1e-5)
+    # both crossings are located to 1e-5 in s, and the classes' eigenvalues equal the full
+    # mesh's to 1e-8 (tests/test_symmetry_classes.py): agreement to twice the tolerance
+    assert abs(out.load[0] - ref.load[0]) <= 2e-5
+    assert out.load[1] == 1.0 and out.D0_b == 1.0
+
+
+def test_corner_radius_covers_the_corner_element():
+    pb = keplinger_problem(size=(100.0, 1.0, 50.0), elements=(10, 1, 5), symmetry="eighth")
+    # 5 x 5 mm elements: the corner element's in-plane diagonal, 5 sqrt(2) mm > 2 H
+    assert corner_radius(pb) == pytest.approx(5 * np.sqrt(2), rel=1e-12)
+    fine = keplinger_problem(size=(100.0, 1.0, 50.0), elements=(80, 1, 40), symmetry="eighth")
+    # 0.625 mm elements: 2 H = 2 mm is the larger
+    assert corner_radius(fine) == 2.0
+
+
+def test_bad_input(end_compression):
+    pb, states = end_compression
+    with pytest.raises(ValueError, match="result must be a RampResult or a PlateProblem"):
+        buckling_load(object())
+    with pytest.raises(ValueError, match="states must be given"):
+        buckling_load(pb)
+    with pytest.raises(ValueError, match="states must hold"):
+        buckling_load(pb, [])
+    with pytest.raises(ValueError, match=r"states\[0\] must be a pair"):
+        buckling_load(pb, [(states[0][0], 1.0)])
+    with pytest.raises(ValueError, match="tol must be"):
+        buckling_load(pb, states[:1], tol=0.0)
+    with pytest.raises(ValueError, match="extra must be"):
+        buckling_load(pb, states[:1], extra=0)
+    with pytest.raises(ValueError, match="radius must be"):
+        physical_modes(pb, *states[0], radius=-1.0)
+    with pytest.raises(ValueError, match="problem must be a PlateProblem"):
+        corner_radius(object())
+    res = fe.ramp(fe.CrossSection(fe.NeoHookeanDielectric(), L1=4.0, n1=2, n2=1),
+                  [np.zeros(3)])
+    with pytest.raises(ValueError, match="result must come from a plate driver"):
+        buckling_load(res)
+
+
+def test_cli_rejects_bad_options(tmp_path, capsys):
+    with pytest.raises(SystemExit) as exc:      # argparse: usage error, exit code 2
+        main(["buckling", "--meshes", "10x1", "--out", str(tmp_path)])
+    assert exc.value.code == 2 and "N1xN2xN3" in capsys.readouterr().err
+    assert main(["buckling", "--quick", "--D0-step", "0", "--out", str(tmp_path)]) == 2
+    assert "--D0-step must be > 0" in capsys.readouterr().err
+    assert main(["buckling", "--quick", "--alpha", "-1", "--out", str(tmp_path)]) == 2
+    assert "--alpha must be > 0" in capsys.readouterr().err

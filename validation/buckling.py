@@ -1,0 +1,260 @@
+"""Buckling study of the clamped Keplinger plate: first physical buckling load per weight.
+
+For each weight ``alpha`` and mesh the eighth model (grad-div 10, which lets Newton pass
+the clamp/free-edge corner) is ramped in ``D0``; its states are scanned with the whole
+plate's spectrum (:func:`skfem_dielectric.buckling.buckling_load`) and the first physical
+buckling load ``D0_b`` located to ``1e-4``.  Next to it: the onsets of compressive
+``P33/mu < -BREAKDOWN_TOL`` (the paper's breakdown, Conroy Broderick, Righi, Destrade and
+Ogden, "Stability analysis of charge-controlled soft dielectric plates", Int. J. Eng.
+Sci., 2020, Sec. 6) on five sets of points, and where Newton stops.
+
+Files (all in ``out``): ``buckling.csv`` (one row per alpha x mesh, appended as each is
+done; a rerun skips the rows present), ``buckling-scan.csv`` (every scanned state),
+``buckling-plain.csv`` (the same ramp without grad-div: its ``P33`` onsets and Newton
+limit), ``.modes/<alpha>_<mesh>.npz`` (the critical mode's top-face deflection) and
+``buckling.png``.
+"""
+
+from __future__ import annotations
+
+import csv
+import time
+from pathlib import Path
+
+import matplotlib.pyplot as plt
+import numpy as np
+
+import skfem_dielectric as fe
+from skfem_dielectric.buckling import buckling_load
+from skfem_dielectric.modes import top_deflection
+
+from .sweep import BREAKDOWN_TOL
+
+__all__ = ["COLUMNS", "SCAN_COLUMNS", "PLAIN_COLUMNS", "P33_SETS", "p33_measures", "onset",
+           "run_one", "run_plain", "run_buckling", "read_rows", "richardson", "buckling_figure"]
+
+#: where min P33/mu is taken: centre line, clamp line (one element inside the clamp),
+#: centre line outside the clamps' 2H layer, all quadrature points outside it, centre
+P33_SETS = ("centre_line", "clamp", "interior", "whole_interior", "centre")
+COLUMNS = (["alpha", "mesh", "D0_b", "class", "lowest_eig", "corner_share", "mesh_scale",
+            "lam1_b", "n_negative_b", "first_negative_D0"]
+           + [f"P33_onset_{k}" for k in P33_SETS]
+           + ["newton_limit", "D0_max", "seconds"])
+SCAN_COLUMNS = (["alpha", "mesh", "D0", "n_negative", "lowest", "physical", "physical_class",
+                 "corner_share", "mesh_scale", "lam1"] + [f"P33_{k}" for k in P33_SETS])
+#: the same ramp without grad-div (the harness's form): its P33 onsets and Newton limit
+PLAIN_COLUMNS = (["alpha", "mesh"] + [f"P33_onset_{k}" for k in P33_SETS]
+                 + ["newton_limit", "D0_max", "seconds"])
+QUICK = {"alphas": (1.0,), "meshes": ((10, 1, 5), (20, 1, 10)), "D0_step": 0.5,
+         "D0_max": 5.0}
+FULL = {"alphas": (1.0, 0.3, 1.5, 0.7, 0.05),
+        "meshes": ((10, 1, 5), (20, 1, 10), (40, 1, 20)), "D0_step": 0.25, "D0_max": 6.0}
+
+
+def p33_measures(problem, x, load, quantities) -> dict[str, float]:
+    """``min P33/mu`` on each of :data:`P33_SETS` at a converged state of the plate."""
+    pl = problem.plate
+    edge = pl.L1 / 2 - 2 * pl.H + 1e-9
+    c = quantities["centre_line"]
+    inner = np.abs(c["x1"]) <= edge
+    best = np.inf
+    X = problem.b2.mapping.F(problem.b2.X)
+    for sl, F, G, p in problem.quadrature_fields(x, load):
+        S33 = problem.stresses(F, G, p, load)["S"][2, 2] / problem.material.mu
+        keep = np.abs(X[0][sl]) <= edge
+        if keep.any():
+            best = min(best, float(S33[keep].min()))
+    return {"centre_line": quantities["min_P33"], "clamp": quantities["min_P33_clamp"],
+            "interior": float(np.min(c["P33"][inner])), "whole_interior": best,
+            "centre": quantities["P33_centre"]}
+
+
+def onset(D0, values, tol: float = BREAKDOWN_TOL) -> float:
+    """First ``D0`` where ``values`` falls below ``-tol`` (linear between the states),
+    ``nan`` if it never does, the first ``D0`` if it starts below."""
+    D0, v = np.asarray(D0, float), np.asarray(values, float) + tol
+    below = np.flatnonzero(v < 0)
+    if not below.size:
+        return float("nan")
+    i = int(below[0])
+    if i == 0:
+        return float(D0[0])
+    return float(D0[i - 1] + v[i - 1] * (D0[i] - D0[i - 1]) / (v[i - 1] - v[i]))
+
+
+def _mesh_name(el) -> str:
+    return "x".join(str(int(v)) for v in el)
+
+
+def run_one(alpha: float, elements, *, D0_step: float, D0_max: float,
+            solver: str = "pardiso", modes_dir: Path | None = None
+            ) -> tuple[dict, list[dict]]:
+    """One alpha x mesh: ramp, P33 onsets, buckling load.  Returns the row and the scan."""
+    t0 = time.time()
+    D0 = np.round(np.arange(D0_step, D0_max + 1e-9, D0_step), 10)
+    newton = dict(linear_solver=solver, max_cutbacks=6, max_iter=25, rtol=1e-9)
+    res = fe.keplinger_plate(alpha, D0=D0, elements=tuple(elements), symmetry="eighth",
+                             grad_div=10.0, **newton)
+    pb = res.problem
+    charge = [st for st in res.steps if np.asarray(st.load)[1] > 0]
+    states = [res.steps[len(res.steps) - len(charge) - 1]] + charge
+    mesh = _mesh_name(elements)
+    method = "pardiso" if solver == "pardiso" else "auto"
+    bl = buckling_load(pb, [(st.x, st.load) for st in states], method=method, **newton)
+    scan = []
+    for st, row in zip(states, bl.scan):
+        m = p33_measures(pb, st.x, st.load, st.quantities)
+        scan.append({"alpha": alpha, "mesh": mesh, "D0": row["D0"],
+                     "n_negative": row["n_negative"], "lowest": row["lowest"],
+                     "physical": row["physical"], "physical_class": row["physical_class"],
+                     "corner_share": row["corner_share"], "mesh_scale": row["mesh_scale"],
+                     "lam1": st.quantities["lam1"], **{f"P33_{k}": m[k] for k in P33_SETS}})
+    # P33 onsets over every converged state (not only the scanned ones)
+    allm = [p33_measures(pb, st.x, st.load, st.quantities) for st in states[len(scan):]]
+    allm = [{k: r[f"P33_{k}"] for k in P33_SETS} for r in scan] + allm
+    d_all = [float(np.asarray(st.load)[1]) for st in states]
+    first_neg = next((r["D0"] for r in bl.scan if r["n_negative"] > 0), float("nan"))
+    lab = bl.label
+    row = {"alpha": alpha, "mesh": mesh, "D0_b": bl.D0_b,
+           "class": lab.symmetry if lab else "", "lowest_eig": bl.eigenvalue,
+           "corner_share": lab.corner_share if lab else np.nan,
+           "mesh_scale": lab.mesh_scale if lab else np.nan,
+           "lam1_b": pb.postprocess(bl.x, bl.load)["lam1"] if bl.found else np.nan,
+           "n_negative_b": (bl.scan[-1]["n_negative"] if bl.scan else 0),
+           "first_negative_D0": first_neg,
+           **{f"P33_onset_{k}": onset(d_all, [m[k] for m in allm]) for k in P33_SETS},
+           "newton_limit": (float(np.asarray(res.steps[-1].load)[1]) if not res.converged
+                            else np.nan),
+           "D0_max": D0_max, "seconds": round(time.time() - t0, 1)}
+    if modes_dir is not None and lab is not None:
+        modes_dir.mkdir(parents=True, exist_ok=True)
+        X1, X3, u2 = top_deflection(pb, lab.mode, lab.increments)
+        np.savez(modes_dir / f"{alpha:g}_{mesh}.npz", X1=X1, X3=X3, u2=u2)
+    return row, scan
+
+
+def run_plain(alpha: float, elements, *, D0_step: float, D0_max: float,
+              solver: str = "pardiso") -> dict:
+    """The plain form (``grad_div = 0``, as the validation harness ramps it) on the same
+    targets: its ``P33`` onsets and where Newton stops (``nan``: all targets reached)."""
+    t0 = time.time()
+    D0 = np.round(np.arange(D0_step, D0_max + 1e-9, D0_step), 10)
+    res = fe.keplinger_plate(alpha, D0=D0, elements=tuple(elements), symmetry="eighth",
+                             linear_solver=solver, max_cutbacks=6, max_iter=25, rtol=1e-9)
+    pb = res.problem
+    states = [st for st in res.steps if np.asarray(st.load)[1] > 0]
+    ms = [p33_measures(pb, st.x, st.load, st.quantities) for st in states]
+    d = [float(np.asarray(st.load)[1]) for st in states]
+    return {"alpha": alpha, "mesh": _mesh_name(elements),
+            **{f"P33_onset_{k}": onset(d, [m[k] for m in ms]) for k in P33_SETS},
+            "newton_limit": (float(np.asarray(res.steps[-1].load)[1]) if not res.converged
+                             else np.nan),
+            "D0_max": D0_max, "seconds": round(time.time() - t0, 1)}
+
+
+def read_rows(path: Path) -> list[dict]:
+    """Rows of a CSV written by :func:`run_buckling` (numbers as floats)."""
+    if not path.exists():
+        return []
+    with open(path, newline="") as f:
+        rows = list(csv.DictReader(f))
+    for r in rows:
+        for k, v in r.items():
+            if k not in ("mesh", "class", "physical_class"):
+                r[k] = float(v) if v not in ("", None) else float("nan")
+    return rows
+
+
+def _append(path: Path, columns, rows) -> None:
+    new = not path.exists()
+    with open(path, "a", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=columns)
+        if new:
+            w.writeheader()
+        for r in rows:
+            w.writerow({k: (f"{v:.10g}" if isinstance(v, float) else v) for k, v in r.items()})
+
+
+def run_buckling(out: Path, *, alphas, meshes, D0_step: float, D0_max: float,
+                 solver: str = "pardiso", progress=None) -> list[dict]:
+    """The study: every alpha x mesh not yet in ``out/buckling.csv``, then the figure."""
+    out = Path(out)
+    out.mkdir(parents=True, exist_ok=True)
+    table = out / "buckling.csv"
+    plain = out / "buckling-plain.csv"
+    done = {(r["alpha"], r["mesh"]) for r in read_rows(table)}
+    done_plain = {(r["alpha"], r["mesh"]) for r in read_rows(plain)}
+    for alpha in alphas:
+        for el in meshes:
+            key = (float(alpha), _mesh_name(el))
+            if key not in done:
+                row, scan = run_one(float(alpha), el, D0_step=D0_step, D0_max=D0_max,
+                                    solver=solver, modes_dir=out / ".modes")
+                _append(out / "buckling-scan.csv", SCAN_COLUMNS, scan)
+                _append(table, COLUMNS, [row])
+                if progress is not None:
+                    progress(row)
+            if key not in done_plain:
+                _append(plain, PLAIN_COLUMNS, [run_plain(float(alpha), el, D0_step=D0_step,
+                                                         D0_max=D0_max, solver=solver)])
+    rows = read_rows(table)
+    buckling_figure(rows, read_rows(out / "buckling-scan.csv"), out / ".modes",
+                    out / "buckling.png")
+    return rows
+
+
+def richardson(h, values) -> tuple[float, float, float]:
+    """Extrapolated value, its error estimate and the observed order from the three
+    finest meshes (mesh sizes ``h`` descending); ``nan`` where the sequence is not
+    monotone (no asymptotic range)."""
+    h, v = np.asarray(h, float)[-3:], np.asarray(values, float)[-3:]
+    if v.size < 3 or not np.all(np.isfinite(v)):
+        return float("nan"), float("nan"), float("nan")
+    d1, d2 = v[1] - v[0], v[2] - v[1]
+    if d1 == 0 or d2 / d1 <= 0:
+        return float("nan"), abs(d2), float("nan")
+    r = h[0] / h[1]
+    p = float(np.log(abs(d1 / d2)) / np.log(r))
+    ext = float(v[2] + d2 / (r ** p - 1))
+    return ext, abs(ext - v[2]), p
+
+
+def buckling_figure(rows, scan, modes_dir: Path, path: Path) -> Path:
+    """One row of panels per alpha: lowest physical eigenvalue vs ``D0`` per mesh, the
+    ``P33`` minima vs ``D0`` on the finest mesh, the critical mode's deflection map."""
+    alphas = sorted({r["alpha"] for r in rows})
+    fig, axes = plt.subplots(len(alphas), 3, figsize=(14, 3.4 * len(alphas)), squeeze=False,
+                             constrained_layout=True)
+    for ax3, alpha in zip(axes, alphas):
+        mine = [r for r in rows if r["alpha"] == alpha]
+        meshes = sorted({r["mesh"] for r in mine}, key=lambda m: int(m.split("x")[0]))
+        for m in meshes:
+            sc = [s for s in scan if s["alpha"] == alpha and s["mesh"] == m]
+            ax3[0].plot([s["D0"] for s in sc], [s["physical"] for s in sc], "o-", ms=3,
+                        label=m)
+            b = next(r for r in mine if r["mesh"] == m)["D0_b"]
+            if np.isfinite(b):
+                ax3[0].axvline(b, ls=":", lw=0.8, color=ax3[0].lines[-1].get_color())
+        ax3[0].axhline(0, color="k", lw=0.6)
+        ax3[0].set(xlabel="D0", ylabel="lowest physical eigenvalue",
+                   title=f"alpha = {alpha:g}")
+        ax3[0].legend(fontsize=7)
+        fine = meshes[-1]
+        sc = [s for s in scan if s["alpha"] == alpha and s["mesh"] == fine]
+        for k in P33_SETS:
+            ax3[1].plot([s["D0"] for s in sc], [s[f"P33_{k}"] for s in sc], ".-", label=k)
+        ax3[1].axhline(-BREAKDOWN_TOL, color="k", lw=0.6, ls="--")
+        ax3[1].set(xlabel="D0", ylabel="min P33/mu", title=f"{fine}: P33 minima")
+        ax3[1].legend(fontsize=7)
+        f = modes_dir / f"{alpha:g}_{fine}.npz"
+        if f.exists():
+            d = np.load(f)
+            u2 = d["u2"] / max(np.abs(d["u2"]).max(), 1e-300)
+            t = ax3[2].tricontourf(d["X1"], d["X3"], u2, 21, cmap="RdBu_r", vmin=-1, vmax=1)
+            fig.colorbar(t, ax=ax3[2], shrink=0.8)
+            r = next(r for r in mine if r["mesh"] == fine)
+            ax3[2].set(aspect="equal", xlabel="X1 (mm)", ylabel="X3 (mm)",
+                       title=f"mode at D0_b = {r['D0_b']:.4f}: {r['class']}")
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+    return path
