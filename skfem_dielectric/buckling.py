@@ -37,7 +37,7 @@ from .drivers import newton_guards
 from .modes import classify_mode
 from .plate import PlateProblem
 from .ramp import RampResult
-from .stability import lowest_modes, tangent_inertia
+from .stability import counted_inertia, lowest_modes
 from .symmetry_classes import SymmetryClass, class_mode_full, symmetry_classes
 
 __all__ = ["ModeLabel", "BucklingLoad", "corner_radius", "class_spectra", "physical_modes",
@@ -191,7 +191,7 @@ def class_spectra(problem: PlateProblem, x: np.ndarray, load: Any, *, extra: int
         if only is not None and c.name not in only:
             continue
         Kc = _class_tangent(c, K)
-        n_neg = tangent_inertia(Kc, method)[1] - c.layout.n_multipliers
+        n_neg = counted_inertia(Kc, method)[1] - c.layout.n_multipliers
         vals, vecs = lowest_modes(Kc, c.metric, n_neg + extra, max(n_neg, 0), tol=1e-10)
         out.append((c, n_neg, vals, vecs))
     return out

@@ -35,11 +35,12 @@ from typing import Any
 import numpy as np
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
+from scipy.sparse.csgraph import reverse_cuthill_mckee
 
 from .linear import LinearSolver, PardisoSolver, pardiso_available
 from .problem import Problem
 
-__all__ = ["tangent_inertia", "StabilityResult", "stability_analysis", "tangent_stability",
+__all__ = ["tangent_inertia", "counted_inertia", "StabilityResult", "stability_analysis", "tangent_stability",
            "metric_matrix", "lowest_modes"]
 
 INERTIA_METHODS = ("auto", "superlu", "pardiso", "dense")
@@ -87,10 +88,64 @@ def tangent_inertia(K: sp.spmatrix, method: str = "auto") -> tuple[int, int, int
     lu = spla.splu(sp.csc_matrix(K), permc_spec="MMD_AT_PLUS_A", diag_pivot_thresh=0.0,
                    options={"SymmetricMode": True})
     if not np.array_equal(lu.perm_r, lu.perm_c):
-        raise ValueError("SuperLU needed off-diagonal pivots: no inertia from its diagonal "
-                         "(use method='dense' or 'pardiso')")
+        # a zero pivot: a multiplier (zero diagonal) eliminated before the displacements
+        # it couples to; retry with an order that puts each such unknown after all its
+        # neighbours (then its pivot is the Schur complement -b^T A^-1 b, non-zero)
+        order = constrained_order(K)
+        lu = spla.splu(sp.csc_matrix(K)[order][:, order], permc_spec="NATURAL",
+                       diag_pivot_thresh=0.0, options={"SymmetricMode": True})
+        if not np.array_equal(lu.perm_r, lu.perm_c):
+            raise ValueError("SuperLU needed off-diagonal pivots: no inertia from its "
+                             "diagonal (use method='dense' or 'pardiso')")
     d = lu.U.diagonal()
     return int(np.sum(d > 0)), int(np.sum(d < 0)), int(np.sum(d == 0))
+
+
+def constrained_order(K: sp.spmatrix) -> np.ndarray:
+    """A symmetric elimination order for a saddle-point matrix: reverse Cuthill-McKee
+    (bandwidth), with every unknown of zero diagonal (a pressure-like multiplier) moved
+    right after the last of its neighbours, so that it is eliminated after every unknown
+    it couples to and its pivot is a Schur complement, not zero."""
+    A = sp.csr_matrix(K, copy=True)
+    A.eliminate_zeros()
+    n = A.shape[0]
+    pos = np.empty(n)
+    pos[reverse_cuthill_mckee(A, symmetric_mode=True)] = np.arange(n)
+    key = pos.copy()
+    zero = np.flatnonzero((A.diagonal() == 0) & (np.diff(A.indptr) > 0))
+    if zero.size:
+        last = np.maximum.reduceat(pos[A.indices], A.indptr[:-1][np.diff(A.indptr) > 0])
+        nonempty = np.flatnonzero(np.diff(A.indptr) > 0)
+        full_last = np.full(n, -np.inf)
+        full_last[nonempty] = last
+        key[zero] = full_last[zero] + 0.5
+    return np.argsort(key, kind="stable")
+
+
+def counted_inertia(K: sp.spmatrix, method: str = "auto") -> tuple[int, int, int]:
+    """:func:`tangent_inertia` with the fallback of the stability analyses: small systems
+    (``n <= DENSE_LIMIT / 10`` without PARDISO) are counted densely, and where SuperLU
+    meets a zero pivot (a multiplier eliminated before its displacements) systems up to
+    :data:`DENSE_LIMIT` unknowns are counted densely instead.
+
+    Raises
+    ------
+    ValueError
+        As :func:`tangent_inertia`; for a larger system whose SuperLU factorisation needed
+        off-diagonal pivots, one naming the remedy (the ``fast`` extra, PARDISO).
+    """
+    if method == "auto" and not pardiso_available() and K.shape[0] <= DENSE_LIMIT // 10:
+        method = "dense"
+    try:
+        return tangent_inertia(K, method)
+    except ValueError as exc:
+        if not (method in ("auto", "superlu") and "off-diagonal pivots" in str(exc)):
+            raise
+        if K.shape[0] > DENSE_LIMIT:
+            raise ValueError(f"{exc}; this tangent ({K.shape[0]} unknowns) is too large "
+                             "to be counted densely: install the 'fast' extra (PARDISO)"
+                             ) from None
+        return tangent_inertia(K, "dense")
 
 
 def metric_matrix(problem: Problem) -> sp.csr_matrix:
@@ -403,22 +458,9 @@ def tangent_stability(problem: Problem, K: sp.spmatrix, *, k: int = 0,
     if unknown:
         raise ValueError(f"unknown keyword arguments {sorted(unknown)} (allowed: "
                          "sigma_start, sigma_growth, shift_solver, v0)")
-    if method == "auto" and not pardiso_available() and K.shape[0] <= DENSE_LIMIT // 10:
-        method = "dense"
     inertia = factors.factor_inertia() if factors is not None else None
-    try:
-        if inertia is None:
-            inertia = tangent_inertia(K, method)
-    except ValueError as exc:
-        # SuperLU met a zero pivot (a multiplier eliminated before its displacements);
-        # small systems are counted densely instead, large ones need PARDISO
-        if not (method in ("auto", "superlu") and "off-diagonal pivots" in str(exc)):
-            raise
-        if K.shape[0] > DENSE_LIMIT:
-            raise ValueError(f"{exc}; this tangent ({K.shape[0]} unknowns) is too large "
-                             "to be counted densely: install the 'fast' extra (PARDISO)"
-                             ) from None
-        inertia = tangent_inertia(K, "dense")
+    if inertia is None:
+        inertia = counted_inertia(K, method)
     n_m = problem.layout.n_multipliers
     out = StabilityResult(inertia[1] - n_m, inertia[2], tuple(inertia), n_m)
     if all_negative:

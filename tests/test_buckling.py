@@ -11,6 +11,7 @@ from skfem_dielectric.buckling import buckling_load, corner_radius, physical_mod
 from skfem_dielectric.drivers import equibiaxial_problem, keplinger_problem
 from skfem_dielectric.symmetry_classes import class_stability
 from validation.cli import main
+from validation.records import buckling_crossing
 
 SIZE = (8.0, 1.0, 4.0)
 
@@ -115,3 +116,15 @@ def test_cli_rejects_bad_options(tmp_path, capsys):
     assert "--D0-step must be > 0" in capsys.readouterr().err
     assert main(["buckling", "--quick", "--alpha", "-1", "--out", str(tmp_path)]) == 2
     assert "--alpha must be > 0" in capsys.readouterr().err
+
+
+def test_buckling_crossing_interpolates_the_zero():
+    # the harness's D0_b: linear interpolation of the lowest physical eigenvalue between
+    # the last analysed row above zero and the first below; for a linear eigenvalue the
+    # interpolation is exact (root D0 = 2.25 of 0.9 - 0.4 D0)
+    D0 = np.array([0.0, 1.0, 1.5, 2.0, 2.5, 3.0])
+    ev = 0.9 - 0.4 * D0
+    ev[2] = np.nan                      # a state without the spectrum is skipped
+    assert buckling_crossing(D0, ev) == pytest.approx(2.25, rel=1e-12)
+    assert buckling_crossing(D0, -np.ones(6)) == 0.0    # negative from the first row
+    assert buckling_crossing(D0, np.ones(6)) is None

@@ -13,10 +13,11 @@ import warnings
 import numpy as np
 import pytest
 import scipy.sparse as sp
+import scipy.sparse.linalg as spla
 
 import skfem_dielectric as fe
 from skfem_dielectric.linear import SuperLUSolver, get_linear_solver
-from skfem_dielectric.stability import metric_matrix, tangent_inertia
+from skfem_dielectric.stability import constrained_order, metric_matrix, tangent_inertia
 
 SOLVERS = ["superlu"] + (["pardiso"] if fe.pardiso_available() else [])
 
@@ -119,3 +120,28 @@ def test_monitor_bad_input():
         fe.tangent_stability(pb, K, k=1, sigma0=1.0)
     with pytest.raises(ValueError, match="state_analysis"):
         fe.ramp(pb, [(0.1, 0.0)], state_analysis=3)
+
+
+def test_constrained_order_gives_the_inertia_where_minimum_degree_fails():
+    # a saddle-point matrix [[A, B^T], [B, 0]] (A indefinite, B a sparse coupling): a
+    # minimum-degree order may eliminate a zero-diagonal unknown first (SuperLU then needs
+    # an off-diagonal pivot); the constrained order puts each after its neighbours
+    rng = np.random.default_rng(7)
+    n, m = 80, 12
+    A = sp.random(n, n, density=0.08, random_state=rng)
+    A = (A + A.T + sp.diags(rng.uniform(-1.0, 3.0, n))).tocsr()
+    B = sp.random(m, n, density=0.1, random_state=rng) + sp.eye(m, n)
+    K = sp.bmat([[A, B.T], [B, None]]).tocsr()
+    order = constrained_order(K)
+    where = np.empty(K.shape[0], int)
+    where[order] = np.arange(K.shape[0])
+    for i in range(n, n + m):     # every multiplier after all its neighbours
+        nb = K.indices[K.indptr[i]:K.indptr[i + 1]]
+        assert where[i] > where[nb].max()
+    lu = spla.splu(sp.csc_matrix(K)[order][:, order], permc_spec="NATURAL",
+                   diag_pivot_thresh=0.0, options={"SymmetricMode": True})
+    assert np.array_equal(lu.perm_r, lu.perm_c)
+    d = lu.U.diagonal()
+    # Sylvester: the signs of the pivots are the dense eigenvalue signs
+    assert (int(np.sum(d > 0)), int(np.sum(d < 0)), 0) == tangent_inertia(K, "dense")
+    assert tangent_inertia(K, "superlu") == tangent_inertia(K, "dense")

@@ -7,6 +7,7 @@ import math
 import analytic as an
 from validation.cli import main
 from validation.sweep import read_table
+import validation.wrinkling as wr
 from validation.wrinkling import ELASTIC_COLUMNS, WRINKLING_COLUMNS
 
 
@@ -54,7 +55,6 @@ def test_quick_grid_matches_the_dispersion_relation(tmp_path, capsys):
 def test_wrinkling_rows_resume_from_the_csv(tmp_path, monkeypatch):
     # the FE row is replaced by a cheap stand-in that records its calls: what is tested is
     # the bookkeeping (an interrupted run keeps its rows, a rerun computes only the rest)
-    import validation.wrinkling as wr
     calls = []
 
     def fake_row(control, mode, lam, kh, n1):

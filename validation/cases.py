@@ -68,11 +68,18 @@ def _homogeneous(geometry, models, s_values, D0max, n, variants=FE_VARIANTS):
 
 
 def _keplinger(alphas, D0max, n, meshes, variants=KEPLINGER_VARIANTS, record_fields=False,
-               record_maps=False):
+               record_maps=False, buckling=()):
     return tuple(RunSpec("uniaxial", "neo-Hookean", v, keplinger_s(a), _steps(D0max, n), alpha=a,
                          mesh=_mesh(meshes, v), record_fields=record_fields,
-                         record_maps=record_maps)
+                         record_maps=record_maps, buckling=v == "coupled" and a in buckling,
+                         # past the P33 breakdown: the run that finds the buckling load
+                         stop_at_breakdown=not (v == "coupled" and a in buckling))
                  for v in variants for a in alphas)
+
+
+#: weights whose 3D runs also get the whole plate's spectrum at every state (the
+#: stability-based breakdown D0_b; a few seconds per state on the quick mesh)
+BUCKLING_ALPHAS = (1.0,)
 
 
 CASES: dict[str, Case] = {c.name: c for c in (
@@ -101,8 +108,8 @@ CASES: dict[str, Case] = {c.name: c for c in (
     Case("uni-axial-ideal", "uni-axial-ideal",
          "Keplinger plate: uni-axial loading curves, wrinkling limits, FE dots, breakdown",
          "uniaxial",
-         quick=_keplinger(ALPHAS, 6.0, 12, QUICK_PLATE),
-         full=_keplinger(ALPHAS, 6.0, 24, FULL_PLATE)),
+         quick=_keplinger(ALPHAS, 6.0, 12, QUICK_PLATE, buckling=BUCKLING_ALPHAS),
+         full=_keplinger(ALPHAS, 6.0, 24, FULL_PLATE, buckling=BUCKLING_ALPHAS)),
     Case("lambda1-3", "fig:lambda1-3",
          "stretch maps lam1, lam3 of the weighted Keplinger plate before charging",
          "uniaxial",

@@ -33,6 +33,7 @@ import meshio
 import numpy as np
 
 import skfem_dielectric as fe
+import skfem_dielectric.buckling as fe_buckling
 import skfem_dielectric.modes as fe_modes
 
 from .records import RunOutcome, StepRecord
@@ -44,6 +45,7 @@ __all__ = [
     "ramp_targets",
     "ramp_settings",
     "stability_columns",
+    "plate_buckling_columns",
     "membrane_stretch_maps",
     "pardiso_installed",
     "run_fe",
@@ -297,13 +299,34 @@ def _interior_min(x1_mm, P33) -> float:
     return float(np.min(np.asarray(P33)[keep])) if keep.any() else float("nan")
 
 
+def plate_buckling_columns(spec: RunSpec, problem, x, load) -> dict:
+    """The whole plate's spectrum at a state of a run with ``spec.buckling``:
+    ``n_negative_plate`` (negative eigenvalues over every symmetry class of the eighth
+    model), ``physical_eig`` (the lowest eigenvalue whose mode is classified physical,
+    :func:`skfem_dielectric.buckling.lowest_physical`; ``nan`` if none of the computed
+    ones is) and ``physical_class`` (its symmetry class).  Empty for other runs, and where
+    the spectrum cannot be computed (a ``ValueError``, e.g. a class tangent too large to
+    be counted without PARDISO)."""
+    if not (spec.buckling and spec.geometry == "uniaxial" and not _is_membrane(spec)
+            and problem.symmetric):
+        return {}
+    try:
+        phys, _, n_neg = fe_buckling.lowest_physical(problem, x, load)
+    except ValueError:
+        return {}
+    return {"n_negative_plate": int(n_neg),
+            "physical_eig": phys.eigenvalue if phys is not None else float("nan"),
+            "physical_class": phys.symmetry if phys is not None else ""}
+
+
 def _step_record(spec: RunSpec, problem, step) -> StepRecord:
     """The :class:`StepRecord` of a converged target, with the centre line if recorded."""
     q = step.quantities
     rec = StepRecord(D0=float(np.asarray(step.load)[1]), lam1=q["lam1"], lam3=q["lam3"],
                      min_P33=q["min_P33"], min_P33_clamp=q.get("min_P33_clamp", np.nan),
                      iterations=step.iterations,
-                     **stability_columns(spec, problem, step.x, step.load))
+                     **stability_columns(spec, problem, step.x, step.load),
+                     **plate_buckling_columns(spec, problem, step.x, step.load))
     c = _centre_line(spec, problem, step)
     rec.min_P33_interior = _interior_min(c["x1"], c["P33"])
     if spec.record_fields:

@@ -22,6 +22,7 @@ import analytic as an
 
 from .cases import ALPHAS, analytic_model, get_case
 from .fe import keplinger_s
+from .records import buckling_crossing
 
 __all__ = [
     "plot_equibiaxial_loading",
@@ -346,9 +347,11 @@ def plot_uniaxial_wrinkling(fe=None, alphas=ALPHAS, ax=None, D0max=7.0):
     Neo-Hookean loading curves Eq. (DEuniax) for ``s = alpha m g/(mu A)``, the
     thick-plate limit (dashed blue, Eq. thick-uni-axial), the thin-plate limit
     (dashed black, Eq. thin-uni-axial, the ``s = 0`` curve), the wrinkling zone
-    between them, the FE dots of the clamped plate and a red open marker,
-    of the shape of the run's FE model, around the dot where each FE run breaks down
-    (``P33`` near the clamps compressive, or no convergence).
+    between them, the FE dots of the clamped plate, a red open marker, of the shape of
+    the run's FE model, around the dot where the P33 criterion says each FE run breaks
+    down (``P33`` near the clamps compressive, or no convergence), and a red cross at
+    the buckling load ``D0_b`` of the runs analysed with the whole plate's spectrum
+    (the zero crossing of the lowest physical eigenvalue, column ``physical_eig``).
 
     Returns
     -------
@@ -368,6 +371,7 @@ def plot_uniaxial_wrinkling(fe=None, alphas=ALPHAS, ax=None, D0max=7.0):
     ax.plot(lk, thick, "--", color="tab:blue", label="thick-plate limit")
     ax.plot(ln, thin, "--", color="k", label="thin-plate limit ($s = 0$)")
     broken = set()
+    buckled = []
     for a, c in zip(alphas, _colors(len(alphas))):
         s = keplinger_s(a)
         l1, D0c, _ = _uniaxial_curve(s, m, 6.0)
@@ -389,15 +393,26 @@ def plot_uniaxial_wrinkling(fe=None, alphas=ALPHAS, ax=None, D0max=7.0):
                 ax.plot(x, D0_fe[i], ls="none", color="red", mfc="none", mew=1.6, zorder=5,
                         clip_on=False, **_BREAKDOWN_MARKER.get(v, _BREAKDOWN_MARKER["coupled"]))
                 broken.add(v)
+            ev = fe["physical_eig"][sel] if "physical_eig" in fe else np.zeros(0)
+            D0b = buckling_crossing(D0_fe, ev) if np.isfinite(ev).any() else None
+            if D0b is not None:       # the stability-based breakdown: a red cross
+                ok = conv & np.isfinite(lam_fe)
+                ax.plot(np.interp(D0b, D0_fe[ok], lam_fe[ok]), D0b, ls="none", color="red",
+                        marker="x", ms=11, mew=2.4, zorder=6, clip_on=False)
+                buckled.append(f"{a:g}")
     ax.set_xlim(0.4, 6.0)
     ax.set_ylim(0, D0max)
     ax.set_xlabel(r"$\lambda_1$")
     ax.set_ylabel(r"$D_0$")
     handles, _ = ax.get_legend_handles_labels()
     crosses = [Line2D([], [], ls="none", color="red", mfc="none", mew=1.6,
-                      label=f"breakdown, {_VARIANT_LABEL[v][3:]}",
+                      label=f"P33 criterion ($P_{{33}}/\\mu < -0.01$), {_VARIANT_LABEL[v][3:]}",
                       **dict(_BREAKDOWN_MARKER[v], ms=0.6 * _BREAKDOWN_MARKER[v]["ms"]))
                for v in _BREAKDOWN_MARKER if v in broken]
+    if buckled:
+        crosses.insert(0, Line2D([], [], ls="none", color="red", marker="x", ms=8, mew=2.2,
+                                 label="buckling (FE stability: whole-plate spectrum), "
+                                 + r"$\alpha = $" + ", ".join(buckled)))
     ax.legend(handles=handles + _variant_legend(ax, fe) + crosses, fontsize=8,
               loc="center left", bbox_to_anchor=(1.01, 0.5))
     ax.set_title("Keplinger plate, uni-axial dead load (neo-Hookean)", fontsize=10)

@@ -9,7 +9,9 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-__all__ = ["StepRecord", "RunOutcome"]
+import numpy as np
+
+__all__ = ["StepRecord", "RunOutcome", "buckling_crossing"]
 
 
 @dataclass
@@ -28,6 +30,9 @@ class StepRecord:
     n_unstable: int | None = None
     lowest_eig: float = float("nan")
     fields: dict | None = None
+    n_negative_plate: int | None = None
+    physical_eig: float = float("nan")
+    physical_class: str = ""
 
 
 @dataclass
@@ -37,3 +42,22 @@ class RunOutcome:
     converged: bool
     reason: str = ""
     failed_D0: float | None = None
+
+
+def buckling_crossing(D0, physical_eig) -> float | None:
+    """The stability-based breakdown of one run: where the whole plate's lowest physical
+    eigenvalue crosses zero, linearly interpolated between the last analysed row above
+    zero and the first below (the first analysed row's ``D0`` if it is already
+    negative); ``None`` if no analysed row is negative."""
+    D0 = np.asarray(D0, dtype=float)
+    ev = np.asarray(physical_eig, dtype=float)
+    rows = np.flatnonzero(np.isfinite(ev))
+    neg = rows[ev[rows] < 0]
+    if not neg.size:
+        return None
+    i = int(neg[0])
+    before = rows[rows < i]
+    if not before.size:
+        return float(D0[i])
+    j = int(before[-1])
+    return float(D0[j] + (D0[i] - D0[j]) * ev[j] / (ev[j] - ev[i]))

@@ -29,7 +29,10 @@ def summary_dict(results, *, quick: bool) -> dict:
         JSON-serialisable; ``breakdown_D0`` maps each run to the first ``D0``
         where ``min P33/mu`` on the centre line fell below ``-0.01`` (or the
         solver stopped), else ``None``; for the uni-axial cases
-        ``breakdown_D0_by_alpha`` holds the same per variant and ``alpha``.
+        ``breakdown_D0_by_alpha`` holds the same per variant and ``alpha``, and
+        ``buckling_D0`` / ``buckling_D0_by_alpha`` the buckling load ``D0_b`` of the runs
+        analysed with the whole plate's spectrum (``None`` where no physical negative
+        eigenvalue appeared).
     """
     cases = {}
     for r in results:
@@ -142,6 +145,15 @@ def write_report(results, folder, *, quick: bool) -> Path:
                   "2 thicknesses from the clamps):", ""]
         lines += [f"- {name} / {k}: " + ("none up to the last D0" if v is None else f"D0 = {v:g}")
                   for name, k, v in brk]
+    bk = [(r.name, k, v) for r in results for k, v in getattr(r, "buckling_D0", {}).items()]
+    if bk:
+        lines += ["", "Buckling load D0_b (FE stability: where the lowest eigenvalue of the whole "
+                  "plate whose mode is classified physical crosses zero, interpolated between "
+                  "the run's states, on that run's mesh - the quick run's is coarse and not "
+                  "mesh-converged; the mesh study is `skfem-dielectric buckling`):", ""]
+        lines += [f"- {name} / {k}: " + ("no physical negative eigenvalue up to the last D0"
+                                         if v is None else f"D0_b = {v:.4g}")
+                  for name, k, v in bk]
     fails = [(r.name, k, v) for r in results for k, v in r.reasons.items()]
     if fails:
         lines += ["", "Runs that stopped (solver):", ""]

@@ -66,6 +66,12 @@ class RunSpec:
     stop_at_breakdown : bool
         End the ramp at the first step where ``P33`` near the clamps turns
         compressive (the paper's breakdown), as the paper's COMSOL runs did.
+    buckling : bool
+        Also analyse every converged state of the clamped plate with the whole plate's
+        spectrum (every symmetry class of the eighth model,
+        :func:`skfem_dielectric.buckling.lowest_physical`): the columns
+        ``n_negative_plate``, ``physical_eig`` and ``physical_class``, whose zero
+        crossing is the stability-based breakdown ``D0_b``.
     """
 
     geometry: str
@@ -78,6 +84,7 @@ class RunSpec:
     record_fields: bool = False
     record_maps: bool = False
     stop_at_breakdown: bool = True
+    buckling: bool = False
 
     def __post_init__(self):
         if self.geometry not in GEOMETRIES:

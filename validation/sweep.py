@@ -42,7 +42,7 @@ from .cases import CASES, Case, RunSpec, analytic_model, get_case
 from .fe import run_fe
 from .figures import case_figure, save_figure
 from .progress import Progress, notice
-from .records import StepRecord
+from .records import StepRecord, buckling_crossing
 from .report import write_report, write_summary
 from .store import (FolderLock, RowDigest, dumps, load_state, save_state, write_csv_atomic,
                     write_text_atomic)
@@ -84,6 +84,8 @@ class CaseResult:
     max_rel_error_by_run: dict = field(default_factory=dict)
     breakdown_D0: dict = field(default_factory=dict)
     breakdown_D0_by_alpha: dict = field(default_factory=dict)
+    buckling_D0: dict = field(default_factory=dict)
+    buckling_D0_by_alpha: dict = field(default_factory=dict)
     reasons: dict = field(default_factory=dict)
     runtime_s: float = 0.0
     resumed_steps: int = 0
@@ -99,7 +101,9 @@ def csv_columns(case: Case) -> list[str]:
     centre, the ``P33/mu`` minima, the verdicts ``converged``, ``stable``, the stability
     counts ``n_negative`` (negative eigenvalues of the reduced stiffness), ``n_unstable``
     (those not classified as clamp-corner artefacts) and ``lowest_eig``, ``breakdown`` and
-    the Newton ``iterations``.
+    the Newton ``iterations``; the uni-axial cases also the whole plate's spectrum of the
+    runs that analyse it (``n_negative_plate``, ``physical_eig``, ``physical_class``, see
+    :func:`validation.fe.plate_buckling_columns`; empty for the others).
 
     Parameters
     ----------
@@ -115,6 +119,8 @@ def csv_columns(case: Case) -> list[str]:
     cols += ["s", "D0", "lam1_fe", "lam1_analytic", "lam3_fe", "lam3_analytic", "min_P33",
              "min_P33_interior", "min_P33_clamp", "converged", "stable", "n_negative",
              "n_unstable", "lowest_eig", "breakdown", "iterations"]
+    if case.geometry == "uniaxial":
+        cols += ["n_negative_plate", "physical_eig", "physical_class"]
     return cols
 
 
@@ -167,8 +173,12 @@ def _row(case: Case, spec: RunSpec, index: int, rec: StepRecord | None, converge
             "n_negative": rec.n_negative if rec else None,
             "n_unstable": rec.n_unstable if rec else None,
             "lowest_eig": rec.lowest_eig if rec else None,
-            "breakdown": breakdown, "iterations": rec.iterations if rec else None}
+            "breakdown": breakdown, "iterations": rec.iterations if rec else None,
+            "n_negative_plate": rec.n_negative_plate if rec else None,
+            "physical_eig": rec.physical_eig if rec else None,
+            "physical_class": rec.physical_class if rec else None}
     return [_fmt(vals[c]) for c in csv_columns(case)]
+
 
 
 #: Verdict columns: always bool/None, also when every cell is empty (e.g. ``stable``
@@ -214,7 +224,7 @@ def _state_path(state_dir: Path, spec: RunSpec) -> Path:
 
 def _manifest_entry(r: RunSpec) -> list:
     return [r.key, list(r.D0), [list(m) for m in r.mesh], r.record_fields, r.record_maps,
-            r.stop_at_breakdown]
+            r.stop_at_breakdown] + (["buckling"] if r.buckling else [])
 
 
 def _manifest(case: Case, runs: tuple) -> dict:
@@ -559,6 +569,10 @@ def summarise_case(case: Case, csv_path: Path, n_runs: int) -> CaseResult:
             variant = str(t["variant"][sel][0])
             res.breakdown_D0_by_alpha.setdefault(variant, {})[format(t["alpha"][sel][0], "g")] = \
                 res.breakdown_D0[key]
+        if "physical_eig" in t and np.isfinite(t["physical_eig"][sel]).any():
+            res.buckling_D0[key] = buckling_crossing(t["D0"][sel], t["physical_eig"][sel])
+            res.buckling_D0_by_alpha.setdefault(str(t["variant"][sel][0]), {})[
+                format(t["alpha"][sel][0], "g")] = res.buckling_D0[key]
         fails = ~conv[sel]
         if fails.any():
             res.reasons[key] = f"no convergence at D0 = {t['D0'][sel][np.argmax(fails)]:g}"
