@@ -132,8 +132,12 @@ def build_problem(spec: RunSpec):
     if spec.geometry == "equibiaxial":
         return fe.equibiaxial_problem(model=spec.model, Jm=GENT_JM, elements=el, **coupling)
     if spec.geometry == "uniaxial":
+        # the run analysed for buckling is the grad-div form of the buckling study
+        # (docs/validation.md): its tangent is the Hessian of its own state, and Newton
+        # passes the clamp/free-edge corner
         return fe.keplinger_problem(model=spec.model, Jm=GENT_JM, size=(L1, H, L3),
-                                    elements=el, **coupling)
+                                    elements=el, grad_div=BUCKLING_GRAD_DIV if spec.buckling
+                                    else 0.0, **coupling)
     raise ValueError(f"the 3D plate has no geometry {spec.geometry!r}")
 
 
@@ -194,6 +198,9 @@ def pardiso_installed() -> bool:
 #: columns: it removes the spurious mesh-scale surface modes of Q2/Q1 and, J = 1 holding
 #: exactly there, is the Hessian of the same state (docs/stability.md)
 STABILITY_GRAD_DIV = 10.0
+#: grad-div stabilisation (units of mu) of the uni-axial runs analysed for buckling
+#: (``RunSpec.buckling``), as in ``skfem-dielectric buckling``
+BUCKLING_GRAD_DIV = 10.0
 def stability_columns(spec: RunSpec, problem, x, load) -> dict:
     """Stability of a converged state: ``n_negative``, ``n_unstable``, ``lowest_eig`` and
     the verdict ``stable``.

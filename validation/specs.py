@@ -71,7 +71,9 @@ class RunSpec:
         spectrum (every symmetry class of the eighth model,
         :func:`skfem_dielectric.buckling.lowest_physical`): the columns
         ``n_negative_plate``, ``physical_eig`` and ``physical_class``, whose zero
-        crossing is the stability-based breakdown ``D0_b``.
+        crossing is the stability-based breakdown ``D0_b``.  Such a run is the grad-div
+        form of the plate (``grad_div = 10``, as the buckling study), so that the analysed
+        tangent is the Hessian of its own state.
     """
 
     geometry: str
