@@ -32,12 +32,14 @@ from __future__ import annotations
 
 import math
 import os
+import threading
 from concurrent.futures import ThreadPoolExecutor
 
 import numpy as np
 from skfem import Basis, ElementHex1, ElementHex2
 
-from ..assembly import DofReduction, ScatterMap, single_threaded_blas
+from ..assembly import (DofReduction, OrderedSum, ScatterMap, single_threaded_blas,
+                        trim_heap)
 from ..materials import MIXED_FORMULATIONS, dielectric_response
 
 __all__ = ["MixedUPPhiForm"]
@@ -51,6 +53,18 @@ def _gradient_layouts(basis) -> tuple[np.ndarray, np.ndarray]:
     dNt = np.ascontiguousarray(g.transpose(2, 3, 1, 0))
     dNi = np.ascontiguousarray(g.transpose(2, 0, 3, 1)).reshape(ne, nf, nq * 3)
     return dNt, dNi
+
+
+def _thread_buffer(work: dict[int, np.ndarray], size: int, most: int) -> np.ndarray:
+    """``size`` entries of the calling thread's buffer in ``work`` (made with ``most``
+    entries, the largest chunk's, on first use): one per worker thread, reused across
+    chunks and calls (no page faults of a fresh large array each time); the scatter
+    consumes it before the thread's next chunk."""
+    key = threading.get_ident()
+    buf = work.get(key)
+    if buf is None or buf.size < size:
+        buf = work[key] = np.empty(max(size, most))
+    return buf[:size]
 
 
 class MixedUPPhiForm:
@@ -85,7 +99,7 @@ class MixedUPPhiForm:
     """
 
     def __init__(self, mesh, material, *, formulation: str = "mixed", kappa: float = math.inf,
-                 phi_element: str = "Q2", intorder: int = 4, chunk: int = 1500,
+                 phi_element: str = "Q2", intorder: int = 4, chunk: int = 100,
                  threads: int | None = None, elastic_volume: bool = False,
                  grad_div: float = 0.0):
         self.material, self.formulation, self.kappa = material, formulation, kappa
@@ -138,7 +152,7 @@ class MixedUPPhiForm:
         self.scatter = ScatterMap(red.index[self.edofs], red.n)
         self._block_pos = self._block_positions()
         self._pos_cache: dict[tuple[int, int], np.ndarray] = {}
-        self._work: dict[tuple[int, int, int], np.ndarray] = {}
+        self._work: dict[int, np.ndarray] = {}
         for sl in self.chunks():        # the chunks' flat positions replace the blocks'
             self._chunk_positions(sl)
         self._block_pos = None
@@ -175,14 +189,13 @@ class MixedUPPhiForm:
         return sizes
 
     def _chunk_positions(self, sl) -> np.ndarray:
-        """Flat scatter positions of a chunk's block buffer (cached per chunk)."""
+        """Flat scatter positions of a chunk's block buffer (cached per chunk; 32-bit:
+        ``np.add.at`` takes them as they are, ``np.bincount`` would convert them)."""
         key = (sl.start, sl.stop)
         pos = self._pos_cache.get(key)
         if pos is None:
             P = self._block_pos if self._block_pos is not None else self._block_positions()
-            # intp: np.bincount would otherwise convert the int32 positions on every call
-            pos = np.concatenate([P[name][sl].ravel() for name, _ in self._block_sizes()]
-                                 ).astype(np.intp)
+            pos = np.concatenate([P[name][sl].ravel() for name, _ in self._block_sizes()])
             self._pos_cache[key] = pos
         return pos
 
@@ -265,13 +278,9 @@ class MixedUPPhiForm:
         dNi, dNt = self.dNi[sl], self.dNt[sl]
         dNphii, dNphit = self.dNphii[sl], self.dNphit[sl]
         sizes = self._block_sizes()
-        # the buffer is reused across calls (one per chunk: no page faults of a fresh large
-        # array on every call); it is consumed by the scatter before the next call
-        size = ne * sum(n for _, n in sizes)
-        key = (sl.start, sl.stop, size)
-        buf = self._work.get(key)
-        if buf is None:
-            buf = self._work[key] = np.empty(size)
+        per = sum(n for _, n in sizes)
+        buf = _thread_buffer(self._work, ne * per,
+                             max(b.stop - b.start for b in self.chunks()) * per)
         views, o = {}, 0
         for name, n in sizes:
             views[name] = buf[o: o + ne * n]
@@ -304,40 +313,45 @@ class MixedUPPhiForm:
                                                      self.N1[sl], w)).ravel()
         return buf
 
-    def _assemble_chunk(self, xf, sl, grad_div=None):
-        r = self._response(xf, sl, grad_div=grad_div)
-        data = np.bincount(self._chunk_positions(sl), weights=self._element_blocks(r, sl),
-                           minlength=self.scatter.nnz + 1)[: self.scatter.nnz]
-        re = self._element_residual(r, sl)
-        return data, np.bincount(self.edofs[sl].ravel(), weights=re.ravel(),
-                                 minlength=self.n_full)
+    def _assemble_chunk(self, xf, k, sl, grad_div, total):
+        """Chunk ``k``'s element blocks added into ``total`` (an :class:`OrderedSum`);
+        returns its full internal force vector."""
+        try:
+            r = self._response(xf, sl, grad_div=grad_div)
+            blocks = self._element_blocks(r, sl)
+            re = self._element_residual(r, sl)
+        except Exception:
+            total.add(k, None, None)     # the later chunks wait for this one's turn
+            raise
+        total.add(k, self._chunk_positions(sl), blocks)
+        return np.bincount(self.edofs[sl].ravel(), weights=re.ravel(), minlength=self.n_full)
 
     # ------------------------------------------------------------------ assembly
     def assemble(self, xf: np.ndarray, grad_div: float | None = None):
         """CSR data of the reduced tangent and the *full* internal force vector at the full
         dof vector ``xf`` (element chunks in ``threads`` worker threads; numpy releases the
-        GIL in the batched matmuls); ``grad_div`` overrides the form's stabilisation."""
+        GIL in the batched matmuls); ``grad_div`` overrides the form's stabilisation.
+
+        Every chunk adds its element blocks into one data array (``np.add.at`` through
+        32-bit positions, in chunk order), not into a partial sum of its own."""
         chunks = list(self.chunks())
+        total = OrderedSum(self.scatter.nnz + 1)
         with single_threaded_blas():   # small products: BLAS threads cost more than they gain
             if self.threads > 1 and len(chunks) > 1:
                 if self._pool is None:
                     self._pool = ThreadPoolExecutor(self.threads)
                 parts = list(self._pool.map(
-                    lambda sl: self._assemble_chunk(xf, sl, grad_div), chunks))
+                    lambda ks: self._assemble_chunk(xf, *ks, grad_div, total),
+                    enumerate(chunks)))
             else:
-                parts = [self._assemble_chunk(xf, sl, grad_div) for sl in chunks]
-        data = parts[0][0]
-        rf = parts[0][1]
-        for d, r in parts[1:]:
-            if self._pool is not None:     # the sum of the 47 MB data arrays, in threads
-                cuts = np.linspace(0, data.size, self.threads + 1).astype(int)
-                list(self._pool.map(lambda ab: np.add(data[ab[0]:ab[1]], d[ab[0]:ab[1]],
-                                                      out=data[ab[0]:ab[1]]),
-                                    zip(cuts[:-1], cuts[1:])))
-            else:
-                data += d
+                parts = [self._assemble_chunk(xf, k, sl, grad_div, total)
+                         for k, sl in enumerate(chunks)]
+        rf = parts[0]
+        for r in parts[1:]:
             rf += r
-        return data, rf
+        del parts
+        trim_heap()     # the chunks' freed temporaries
+        return total.data[: self.scatter.nnz], rf
 
     def element_residuals(self, xf: np.ndarray) -> np.ndarray:
         """Internal force vectors of every element, shape ``(nel, m)``, in the order of
