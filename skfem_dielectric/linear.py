@@ -183,6 +183,9 @@ def new_pypardiso_solver(mtype: int = 11):
     return ps
 
 
+_ORDERINGS = {"minimum-degree": 0, "metis": 2, "parallel-metis": 3}   # PARDISO iparm(2)
+
+
 class PardisoSolver(LinearSolver):
     """MKL PARDISO (via ``pypardiso``), real symmetric indefinite, analysis reused.
 
@@ -196,6 +199,11 @@ class PardisoSolver(LinearSolver):
     refine
         Maximum number of iterative-refinement steps (PARDISO ``iparm(8)``); refinement
         recovers the accuracy lost by pivot perturbation on saddle-point matrices.
+    ordering
+        Fill-reducing ordering (``iparm(2)``): ``"minimum-degree"`` (default; on the
+        40 x 1 x 20 Keplinger plate, nearly a 2-D problem, 13.2 M entries in the factors
+        and 273 MB, against 15.5 M and 292 MB for METIS), ``"metis"`` (nested dissection)
+        or ``"parallel-metis"``.
 
     Notes
     -----
@@ -206,11 +214,13 @@ class PardisoSolver(LinearSolver):
 
     name = "pardiso"
 
-    def __init__(self, refine: int = 2):
+    def __init__(self, refine: int = 2, ordering: str = "minimum-degree"):
+        if ordering not in _ORDERINGS:
+            raise ValueError(f"ordering must be one of {tuple(_ORDERINGS)}, got {ordering!r}")
         self._ps = new_pypardiso_solver(mtype=-2)   # library located once per process
         p = self._ps
         p.set_iparm(1, 1)    # use the iparm values below
-        p.set_iparm(2, 2)    # nested dissection ordering (METIS)
+        p.set_iparm(2, _ORDERINGS[ordering])
         p.set_iparm(8, int(refine))
         p.set_iparm(10, 8)   # pivot perturbation 1e-8
         p.set_iparm(11, 1)   # symmetric scaling
@@ -225,6 +235,7 @@ class PardisoSolver(LinearSolver):
         self._pattern: sp.csr_matrix | None = None
         self._ucache = None
         self.refine = int(refine)
+        self.ordering = ordering
         self.inertia = None
 
     def _call(self, phase: int, A: sp.csr_matrix, b: np.ndarray) -> np.ndarray:

@@ -107,3 +107,14 @@ def test_pardiso_overwrites_the_upper_triangle_in_place():
     assert solver._ucache[2].data is data and U.indptr[0] == 0
     np.testing.assert_allclose(K2 @ x2, b, rtol=1e-12)
     np.testing.assert_allclose(x2, x1 / 2.5, rtol=1e-12)
+
+
+@pytest.mark.parametrize("ordering", ["minimum-degree", "metis", "parallel-metis"])
+def test_pardiso_orderings_give_the_same_solution_and_inertia(ordering):
+    K, b = saddle(60, 15, 6), np.linspace(-1.0, 1.0, 75)
+    s = PardisoSolver(ordering=ordering)
+    np.testing.assert_allclose(s.solve(K, b), spla.spsolve(K.tocsc(), b), rtol=1e-9,
+                               atol=1e-12)
+    assert s.inertia == (60, 15, 0)
+    with pytest.raises(ValueError, match="ordering"):
+        PardisoSolver(ordering="amd")
