@@ -160,20 +160,19 @@ class MixedUPPhiForm:
         """Attach the model's dof reduction: sparsity pattern and scatter positions."""
         self.red = red
         self.scatter = ScatterMap(red.index[self.edofs], red.n)
-        self._block_pos = self._block_positions()
         self._pos_cache: dict[tuple[int, int], np.ndarray] = {}
         self._work: dict[int, np.ndarray] = {}
-        for sl in self.chunks():        # the chunks' flat positions replace the blocks'
+        for sl in self.chunks():        # chunk by chunk: the searches' temporaries stay small
             self._chunk_positions(sl)
-        self._block_pos = None
         self.scatter.compact()
 
     # ------------------------------------------------------------------ layout
-    def _block_positions(self) -> dict[str, np.ndarray]:
-        """Scatter positions of the tangent blocks in the layouts `_element_blocks` uses."""
-        red = self.red.index[self.edofs]
+    def _block_positions(self, sl: slice) -> dict[str, np.ndarray]:
+        """Scatter positions of the tangent blocks of the elements ``sl`` in the layouts
+        `_element_blocks` uses."""
+        red = self.red.index[self.edofs[sl]]
         mu_, mp = self.m_u, self.m_p
-        U = red[:, :mu_].reshape(self.nel, 27, 3)                 # (e, i, a)
+        U = red[:, :mu_].reshape(red.shape[0], 27, 3)             # (e, i, a)
         Ph = red[:, mu_ + mp:]                                    # (e, j)
         sc = self.scatter
         pos = {
@@ -204,8 +203,8 @@ class MixedUPPhiForm:
         key = (sl.start, sl.stop)
         pos = self._pos_cache.get(key)
         if pos is None:
-            P = self._block_pos if self._block_pos is not None else self._block_positions()
-            pos = np.concatenate([P[name][sl].ravel() for name, _ in self._block_sizes()])
+            P = self._block_positions(sl)
+            pos = np.concatenate([P[name].ravel() for name, _ in self._block_sizes()])
             self._pos_cache[key] = pos
         return pos
 
