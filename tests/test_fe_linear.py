@@ -118,3 +118,15 @@ def test_pardiso_orderings_give_the_same_solution_and_inertia(ordering):
     assert s.inertia == (60, 15, 0)
     with pytest.raises(ValueError, match="ordering"):
         PardisoSolver(ordering="amd")
+
+
+def test_pardiso_refines_with_the_matrix_passed():
+    # the refinement steps are done with the residual of K (PARDISO's own refinement,
+    # whose work array is as large as the matrix, is off): the residual is at round-off
+    K, b = saddle(80, 30, 8), np.cos(np.arange(110.0))
+    s = PardisoSolver()
+    assert s._ps.iparm[7] == 0
+    x = s.solve(K, b)
+    assert np.linalg.norm(K @ x - b) <= 1e-13 * np.linalg.norm(b)
+    x0 = PardisoSolver(refine=0).solve(K, b)
+    assert np.linalg.norm(K @ x - b) <= np.linalg.norm(K @ x0 - b)
