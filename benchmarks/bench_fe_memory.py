@@ -132,7 +132,7 @@ def run(a) -> dict:
         wall = time.perf_counter() - t0
     f, sc = res.problem.form, res.problem.scatter
     held = {
-        "scatter positions (per chunk)": _mb(*f._pos_cache.values()),
+        "scatter positions (per chunk)": _mb(*f._pos_cache.values()),   # BlockScatter
         "element block buffers (per thread)": _mb(*f._work.values()),
         "sparsity pattern (indices, indptr)": _mb(sc.indices, sc.indptr),
         "CSR data of one tangent": (sc.nnz + 1) * 8 / 2**20,

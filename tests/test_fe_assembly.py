@@ -121,3 +121,33 @@ def test_trim_heap_is_harmless():
     del a
     assert trim_heap() in (True, False)
     assert trim_heap() in (True, False)        # found once, callable again
+
+
+@pytest.mark.parametrize("star", [False, True])
+def test_block_scatter_adds_as_the_positions(star):
+    # 16-bit offsets in the rows (or, with a row of more than 65 535 entries, the 32-bit
+    # positions) against np.bincount of ScatterMap.positions, eliminated dofs included
+    from skfem_dielectric.assembly import BlockScatter
+
+    rng = np.random.default_rng(11)
+    if star:      # dof 0 coupled to 70 000 others: its row does not fit 16-bit offsets
+        n_full = 70_001
+        dofs = np.c_[np.zeros(n_full - 1, int), np.arange(1, n_full)]
+    else:
+        n_full = 4000
+        dofs = rng.integers(0, n_full, size=(500, 12))
+    red = DofReduction(n_full, fixed=rng.choice(np.arange(1, n_full), 40, replace=False),
+                       tied=[np.arange(10, 20)])
+    d = red.index[dofs]
+    sc = ScatterMap(d, red.n)
+    blocks = [(d[:, :, None], d[:, None, :]), (d[:, :1, None], d[:, None, 1:])]
+    bs = BlockScatter(sc, blocks)
+    pos = np.concatenate([sc.positions(r, c).ravel() for r, c in blocks]).astype(np.int64)
+    assert bs.size == pos.size and np.array_equal(bs.positions(), pos)
+    vals = rng.standard_normal(pos.size)
+    ref = np.bincount(pos, weights=vals, minlength=sc.nnz + 1)[:sc.nnz]
+    out = np.zeros(sc.nnz + 1)
+    bs.add_into(out, vals.copy())
+    np.testing.assert_allclose(out[:sc.nnz], ref, rtol=1e-12, atol=1e-12)
+    per = 4 if star else 2           # bytes per entry: 32-bit positions, or offsets
+    assert bs.nbytes < (per + 0.6) * pos.size

@@ -178,7 +178,7 @@ def test_tangent_equals_one_scatter_of_all_element_blocks(threads, chunk):
     xf = pr.full(x, load)
     sl = slice(0, f.nel)
     resp = f._response(xf, sl)
-    pos = np.concatenate([f._chunk_positions(s).astype(np.int64) for s in f.chunks()])
+    pos = np.concatenate([f._chunk_positions(s).positions() for s in f.chunks()])
     blocks = np.concatenate([f._element_blocks(f._response(xf, s), s).copy()
                              for s in f.chunks()])
     data = np.bincount(pos, weights=blocks, minlength=f.scatter.nnz + 1)[:f.scatter.nnz]

@@ -38,8 +38,8 @@ from concurrent.futures import ThreadPoolExecutor
 import numpy as np
 from skfem import Basis, ElementHex1, ElementHex2
 
-from ..assembly import (DofReduction, OrderedSum, ScatterMap, single_threaded_blas,
-                        trim_heap)
+from ..assembly import (BlockScatter, DofReduction, OrderedSum, ScatterMap,
+                        single_threaded_blas, trim_heap)
 from ..materials import MIXED_FORMULATIONS, dielectric_response
 
 __all__ = ["MixedUPPhiForm"]
@@ -160,32 +160,31 @@ class MixedUPPhiForm:
         """Attach the model's dof reduction: sparsity pattern and scatter positions."""
         self.red = red
         self.scatter = ScatterMap(red.index[self.edofs], red.n)
-        self._pos_cache: dict[tuple[int, int], np.ndarray] = {}
+        self._pos_cache: dict[tuple[int, int], BlockScatter] = {}
         self._work: dict[int, np.ndarray] = {}
         for sl in self.chunks():        # chunk by chunk: the searches' temporaries stay small
             self._chunk_positions(sl)
         self.scatter.compact()
 
     # ------------------------------------------------------------------ layout
-    def _block_positions(self, sl: slice) -> dict[str, np.ndarray]:
-        """Scatter positions of the tangent blocks of the elements ``sl`` in the layouts
+    def _block_positions(self, sl: slice) -> dict[str, tuple[np.ndarray, np.ndarray]]:
+        """Rows and columns of the tangent blocks of the elements ``sl`` in the layouts
         `_element_blocks` uses."""
         red = self.red.index[self.edofs[sl]]
         mu_, mp = self.m_u, self.m_p
         U = red[:, :mu_].reshape(red.shape[0], 27, 3)             # (e, i, a)
         Ph = red[:, mu_ + mp:]                                    # (e, j)
-        sc = self.scatter
         pos = {
-            "uu": sc.positions(U[:, :, :, None, None], U.transpose(0, 2, 1)[:, None, None]),
-            "uf": sc.positions(U[:, :, :, None], Ph[:, None, None, :]),
-            "fu": sc.positions(Ph[:, None, None, :], U[:, :, :, None]),
-            "ff": sc.positions(Ph[:, :, None], Ph[:, None, :]),
+            "uu": (U[:, :, :, None, None], U.transpose(0, 2, 1)[:, None, None]),
+            "uf": (U[:, :, :, None], Ph[:, None, None, :]),
+            "fu": (Ph[:, None, None, :], U[:, :, :, None]),
+            "ff": (Ph[:, :, None], Ph[:, None, :]),
         }
         if mp:
             Pd = red[:, mu_:mu_ + mp]
-            pos["up"] = sc.positions(U[:, :, :, None], Pd[:, None, None, :])
-            pos["pu"] = sc.positions(Pd[:, None, None, :], U[:, :, :, None])
-            pos["pp"] = sc.positions(Pd[:, :, None], Pd[:, None, :])
+            pos["up"] = (U[:, :, :, None], Pd[:, None, None, :])
+            pos["pu"] = (Pd[:, None, None, :], U[:, :, :, None])
+            pos["pp"] = (Pd[:, :, None], Pd[:, None, :])
         return pos
 
     def _block_sizes(self) -> list[tuple[str, int]]:
@@ -197,14 +196,14 @@ class MixedUPPhiForm:
                 sizes.append(("pp", mp * mp))
         return sizes
 
-    def _chunk_positions(self, sl) -> np.ndarray:
-        """Flat scatter positions of a chunk's block buffer (cached per chunk; 32-bit:
-        ``np.add.at`` takes them as they are, ``np.bincount`` would convert them)."""
+    def _chunk_positions(self, sl) -> BlockScatter:
+        """Scatter positions of a chunk's block buffer (cached per chunk; 16-bit offsets
+        in the rows, added by ``np.add.at``, which needs no 64-bit copy)."""
         key = (sl.start, sl.stop)
         pos = self._pos_cache.get(key)
         if pos is None:
             P = self._block_positions(sl)
-            pos = np.concatenate([P[name].ravel() for name, _ in self._block_sizes()])
+            pos = BlockScatter(self.scatter, [P[name] for name, _ in self._block_sizes()])
             self._pos_cache[key] = pos
         return pos
 
