@@ -110,7 +110,7 @@ class MixedUPPhiForm:
     """
 
     def __init__(self, mesh, material, *, formulation: str = "mixed", kappa: float = math.inf,
-                 phi_element: str = "Q2", intorder: int = 4, chunk: int = 100,
+                 phi_element: str = "Q2", intorder: int = 4, chunk: int = 50,
                  threads: int | None = None, elastic_volume: bool = False,
                  grad_div: float = 0.0):
         self.material, self.formulation, self.kappa = material, formulation, kappa
