@@ -323,8 +323,8 @@ class MixedUPPhiForm:
         return buf
 
     def _assemble_chunk(self, xf, k, sl, grad_div, total):
-        """Chunk ``k``'s element blocks added into ``total`` (an :class:`OrderedSum`);
-        returns its full internal force vector."""
+        """Chunk ``k``'s element blocks and internal forces added into ``total`` (an
+        :class:`OrderedSum`)."""
         try:
             r = self._response(xf, sl, grad_div=grad_div)
             blocks = self._element_blocks(r, sl)
@@ -332,8 +332,7 @@ class MixedUPPhiForm:
         except Exception:
             total.add(k, None, None)     # the later chunks wait for this one's turn
             raise
-        total.add(k, self._chunk_positions(sl), blocks)
-        return np.bincount(self.edofs[sl].ravel(), weights=re.ravel(), minlength=self.n_full)
+        total.add(k, self._chunk_positions(sl), blocks, self.edofs[sl].ravel(), re.ravel())
 
     # ------------------------------------------------------------------ assembly
     def assemble(self, xf: np.ndarray, grad_div: float | None = None):
@@ -344,23 +343,18 @@ class MixedUPPhiForm:
         Every chunk adds its element blocks into one data array (``np.add.at`` through
         32-bit positions, in chunk order), not into a partial sum of its own."""
         chunks = list(self.chunks())
-        total = OrderedSum(self.scatter.nnz + 1)
+        total = OrderedSum(self.scatter.nnz + 1, self.n_full)
         with single_threaded_blas():   # small products: BLAS threads cost more than they gain
             if self.threads > 1 and len(chunks) > 1:
                 if self._pool is None:
                     self._pool = ThreadPoolExecutor(self.threads)
-                parts = list(self._pool.map(
-                    lambda ks: self._assemble_chunk(xf, *ks, grad_div, total),
-                    enumerate(chunks)))
+                list(self._pool.map(lambda ks: self._assemble_chunk(xf, *ks, grad_div, total),
+                                    enumerate(chunks)))
             else:
-                parts = [self._assemble_chunk(xf, k, sl, grad_div, total)
-                         for k, sl in enumerate(chunks)]
-        rf = parts[0]
-        for r in parts[1:]:
-            rf += r
-        del parts
+                for k, sl in enumerate(chunks):
+                    self._assemble_chunk(xf, k, sl, grad_div, total)
         trim_heap()     # the chunks' freed temporaries
-        return total.data[: self.scatter.nnz], rf
+        return total.data[: self.scatter.nnz], total.vector
 
     def element_residuals(self, xf: np.ndarray) -> np.ndarray:
         """Internal force vectors of every element, shape ``(nel, m)``, in the order of
