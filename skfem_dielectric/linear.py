@@ -36,6 +36,8 @@ import numpy as np
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
+from .assembly import trim_heap
+
 __all__ = ["LinearSolver", "SuperLUSolver", "PardisoSolver", "PardisoLUSolver",
            "get_linear_solver", "nonsymmetric_solver", "pardiso_available",
            "new_pypardiso_solver"]
@@ -124,6 +126,18 @@ def _same_memory(a: np.ndarray, b: np.ndarray) -> bool:
             and a.shape == b.shape and a.strides == b.strides and a.dtype == b.dtype)
 
 
+def _compress_into(keep: np.ndarray, a: np.ndarray, out: np.ndarray,
+                   block: int = 1 << 20) -> None:
+    """``out[:] = a[keep]`` block by block (``np.compress`` of the whole array makes a
+    temporary 64-bit index of every kept entry, 33 MB on the 40 x 1 x 20 plate)."""
+    o = 0
+    for i in range(0, a.size, block):
+        m = keep[i:i + block]
+        k = int(np.count_nonzero(m))
+        np.compress(m, a[i:i + block], out=out[o:o + k])
+        o += k
+
+
 def _quiet_mkl_threads() -> None:
     """Let MKL's OpenMP threads sleep as soon as a PARDISO call returns.
 
@@ -184,6 +198,9 @@ def new_pypardiso_solver(mtype: int = 11):
     return ps
 
 
+_ORDERINGS = {"minimum-degree": 0, "metis": 2, "parallel-metis": 3}   # PARDISO iparm(2)
+
+
 class PardisoSolver(LinearSolver):
     """MKL PARDISO (via ``pypardiso``), real symmetric indefinite, analysis reused.
 
@@ -195,8 +212,17 @@ class PardisoSolver(LinearSolver):
     Parameters
     ----------
     refine
-        Maximum number of iterative-refinement steps (PARDISO ``iparm(8)``); refinement
-        recovers the accuracy lost by pivot perturbation on saddle-point matrices.
+        Maximum number of iterative-refinement steps; refinement recovers the accuracy
+        lost by pivot perturbation on saddle-point matrices.  They are done here, with
+        the residual of the matrix passed to :meth:`solve` and a solve with the factors
+        each, not by PARDISO (``iparm(8) = 0``), whose own refinement allocated a work
+        array of the size of the factorised matrix in every solve (100 MB of the
+        80 x 1 x 40 plate's peak).
+    ordering
+        Fill-reducing ordering (``iparm(2)``): ``"minimum-degree"`` (default; on the
+        40 x 1 x 20 Keplinger plate, nearly a 2-D problem, 13.2 M entries in the factors
+        and 273 MB, against 15.5 M and 292 MB for METIS), ``"metis"`` (nested dissection)
+        or ``"parallel-metis"``.
 
     Notes
     -----
@@ -207,31 +233,47 @@ class PardisoSolver(LinearSolver):
 
     name = "pardiso"
 
-    def __init__(self, refine: int = 2):
+    def __init__(self, refine: int = 2, ordering: str = "minimum-degree"):
+        if ordering not in _ORDERINGS:
+            raise ValueError(f"ordering must be one of {tuple(_ORDERINGS)}, got {ordering!r}")
         self._ps = new_pypardiso_solver(mtype=-2)   # library located once per process
         p = self._ps
         p.set_iparm(1, 1)    # use the iparm values below
-        p.set_iparm(2, 2)    # nested dissection ordering (METIS)
-        p.set_iparm(8, int(refine))
+        p.set_iparm(2, _ORDERINGS[ordering])
+        p.set_iparm(8, 0)    # no refinement inside PARDISO (see ``refine``)
         p.set_iparm(10, 8)   # pivot perturbation 1e-8
         p.set_iparm(11, 1)   # symmetric scaling
         p.set_iparm(13, 1)   # symmetric weighted matching (recommended for saddle points)
         p.set_iparm(21, 1)   # Bunch-Kaufman pivoting
+        # zero-based index arrays: PARDISO reads the upper triangle's own indptr/indices
+        # (no one-based copy; pypardiso's generic call adds one to them, so only where the
+        # call below is used)
+        self._direct = hasattr(p, "_mkl_pardiso")
+        if self._direct:
+            p.set_iparm(35, 1)
         self._pattern: sp.csr_matrix | None = None
         self._ucache = None
-        self._one_based = None
         self.refine = int(refine)
+        self.ordering = ordering
         self.inertia = None
 
     def _call(self, phase: int, A: sp.csr_matrix, b: np.ndarray) -> np.ndarray:
-        """One PARDISO call; for the cached upper triangle with its one-based index arrays
-        (made once per pattern: pypardiso would convert ``indptr``/``indices`` on every
-        call, 17 MB and ~10 ms each on the 40 x 1 x 20 plate)."""
+        """One PARDISO call with the zero-based int32 ``indptr``/``indices`` of ``A`` as
+        they are (pypardiso would make one-based copies on every call, 17 MB and ~10 ms
+        each on the 40 x 1 x 20 plate); the heap is trimmed after a factorisation or a
+        solve (:func:`~skfem_dielectric.assembly.trim_heap`: their work arrays)."""
         ps = self._ps
         ps.set_phase(phase)
-        one = self._one_based
-        if one is None or one[0] is not A or not hasattr(ps, "_mkl_pardiso"):
-            return ps._call_pardiso(A, b)
+        if not self._direct:
+            x = ps._call_pardiso(A, b)
+        else:
+            x = self._call_direct(phase, A, b)
+        if phase in (22, 33):
+            trim_heap()
+        return x
+
+    def _call_direct(self, phase: int, A: sp.csr_matrix, b: np.ndarray) -> np.ndarray:
+        ps = self._ps
         x = np.zeros_like(b)
         err = ctypes.c_int32(0)
         i32, f64 = ctypes.POINTER(ctypes.c_int32), ctypes.POINTER(ctypes.c_double)
@@ -240,7 +282,7 @@ class PardisoSolver(LinearSolver):
                         ctypes.byref(ctypes.c_int32(ps.mtype)),
                         ctypes.byref(ctypes.c_int32(phase)),
                         ctypes.byref(ctypes.c_int32(A.shape[0])), A.data.ctypes.data_as(f64),
-                        one[1].ctypes.data_as(i32), one[2].ctypes.data_as(i32),
+                        A.indptr.ctypes.data_as(i32), A.indices.ctypes.data_as(i32),
                         ps.perm.ctypes.data_as(i32),
                         ctypes.byref(ctypes.c_int32(1 if b.ndim == 1 else b.shape[1])),
                         ps.iparm.ctypes.data_as(i32), ctypes.byref(ctypes.c_int32(0)),
@@ -250,14 +292,16 @@ class PardisoSolver(LinearSolver):
         return x
 
     def _upper(self, K: sp.spmatrix) -> sp.csr_matrix:
-        """Upper triangle of ``K``; the selection is cached for a repeated CSR pattern."""
+        """Upper triangle of ``K``; the selection is cached for a repeated CSR pattern,
+        whose upper triangle's data are then overwritten in place (no second 33 MB array
+        while the old one is still referenced)."""
         K = sp.csr_matrix(K)
         c = self._ucache
         if (c is not None and c[0].shape == K.indptr.shape and c[1].shape == K.indices.shape
                 and ((c[4] and _same_memory(c[0], K.indptr) and _same_memory(c[1], K.indices))
                      or (np.array_equal(c[0], K.indptr) and np.array_equal(c[1], K.indices)))):
             U = c[2]
-            U.data = np.ascontiguousarray(K.data[c[3]], dtype=np.float64)
+            _compress_into(c[3], K.data, U.data)
             return U
         K.sort_indices()
         n = K.shape[0]
@@ -269,9 +313,8 @@ class PardisoSolver(LinearSolver):
         U = sp.csr_matrix((K.data[keep].astype(np.float64), K.indices[keep].astype(np.int32),
                            indptr), shape=K.shape)
         U.has_sorted_indices = True
-        # PARDISO's one-based index arrays, made once (the zero-based ones are then only
-        # kept by the matrix object, without a second copy)
-        self._one_based = (U, U.indptr + 1, U.indices + 1)
+        if U.indptr.dtype != np.int32 or U.indices.dtype != np.int32:   # PARDISO's int32
+            U.indptr, U.indices = U.indptr.astype(np.int32), U.indices.astype(np.int32)
         # a read-only pattern (shared by the matrices of a ScatterMap) is recognised by its
         # memory, in O(1); otherwise keep a copy and compare the contents
         shared = not (K.indptr.flags.writeable or K.indices.flags.writeable)
@@ -297,7 +340,24 @@ class PardisoSolver(LinearSolver):
         self.inertia = (npos, nneg, n - npos - nneg)
         x = self._call(33, U, b)
         self._last = U
-        return np.ascontiguousarray(x)
+        return np.ascontiguousarray(self._refined(K, b, x))
+
+    def _refined(self, K: sp.csr_matrix, b: np.ndarray, x: np.ndarray) -> np.ndarray:
+        """Up to ``refine`` steps ``x += K^-1 (b - K x)`` with the factors, while they
+        lower the residual."""
+        bn = float(np.linalg.norm(b))
+        r = b - K @ x
+        rn = float(np.linalg.norm(r))
+        for _ in range(self.refine):
+            if not rn > 4.0 * np.finfo(float).eps * bn:
+                break
+            xt = x + self._call(33, self._last, np.asfortranarray(r))
+            rt = b - K @ xt
+            rtn = float(np.linalg.norm(rt))
+            if not rtn < rn:
+                break
+            x, r, rn = xt, rt, rtn
+        return x
 
     def resolve(self, b: np.ndarray) -> np.ndarray | None:
         """Solve with the last numerical factorisation (PARDISO phase 33), without
@@ -308,11 +368,7 @@ class PardisoSolver(LinearSolver):
         if U is None:
             return None
         b = np.asfortranarray(np.asarray(b, dtype=np.float64))
-        self._ps.set_iparm(8, 0)
-        try:
-            return np.ascontiguousarray(self._call(33, U, b))
-        finally:
-            self._ps.set_iparm(8, self.refine)
+        return np.ascontiguousarray(self._call(33, U, b))
 
     def __del__(self):  # pragma: no cover - cleanup
         try:

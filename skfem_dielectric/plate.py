@@ -251,7 +251,7 @@ class PlateProblem(Problem):
                  control: str = "charge", coupling: str = "full",
                  field: str = "electrostatic", formulation: str = "mixed",
                  kappa: float = math.inf, phi_element: str = "Q2", intorder: int = 4,
-                 chunk: int = 1500, threads: int | None = None, grad_div: float = 0.0,
+                 chunk: int = 50, threads: int | None = None, grad_div: float = 0.0,
                  increments=None):
         if not isinstance(plate, PlateMesh):
             raise ValueError(f"plate must be a PlateMesh, got {type(plate).__name__}")

@@ -79,3 +79,54 @@ def test_pardiso_reuses_the_upper_triangle_of_a_shared_pattern(monkeypatch):
         # comparing its contents
         monkeypatch.setattr(np, "array_equal", lambda *a, **k: pytest.fail("compared"))
     assert solver._ucache[4] and uppers[0] is uppers[1]
+
+
+def test_pardiso_overwrites_the_upper_triangle_in_place():
+    from skfem_dielectric.assembly import ScatterMap
+    from skfem_dielectric.linear import _compress_into
+
+    # blocks of the copy: across block boundaries, as a[keep]
+    rng = np.random.default_rng(4)
+    a, keep = rng.standard_normal(1000), rng.random(1000) < 0.4
+    out = np.empty(int(keep.sum()))
+    _compress_into(keep, a, out, block=64)
+    assert np.array_equal(out, a[keep])
+    # a new tangent of the same pattern: the upper triangle's data array is refilled (the
+    # zero-based pattern is what PARDISO reads), and the solve is that of the new matrix
+    n = 150
+    dofs = np.c_[np.arange(n - 1), np.arange(1, n)]
+    sc = ScatterMap(dofs, n)
+    Ke = np.broadcast_to(np.array([[2.0, -1.0], [-1.0, 2.0]]), (n - 1, 2, 2))
+    solver = PardisoSolver()
+    b = np.linspace(1.0, 2.0, n)
+    x1 = solver.solve(sc.matrix(Ke), b)
+    U = solver._ucache[2]
+    data = U.data
+    K2 = sc.matrix(2.5 * Ke)
+    x2 = solver.solve(K2, b)
+    assert solver._ucache[2].data is data and U.indptr[0] == 0
+    np.testing.assert_allclose(K2 @ x2, b, rtol=1e-12)
+    np.testing.assert_allclose(x2, x1 / 2.5, rtol=1e-12)
+
+
+@pytest.mark.parametrize("ordering", ["minimum-degree", "metis", "parallel-metis"])
+def test_pardiso_orderings_give_the_same_solution_and_inertia(ordering):
+    K, b = saddle(60, 15, 6), np.linspace(-1.0, 1.0, 75)
+    s = PardisoSolver(ordering=ordering)
+    np.testing.assert_allclose(s.solve(K, b), spla.spsolve(K.tocsc(), b), rtol=1e-9,
+                               atol=1e-12)
+    assert s.inertia == (60, 15, 0)
+    with pytest.raises(ValueError, match="ordering"):
+        PardisoSolver(ordering="amd")
+
+
+def test_pardiso_refines_with_the_matrix_passed():
+    # the refinement steps are done with the residual of K (PARDISO's own refinement,
+    # whose work array is as large as the matrix, is off): the residual is at round-off
+    K, b = saddle(80, 30, 8), np.cos(np.arange(110.0))
+    s = PardisoSolver()
+    assert s._ps.iparm[7] == 0
+    x = s.solve(K, b)
+    assert np.linalg.norm(K @ x - b) <= 1e-13 * np.linalg.norm(b)
+    x0 = PardisoSolver(refine=0).solve(K, b)
+    assert np.linalg.norm(K @ x - b) <= np.linalg.norm(K @ x0 - b)

@@ -160,3 +160,34 @@ def test_charge_control_is_stable_by_inertia():
     assert [st["stable"] for st in res.steps] == [True] * len(res.steps)
     with_superlu = equibiaxial_plate(1.5, [2.0], linear_solver="superlu")
     assert with_superlu.steps[-1]["stable"] is None       # SuperLU reports no inertia
+
+
+@pytest.mark.parametrize("threads, chunk", [(1, 1), (2, 3), (2, 100)])
+def test_tangent_equals_one_scatter_of_all_element_blocks(threads, chunk):
+    # the chunks' ordered np.add.at into one array against the plain assembly: every
+    # element block of the whole mesh through one np.bincount of 64-bit positions
+    pm = plate_mesh(4.0, 1.0, 2.0, 3, 1, 2, symmetry="full")
+    mat = NeoHookeanDielectric(1.0, 1.0)
+    kw = dict(loading="uniaxial", threads=threads, chunk=chunk)
+    pr = PlateProblem(pm, mat, **kw)
+    rng = np.random.default_rng(7)
+    x = 0.05 * rng.standard_normal(pr.red.n)
+    load = (0.7, 1.3)
+    K, r = pr.assemble(x, load)
+    f = pr.form
+    xf = pr.full(x, load)
+    sl = slice(0, f.nel)
+    resp = f._response(xf, sl)
+    pos = np.concatenate([f._chunk_positions(s).positions() for s in f.chunks()])
+    blocks = np.concatenate([f._element_blocks(f._response(xf, s), s).copy()
+                             for s in f.chunks()])
+    data = np.bincount(pos, weights=blocks, minlength=f.scatter.nnz + 1)[:f.scatter.nnz]
+    rf = np.bincount(f.edofs.ravel(), weights=f._element_residual(resp, sl).ravel(),
+                     minlength=f.n_full) - pr.external(load)
+    scale = np.abs(data).max()
+    assert np.abs(K.data - data).max() <= 1e-12 * scale
+    np.testing.assert_allclose(r, pr.red.reduce(rf), rtol=1e-12,
+                               atol=1e-12 * np.abs(r).max())
+    # the same tangent and residual whatever the chunks and threads (chunk order: bit for bit)
+    K1, r1 = PlateProblem(pm, mat, loading="uniaxial", threads=1, chunk=1000).assemble(x, load)
+    assert np.array_equal(K.data, K1.data) and np.array_equal(r, r1)

@@ -32,25 +32,50 @@ from __future__ import annotations
 
 import math
 import os
+import threading
 from concurrent.futures import ThreadPoolExecutor
 
 import numpy as np
 from skfem import Basis, ElementHex1, ElementHex2
 
-from ..assembly import DofReduction, ScatterMap, single_threaded_blas
+from ..assembly import (BlockScatter, DofReduction, OrderedSum, ScatterMap,
+                        single_threaded_blas, trim_heap)
 from ..materials import MIXED_FORMULATIONS, dielectric_response
 
 __all__ = ["MixedUPPhiForm"]
 
 
-def _gradient_layouts(basis) -> tuple[np.ndarray, np.ndarray]:
-    """Shape-function gradients of ``basis`` as ``(e, q, K, i)`` and ``(e, i, q * 3)``
-    (``i`` the local function, ``K`` the reference direction)."""
+def _gradient_layouts(basis) -> np.ndarray:
+    """Shape-function gradients of ``basis`` as ``(e, q, K, i)`` (``i`` the local
+    function, ``K`` the reference direction)."""
     g = np.array([f[0].grad for f in basis.basis])                            # (i,K,e,q)
-    nf, _, ne, nq = g.shape
-    dNt = np.ascontiguousarray(g.transpose(2, 3, 1, 0))
-    dNi = np.ascontiguousarray(g.transpose(2, 0, 3, 1)).reshape(ne, nf, nq * 3)
-    return dNt, dNi
+    return np.ascontiguousarray(g.transpose(2, 3, 1, 0))
+
+
+def _functions_first(dNt: np.ndarray) -> np.ndarray:
+    """The gradients ``(e, q, K, i)`` of a chunk as ``(e, i, q * K)``, the left factor of
+    the element products (made per chunk: a second layout of the whole mesh's gradients
+    would keep 13 MB more for the 40 x 1 x 20 plate)."""
+    ne, nq, _, nf = dNt.shape
+    return np.ascontiguousarray(dNt.transpose(0, 3, 1, 2)).reshape(ne, nf, nq * 3)
+
+
+def _left_factors(form, sl: slice) -> tuple[np.ndarray, np.ndarray]:
+    """``(e, i, q * K)`` gradients of the displacement and of the potential of a chunk."""
+    dNi = _functions_first(form.dNt[sl])
+    return dNi, (dNi if form.dNphit is form.dNt else _functions_first(form.dNphit[sl]))
+
+
+def _thread_buffer(work: dict[int, np.ndarray], size: int, most: int) -> np.ndarray:
+    """``size`` entries of the calling thread's buffer in ``work`` (made with ``most``
+    entries, the largest chunk's, on first use): one per worker thread, reused across
+    chunks and calls (no page faults of a fresh large array each time); the scatter
+    consumes it before the thread's next chunk."""
+    key = threading.get_ident()
+    buf = work.get(key)
+    if buf is None or buf.size < size:
+        buf = work[key] = np.empty(max(size, most))
+    return buf[:size]
 
 
 class MixedUPPhiForm:
@@ -85,7 +110,7 @@ class MixedUPPhiForm:
     """
 
     def __init__(self, mesh, material, *, formulation: str = "mixed", kappa: float = math.inf,
-                 phi_element: str = "Q2", intorder: int = 4, chunk: int = 1500,
+                 phi_element: str = "Q2", intorder: int = 4, chunk: int = 50,
                  threads: int | None = None, elastic_volume: bool = False,
                  grad_div: float = 0.0):
         self.material, self.formulation, self.kappa = material, formulation, kappa
@@ -104,9 +129,8 @@ class MixedUPPhiForm:
         self.w = np.asarray(self.b2.dx)                                       # (e,q)
         # matmul-friendly layouts of the shape-function gradients (computed once; the
         # Q2 potential shares the displacement's arrays)
-        self.dNt, self.dNi = _gradient_layouts(self.b2)      # (e,q,K,i), (e,i,q*K)
-        self.dNphit, self.dNphii = ((self.dNt, self.dNi) if phi_element == "Q2"
-                                    else _gradient_layouts(self.b1))
+        self.dNt = _gradient_layouts(self.b2)                             # (e,q,K,i)
+        self.dNphit = self.dNt if phi_element == "Q2" else _gradient_layouts(self.b1)
         N2 = self.b2.N
         self.n_u = 3 * N2
         self.n_p = self.b1.N if formulation in MIXED_FORMULATIONS else 0
@@ -136,33 +160,31 @@ class MixedUPPhiForm:
         """Attach the model's dof reduction: sparsity pattern and scatter positions."""
         self.red = red
         self.scatter = ScatterMap(red.index[self.edofs], red.n)
-        self._block_pos = self._block_positions()
-        self._pos_cache: dict[tuple[int, int], np.ndarray] = {}
-        self._work: dict[tuple[int, int, int], np.ndarray] = {}
-        for sl in self.chunks():        # the chunks' flat positions replace the blocks'
+        self._pos_cache: dict[tuple[int, int], BlockScatter] = {}
+        self._work: dict[int, np.ndarray] = {}
+        for sl in self.chunks():        # chunk by chunk: the searches' temporaries stay small
             self._chunk_positions(sl)
-        self._block_pos = None
         self.scatter.compact()
 
     # ------------------------------------------------------------------ layout
-    def _block_positions(self) -> dict[str, np.ndarray]:
-        """Scatter positions of the tangent blocks in the layouts `_element_blocks` uses."""
-        red = self.red.index[self.edofs]
+    def _block_positions(self, sl: slice) -> dict[str, tuple[np.ndarray, np.ndarray]]:
+        """Rows and columns of the tangent blocks of the elements ``sl`` in the layouts
+        `_element_blocks` uses."""
+        red = self.red.index[self.edofs[sl]]
         mu_, mp = self.m_u, self.m_p
-        U = red[:, :mu_].reshape(self.nel, 27, 3)                 # (e, i, a)
+        U = red[:, :mu_].reshape(red.shape[0], 27, 3)             # (e, i, a)
         Ph = red[:, mu_ + mp:]                                    # (e, j)
-        sc = self.scatter
         pos = {
-            "uu": sc.positions(U[:, :, :, None, None], U.transpose(0, 2, 1)[:, None, None]),
-            "uf": sc.positions(U[:, :, :, None], Ph[:, None, None, :]),
-            "fu": sc.positions(Ph[:, None, None, :], U[:, :, :, None]),
-            "ff": sc.positions(Ph[:, :, None], Ph[:, None, :]),
+            "uu": (U[:, :, :, None, None], U.transpose(0, 2, 1)[:, None, None]),
+            "uf": (U[:, :, :, None], Ph[:, None, None, :]),
+            "fu": (Ph[:, None, None, :], U[:, :, :, None]),
+            "ff": (Ph[:, :, None], Ph[:, None, :]),
         }
         if mp:
             Pd = red[:, mu_:mu_ + mp]
-            pos["up"] = sc.positions(U[:, :, :, None], Pd[:, None, None, :])
-            pos["pu"] = sc.positions(Pd[:, None, None, :], U[:, :, :, None])
-            pos["pp"] = sc.positions(Pd[:, :, None], Pd[:, None, :])
+            pos["up"] = (U[:, :, :, None], Pd[:, None, None, :])
+            pos["pu"] = (Pd[:, None, None, :], U[:, :, :, None])
+            pos["pp"] = (Pd[:, :, None], Pd[:, None, :])
         return pos
 
     def _block_sizes(self) -> list[tuple[str, int]]:
@@ -174,15 +196,14 @@ class MixedUPPhiForm:
                 sizes.append(("pp", mp * mp))
         return sizes
 
-    def _chunk_positions(self, sl) -> np.ndarray:
-        """Flat scatter positions of a chunk's block buffer (cached per chunk)."""
+    def _chunk_positions(self, sl) -> BlockScatter:
+        """Scatter positions of a chunk's block buffer (cached per chunk; 16-bit offsets
+        in the rows, added by ``np.add.at``, which needs no 64-bit copy)."""
         key = (sl.start, sl.stop)
         pos = self._pos_cache.get(key)
         if pos is None:
-            P = self._block_pos if self._block_pos is not None else self._block_positions()
-            # intp: np.bincount would otherwise convert the int32 positions on every call
-            pos = np.concatenate([P[name][sl].ravel() for name, _ in self._block_sizes()]
-                                 ).astype(np.intp)
+            P = self._block_positions(sl)
+            pos = BlockScatter(self.scatter, [P[name] for name, _ in self._block_sizes()])
             self._pos_cache[key] = pos
         return pos
 
@@ -248,12 +269,13 @@ class MixedUPPhiForm:
         w = self.w[sl]
         ne, nq = w.shape
         P = np.moveaxis(r.P * w, (2, 3), (0, 1)).transpose(0, 1, 3, 2)        # e q K a
-        ru = (self.dNi[sl] @ np.ascontiguousarray(P).reshape(ne, nq * 3, 3)).reshape(ne, -1)
+        dNi, dNphii = _left_factors(self, sl)
+        ru = (dNi @ np.ascontiguousarray(P).reshape(ne, nq * 3, 3)).reshape(ne, -1)
         parts = [ru]
         if self.m_p:
             parts.append(np.einsum("eqk,eq->ek", self.N1[sl], r.dpsi_dp * w))
         D = np.ascontiguousarray(np.moveaxis(r.D_L * w, 0, 2)).reshape(ne, nq * 3, 1)
-        parts.append((self.dNphii[sl] @ D)[:, :, 0])
+        parts.append((dNphii @ D)[:, :, 0])
         return np.concatenate(parts, axis=1)
 
     def _element_blocks(self, r, sl) -> np.ndarray:
@@ -262,16 +284,12 @@ class MixedUPPhiForm:
         w = self.w[sl]
         ne, nq = w.shape
         mp, mf = self.m_p, self.m_phi
-        dNi, dNt = self.dNi[sl], self.dNt[sl]
-        dNphii, dNphit = self.dNphii[sl], self.dNphit[sl]
+        dNt, dNphit = self.dNt[sl], self.dNphit[sl]
+        dNi, dNphii = _left_factors(self, sl)
         sizes = self._block_sizes()
-        # the buffer is reused across calls (one per chunk: no page faults of a fresh large
-        # array on every call); it is consumed by the scatter before the next call
-        size = ne * sum(n for _, n in sizes)
-        key = (sl.start, sl.stop, size)
-        buf = self._work.get(key)
-        if buf is None:
-            buf = self._work[key] = np.empty(size)
+        per = sum(n for _, n in sizes)
+        buf = _thread_buffer(self._work, ne * per,
+                             max(b.stop - b.start for b in self.chunks()) * per)
         views, o = {}, 0
         for name, n in sizes:
             views[name] = buf[o: o + ne * n]
@@ -304,40 +322,39 @@ class MixedUPPhiForm:
                                                      self.N1[sl], w)).ravel()
         return buf
 
-    def _assemble_chunk(self, xf, sl, grad_div=None):
-        r = self._response(xf, sl, grad_div=grad_div)
-        data = np.bincount(self._chunk_positions(sl), weights=self._element_blocks(r, sl),
-                           minlength=self.scatter.nnz + 1)[: self.scatter.nnz]
-        re = self._element_residual(r, sl)
-        return data, np.bincount(self.edofs[sl].ravel(), weights=re.ravel(),
-                                 minlength=self.n_full)
+    def _assemble_chunk(self, xf, k, sl, grad_div, total):
+        """Chunk ``k``'s element blocks and internal forces added into ``total`` (an
+        :class:`OrderedSum`)."""
+        try:
+            r = self._response(xf, sl, grad_div=grad_div)
+            blocks = self._element_blocks(r, sl)
+            re = self._element_residual(r, sl)
+        except Exception:
+            total.add(k, None, None)     # the later chunks wait for this one's turn
+            raise
+        total.add(k, self._chunk_positions(sl), blocks, self.edofs[sl].ravel(), re.ravel())
 
     # ------------------------------------------------------------------ assembly
     def assemble(self, xf: np.ndarray, grad_div: float | None = None):
         """CSR data of the reduced tangent and the *full* internal force vector at the full
         dof vector ``xf`` (element chunks in ``threads`` worker threads; numpy releases the
-        GIL in the batched matmuls); ``grad_div`` overrides the form's stabilisation."""
+        GIL in the batched matmuls); ``grad_div`` overrides the form's stabilisation.
+
+        Every chunk adds its element blocks into one data array (``np.add.at`` through
+        32-bit positions, in chunk order), not into a partial sum of its own."""
         chunks = list(self.chunks())
+        total = OrderedSum(self.scatter.nnz + 1, self.n_full)
         with single_threaded_blas():   # small products: BLAS threads cost more than they gain
             if self.threads > 1 and len(chunks) > 1:
                 if self._pool is None:
                     self._pool = ThreadPoolExecutor(self.threads)
-                parts = list(self._pool.map(
-                    lambda sl: self._assemble_chunk(xf, sl, grad_div), chunks))
+                list(self._pool.map(lambda ks: self._assemble_chunk(xf, *ks, grad_div, total),
+                                    enumerate(chunks)))
             else:
-                parts = [self._assemble_chunk(xf, sl, grad_div) for sl in chunks]
-        data = parts[0][0]
-        rf = parts[0][1]
-        for d, r in parts[1:]:
-            if self._pool is not None:     # the sum of the 47 MB data arrays, in threads
-                cuts = np.linspace(0, data.size, self.threads + 1).astype(int)
-                list(self._pool.map(lambda ab: np.add(data[ab[0]:ab[1]], d[ab[0]:ab[1]],
-                                                      out=data[ab[0]:ab[1]]),
-                                    zip(cuts[:-1], cuts[1:])))
-            else:
-                data += d
-            rf += r
-        return data, rf
+                for k, sl in enumerate(chunks):
+                    self._assemble_chunk(xf, k, sl, grad_div, total)
+        trim_heap()     # the chunks' freed temporaries
+        return total.data[: self.scatter.nnz], total.vector
 
     def element_residuals(self, xf: np.ndarray) -> np.ndarray:
         """Internal force vectors of every element, shape ``(nel, m)``, in the order of
