@@ -316,10 +316,19 @@ def lowest_modes(K: sp.spmatrix, M: sp.spmatrix, k: int, n_negative: int = 0,
         else:
             sig0 = tiny
             solve0 = _pencil_solve(shifted(sig0), use_pardiso, shift_solver)
-        vals, vecs = _eig_near(solve0, sig0, d, sq, n, k - n_neg, "LA", tol,
-                               None if n_neg else v0)
-        keep = vals >= 0 if n_neg else np.ones(vals.size, bool)
-        parts.append((vals[keep], vecs[:, keep]))
+        # the ones below zero belong to the negative part (a shift just below zero can
+        # return a negative eigenvalue above it): ask for more until enough remain
+        need = k - sum(p[0].size for p in parts)
+        m = need
+        while True:
+            vals, vecs = _eig_near(solve0, sig0, d, sq, n, m, "LA", tol,
+                                   None if n_neg else v0)
+            keep = np.flatnonzero(vals >= 0) if n_neg else np.arange(vals.size)
+            if keep.size >= need or m >= nd - 1:
+                keep = keep[:need]
+                parts.append((vals[keep], vecs[:, keep]))
+                break
+            m = min(nd - 1, m + need - keep.size + 2)
     vals = np.concatenate([p[0] for p in parts])
     vecs = np.column_stack([p[1] for p in parts])
     order = np.argsort(vals)[:k]

@@ -17,7 +17,8 @@ import scipy.sparse.linalg as spla
 
 import skfem_dielectric as fe
 from skfem_dielectric.linear import SuperLUSolver, get_linear_solver
-from skfem_dielectric.stability import constrained_order, metric_matrix, tangent_inertia
+from skfem_dielectric.stability import (constrained_order, lowest_modes, metric_matrix,
+                                        tangent_inertia)
 
 SOLVERS = ["superlu"] + (["pardiso"] if fe.pardiso_available() else [])
 
@@ -145,3 +146,17 @@ def test_constrained_order_gives_the_inertia_where_minimum_degree_fails():
     # Sylvester: the signs of the pivots are the dense eigenvalue signs
     assert (int(np.sum(d > 0)), int(np.sum(d < 0)), 0) == tangent_inertia(K, "dense")
     assert tangent_inertia(K, "superlu") == tangent_inertia(K, "dense")
+
+
+def test_lowest_modes_with_a_negative_eigenvalue_just_below_zero():
+    # a negative eigenvalue between the default shift (-1e-8 max|K|) and zero is found by
+    # both parts of the spectrum (slicing and the shift just below zero); it must be
+    # counted once and the k lowest returned (a diagonal pencil: the reference is exact)
+    lam = np.linspace(0.1, 10.0, 200)
+    lam[0] = -1e-10
+    K = sp.diags(lam).tocsr()
+    M = sp.identity(200, format="csr")
+    vals, vecs = lowest_modes(K, M, 5, n_negative=1, tol=1e-12)
+    assert vals.shape == (5,) and vecs.shape == (200, 5)
+    # ARPACK's tolerance 1e-12 relative in theta = 1/(lambda - sigma)
+    assert vals == pytest.approx(np.sort(lam)[:5], rel=1e-9, abs=1e-14)
