@@ -24,12 +24,10 @@ only if its onset converges under refinement (``validation.buckling`` compares m
 
 from __future__ import annotations
 
-import weakref
 from dataclasses import dataclass, field
 from typing import Any, Sequence
 
 import numpy as np
-import scipy.sparse as sp
 
 from .checks import check_count, check_nonnegative_int, check_positive
 from .critical import CriticalLoad, critical_load
@@ -38,14 +36,10 @@ from .modes import classify_mode
 from .plate import PlateProblem
 from .ramp import RampResult
 from .stability import counted_inertia, lowest_modes
-from .symmetry_classes import SymmetryClass, class_mode_full, symmetry_classes
+from .symmetry_classes import class_mode_full, class_tangent, union_tangent
 
 __all__ = ["ModeLabel", "BucklingLoad", "corner_radius", "class_spectra", "physical_modes",
            "lowest_physical", "buckling_load"]
-
-#: per plate problem: the union-space problem on which the classes' tangents are assembled
-_UNION: "weakref.WeakKeyDictionary[PlateProblem, PlateProblem]" = weakref.WeakKeyDictionary()
-
 
 @dataclass
 class ModeLabel:
@@ -129,22 +123,6 @@ def corner_radius(problem: PlateProblem) -> float:
     return max(2.0 * problem.plate.H, d)
 
 
-def _union_problem(problem: PlateProblem) -> PlateProblem:
-    if problem not in _UNION:
-        _UNION[problem] = PlateProblem(problem.plate, problem.material,
-                                       **dict(problem.options, increments="union"))
-    return _UNION[problem]
-
-
-def _class_tangent(c: SymmetryClass, K: sp.csr_matrix) -> sp.csr_matrix:
-    """``P_c^T K P_c`` with every diagonal entry stored (PARDISO needs the multipliers'
-    explicit zeros)."""
-    Kc = (c.P.T @ K @ c.P).tocoo()
-    i = np.arange(Kc.shape[0])
-    return sp.csr_matrix((np.r_[Kc.data, np.zeros(i.size)], (np.r_[Kc.row, i],
-                          np.r_[Kc.col, i])), shape=Kc.shape)
-
-
 def class_spectra(problem: PlateProblem, x: np.ndarray, load: Any, *, extra: int = 2,
                   grad_div: float | None = None, method: str = "auto",
                   only: Sequence[str] | None = None) -> list[tuple]:
@@ -175,22 +153,12 @@ def class_spectra(problem: PlateProblem, x: np.ndarray, load: Any, *, extra: int
         Modes as vectors of the class's unknowns (unit in the class metric).
     """
     extra = check_count("extra", extra)
-    classes = symmetry_classes(problem)
-    if not problem.symmetric:
-        raise ValueError("the Maxwell coupling has no symmetric tangent: analyse the fully "
-                         "coupled model")
-    x = np.asarray(x, dtype=float)
-    if x.shape != (problem.ndofs,):
-        raise ValueError(f"x must have shape ({problem.ndofs},), got {x.shape}")
-    union = _union_problem(problem)
-    gd = problem.grad_div if grad_div is None else float(grad_div)
-    K = union.scatter.csr(union.form.assemble(problem.full(x, load),
-                                              gd * problem.material.mu)[0])
+    classes, K = union_tangent(problem, x, load, grad_div)
     out = []
     for c in classes:
         if only is not None and c.name not in only:
             continue
-        Kc = _class_tangent(c, K)
+        Kc = class_tangent(c, K)
         n_neg = counted_inertia(Kc, method)[1] - c.layout.n_multipliers
         vals, vecs = lowest_modes(Kc, c.metric, n_neg + extra, max(n_neg, 0), tol=1e-10)
         out.append((c, n_neg, vals, vecs))

@@ -28,7 +28,7 @@ from .problem import Layout
 from .stability import StabilityResult, tangent_stability
 
 __all__ = ["SymmetryClass", "ClassStability", "symmetry_classes", "class_stability",
-           "class_mode_full"]
+           "class_mode_full", "union_tangent", "class_tangent"]
 
 #: per base problem: the union-space problem and its classes (built once)
 _CACHE: "weakref.WeakKeyDictionary[PlateProblem, tuple]" = weakref.WeakKeyDictionary()
@@ -191,6 +191,26 @@ def class_stability(problem: PlateProblem, x: np.ndarray, load: Any, *, k: int =
     ValueError
         A non-symmetric (Maxwell) coupling, or ``x`` of the wrong size.
     """
+    classes, K = union_tangent(problem, x, load, grad_div)
+    out = ClassStability(classes)
+    for c in classes:
+        Kc = class_tangent(c, K)
+        out.results.append(tangent_stability(c, Kc, k=k, method=method,
+                                             all_negative=all_negative, tol=tol,
+                                             metric=c.metric))
+    return out
+
+
+def union_tangent(problem: PlateProblem, x: np.ndarray, load: Any,
+                  grad_div: float | None = None) -> tuple[list[SymmetryClass], sp.csr_matrix]:
+    """The symmetry classes of ``problem`` and the tangent at ``(x, load)`` on their union
+    space, which every class restricts (:func:`class_tangent`).
+
+    Raises
+    ------
+    ValueError
+        A non-symmetric (Maxwell) coupling, or ``x`` of the wrong size.
+    """
     classes = symmetry_classes(problem)
     if not problem.symmetric:
         raise ValueError("the Maxwell coupling has no symmetric tangent: analyse the fully "
@@ -201,14 +221,13 @@ def class_stability(problem: PlateProblem, x: np.ndarray, load: Any, *, k: int =
     union = _union(problem)[0]
     gd = problem.grad_div if grad_div is None else float(grad_div)
     xf = problem.full(x, load)
-    K = union.scatter.csr(union.form.assemble(xf, gd * problem.material.mu)[0])
-    out = ClassStability(classes)
-    for c in classes:
-        Kc = _with_diagonal((c.P.T @ K @ c.P).tocoo())
-        out.results.append(tangent_stability(c, Kc, k=k, method=method,
-                                             all_negative=all_negative, tol=tol,
-                                             metric=c.metric))
-    return out
+    return classes, union.scatter.csr(union.form.assemble(xf, gd * problem.material.mu)[0])
+
+
+def class_tangent(c: SymmetryClass, K: sp.csr_matrix) -> sp.csr_matrix:
+    """The tangent of class ``c``, ``P_c^T K P_c`` of the union-space tangent ``K``, with
+    every diagonal entry stored."""
+    return _with_diagonal((c.P.T @ K @ c.P).tocoo())
 
 
 def _with_diagonal(K: sp.coo_matrix) -> sp.csr_matrix:
