@@ -31,7 +31,7 @@ from skfem_dielectric.modes import top_deflection
 from .sweep import BREAKDOWN_TOL
 
 __all__ = ["COLUMNS", "SCAN_COLUMNS", "PLAIN_COLUMNS", "P33_SETS", "p33_measures", "onset",
-           "run_one", "run_plain", "run_buckling", "read_rows", "richardson", "buckling_figure"]
+           "run_one", "run_plain", "run_buckling", "read_rows", "append_rows", "richardson", "buckling_figure"]
 
 #: where min P33/mu is taken: centre line, clamp line (one element inside the clamp),
 #: centre line outside the clamps' 2H layer, all quadrature points outside it, centre
@@ -160,12 +160,13 @@ def read_rows(path: Path) -> list[dict]:
         rows = list(csv.DictReader(f))
     for r in rows:
         for k, v in r.items():
-            if k not in ("mesh", "class", "physical_class"):
+            if k not in ("mesh", "class", "physical_class", "branch", "reason"):
                 r[k] = float(v) if v not in ("", None) else float("nan")
     return rows
 
 
-def _append(path: Path, columns, rows) -> None:
+def append_rows(path: Path, columns, rows) -> None:
+    """Append ``rows`` (dicts) to the CSV ``path``, writing its header first if new."""
     new = not path.exists()
     with open(path, "a", newline="") as f:
         w = csv.DictWriter(f, fieldnames=columns)
@@ -190,12 +191,12 @@ def run_buckling(out: Path, *, alphas, meshes, D0_step: float, D0_max: float,
             if key not in done:
                 row, scan = run_one(float(alpha), el, D0_step=D0_step, D0_max=D0_max,
                                     solver=solver, modes_dir=out / ".modes")
-                _append(out / "buckling-scan.csv", SCAN_COLUMNS, scan)
-                _append(table, COLUMNS, [row])
+                append_rows(out / "buckling-scan.csv", SCAN_COLUMNS, scan)
+                append_rows(table, COLUMNS, [row])
                 if progress is not None:
                     progress(row)
             if key not in done_plain:
-                _append(plain, PLAIN_COLUMNS, [run_plain(float(alpha), el, D0_step=D0_step,
+                append_rows(plain, PLAIN_COLUMNS, [run_plain(float(alpha), el, D0_step=D0_step,
                                                          D0_max=D0_max, solver=solver)])
     rows = read_rows(table)
     buckling_figure(rows, read_rows(out / "buckling-scan.csv"), out / ".modes",

@@ -1,5 +1,5 @@
 """The ``skfem-dielectric`` command line: ``list | curves | simulate | validate | bench |
-wrinkling-fe | buckling``.
+wrinkling-fe | buckling | post-buckling``.
 
 Every subcommand has ``--help``. Only this module prints, and it writes files
 only into the folder given by ``--out``.
@@ -21,6 +21,7 @@ import numpy as np
 from .buckling import FULL as BUCKLING_FULL, QUICK as BUCKLING_QUICK, run_buckling
 from .cases import CASES
 from .fe import bench, pardiso_installed, run_fe, simulate
+from .postbuckling import FULL as POST_FULL, QUICK as POST_QUICK, run_post_buckling
 from .figures import case_figure, save_figure
 from .wrinkling import run_wrinkling_fe
 from .specs import MODELS, VARIANTS
@@ -143,6 +144,30 @@ def build_parser() -> argparse.ArgumentParser:
                    help="linear solver and inertia method (PARDISO: the fast extra)")
     k.add_argument("--out", required=True, type=_out_dir, help="output folder")
 
+    pb = add("post-buckling", "follow the clamped plate onto its buckled branch",
+             "Ramp the clamped Keplinger plate's quarter model (the whole thickness, "
+             "grad-div 10) for each --alpha on each mesh, locate the buckling load D0_b of "
+             "its own symmetry class, switch onto the buckled branch along the critical "
+             "mode and follow it forward and back towards D0_b: DIR/post-buckling.csv (every "
+             "state, both branches: mid-plane deflection, lam1 at the centre against the "
+             "homogeneous closed form, stability counts), DIR/post-buckling-summary.csv "
+             "(one row per alpha x mesh, written as each is done; a rerun skips the rows "
+             "present) and DIR/post-buckling.png. Default: alpha = 0.05 and 1 on the "
+             "quarter meshes 10x2x5, 14x2x7, 20x2x10 (about an hour on 2 cores); --quick: "
+             "alpha = 0.05 on 10x2x5 up to D0 = 1 (about a minute).")
+    pb.add_argument("--quick", action="store_true", help="alpha = 0.05, one coarse mesh")
+    pb.add_argument("--alpha", nargs="+", type=float, metavar="A", help="weight fractions")
+    pb.add_argument("--meshes", nargs="+", type=_mesh_triple, metavar="N1xN2xN3",
+                    help="quarter-model meshes with an even N2, e.g. 10x2x5 20x2x10")
+    pb.add_argument("--D0-step", dest="D0_step", type=float,
+                    help="charge step of the scan and the branch (default 0.05)")
+    pb.add_argument("--D0-max", dest="D0_max", type=float,
+                    help="last charge target (default: D0_b + 0.75 for alpha = 0.05, "
+                         "D0_b + 0.5 otherwise)")
+    pb.add_argument("--solver", choices=["auto", "superlu", "pardiso"], default="auto",
+                    help="linear solver and inertia method (auto: PARDISO if installed)")
+    pb.add_argument("--out", required=True, type=_out_dir, help="output folder")
+
     v = add("validate", "run FE sweeps, overlay them on the theory (main job)",
             "Run the FE ramps of the cases, write DIR/<case>.csv step by step, the figures "
             "(PNG, PDF), summary.json and report.md (covering every case in DIR). An "
@@ -232,6 +257,36 @@ def _mesh_triple(text: str) -> tuple[int, int, int]:
     if len(el) != 3 or min(el) < 1:
         raise argparse.ArgumentTypeError(f"a mesh is N1xN2xN3 with counts >= 1, got {text!r}")
     return el
+
+
+def _cmd_post_buckling(args) -> int:
+    opts = dict(POST_QUICK if args.quick else POST_FULL)
+    for key in ("alpha", "meshes", "D0_step", "D0_max"):
+        value = getattr(args, key)
+        if value is not None:
+            opts["alphas" if key == "alpha" else key] = value
+    _positive("--D0-step", opts["D0_step"])
+    if opts["D0_max"] is not None:
+        _positive("--D0-max", opts["D0_max"])
+    for a in opts["alphas"]:
+        _positive("--alpha", a)
+    for m in opts["meshes"]:
+        if m[1] % 2:
+            raise ValueError(f"--meshes: N2 must be even (nodes on the mid-plane), got "
+                             f"{'x'.join(map(str, m))}")
+    if args.solver == "pardiso" and not pardiso_installed():
+        raise ValueError("--solver pardiso needs the fast extra (pypardiso); use "
+                         "--solver superlu")
+
+    def show(row):
+        print(f"alpha = {row['alpha']:g} {row['mesh']}: D0_b = {row['D0_b']:.4f}, from the "
+              f"branch {row['D0_b_pitchfork']:.4f}; deflection {row['deflection_last']:.3f} "
+              f"mm at D0 = {row['D0_last']:.3g}; {row['seconds']:.0f} s"
+              + (f" ({row['reason']})" if row["reason"] else ""), flush=True)
+
+    run_post_buckling(args.out, **opts, solver=args.solver, progress=show)
+    print(f"wrote {args.out / 'post-buckling.csv'}, {args.out / 'post-buckling.png'}")
+    return 0
 
 
 def _cmd_buckling(args) -> int:
@@ -448,7 +503,8 @@ def main(argv: list[str] | None = None) -> int:
     args = parser.parse_args(argv)
     cmd = {"list": _cmd_list, "curves": _cmd_curves, "validate": _cmd_validate,
            "simulate": _cmd_simulate, "bench": _cmd_bench,
-           "wrinkling-fe": _cmd_wrinkling, "buckling": _cmd_buckling}[args.command]
+           "wrinkling-fe": _cmd_wrinkling, "buckling": _cmd_buckling,
+           "post-buckling": _cmd_post_buckling}[args.command]
     prefix = f"skfem-dielectric {args.command}: error:"
     try:
         if getattr(args, "jobs", 1) < 1:

@@ -1,0 +1,270 @@
+"""The clamped Keplinger plate past its buckling load: the post-buckled branch per weight.
+
+For each weight ``alpha`` and mesh the *quarter* model (symmetry planes ``x1 = 0`` and
+``x3 = 0``, the whole thickness: it can bend; grad-div 10 as in :mod:`validation.buckling`)
+is ramped in ``D0`` on its fundamental (symmetric) branch; the lowest physical eigenvalue of
+its own class (:func:`skfem_dielectric.postbuckling.critical_mode`) locates the buckling
+load ``D0_b`` to ``1e-4``; at the first scanned state past it Newton is started from the
+fundamental state plus the critical mode (branch switching on the perfect plate) and the
+buckled branch is followed forward to ``D0_max`` and back towards ``D0_b``.  The
+mid-plane deflection against ``D0`` gives ``D0_b`` a second time, from the nonlinear
+branch alone (pitchfork fit ``D0 = D0_b + b w^2 + c w^4``), and ``lam1`` at the plate
+centre is compared with the fundamental branch and with the homogeneous curve (Eq.
+(DEuniax) of Conroy Broderick, Righi, Destrade and Ogden, "Stability analysis of
+charge-controlled soft dielectric plates", Int. J. Eng. Sci., 2020).
+
+Files (all in ``out``): ``post-buckling.csv`` (one row per state of both branches),
+``post-buckling-summary.csv`` (one row per alpha x mesh, appended as each is done; a rerun
+skips the pairs present), ``.post-buckling/<alpha>_<mesh>.npz`` (the mid-plane deflection
+of the last buckled state) and ``post-buckling.png``.
+"""
+
+from __future__ import annotations
+
+import time
+from pathlib import Path
+
+import matplotlib.pyplot as plt
+import numpy as np
+
+import analytic as an
+import skfem_dielectric as fe
+from skfem_dielectric.critical import critical_load
+from skfem_dielectric.drivers import newton_guards
+from skfem_dielectric.postbuckling import (critical_mode, midplane_deflection,
+                                           post_buckled_branch)
+
+from .buckling import append_rows, read_rows
+
+__all__ = ["COLUMNS", "SUMMARY_COLUMNS", "QUICK", "FULL", "run_one", "run_post_buckling",
+           "post_buckling_figure"]
+
+COLUMNS = ("alpha", "mesh", "branch", "D0", "deflection", "lam1", "lam1_fundamental",
+           "lam1_homogeneous", "min_P33", "eigenvalue", "n_negative_own", "n_negative")
+SUMMARY_COLUMNS = ("alpha", "s", "mesh", "ndofs", "D0_b", "D0_b_pitchfork", "b", "switch_D0",
+                   "switch_amplitude", "D0_last", "deflection_last", "lam1_last",
+                   "lam1_fundamental_last", "lam1_homogeneous_last", "max_n_negative_own",
+                   "reason", "seconds")
+#: backward targets: D0_b + f (D0_switch - D0_b)
+BACK_FRACTIONS = (0.5, 0.25, 0.12, 0.06)
+QUICK = {"alphas": (0.05,), "meshes": ((10, 2, 5),), "D0_step": 0.05, "D0_max": 1.0}
+FULL = {"alphas": (0.05, 1.0), "meshes": ((10, 2, 5), (14, 2, 7), (20, 2, 10)),
+        "D0_step": 0.05, "D0_max": None}
+#: where the branch of each weight is followed: D0_b + this (full run)
+SPAN = {0.05: 0.75, 1.0: 0.5}
+
+
+def _mesh_name(el) -> str:
+    return "x".join(str(int(n)) for n in el)
+
+
+def _fundamental(alpha, elements, D0, solver):
+    newton = dict(linear_solver=solver, max_cutbacks=6, max_iter=25, rtol=1e-9)
+    res = fe.keplinger_plate(alpha, D0=D0, elements=tuple(elements), symmetry="quarter",
+                             grad_div=10.0, **newton)
+    return res, newton
+
+
+def _locate(pb, states, method, newton):
+    """First own-class crossing of the lowest physical eigenvalue along the states:
+    ``(D0_b, index of the first state past it, eigenvalues)``; ``nan, None`` if none."""
+    eig = []
+    for i, st in enumerate(states):
+        lab = critical_mode(pb, st.x, st.load, method=method)
+        eig.append(lab.eigenvalue if lab is not None else np.nan)
+        if i and eig[-1] < 0 < eig[-2]:
+            a = states[i - 1]
+            crit = critical_load(pb, a.x, a.load, st.load,
+                                 lambda x, ld: critical_mode(pb, x, ld,
+                                                             method=method).eigenvalue,
+                                 tol=1e-4, atol=0.0, **newton, **newton_guards(pb))
+            return float(crit.load[1]), i, eig
+    return float("nan"), None, eig
+
+
+def run_one(alpha: float, elements, *, D0_step: float, D0_max: float,
+            D0_from: float = 0.0, solver: str = "pardiso", shapes_dir: Path | None = None
+            ) -> tuple[dict, list[dict]]:
+    """One alpha x quarter mesh: fundamental ramp (steps of 0.25 up to ``D0_from``, then
+    ``D0_step``; the spectrum from ``D0_from`` on), ``D0_b``, branch switch, the buckled
+    branch forward to ``D0_max`` and back.  Returns the summary row and the state rows."""
+    t0 = time.time()
+    D0 = np.round(np.concatenate([np.arange(0.25, D0_from - 1e-9, 0.25),
+                                  np.arange(D0_from, D0_max + 1e-9, D0_step)]), 10)
+    D0 = D0[D0 > 0]
+    res, newton = _fundamental(alpha, elements, D0, solver)
+    pb = res.problem
+    mesh = _mesh_name(elements)
+    method = "pardiso" if solver == "pardiso" else "auto"
+    charge = [st for st in res.steps
+              if np.asarray(st.load)[1] >= max(D0_from, 1e-12) - 1e-9]
+    s = float(np.asarray(charge[0].load)[0]) if charge else float("nan")
+    model = an.NeoHookean()
+
+    def homogeneous(d):
+        return float(an.uniaxial_lam1(d, s, model))
+
+    d_b, i_sw, eig = _locate(pb, charge, method, newton)
+    rows = [{"alpha": alpha, "mesh": mesh, "branch": "fundamental",
+             "D0": float(st.load[1]),
+             "deflection": midplane_deflection(pb, st.x, st.load),
+             "lam1": st.quantities["lam1"], "lam1_fundamental": st.quantities["lam1"],
+             "lam1_homogeneous": homogeneous(float(st.load[1])),
+             "min_P33": st.quantities["min_P33"],
+             "eigenvalue": eig[k] if k < len(eig) else np.nan,
+             "n_negative_own": "", "n_negative": ""} for k, st in enumerate(charge)]
+    summary = {"alpha": alpha, "s": s, "mesh": mesh, "ndofs": pb.ndofs, "D0_b": d_b,
+               "D0_b_pitchfork": np.nan, "b": np.nan, "switch_D0": np.nan,
+               "switch_amplitude": np.nan, "D0_last": np.nan, "deflection_last": np.nan,
+               "lam1_last": np.nan, "lam1_fundamental_last": np.nan,
+               "lam1_homogeneous_last": np.nan, "max_n_negative_own": "", "reason": ""}
+    if i_sw is None:
+        summary["reason"] = ("no physical negative eigenvalue of the own class up to "
+                             f"D0 = {charge[-1].load[1] if charge else 0:g}"
+                             + ("" if res.converged else f"; {res.reason}"))
+        summary["seconds"] = round(time.time() - t0, 1)
+        return summary, rows
+    sw = charge[i_sw]
+    d_sw = float(sw.load[1])
+    back = [d_b + f * (d_sw - d_b) for f in BACK_FRACTIONS]
+    fwd = [float(st.load[1]) for st in charge[i_sw + 1:]]
+    br = post_buckled_branch(pb, sw.x, sw.load, fwd, back, method=method,
+                             linear_solver=solver, rtol=1e-9)
+    summary.update(switch_D0=d_sw, switch_amplitude=br.switch.amplitude)
+    if not br.switch.found:
+        summary["reason"] = br.switch.reason
+        summary["seconds"] = round(time.time() - t0, 1)
+        return summary, rows
+    fund = {round(float(st.load[1]), 10): st.quantities["lam1"] for st in charge}
+    buckled = []
+    for d, w, st in br.states():
+        q = st.quantities if st is not None else None
+        buckled.append({"alpha": alpha, "mesh": mesh, "branch": "buckled", "D0": d,
+                        "deflection": w,
+                        "lam1": q["lam1"] if q else pb.postprocess(br.switch.x,
+                                                                   sw.load)["lam1"],
+                        "lam1_fundamental": fund.get(round(d, 10), np.nan),
+                        "lam1_homogeneous": homogeneous(d),
+                        "min_P33": q["min_P33"] if q else np.nan, "eigenvalue": np.nan,
+                        "n_negative_own": q["n_negative_own"] if q else "",
+                        "n_negative": q["n_negative"] if q else ""})
+    rows += buckled
+    try:
+        summary["D0_b_pitchfork"], summary["b"] = br.pitchfork(4)
+    except ValueError as exc:
+        summary["reason"] = str(exc)
+    last = buckled[-1]
+    summary.update(D0_last=last["D0"], deflection_last=last["deflection"],
+                   lam1_last=last["lam1"], lam1_fundamental_last=last["lam1_fundamental"],
+                   lam1_homogeneous_last=last["lam1_homogeneous"],
+                   max_n_negative_own=max((r["n_negative_own"] for r in buckled
+                                           if r["n_negative_own"] != ""), default=""))
+    reasons = [r.reason for r in (br.forward, br.backward) if r is not None and r.reason]
+    if reasons:
+        summary["reason"] = "; ".join([summary["reason"]] * bool(summary["reason"]) + reasons)
+    if shapes_dir is not None:
+        st = [t[2] for t in br.states() if t[2] is not None][-1]
+        shapes_dir.mkdir(parents=True, exist_ok=True)
+        X = pb.b2.doflocs
+        mid = np.flatnonzero(np.abs(X[1]) < 1e-9 * pb.plate.H)
+        u2 = pb.full(st.x, st.load)[1:pb.n_u:3][mid]
+        np.savez(shapes_dir / f"{alpha:g}_{mesh}.npz", X1=X[0][mid], X3=X[2][mid], u2=u2,
+                 D0=float(st.load[1]))
+    summary["seconds"] = round(time.time() - t0, 1)
+    return summary, rows
+
+
+def run_post_buckling(out: Path, *, alphas, meshes, D0_step: float, D0_max: float | None,
+                      solver: str = "pardiso", progress=None) -> list[dict]:
+    """The study: every alpha x mesh not yet in ``out/post-buckling-summary.csv``, then
+    the figure.  ``D0_max=None`` follows each weight to ``D0_b + SPAN[alpha]`` (estimated
+    from the coarse table of docs/validation.md, 1.5 otherwise)."""
+    out = Path(out)
+    out.mkdir(parents=True, exist_ok=True)
+    table = out / "post-buckling-summary.csv"
+    done = {(r["alpha"], r["mesh"]) for r in read_rows(table)}
+    for alpha in alphas:
+        top = D0_max if D0_max is not None else _default_top(float(alpha))
+        start = _default_start(float(alpha), D0_step)
+        for el in meshes:
+            if (float(alpha), _mesh_name(el)) in done:
+                continue
+            summary, rows = run_one(float(alpha), el, D0_step=D0_step, D0_max=top,
+                                    D0_from=start, solver=solver,
+                                    shapes_dir=out / ".post-buckling")
+            append_rows(out / "post-buckling.csv", COLUMNS, rows)
+            append_rows(table, SUMMARY_COLUMNS, [summary])
+            if progress is not None:
+                progress(summary)
+    summary = read_rows(table)
+    post_buckling_figure(summary, read_rows(out / "post-buckling.csv"),
+                         out / ".post-buckling", out / "post-buckling.png")
+    return summary
+
+
+#: buckling loads of docs/validation.md (eighth models, extrapolated), for the default span
+_D0_B = {0.05: 0.7515, 0.3: 1.457, 0.7: 2.467, 1.0: 2.840}
+
+
+def _default_start(alpha: float, step: float) -> float:
+    """Where the spectrum scan starts: a step multiple below 0.9 of the table's D0_b."""
+    d = _D0_B.get(alpha)
+    return step if d is None else max(step, float(np.floor(0.9 * d / step) * step))
+
+
+def _default_top(alpha: float) -> float:
+    d = _D0_B.get(alpha)
+    return 1.5 if d is None else round(d + SPAN.get(alpha, 0.5), 2)
+
+
+def post_buckling_figure(summary, rows, shapes_dir: Path, path: Path) -> Path:
+    """One row of panels per alpha: mid-plane deflection vs ``D0`` per mesh, ``lam1`` at
+    the centre minus the homogeneous closed form (fundamental and buckled branches), the
+    buckled shape on the finest mesh."""
+    alphas = sorted({r["alpha"] for r in summary})
+    fig, axes = plt.subplots(len(alphas), 3, figsize=(14, 3.6 * len(alphas)),
+                             squeeze=False, constrained_layout=True)
+    for ax3, alpha in zip(axes, alphas):
+        mine = [r for r in summary if r["alpha"] == alpha]
+        meshes = sorted({r["mesh"] for r in mine}, key=lambda m: int(m.split("x")[0]))
+        for m in meshes:
+            b = [r for r in rows if r["alpha"] == alpha and r["mesh"] == m
+                 and r["branch"] == "buckled"]
+            line, = ax3[0].plot([r["D0"] for r in b], [r["deflection"] for r in b], "o-",
+                                ms=3, label=f"quarter {m}")
+            d_b = next(r for r in mine if r["mesh"] == m)["D0_b"]
+            if np.isfinite(d_b):
+                ax3[0].axvline(d_b, ls=":", lw=0.8, color=line.get_color())
+        ax3[0].set(xlabel="D0", ylabel="mid-plane deflection max |u2| (mm)",
+                   title=f"alpha = {alpha:g}: buckled branch (dotted: D0_b)")
+        ax3[0].legend(fontsize=7)
+        fine = meshes[-1]
+        for m in meshes:
+            b = [r for r in rows if r["alpha"] == alpha and r["mesh"] == m
+                 and r["branch"] == "buckled"]
+            f = [r for r in rows if r["alpha"] == alpha and r["mesh"] == m
+                 and r["branch"] == "fundamental"]
+            line, = ax3[1].plot([r["D0"] for r in b],
+                                [r["lam1"] - r["lam1_homogeneous"] for r in b], "o-", ms=3,
+                                label=f"buckled {m}")
+            ax3[1].plot([r["D0"] for r in f], [r["lam1"] - r["lam1_homogeneous"] for r in f],
+                        "s--", ms=3, mfc="none", lw=0.8, color=line.get_color(),
+                        label=f"fundamental {m}")
+        ax3[1].axhline(0, color="k", lw=0.6)
+        ax3[1].set(xlabel="D0", ylabel="lam1 (FE, centre) - lam1 (homogeneous)",
+                   title=f"alpha = {alpha:g}: centre stretch against Eq. (DEuniax)")
+        ax3[1].legend(fontsize=7)
+        npz = shapes_dir / f"{alpha:g}_{fine}.npz"
+        if npz.exists():
+            z = np.load(npz)
+            X1 = np.concatenate([z["X1"], -z["X1"], z["X1"], -z["X1"]])
+            X3 = np.concatenate([z["X3"], z["X3"], -z["X3"], -z["X3"]])
+            u2 = np.tile(z["u2"], 4)
+            lim = max(float(np.abs(u2).max()), 1e-300)
+            t = ax3[2].tricontourf(X1, X3, u2, 21, cmap="RdBu_r", vmin=-lim, vmax=lim)
+            fig.colorbar(t, ax=ax3[2], shrink=0.8, label="u2 (mm)")
+            ax3[2].set(aspect="equal", xlabel="X1 (mm)", ylabel="X3 (mm)",
+                       title=f"{fine}: mid-plane deflection at D0 = {float(z['D0']):.3g}")
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+    return path
