@@ -331,32 +331,42 @@ def _locate(problem, a, b, phys_b, opts, scan, tol, maxiter, ramp_options) -> Bu
     indicator jump where another mode's indicators cross a threshold; instead, among the
     modes of the critical class classified physical, the one that overlaps most with the
     physical mode at ``b`` is followed (one class per trial; a flagged mode that mixes
-    with it is not followed).
+    with it is not followed).  The lowest physical mode at ``b`` need not be the first to
+    cross (nearly degenerate classes cross in another order): if another class has a
+    negative physical eigenvalue at the located load, its crossing is located between
+    ``a`` and that load, until no class is negative there (each class once).
     """
     for key, value in newton_guards(problem).items():
         ramp_options.setdefault(key, value)
     n_u = problem.n_u
-    ref = phys_b.mode[:n_u] / np.linalg.norm(phys_b.mode[:n_u])
     spec = dict(extra=opts["extra"], grad_div=opts["grad_div"], method=opts["method"])
-
     r = corner_radius(problem) if opts["radius"] is None else opts["radius"]
+    target, end, seen = phys_b, np.asarray(b[1], float), set()
+    while True:
+        seen.add(target.symmetry)
+        ref = target.mode[:n_u] / np.linalg.norm(target.mode[:n_u])
 
-    def eig(x, load):
-        # among the class's modes classified physical, the one most like the mode at b
-        c, _, vals, vecs = class_spectra(problem, x, load, only=[phys_b.symmetry], **spec)[0]
-        xf = problem.full(x, load)
-        best, value = -1.0, np.inf
-        for j in range(vals.size):
-            w = class_mode_full(c, vecs[:, j])
-            ov = abs(ref @ w[:n_u]) / max(np.linalg.norm(w[:n_u]), 1e-300)
-            if ov > best and classify_mode(problem, xf, w, radius=r)["kind"] == "physical":
-                best, value = ov, float(vals[j])
-        return value
+        def eig(x, load, ref=ref, cls=target.symmetry):
+            # among the class's modes classified physical, the one most like the reference
+            c, _, vals, vecs = class_spectra(problem, x, load, only=[cls], **spec)[0]
+            xf = problem.full(x, load)
+            best, value = -1.0, np.inf
+            for j in range(vals.size):
+                w = class_mode_full(c, vecs[:, j])
+                ov = abs(ref @ w[:n_u]) / max(np.linalg.norm(w[:n_u]), 1e-300)
+                if ov > best and classify_mode(problem, xf, w, radius=r)["kind"] == "physical":
+                    best, value = ov, float(vals[j])
+            return value
 
-    crit = critical_load(problem, a[0], np.asarray(a[1], float), np.asarray(b[1], float), eig,
-                         tol=tol, maxiter=maxiter, **ramp_options)
-    labels, _ = physical_modes(problem, crit.x, crit.load, stop_at_physical=False, **opts)
-    same = [m for m in labels if m.symmetry == phys_b.symmetry]
+        crit = critical_load(problem, a[0], np.asarray(a[1], float), end, eig, tol=tol,
+                             maxiter=maxiter, **ramp_options)
+        labels, _ = physical_modes(problem, crit.x, crit.load, stop_at_physical=False, **opts)
+        earlier = [m for m in labels if m.kind == "physical" and m.eigenvalue < 0
+                   and m.symmetry not in seen]
+        if not earlier:
+            break
+        target, end = earlier[0], np.asarray(crit.load, float)
+    same = [m for m in labels if m.symmetry == target.symmetry]
     ov = [abs(ref @ m.mode[:n_u]) / np.linalg.norm(m.mode[:n_u]) for m in same]
     label = same[int(np.argmax(ov))] if same else None
     return BucklingLoad(float(crit.load[1]), crit.load, crit.eigenvalue, label, crit.x, scan,
