@@ -162,8 +162,8 @@ def build_parser() -> argparse.ArgumentParser:
     pb.add_argument("--D0-step", dest="D0_step", type=float,
                     help="charge step of the scan and the branch (default 0.05)")
     pb.add_argument("--D0-max", dest="D0_max", type=float,
-                    help="last charge target (default: D0_b + 0.75 for alpha = 0.05, "
-                         "D0_b + 0.5 otherwise)")
+                    help="last charge target (default: 1.5 for alpha = 0.05, 3.3 for "
+                         "alpha = 1; see validation.postbuckling.WINDOW)")
     pb.add_argument("--solver", choices=["auto", "superlu", "pardiso"], default="auto",
                     help="linear solver and inertia method (auto: PARDISO if installed)")
     pb.add_argument("--out", required=True, type=_out_dir, help="output folder")

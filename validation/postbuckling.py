@@ -33,10 +33,11 @@ from skfem_dielectric.critical import critical_load
 from skfem_dielectric.drivers import newton_guards
 from skfem_dielectric.postbuckling import (critical_mode, midplane_deflection,
                                            post_buckled_branch)
+from skfem_dielectric.symmetry_classes import class_stability
 
 from .buckling import append_rows, read_rows
 
-__all__ = ["COLUMNS", "SUMMARY_COLUMNS", "QUICK", "FULL", "run_one", "run_post_buckling",
+__all__ = ["COLUMNS", "SUMMARY_COLUMNS", "QUICK", "FULL", "WINDOW", "run_one", "run_post_buckling",
            "post_buckling_figure"]
 
 COLUMNS = ("alpha", "mesh", "branch", "D0", "deflection", "lam1", "lam1_fundamental",
@@ -44,14 +45,16 @@ COLUMNS = ("alpha", "mesh", "branch", "D0", "deflection", "lam1", "lam1_fundamen
 SUMMARY_COLUMNS = ("alpha", "s", "mesh", "ndofs", "D0_b", "D0_b_pitchfork", "b", "switch_D0",
                    "switch_amplitude", "D0_last", "deflection_last", "lam1_last",
                    "lam1_fundamental_last", "lam1_homogeneous_last", "max_n_negative_own",
+                   "min_eigenvalue_buckled",
                    "reason", "seconds")
 #: backward targets: D0_b + f (D0_switch - D0_b)
 BACK_FRACTIONS = (0.5, 0.25, 0.12, 0.06)
 QUICK = {"alphas": (0.05,), "meshes": ((10, 2, 5),), "D0_step": 0.05, "D0_max": 1.0}
 FULL = {"alphas": (0.05, 1.0), "meshes": ((10, 2, 5), (14, 2, 7), (20, 2, 10)),
         "D0_step": 0.05, "D0_max": None}
-#: where the branch of each weight is followed: D0_b + this (full run)
-SPAN = {0.05: 0.75, 1.0: 0.5}
+#: per weight: where the spectrum scan starts (below 0.9 of the buckling load of the
+#: table in docs/validation.md) and where the branch ends by default
+WINDOW = {0.05: (0.65, 1.5), 0.3: (1.3, 2.0), 0.7: (2.2, 3.0), 1.0: (2.55, 3.3)}
 
 
 def _mesh_name(el) -> str:
@@ -80,6 +83,13 @@ def _locate(pb, states, method, newton):
                                  tol=1e-4, atol=0.0, **newton, **newton_guards(pb))
             return float(crit.load[1]), i, eig
     return float("nan"), None, eig
+
+
+def _counts(pb, st, method) -> dict:
+    """Negative eigenvalues of the own class and of all classes of a fundamental state
+    (only where the spectrum is scanned, ``D0 >= D0_from``)."""
+    cs = class_stability(pb, st.x, st.load, k=0, method=method)
+    return {"n_negative_own": cs.results[0].n_negative, "n_negative": cs.n_negative}
 
 
 def run_one(alpha: float, elements, *, D0_step: float, D0_max: float,
@@ -112,12 +122,13 @@ def run_one(alpha: float, elements, *, D0_step: float, D0_max: float,
              "lam1_homogeneous": homogeneous(float(st.load[1])),
              "min_P33": st.quantities["min_P33"],
              "eigenvalue": eig[k] if k < len(eig) else np.nan,
-             "n_negative_own": "", "n_negative": ""} for k, st in enumerate(charge)]
+             **_counts(pb, st, method)} for k, st in enumerate(charge)]
     summary = {"alpha": alpha, "s": s, "mesh": mesh, "ndofs": pb.ndofs, "D0_b": d_b,
                "D0_b_pitchfork": np.nan, "b": np.nan, "switch_D0": np.nan,
                "switch_amplitude": np.nan, "D0_last": np.nan, "deflection_last": np.nan,
                "lam1_last": np.nan, "lam1_fundamental_last": np.nan,
-               "lam1_homogeneous_last": np.nan, "max_n_negative_own": "", "reason": ""}
+               "lam1_homogeneous_last": np.nan, "max_n_negative_own": "",
+               "min_eigenvalue_buckled": np.nan, "reason": ""}
     if i_sw is None:
         summary["reason"] = ("no physical negative eigenvalue of the own class up to "
                              f"D0 = {charge[-1].load[1] if charge else 0:g}"
@@ -139,13 +150,15 @@ def run_one(alpha: float, elements, *, D0_step: float, D0_max: float,
     buckled = []
     for d, w, st in br.states():
         q = st.quantities if st is not None else None
+        lab = (critical_mode(pb, st.x, st.load, method=method) if st is not None else None)
         buckled.append({"alpha": alpha, "mesh": mesh, "branch": "buckled", "D0": d,
                         "deflection": w,
                         "lam1": q["lam1"] if q else pb.postprocess(br.switch.x,
                                                                    sw.load)["lam1"],
                         "lam1_fundamental": fund.get(round(d, 10), np.nan),
                         "lam1_homogeneous": homogeneous(d),
-                        "min_P33": q["min_P33"] if q else np.nan, "eigenvalue": np.nan,
+                        "min_P33": q["min_P33"] if q else np.nan,
+                        "eigenvalue": lab.eigenvalue if lab is not None else np.nan,
                         "n_negative_own": q["n_negative_own"] if q else "",
                         "n_negative": q["n_negative"] if q else ""})
     rows += buckled
@@ -158,7 +171,8 @@ def run_one(alpha: float, elements, *, D0_step: float, D0_max: float,
                    lam1_last=last["lam1"], lam1_fundamental_last=last["lam1_fundamental"],
                    lam1_homogeneous_last=last["lam1_homogeneous"],
                    max_n_negative_own=max((r["n_negative_own"] for r in buckled
-                                           if r["n_negative_own"] != ""), default=""))
+                                           if r["n_negative_own"] != ""), default=""),
+                   min_eigenvalue_buckled=float(np.nanmin([r["eigenvalue"] for r in buckled])))
     reasons = [r.reason for r in (br.forward, br.backward) if r is not None and r.reason]
     if reasons:
         summary["reason"] = "; ".join([summary["reason"]] * bool(summary["reason"]) + reasons)
@@ -177,15 +191,16 @@ def run_one(alpha: float, elements, *, D0_step: float, D0_max: float,
 def run_post_buckling(out: Path, *, alphas, meshes, D0_step: float, D0_max: float | None,
                       solver: str = "pardiso", progress=None) -> list[dict]:
     """The study: every alpha x mesh not yet in ``out/post-buckling-summary.csv``, then
-    the figure.  ``D0_max=None`` follows each weight to ``D0_b + SPAN[alpha]`` (estimated
-    from the coarse table of docs/validation.md, 1.5 otherwise)."""
+    the figure.  Each weight's spectrum scan starts at ``WINDOW[alpha][0]`` (``D0_step``
+    for a weight not in it); ``D0_max=None`` ends it at ``WINDOW[alpha][1]`` (1.5)."""
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
     table = out / "post-buckling-summary.csv"
     done = {(r["alpha"], r["mesh"]) for r in read_rows(table)}
     for alpha in alphas:
-        top = D0_max if D0_max is not None else _default_top(float(alpha))
-        start = _default_start(float(alpha), D0_step)
+        start, top = WINDOW.get(float(alpha), (D0_step, 1.5))
+        top = top if D0_max is None else D0_max
+        start = min(start, top)
         for el in meshes:
             if (float(alpha), _mesh_name(el)) in done:
                 continue
@@ -200,21 +215,6 @@ def run_post_buckling(out: Path, *, alphas, meshes, D0_step: float, D0_max: floa
     post_buckling_figure(summary, read_rows(out / "post-buckling.csv"),
                          out / ".post-buckling", out / "post-buckling.png")
     return summary
-
-
-#: buckling loads of docs/validation.md (eighth models, extrapolated), for the default span
-_D0_B = {0.05: 0.7515, 0.3: 1.457, 0.7: 2.467, 1.0: 2.840}
-
-
-def _default_start(alpha: float, step: float) -> float:
-    """Where the spectrum scan starts: a step multiple below 0.9 of the table's D0_b."""
-    d = _D0_B.get(alpha)
-    return step if d is None else max(step, float(np.floor(0.9 * d / step) * step))
-
-
-def _default_top(alpha: float) -> float:
-    d = _D0_B.get(alpha)
-    return 1.5 if d is None else round(d + SPAN.get(alpha, 0.5), 2)
 
 
 def post_buckling_figure(summary, rows, shapes_dir: Path, path: Path) -> Path:
