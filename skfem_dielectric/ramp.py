@@ -299,6 +299,9 @@ def ramp(problem: Problem, loads: Sequence[Any], *, x0: np.ndarray | None = None
         raise ValueError(f"chord must be in [0, 1), got {chord!r}")
     t_start = time.perf_counter()
     solver = get_linear_solver(linear_solver, symmetric=problem.symmetric)
+    # a solver that reads only the upper triangle gets it assembled directly
+    tangent = (problem.assemble_upper if problem.symmetric
+               and getattr(solver, "reads_upper", False) else problem.assemble)
     try:
         loads = list(loads)
     except TypeError:
@@ -369,7 +372,7 @@ def ramp(problem: Problem, loads: Sequence[Any], *, x0: np.ndarray | None = None
             scale = problem.residual_scale(load)
             at = _as_load(a + frac * (b - a)) if frac > 0 else cur
             x_start = _secant_guess(problem, x, at, back, load) if predictor == "secant" else x
-            nr = newton(lambda xx: problem.assemble(xx, load), x_start,
+            nr = newton(lambda xx: tangent(xx, load), x_start,
                         residual=lambda xx: problem.residual(xx, load),
                         linear_solver=solver, atol=atol, rtol=rtol, scale=scale,
                         max_iter=max_iter, line_search=line_search,
