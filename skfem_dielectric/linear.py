@@ -37,7 +37,7 @@ import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
 from .assembly import trim_heap
-from .symmetric import SymmetricUpper
+from .symmetric import SymmetricUpper, same_memory, same_pattern
 
 __all__ = ["LinearSolver", "SuperLUSolver", "PardisoSolver", "PardisoLUSolver",
            "get_linear_solver", "nonsymmetric_solver", "pardiso_available",
@@ -64,6 +64,10 @@ class LinearSolver:
     def resolve(self, b: np.ndarray) -> np.ndarray | None:
         """Solve with the last factorised matrix (``None`` if not supported)."""
         return None
+
+    def discard(self) -> None:
+        """Free the last factorisation (a new matrix is factorised next): :meth:`resolve`
+        returns ``None`` until the next :meth:`solve`."""
 
     def factor_inertia(self) -> tuple[int, int, int] | None:
         """Inertia ``(n_positive, n_negative, n_zero)`` of the last factorised matrix if
@@ -108,6 +112,10 @@ class SuperLUSolver(LinearSolver):
         self._lu = lu
         return lu.solve(np.asarray(b, dtype=float))
 
+    def discard(self) -> None:
+        """Free the LU factors."""
+        self._lu = None
+
     def resolve(self, b: np.ndarray) -> np.ndarray | None:
         """Solve with the last LU factors."""
         lu = getattr(self, "_lu", None)
@@ -127,29 +135,6 @@ class SuperLUSolver(LinearSolver):
 def _whole(K):
     """``K`` as a sparse matrix (a :class:`SymmetricUpper` as its whole matrix)."""
     return K.tocsr() if isinstance(K, SymmetricUpper) else K
-
-
-def _same_memory(a: np.ndarray, b: np.ndarray) -> bool:
-    """True if ``a`` and ``b`` view the same memory with the same layout (O(1))."""
-    return (a.__array_interface__["data"][0] == b.__array_interface__["data"][0]
-            and a.shape == b.shape and a.strides == b.strides and a.dtype == b.dtype)
-
-
-def _read_only(A: sp.csr_matrix) -> bool:
-    """Whether neither index array of ``A`` can be written."""
-    return not (A.indptr.flags.writeable or A.indices.flags.writeable)
-
-
-def _same_pattern(pattern: tuple[np.ndarray, np.ndarray], A: sp.csr_matrix) -> bool:
-    """Whether ``A`` has the pattern ``(indptr, indices)`` (O(1) for the same read-only
-    memory)."""
-    indptr, indices = pattern
-    if indptr.shape != A.indptr.shape or indices.shape != A.indices.shape:
-        return False
-    if (not indptr.flags.writeable and _same_memory(indptr, A.indptr)
-            and _same_memory(indices, A.indices)):
-        return True
-    return np.array_equal(indptr, A.indptr) and np.array_equal(indices, A.indices)
 
 
 def _compress_into(keep: np.ndarray, a: np.ndarray, out: np.ndarray,
@@ -333,7 +318,7 @@ class PardisoSolver(LinearSolver):
         K = sp.csr_matrix(K)
         c = self._ucache
         if (c is not None and c[0].shape == K.indptr.shape and c[1].shape == K.indices.shape
-                and ((c[4] and _same_memory(c[0], K.indptr) and _same_memory(c[1], K.indices))
+                and ((c[4] and same_memory(c[0], K.indptr) and same_memory(c[1], K.indices))
                      or (np.array_equal(c[0], K.indptr) and np.array_equal(c[1], K.indices)))):
             U = c[2]
             _compress_into(c[3], K.data, U.data)
@@ -364,14 +349,15 @@ class PardisoSolver(LinearSolver):
         b = np.asfortranarray(np.asarray(b, dtype=np.float64))
         if np.any(np.diff(U.indptr) == 0):
             raise ValueError("matrix is singular: it has an empty row")
-        same = self._pattern is not None and _same_pattern(self._pattern, U)
+        same = self._pattern is not None and same_pattern(self._pattern, U)
         if not same:
             if self._pattern is not None:
                 self._call(-1, U, b)  # release the old factorisation
             self._call(11, U, b)
             # a read-only pattern (that of a ScatterMap, or the solver's own selection) is
             # recognised by its memory; otherwise keep a copy to compare with
-            self._pattern = ((U.indptr, U.indices) if _read_only(U)
+            self._pattern = ((U.indptr, U.indices) if not (U.indptr.flags.writeable
+                                                           or U.indices.flags.writeable)
                              else (U.indptr.copy(), U.indices.copy()))
         self._call(22, U, b)
         n = K.shape[0]
@@ -397,6 +383,18 @@ class PardisoSolver(LinearSolver):
                 break
             x, r, rn = xt, rt, rtn
         return x
+
+    def discard(self) -> None:
+        """Free the numerical factorisation (PARDISO phase 0: 100 of the 273 MB of the
+        40 x 1 x 20 Keplinger plate's factors; the analysis is kept) and the matrix it
+        belongs to, so that they are not held while the next tangent is assembled and
+        factorised; :meth:`resolve` returns ``None`` until the next :meth:`solve`."""
+        U = getattr(self, "_last", None)
+        if U is None:
+            return
+        self._last = None
+        self._call(0, U, np.zeros(U.shape[0]))
+        trim_heap()
 
     def resolve(self, b: np.ndarray) -> np.ndarray | None:
         """Solve with the last numerical factorisation (PARDISO phase 33), without

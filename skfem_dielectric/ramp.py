@@ -324,6 +324,8 @@ def ramp(problem: Problem, loads: Sequence[Any], *, x0: np.ndarray | None = None
         """``state_analysis`` of the converged ``x``: its tangent factorised by the ramp's
         solver (counted with the step); returns ``(quantities, inertia)``."""
         nonlocal reuse, facts, t_asm, t_sol
+        if callable(getattr(solver, "discard", None)):
+            solver.discard()        # the old factors: not held beside the new tangent
         t = time.perf_counter()
         K, _ = problem.assemble(x, load)
         t_asm += time.perf_counter() - t

@@ -14,7 +14,7 @@ from __future__ import annotations
 import numpy as np
 import scipy.sparse as sp
 
-__all__ = ["SymmetricUpper"]
+__all__ = ["SymmetricUpper", "same_memory", "same_pattern"]
 
 
 class SymmetricUpper:
@@ -77,3 +77,43 @@ class SymmetricUpper:
         K = (U + U.T - sp.diags(self.diagonal())).tocsr()
         K.sort_indices()
         return K
+
+
+def same_memory(a: np.ndarray, b: np.ndarray) -> bool:
+    """Whether ``a`` and ``b`` view the same memory with the same layout (O(1)).
+
+    Parameters
+    ----------
+    a, b
+        Arrays.
+
+    Returns
+    -------
+    bool
+    """
+    return (a.__array_interface__["data"][0] == b.__array_interface__["data"][0]
+            and a.shape == b.shape and a.strides == b.strides and a.dtype == b.dtype)
+
+
+def same_pattern(pattern: tuple[np.ndarray, np.ndarray], A: sp.csr_matrix) -> bool:
+    """Whether the CSR matrix ``A`` has the sparsity pattern ``(indptr, indices)``.
+
+    Parameters
+    ----------
+    pattern
+        ``(indptr, indices)``; when read-only (the shared pattern of a
+        :class:`~skfem_dielectric.assembly.ScatterMap`), the same memory decides in O(1).
+    A
+        CSR matrix.
+
+    Returns
+    -------
+    bool
+    """
+    indptr, indices = pattern
+    if indptr.shape != A.indptr.shape or indices.shape != A.indices.shape:
+        return False
+    if (not indptr.flags.writeable and same_memory(indptr, A.indptr)
+            and same_memory(indices, A.indices)):
+        return True
+    return bool(np.array_equal(indptr, A.indptr) and np.array_equal(indices, A.indices))
