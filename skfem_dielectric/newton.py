@@ -185,7 +185,8 @@ def newton(assemble: Callable[[np.ndarray], tuple[sp.spmatrix, np.ndarray]],
         ``assemble(x)[1]``.
     linear_solver
         Name for :func:`get_linear_solver` or a solver instance (reused across calls, which
-        lets PARDISO keep its symbolic factorisation).
+        lets PARDISO keep its symbolic factorisation); its ``discard()``, if it has one,
+        frees the old factors before a tangent that is factorised next is assembled.
     atol, rtol, scale
         Converged when ``||r|| <= atol + rtol * scale``; ``scale`` defaults to the initial
         residual norm.

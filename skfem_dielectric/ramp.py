@@ -235,7 +235,9 @@ def ramp(problem: Problem, loads: Sequence[Any], *, x0: np.ndarray | None = None
     linear_solver
         Name or instance (see :func:`skfem_dielectric.linear.get_linear_solver`; a name
         gives a non-symmetric solver for a problem whose ``symmetric`` is False); one
-        instance is used for the whole ramp.
+        instance is used for the whole ramp.  A solver that ``reads_upper`` (the symmetric
+        PARDISO) gets the tangents of the Newton iterations from
+        :meth:`~skfem_dielectric.problem.Problem.assemble_upper`.
     max_cutbacks
         How many times a failing sub-step may be halved before the ramp stops.
     atol, rtol, max_iter, line_search, chord
