@@ -102,7 +102,7 @@ def run(a) -> dict:
 
     with Sampler() as smp:
         imports = _status()[0]
-        _labelled(MixedUPPhiForm, "bind", smp, "set-up: pattern and scatter positions")
+        _labelled(MixedUPPhiForm, "structure", smp, "set-up: pattern and scatter positions")
         _labelled(MixedUPPhiForm, "assemble", smp, "tangent assembly")
         _labelled(MixedUPPhiForm, "residual", smp, "residual")
         _labelled(PardisoSolver, "_upper", smp, "upper triangle for PARDISO")
@@ -130,12 +130,15 @@ def run(a) -> dict:
                                   preload_steps=a.preload_steps, linear_solver=solver,
                                   chord=a.chord, predictor=a.predictor)
         wall = time.perf_counter() - t0
-    f, sc = res.problem.form, res.problem.scatter
-    held = {
-        "scatter positions (per chunk)": _mb(*f._pos_cache.values()),   # BlockScatter
+    f = res.problem.form
+    held = {}
+    for upper, (sc, cache) in sorted(f._structures.items()):   # the patterns made
+        what = "upper triangle" if upper else "whole tangent"
+        held[f"{what}: scatter positions (per chunk)"] = _mb(*cache.values())  # BlockScatter
+        held[f"{what}: sparsity pattern (indices, indptr)"] = _mb(sc.indices, sc.indptr)
+        held[f"{what}: CSR data"] = (sc.nnz + 1) * 8 / 2**20
+    held.update({
         "element block buffers (per thread)": _mb(*f._work.values()),
-        "sparsity pattern (indices, indptr)": _mb(sc.indices, sc.indptr),
-        "CSR data of one tangent": (sc.nnz + 1) * 8 / 2**20,
         "shape-function gradients": _mb(f.dNt, None if f.dNphit is f.dNt else f.dNphit),
         "scikit-fem bases (values, gradients)": _mb(*[c.value for fs in f.b2.basis
                                                       for c in fs[:1]],
@@ -145,19 +148,21 @@ def run(a) -> dict:
                                                       for c in fs[:1]],
                                                     *[c.grad for fs in f.b1.basis
                                                       for c in fs[:1]]),
-    }
+    })
     cache = getattr(solver, "_ucache", None)
     if cache is not None:
         U = cache[2]
-        held["PARDISO upper triangle: data"] = _mb(U.data)
-        held["PARDISO upper triangle: indices, indptr"] = _mb(U.indices, U.indptr)
-        held["PARDISO upper triangle: selection mask"] = _mb(cache[3])
+        held["PARDISO's selected upper triangle: data"] = _mb(U.data)
+        held["PARDISO's selected upper triangle: indices, indptr"] = _mb(U.indices, U.indptr)
+        held["PARDISO's selected upper triangle: selection mask"] = _mb(cache[3])
     return {
         "dofs": int(res.problem.red.n), "elements": list(a.elements), "solver": solver.name,
         "steps": len(res.steps), "converged": bool(res.converged),
         "iterations": int(res.iterations_total), "factorisations": int(res.factorisations),
         "assembly_s": res.assembly_seconds, "solve_s": res.solve_seconds, "wall_s": wall,
-        "nnz": int(sc.nnz), "imports_MB": imports, "peak_sampled_MB": smp.peak,
+        "nnz": {("upper triangle" if up else "whole tangent"): int(sc.nnz)
+                for up, (sc, _) in f._structures.items()},
+        "imports_MB": imports, "peak_sampled_MB": smp.peak,
         "peak_phase": smp.where, "VmHWM_MB": _status()[1], "by_phase": smp.by_phase,
         "pardiso": pardiso, "held_MB": held,
         "lam1_last": float(res.steps[-1]["lam1"]) if res.steps else float("nan"),
@@ -166,8 +171,9 @@ def run(a) -> dict:
 
 
 def report(r: dict) -> None:
-    print(f"[{r['solver']}] elements {r['elements']}, {r['dofs']} unknowns, {r['nnz']} "
-          f"nonzeros, {r['steps']} load steps, converged {r['converged']}")
+    nnz = ", ".join(f"{v} nonzeros in the {k}" for k, v in r["nnz"].items())
+    print(f"[{r['solver']}] elements {r['elements']}, {r['dofs']} unknowns, {nnz}, "
+          f"{r['steps']} load steps, converged {r['converged']}")
     print(f"  iterations {r['iterations']}, factorisations {r['factorisations']}, assembly "
           f"{r['assembly_s']:.1f} s, factorisation + solve {r['solve_s']:.1f} s, wall "
           f"{r['wall_s']:.1f} s (load average {r['load_average']:.2f}), lam1 at the last "

@@ -25,7 +25,7 @@ import numpy as np
 import scipy.sparse as sp
 
 __all__ = ["BlockScatter", "DofReduction", "OrderedSum", "ScatterMap", "blas_threads",
-           "single_threaded_blas", "trim_heap"]
+           "drop_spare_slots", "single_threaded_blas", "trim_heap"]
 
 _OPENBLAS: list = []      # [(get_num_threads, set_num_threads) or None], found on first use
 _MALLOC_TRIM: list = []   # [malloc_trim or None], found on first use
@@ -190,6 +190,9 @@ class ScatterMap:
         ``(nel, m)`` reduced unknown of each element-local dof (``-1`` = eliminated).
     n
         Number of reduced unknowns.
+    upper
+        Keep only the upper triangle (column >= row, the diagonal included): the entries
+        below the diagonal count as eliminated (the storage a symmetric solver reads).
 
     Notes
     -----
@@ -198,10 +201,11 @@ class ScatterMap:
     dofs) are summed, as the reduction requires.
     """
 
-    def __init__(self, dofs: np.ndarray, n: int):
+    def __init__(self, dofs: np.ndarray, n: int, upper: bool = False):
         dofs = np.asarray(dofs, dtype=np.int64)
         self.dofs = dofs
         self.n = int(n)
+        self.upper = bool(upper)
         nel, m = dofs.shape
         # sorted unique row-major keys of the valid (row, col) pairs: np.sort + a diff
         # (0.3 s for the 10.8 M keys of the 34k-dof plate; np.unique took 1.4-3.4 s with the
@@ -238,9 +242,10 @@ class ScatterMap:
 
     def _keys(self, rows, cols) -> np.ndarray:
         """Row-major keys ``row * n + col`` of broadcast index arrays, ``-1`` where either
-        index is eliminated."""
+        index is eliminated (or, for ``upper``, below the diagonal)."""
         rows, cols = np.broadcast_arrays(np.asarray(rows, np.int64), np.asarray(cols, np.int64))
-        return np.where((rows >= 0) & (cols >= 0), rows * self.n + cols, -1)
+        keep = (rows >= 0) & (cols >= rows) if self.upper else (rows >= 0) & (cols >= 0)
+        return np.where(keep, rows * self.n + cols, -1)
 
     @property
     def pos(self) -> np.ndarray:
@@ -383,29 +388,43 @@ class BlockScatter:
     blocks
         ``(rows, cols)`` pairs of broadcastable reduced indices (``-1`` = eliminated), one
         per block, in the order of the chunk's flat value buffer.
+    spare
+        Scatter into the *spare layout*: row ``R`` of the pattern followed by one spare
+        slot (entries ``indptr[R] + R ... indptr[R + 1] + R``, ``nnz + n + 1`` in all), which
+        collects the row's entries outside the pattern (eliminated columns, and the
+        entries below the diagonal of an ``upper`` map: half of every element block, which
+        would otherwise need a list of their places); :func:`drop_spare_slots` turns the
+        data into CSR data.
 
     Notes
     -----
-    An eliminated row goes to the dummy entry ``nnz`` (``indptr[-1]``); an eliminated
-    column in a kept row gets offset 0 and its value is set to zero before the scatter,
-    which leaves every sum as it is.
+    An eliminated row goes to the dummy entry at the end (``nnz``, or ``nnz + n`` in the
+    spare layout).  Without ``spare``, an eliminated column in a kept row gets offset 0
+    and its value is set to zero before the scatter, which leaves every sum as it is.
     """
 
-    def __init__(self, scatter: ScatterMap, blocks: list[tuple[np.ndarray, np.ndarray]]):
+    def __init__(self, scatter: ScatterMap, blocks: list[tuple[np.ndarray, np.ndarray]],
+                 spare: bool = False):
         self.nnz = scatter.nnz
-        self._indptr = scatter.indptr
-        wide = scatter.n and int(np.diff(scatter.indptr).max()) >= 0xFFFF
+        self.spare = bool(spare)
+        ip = scatter.indptr
+        self._indptr = ip + np.arange(ip.size, dtype=ip.dtype) if spare else ip
+        wide = scatter.n and int(np.diff(ip).max()) + self.spare >= 0xFFFF
         self._parts, drop, o = [], [], 0
         for rows, cols in blocks:
             pos = scatter.positions(rows, cols)
+            r = np.broadcast_to(np.asarray(rows), pos.shape)
+            cut = (pos == self.nnz) & (r >= 0)
+            if spare:        # shift by the spare slots before; outside the pattern: the row's
+                pos = pos + np.where(r >= 0, r, scatter.n)
+                pos[cut] = self._indptr[r[cut] + 1] - 1
             if wide:
                 self._parts.append((None, pos.ravel()))
             else:
-                r = np.broadcast_to(np.asarray(rows), pos.shape)
                 off = pos - self._indptr[r]
-                cut = (pos == self.nnz) & (r >= 0)
-                off[cut] = 0
-                drop.append(o + np.flatnonzero(cut.ravel()))
+                if not spare:
+                    off[cut] = 0
+                    drop.append(o + np.flatnonzero(cut.ravel()))
                 self._parts.append((np.asarray(rows, dtype=np.int32), off.astype(np.uint16)))
             o += pos.size
         self.size = o
@@ -415,7 +434,8 @@ class BlockScatter:
         return off if rows is None else (self._indptr[rows] + off).ravel()
 
     def positions(self) -> np.ndarray:
-        """Flat 64-bit positions (``nnz`` for every eliminated entry)."""
+        """Flat 64-bit positions (``nnz`` for every eliminated entry; in the spare layout
+        the positions there, a row's spare slot for the entries outside the pattern)."""
         pos = np.concatenate([self._block_positions(r, o).astype(np.int64)
                               for r, o in self._parts])
         pos[self._drop] = self.nnz
@@ -436,3 +456,38 @@ class BlockScatter:
         """Bytes held (offsets or positions, the rows of the blocks, the dropped entries)."""
         return self._drop.nbytes + sum(o.nbytes + (0 if r is None else r.nbytes)
                                        for r, o in self._parts)
+
+
+def drop_spare_slots(data: np.ndarray, indptr: np.ndarray, block: int = 1 << 20) -> np.ndarray:
+    """CSR data from data in the spare layout of :class:`BlockScatter` (every row followed
+    by one spare slot), moved in place.
+
+    Parameters
+    ----------
+    data
+        ``nnz + n + 1`` entries (or more) in the spare layout of the pattern ``indptr``.
+    indptr
+        Row starts of the pattern (``n + 1`` entries).
+    block
+        Entries moved per step (the temporary copy of one group of rows).
+
+    Returns
+    -------
+    numpy.ndarray
+        The first ``nnz`` entries of ``data`` (a view), the rows without their spare slots.
+    """
+    n = indptr.size - 1
+    if data.size < int(indptr[-1]) + n:
+        raise ValueError(f"data must have at least nnz + n = {int(indptr[-1]) + n} entries "
+                         f"in the spare layout, got {data.size}")
+    r0 = 0
+    while r0 < n:
+        r1 = int(np.searchsorted(indptr, int(indptr[r0]) + block, side="right"))
+        r1 = min(n, max(r1, r0 + 1))
+        a, b = int(indptr[r0]), int(indptr[r1])
+        src = data[a + r0: b + r1]
+        keep = np.ones(src.size, dtype=bool)
+        keep[indptr[r0 + 1: r1 + 1] + np.arange(r0, r1) - (a + r0)] = False
+        data[a:b] = src[keep]         # a copy: the rows move left, over their old places
+        r0 = r1
+    return data[: int(indptr[-1])]

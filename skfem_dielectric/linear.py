@@ -37,6 +37,7 @@ import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
 from .assembly import trim_heap
+from .symmetric import SymmetricUpper, same_memory, same_pattern
 
 __all__ = ["LinearSolver", "SuperLUSolver", "PardisoSolver", "PardisoLUSolver",
            "get_linear_solver", "nonsymmetric_solver", "pardiso_available",
@@ -47,11 +48,14 @@ class LinearSolver:
     """Interface of a sparse linear solver (documentation base class).
 
     Subclasses implement :meth:`solve`.  ``inertia`` is ``None`` or the tuple
-    ``(n_positive, n_negative, n_zero)`` of the last factorised matrix.
+    ``(n_positive, n_negative, n_zero)`` of the last factorised matrix.  ``reads_upper``:
+    the solver reads only the upper triangle of a symmetric matrix, and takes it as a
+    :class:`~skfem_dielectric.symmetric.SymmetricUpper` (every solver accepts one).
     """
 
     name = "base"
     inertia: tuple[int, int, int] | None = None
+    reads_upper = False
 
     def solve(self, K: sp.spmatrix, b: np.ndarray) -> np.ndarray:  # pragma: no cover
         """Return ``x`` with ``K x = b``."""
@@ -60,6 +64,10 @@ class LinearSolver:
     def resolve(self, b: np.ndarray) -> np.ndarray | None:
         """Solve with the last factorised matrix (``None`` if not supported)."""
         return None
+
+    def discard(self) -> None:
+        """Free the last factorisation (a new matrix is factorised next): :meth:`resolve`
+        returns ``None`` until the next :meth:`solve`."""
 
     def factor_inertia(self) -> tuple[int, int, int] | None:
         """Inertia ``(n_positive, n_negative, n_zero)`` of the last factorised matrix if
@@ -98,11 +106,15 @@ class SuperLUSolver(LinearSolver):
     def solve(self, K: sp.spmatrix, b: np.ndarray) -> np.ndarray:
         """Factorise ``K`` (CSC copy) and solve ``K x = b``."""
         self._lu = None
-        lu = spla.splu(sp.csc_matrix(K), permc_spec=self.permc_spec,
+        lu = spla.splu(sp.csc_matrix(_whole(K)), permc_spec=self.permc_spec,
                        diag_pivot_thresh=self.diag_pivot_thresh,
                        options={"SymmetricMode": True})
         self._lu = lu
         return lu.solve(np.asarray(b, dtype=float))
+
+    def discard(self) -> None:
+        """Free the LU factors."""
+        self._lu = None
 
     def resolve(self, b: np.ndarray) -> np.ndarray | None:
         """Solve with the last LU factors."""
@@ -120,10 +132,9 @@ class SuperLUSolver(LinearSolver):
         return int(np.sum(d > 0)), int(np.sum(d < 0)), int(np.sum(d == 0))
 
 
-def _same_memory(a: np.ndarray, b: np.ndarray) -> bool:
-    """True if ``a`` and ``b`` view the same memory with the same layout (O(1))."""
-    return (a.__array_interface__["data"][0] == b.__array_interface__["data"][0]
-            and a.shape == b.shape and a.strides == b.strides and a.dtype == b.dtype)
+def _whole(K):
+    """``K`` as a sparse matrix (a :class:`SymmetricUpper` as its whole matrix)."""
+    return K.tocsr() if isinstance(K, SymmetricUpper) else K
 
 
 def _compress_into(keep: np.ndarray, a: np.ndarray, out: np.ndarray,
@@ -232,6 +243,7 @@ class PardisoSolver(LinearSolver):
     """
 
     name = "pardiso"
+    reads_upper = True
 
     def __init__(self, refine: int = 2, ordering: str = "minimum-degree"):
         if ordering not in _ORDERINGS:
@@ -251,7 +263,7 @@ class PardisoSolver(LinearSolver):
         self._direct = hasattr(p, "_mkl_pardiso")
         if self._direct:
             p.set_iparm(35, 1)
-        self._pattern: sp.csr_matrix | None = None
+        self._pattern: tuple[np.ndarray, np.ndarray] | None = None
         self._ucache = None
         self.refine = int(refine)
         self.ordering = ordering
@@ -292,13 +304,21 @@ class PardisoSolver(LinearSolver):
         return x
 
     def _upper(self, K: sp.spmatrix) -> sp.csr_matrix:
-        """Upper triangle of ``K``; the selection is cached for a repeated CSR pattern,
-        whose upper triangle's data are then overwritten in place (no second 33 MB array
-        while the old one is still referenced)."""
+        """Upper triangle of ``K`` (that of a :class:`SymmetricUpper` as it is, with int32
+        indices); the selection is cached for a repeated CSR pattern, whose upper
+        triangle's data are then overwritten in place (no second 33 MB array while the old
+        one is still referenced)."""
+        if isinstance(K, SymmetricUpper):
+            U = K.upper
+            if U.indptr.dtype != np.int32 or U.indices.dtype != np.int32:
+                U = sp.csr_matrix((U.data, U.indices.astype(np.int32),
+                                   U.indptr.astype(np.int32)), shape=U.shape)
+                U.has_sorted_indices = True
+            return U
         K = sp.csr_matrix(K)
         c = self._ucache
         if (c is not None and c[0].shape == K.indptr.shape and c[1].shape == K.indices.shape
-                and ((c[4] and _same_memory(c[0], K.indptr) and _same_memory(c[1], K.indices))
+                and ((c[4] and same_memory(c[0], K.indptr) and same_memory(c[1], K.indices))
                      or (np.array_equal(c[0], K.indptr) and np.array_equal(c[1], K.indices)))):
             U = c[2]
             _compress_into(c[3], K.data, U.data)
@@ -315,6 +335,7 @@ class PardisoSolver(LinearSolver):
         U.has_sorted_indices = True
         if U.indptr.dtype != np.int32 or U.indices.dtype != np.int32:   # PARDISO's int32
             U.indptr, U.indices = U.indptr.astype(np.int32), U.indices.astype(np.int32)
+        U.indptr.flags.writeable = U.indices.flags.writeable = False   # the solver's own
         # a read-only pattern (shared by the matrices of a ScatterMap) is recognised by its
         # memory, in O(1); otherwise keep a copy and compare the contents
         shared = not (K.indptr.flags.writeable or K.indices.flags.writeable)
@@ -328,12 +349,16 @@ class PardisoSolver(LinearSolver):
         b = np.asfortranarray(np.asarray(b, dtype=np.float64))
         if np.any(np.diff(U.indptr) == 0):
             raise ValueError("matrix is singular: it has an empty row")
-        same = self._pattern is not None and self._pattern is U
+        same = self._pattern is not None and same_pattern(self._pattern, U)
         if not same:
             if self._pattern is not None:
                 self._call(-1, U, b)  # release the old factorisation
             self._call(11, U, b)
-            self._pattern = U
+            # a read-only pattern (that of a ScatterMap, or the solver's own selection) is
+            # recognised by its memory; otherwise keep a copy to compare with
+            self._pattern = ((U.indptr, U.indices) if not (U.indptr.flags.writeable
+                                                           or U.indices.flags.writeable)
+                             else (U.indptr.copy(), U.indices.copy()))
         self._call(22, U, b)
         n = K.shape[0]
         npos, nneg = int(self._ps.iparm[21]), int(self._ps.iparm[22])
@@ -358,6 +383,18 @@ class PardisoSolver(LinearSolver):
                 break
             x, r, rn = xt, rt, rtn
         return x
+
+    def discard(self) -> None:
+        """Free the numerical factorisation (PARDISO phase 0: 100 of the 273 MB of the
+        40 x 1 x 20 Keplinger plate's factors; the analysis is kept) and the matrix it
+        belongs to, so that they are not held while the next tangent is assembled and
+        factorised; :meth:`resolve` returns ``None`` until the next :meth:`solve`."""
+        U = getattr(self, "_last", None)
+        if U is None:
+            return
+        self._last = None
+        self._call(0, U, np.zeros(U.shape[0]))
+        trim_heap()
 
     def resolve(self, b: np.ndarray) -> np.ndarray | None:
         """Solve with the last numerical factorisation (PARDISO phase 33), without
@@ -395,7 +432,7 @@ class PardisoLUSolver(LinearSolver):
 
     def solve(self, K: sp.spmatrix, b: np.ndarray) -> np.ndarray:
         """Factorise ``K`` and solve ``K x = b``."""
-        A = sp.csr_matrix(K)
+        A = sp.csr_matrix(_whole(K))
         A.sort_indices()
         self._ps.factorize(A)
         return np.ascontiguousarray(self._ps.solve(A, np.asarray(b, dtype=float)))

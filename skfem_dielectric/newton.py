@@ -185,7 +185,8 @@ def newton(assemble: Callable[[np.ndarray], tuple[sp.spmatrix, np.ndarray]],
         ``assemble(x)[1]``.
     linear_solver
         Name for :func:`get_linear_solver` or a solver instance (reused across calls, which
-        lets PARDISO keep its symbolic factorisation).
+        lets PARDISO keep its symbolic factorisation); its ``discard()``, if it has one,
+        frees the old factors before a tangent that is factorised next is assembled.
     atol, rtol, scale
         Converged when ``||r|| <= atol + rtol * scale``; ``scale`` defaults to the initial
         residual norm.
@@ -289,10 +290,21 @@ def newton(assemble: Callable[[np.ndarray], tuple[sp.spmatrix, np.ndarray]],
         Kt, rt, e = _assemble(xx)
         return Kt, rt, (_norm(rt) if not e else np.inf), e
 
+    discard = getattr(solver, "discard", None)
+
+    def _to_factorise(xx):
+        """The tangent at ``xx`` that is factorised next: the old factors (of no more use)
+        are freed first, so that they and the new tangent are not held together."""
+        if discard is not None:
+            discard()
+        return _assemble(xx)
+
     if reuse_factors and lazy:          # the first (chord) step needs no tangent
         K, r, _, err = _trial(x)
-    else:
+    elif reuse_factors:                 # the first (chord) step uses the old factors
         K, r, err = _assemble(x)
+    else:
+        K, r, err = _to_factorise(x)
     if err:
         res.reason = err
         return res
@@ -320,7 +332,7 @@ def newton(assemble: Callable[[np.ndarray], tuple[sp.spmatrix, np.ndarray]],
         if dx is None:
             use_chord = False
             if K is None:                   # a chord step came here: the tangent at x
-                K, r, err = _assemble(x)
+                K, r, err = _to_factorise(x)
                 if err:
                     res.reason = err
                     return res

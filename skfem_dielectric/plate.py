@@ -62,6 +62,7 @@ from .mesh import PlateMesh
 from .newton import segment_det_limit
 from .plate_post import plate_quantities, plate_step_mesh, plate_stresses, evaluate_fields
 from .problem import Layout, Problem
+from .symmetric import SymmetricUpper
 
 __all__ = ["PlateProblem", "plate_reduction", "increment_classes"]
 
@@ -313,7 +314,6 @@ class PlateProblem(Problem):
         self._phi_bottom = self._phidofs("bottom") if "bottom" in names else np.zeros(0, int)
         self.red = plate_reduction(self, increments)
         f.bind(self.red)
-        self.scatter = f.scatter
         self._layout = Layout.from_reduction(self.red, f.fields, ("p", "phi"))
         self.f_s, self.q_D0, self.clamp_area = _unit_loads(self, intorder)
         self.boundary = (MaxwellBoundary(m, self.bphi.elem, self.off_phi, self.red,
@@ -406,6 +406,22 @@ class PlateProblem(Problem):
             Kb, rb = self.boundary.assemble(xf, self.sigma(load))
             return (K + Kb).tocsr(), r + rb
         return K, r
+
+    def assemble_upper(self, x: np.ndarray, load) -> tuple[Any, np.ndarray]:
+        """The tangent as its upper triangle, assembled directly (no whole matrix; see
+        :meth:`~skfem_dielectric.problem.Problem.assemble_upper`), and the residual; the
+        Maxwell-traction coupling (not symmetric) from :meth:`assemble`."""
+        if self.boundary is not None:
+            return super().assemble_upper(x, load)
+        xf = self.full(x, load)
+        data, rf = self.form.assemble(xf, upper=True)
+        rf -= self.external(load)
+        return SymmetricUpper(self.form.upper_scatter.csr(data)), self.red.reduce(rf)
+
+    @property
+    def scatter(self):
+        """The :class:`~skfem_dielectric.assembly.ScatterMap` of the reduced tangent."""
+        return self.form.scatter
 
     def stabilised_tangent(self, x: np.ndarray, load, grad_div: float):
         """Reduced tangent at ``(x, load)`` with the grad-div stabilisation ``grad_div``

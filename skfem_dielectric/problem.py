@@ -21,6 +21,9 @@ What a model implements (abstract):
 
 What it may override (the defaults are correct, sometimes slower):
 
+``assemble_upper(x, load)``
+    the symmetric tangent as its upper triangle (what the symmetric PARDISO reads);
+    default: the triangle of :meth:`Problem.assemble`'s tangent.
 ``residual(x, load)``
     the residual alone (line search); default ``assemble(x, load)[1]``.
 ``residual_scale(load)``
@@ -56,6 +59,7 @@ import numpy as np
 import scipy.sparse as sp
 
 from .assembly import DofReduction
+from .symmetric import SymmetricUpper
 
 __all__ = ["Layout", "Problem"]
 
@@ -135,6 +139,15 @@ class Problem(ABC):
     def ndofs(self) -> int:
         """Number of reduced unknowns."""
         return self.layout.n
+
+    def assemble_upper(self, x: np.ndarray, load: Any) -> tuple[SymmetricUpper, np.ndarray]:
+        """The symmetric tangent as its upper triangle
+        (:class:`~skfem_dielectric.symmetric.SymmetricUpper`) and the residual, for a
+        solver that reads only that triangle (the ramp's Newton iterations with the
+        symmetric PARDISO); default: from :meth:`assemble`.  Models override it to
+        assemble the triangle directly."""
+        K, r = self.assemble(x, load)
+        return SymmetricUpper.from_full(K), r
 
     def residual(self, x: np.ndarray, load: Any) -> np.ndarray:
         """Reduced residual (default: from :meth:`assemble`)."""

@@ -235,7 +235,9 @@ def ramp(problem: Problem, loads: Sequence[Any], *, x0: np.ndarray | None = None
     linear_solver
         Name or instance (see :func:`skfem_dielectric.linear.get_linear_solver`; a name
         gives a non-symmetric solver for a problem whose ``symmetric`` is False); one
-        instance is used for the whole ramp.
+        instance is used for the whole ramp.  A solver that ``reads_upper`` (the symmetric
+        PARDISO) gets the tangents of the Newton iterations from
+        :meth:`~skfem_dielectric.problem.Problem.assemble_upper`.
     max_cutbacks
         How many times a failing sub-step may be halved before the ramp stops.
     atol, rtol, max_iter, line_search, chord
@@ -299,6 +301,9 @@ def ramp(problem: Problem, loads: Sequence[Any], *, x0: np.ndarray | None = None
         raise ValueError(f"chord must be in [0, 1), got {chord!r}")
     t_start = time.perf_counter()
     solver = get_linear_solver(linear_solver, symmetric=problem.symmetric)
+    # a solver that reads only the upper triangle gets it assembled directly
+    tangent = (problem.assemble_upper if problem.symmetric
+               and getattr(solver, "reads_upper", False) else problem.assemble)
     try:
         loads = list(loads)
     except TypeError:
@@ -321,6 +326,8 @@ def ramp(problem: Problem, loads: Sequence[Any], *, x0: np.ndarray | None = None
         """``state_analysis`` of the converged ``x``: its tangent factorised by the ramp's
         solver (counted with the step); returns ``(quantities, inertia)``."""
         nonlocal reuse, facts, t_asm, t_sol
+        if callable(getattr(solver, "discard", None)):
+            solver.discard()        # the old factors: not held beside the new tangent
         t = time.perf_counter()
         K, _ = problem.assemble(x, load)
         t_asm += time.perf_counter() - t
@@ -369,7 +376,7 @@ def ramp(problem: Problem, loads: Sequence[Any], *, x0: np.ndarray | None = None
             scale = problem.residual_scale(load)
             at = _as_load(a + frac * (b - a)) if frac > 0 else cur
             x_start = _secant_guess(problem, x, at, back, load) if predictor == "secant" else x
-            nr = newton(lambda xx: problem.assemble(xx, load), x_start,
+            nr = newton(lambda xx: tangent(xx, load), x_start,
                         residual=lambda xx: problem.residual(xx, load),
                         linear_solver=solver, atol=atol, rtol=rtol, scale=scale,
                         max_iter=max_iter, line_search=line_search,

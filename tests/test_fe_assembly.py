@@ -151,3 +151,63 @@ def test_block_scatter_adds_as_the_positions(star):
     np.testing.assert_allclose(out[:sc.nnz], ref, rtol=1e-12, atol=1e-12)
     per = 4 if star else 2           # bytes per entry: 32-bit positions, or offsets
     assert bs.nbytes < (per + 0.6) * pos.size
+
+
+@pytest.mark.parametrize("star", [False, True])
+def test_upper_triangle_in_the_spare_layout(star):
+    # the upper ScatterMap's blocks scattered through BlockScatter's spare layout (the
+    # entries below the diagonal and the eliminated columns into each row's spare slot),
+    # compacted in place: the upper triangle of the whole matrix, bit for bit (the same
+    # entries added in the same order)
+    from skfem_dielectric.assembly import BlockScatter, drop_spare_slots
+
+    rng = np.random.default_rng(12)
+    if star:      # a row of 70 000 entries: 32-bit positions instead of 16-bit offsets
+        n_full = 70_001
+        dofs = np.c_[np.zeros(n_full - 1, int), np.arange(1, n_full)]
+    else:
+        n_full = 4000
+        dofs = rng.integers(0, n_full, size=(500, 12))
+    red = DofReduction(n_full, fixed=rng.choice(np.arange(1, n_full), 40, replace=False),
+                       tied=[np.arange(10, 20)])
+    d = red.index[dofs]
+    full, up = ScatterMap(d, red.n), ScatterMap(d, red.n, upper=True)
+    blocks = [(d[:, :, None], d[:, None, :]), (d[:, :1, None], d[:, None, 1:])]
+    vals = rng.standard_normal(sum(np.broadcast(r, c).size for r, c in blocks))
+    whole = np.zeros(full.nnz + 1)
+    BlockScatter(full, blocks).add_into(whole, vals.copy())
+    K = full.csr(whole[:full.nnz])
+    bs = BlockScatter(up, blocks, spare=True)
+    assert not bs._drop.size and bs.size == vals.size
+    data = np.zeros(up.nnz + up.n + 1)
+    bs.add_into(data, vals.copy())
+    U = up.csr(drop_spare_slots(data, up.indptr, block=97))
+    T = sp.triu(K, format="csr")
+    assert np.array_equal(U.indptr, T.indptr) and np.array_equal(U.indices, T.indices)
+    assert np.array_equal(U.data, T.data)
+    with pytest.raises(ValueError, match="data must have"):
+        drop_spare_slots(np.zeros(up.nnz), up.indptr)
+
+
+def test_symmetric_upper_products_and_whole_matrix():
+    from skfem_dielectric.linear import SuperLUSolver
+    from skfem_dielectric.symmetric import SymmetricUpper
+
+    rng = np.random.default_rng(13)
+    A = sp.random(60, 60, density=0.1, random_state=rng)
+    K = (A + A.T + 60 * sp.identity(60)).tocsr()
+    S = SymmetricUpper.from_full(K)
+    x, X = rng.standard_normal(60), rng.standard_normal((60, 3))
+    np.testing.assert_allclose(S @ x, K @ x, rtol=1e-13, atol=1e-13)
+    np.testing.assert_allclose(S.dot(X), K @ X, rtol=1e-13, atol=1e-13)
+    assert abs(S.tocsr() - K).max() == 0.0 and S.tocsr().has_sorted_indices
+    # the solvers that read the whole matrix take it from the triangle
+    b = np.arange(60.0)
+    np.testing.assert_allclose(SuperLUSolver().solve(S, b), SuperLUSolver().solve(K, b),
+                               rtol=1e-12)
+    with pytest.raises(ValueError, match="below the diagonal"):
+        SymmetricUpper(K)
+    with pytest.raises(ValueError, match="square sparse"):
+        SymmetricUpper(np.eye(3))
+    with pytest.raises(ValueError, match="x must have 60 rows"):
+        S @ np.ones(5)

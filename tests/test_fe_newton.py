@@ -256,3 +256,47 @@ def test_chord_and_predictor_bad_input():
         ramp(prob, [1.0], chord=-0.1)
     with pytest.raises(ValueError, match="predictor"):
         ramp(prob, [1.0], predictor="cubic")
+
+
+@pytest.mark.parametrize("solver", ["superlu"] + (["pardiso"] if pardiso_available() else []))
+def test_old_factors_are_discarded_before_a_tangent_to_factorise(solver):
+    # with chord steps the tangent is assembled only to be factorised: the solver's old
+    # factors are freed before each such assembly (never before a chord step), and the
+    # iterations are those of a solver that keeps them
+    prob = Cubic()
+    events = []
+
+    class Watched(type(get_linear_solver(solver))):
+        def discard(self):
+            events.append("discard")
+            super().discard()
+
+        def solve(self, K, b):
+            events.append("solve")
+            return super().solve(K, b)
+
+        def resolve(self, b):
+            out = super().resolve(b)
+            events.append("resolve" if out is not None else "none")
+            return out
+
+    def assemble(x):
+        events.append("assemble")
+        return prob.assemble(x, 2.0)
+
+    kw = dict(atol=1e-13, rtol=0, chord=0.3, residual=lambda x: prob.assemble(x, 2.0)[1])
+    res = newton(assemble, np.full(3, 0.5), linear_solver=Watched(), **kw)
+    ref = newton(lambda x: prob.assemble(x, 2.0), np.full(3, 0.5),
+                 linear_solver=get_linear_solver(solver), **kw)
+    assert res.converged and np.array_equal(res.x, ref.x)
+    assert res.chord_steps == ref.chord_steps >= 1 and "none" not in events
+    seq = " ".join(events)
+    assert seq.count("discard assemble solve") == res.factorisations
+    # a discarded solver has no factors to reuse until it factorises again
+    s = Watched()
+    s.solve(sp.identity(3, format="csr"), np.ones(3))
+    s.discard()
+    assert s.resolve(np.ones(3)) is None
+    s.discard()                                            # nothing to free: no error
+    np.testing.assert_allclose(s.solve(2 * sp.identity(3, format="csr"), np.ones(3)), 0.5)
+    np.testing.assert_allclose(s.resolve(np.ones(3)), 0.5)

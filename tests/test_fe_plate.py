@@ -8,6 +8,7 @@ import math
 
 import numpy as np
 import pytest
+import scipy.sparse as sp
 from scipy.optimize import brentq
 from skfem import MeshHex
 
@@ -191,3 +192,48 @@ def test_tangent_equals_one_scatter_of_all_element_blocks(threads, chunk):
     # the same tangent and residual whatever the chunks and threads (chunk order: bit for bit)
     K1, r1 = PlateProblem(pm, mat, loading="uniaxial", threads=1, chunk=1000).assemble(x, load)
     assert np.array_equal(K.data, K1.data) and np.array_equal(r, r1)
+
+
+@pytest.mark.parametrize("options", [dict(), dict(phi_element="Q1", chunk=2),
+                                     dict(formulation="penalty", kappa=50.0),
+                                     dict(kappa=80.0, threads=1)])
+def test_upper_triangle_assembled_directly(options):
+    # assemble_upper scatters only the upper triangle (the entries below the diagonal into
+    # the rows' spare slots, the p-u and phi-u blocks not at all): the upper triangle of
+    # the whole tangent bit for bit, and the same residual; the whole pattern is not made
+    from skfem_dielectric.symmetric import SymmetricUpper
+
+    pm = plate_mesh(4.0, 1.0, 2.0, 3, 1, 2, symmetry="full")
+    pr = PlateProblem(pm, NeoHookeanDielectric(1.0, 1.0), loading="uniaxial", **options)
+    rng = np.random.default_rng(8)
+    x = 0.05 * rng.standard_normal(pr.red.n)
+    S, r1 = pr.assemble_upper(x, (0.7, 1.3))
+    assert isinstance(S, SymmetricUpper) and list(pr.form._structures) == [True]
+    K, r = pr.assemble(x, (0.7, 1.3))
+    T = sp.triu(K, format="csr")
+    assert np.array_equal(S.upper.indptr, T.indptr) and np.array_equal(S.upper.indices,
+                                                                      T.indices)
+    assert np.array_equal(S.upper.data, T.data) and np.array_equal(r, r1)
+    assert abs(S.tocsr() - K).max() <= 1e-12 * abs(K).max()     # K symmetric to round-off
+
+
+def test_ramp_hands_the_upper_triangle_to_a_solver_that_reads_it(monkeypatch):
+    from skfem_dielectric import ramp
+    from skfem_dielectric.linear import SuperLUSolver
+
+    pm = plate_mesh(4.0, 1.0, 2.0, 3, 1, 2, symmetry="full")
+    pr = PlateProblem(pm, NeoHookeanDielectric(1.0, 1.0), loading="uniaxial")
+    seen = []
+
+    class UpperReader(SuperLUSolver):
+        reads_upper = True
+
+        def solve(self, K, b):
+            seen.append(type(K).__name__)
+            return super().solve(K, b)
+
+    a = ramp(pr, [(0.2, 0.0), (0.2, 0.3)], linear_solver=UpperReader())
+    b = ramp(pr, [(0.2, 0.0), (0.2, 0.3)], linear_solver=SuperLUSolver())
+    assert seen and set(seen) == {"SymmetricUpper"} and a.converged and b.converged
+    np.testing.assert_allclose(a.steps[-1].x, b.steps[-1].x, rtol=0,
+                               atol=1e-9 * np.abs(b.steps[-1].x).max())

@@ -39,7 +39,7 @@ import numpy as np
 from skfem import Basis, ElementHex1, ElementHex2
 
 from ..assembly import (BlockScatter, DofReduction, OrderedSum, ScatterMap,
-                        single_threaded_blas, trim_heap)
+                        drop_spare_slots, single_threaded_blas, trim_heap)
 from ..materials import MIXED_FORMULATIONS, dielectric_response
 
 __all__ = ["MixedUPPhiForm"]
@@ -76,6 +76,50 @@ def _thread_buffer(work: dict[int, np.ndarray], size: int, most: int) -> np.ndar
     if buf is None or buf.size < size:
         buf = work[key] = np.empty(max(size, most))
     return buf[:size]
+
+
+def _block_positions(form, sl: slice) -> dict[str, tuple[np.ndarray, np.ndarray]]:
+    """Rows and columns of the tangent blocks of ``form``'s elements ``sl`` in the layouts
+    `MixedUPPhiForm._element_blocks` uses."""
+    red = form.red.index[form.edofs[sl]]
+    mu_, mp = form.m_u, form.m_p
+    U = red[:, :mu_].reshape(red.shape[0], 27, 3)             # (e, i, a)
+    Ph = red[:, mu_ + mp:]                                    # (e, j)
+    pos = {
+        "uu": (U[:, :, :, None, None], U.transpose(0, 2, 1)[:, None, None]),
+        "uf": (U[:, :, :, None], Ph[:, None, None, :]),
+        "fu": (Ph[:, None, None, :], U[:, :, :, None]),
+        "ff": (Ph[:, :, None], Ph[:, None, :]),
+    }
+    if mp:
+        Pd = red[:, mu_:mu_ + mp]
+        pos["up"] = (U[:, :, :, None], Pd[:, None, None, :])
+        pos["pu"] = (Pd[:, None, None, :], U[:, :, :, None])
+        pos["pp"] = (Pd[:, :, None], Pd[:, None, :])
+    return pos
+
+
+def _lower_coupling(form) -> bool:
+    """Whether the reduced unknowns of ``p`` and ``phi`` all follow those of ``u`` (the
+    ``p``-``u`` and ``phi``-``u`` blocks then lie below the diagonal)."""
+    idx = form.red.index
+    u, rest = idx[: form.n_u], idx[form.n_u:]
+    u, rest = u[u >= 0], rest[rest >= 0]
+    return not (u.size and rest.size) or int(u.max()) < int(rest.min())
+
+
+def _block_sizes(form, upper: bool = False) -> list[tuple[str, int]]:
+    """Names and entries per element of the blocks of ``form``'s element buffer (for the
+    upper triangle without the blocks that lie below the diagonal)."""
+    mp, mf = form.m_p, form.m_phi
+    below = upper and _lower_coupling(form)     # the blocks "fu", "pu" are not needed
+    sizes = [("uu", 81 * 81), ("uf", 81 * mf)] + ([] if below else [("fu", 81 * mf)])
+    sizes.append(("ff", mf * mf))
+    if mp:
+        sizes += [("up", 81 * mp)] + ([] if below else [("pu", 81 * mp)])
+        if math.isfinite(form.kappa) and form.formulation in MIXED_FORMULATIONS:
+            sizes.append(("pp", mp * mp))
+    return sizes
 
 
 class MixedUPPhiForm:
@@ -157,54 +201,49 @@ class MixedUPPhiForm:
         return out
 
     def bind(self, red: DofReduction) -> None:
-        """Attach the model's dof reduction: sparsity pattern and scatter positions."""
+        """Attach the model's dof reduction; the sparsity pattern and the scatter positions
+        of the whole tangent and of its upper triangle are made on first use."""
         self.red = red
-        self.scatter = ScatterMap(red.index[self.edofs], red.n)
-        self._pos_cache: dict[tuple[int, int], BlockScatter] = {}
+        self._structures: dict[bool, tuple[ScatterMap, dict]] = {}
         self._work: dict[int, np.ndarray] = {}
-        for sl in self.chunks():        # chunk by chunk: the searches' temporaries stay small
-            self._chunk_positions(sl)
-        self.scatter.compact()
+
+    def structure(self, upper: bool = False) -> tuple[ScatterMap, dict]:
+        """The :class:`~skfem_dielectric.assembly.ScatterMap` of the tangent (``upper``:
+        of its upper triangle) and the scatter positions of the chunks, made on first use
+        (a model factorised by the symmetric PARDISO never needs the whole pattern)."""
+        got = self._structures.get(bool(upper))
+        if got is None:
+            sc = ScatterMap(self.red.index[self.edofs], self.red.n, upper=bool(upper))
+            got = self._structures[bool(upper)] = (sc, {})
+            for sl in self.chunks():    # chunk by chunk: the searches' temporaries stay small
+                self._chunk_positions(sl, upper)
+            sc.compact()
+        return got
+
+    @property
+    def scatter(self) -> ScatterMap:
+        """The :class:`~skfem_dielectric.assembly.ScatterMap` of the whole tangent."""
+        return self.structure(False)[0]
+
+    @property
+    def upper_scatter(self) -> ScatterMap:
+        """The :class:`~skfem_dielectric.assembly.ScatterMap` of the upper triangle."""
+        return self.structure(True)[0]
 
     # ------------------------------------------------------------------ layout
-    def _block_positions(self, sl: slice) -> dict[str, tuple[np.ndarray, np.ndarray]]:
-        """Rows and columns of the tangent blocks of the elements ``sl`` in the layouts
-        `_element_blocks` uses."""
-        red = self.red.index[self.edofs[sl]]
-        mu_, mp = self.m_u, self.m_p
-        U = red[:, :mu_].reshape(red.shape[0], 27, 3)             # (e, i, a)
-        Ph = red[:, mu_ + mp:]                                    # (e, j)
-        pos = {
-            "uu": (U[:, :, :, None, None], U.transpose(0, 2, 1)[:, None, None]),
-            "uf": (U[:, :, :, None], Ph[:, None, None, :]),
-            "fu": (Ph[:, None, None, :], U[:, :, :, None]),
-            "ff": (Ph[:, :, None], Ph[:, None, :]),
-        }
-        if mp:
-            Pd = red[:, mu_:mu_ + mp]
-            pos["up"] = (U[:, :, :, None], Pd[:, None, None, :])
-            pos["pu"] = (Pd[:, None, None, :], U[:, :, :, None])
-            pos["pp"] = (Pd[:, :, None], Pd[:, None, :])
-        return pos
-
-    def _block_sizes(self) -> list[tuple[str, int]]:
-        mp, mf = self.m_p, self.m_phi
-        sizes = [("uu", 81 * 81), ("uf", 81 * mf), ("fu", 81 * mf), ("ff", mf * mf)]
-        if mp:
-            sizes += [("up", 81 * mp), ("pu", 81 * mp)]
-            if math.isfinite(self.kappa) and self.formulation in MIXED_FORMULATIONS:
-                sizes.append(("pp", mp * mp))
-        return sizes
-
-    def _chunk_positions(self, sl) -> BlockScatter:
+    def _chunk_positions(self, sl, upper: bool = False) -> BlockScatter:
         """Scatter positions of a chunk's block buffer (cached per chunk; 16-bit offsets
-        in the rows, added by ``np.add.at``, which needs no 64-bit copy)."""
+        in the rows, added by ``np.add.at``, which needs no 64-bit copy; for the upper
+        triangle in the spare layout, whose spare slots take the entries below the
+        diagonal)."""
+        scatter, cache = self.structure(upper)
         key = (sl.start, sl.stop)
-        pos = self._pos_cache.get(key)
+        pos = cache.get(key)
         if pos is None:
-            P = self._block_positions(sl)
-            pos = BlockScatter(self.scatter, [P[name] for name, _ in self._block_sizes()])
-            self._pos_cache[key] = pos
+            P = _block_positions(self, sl)
+            pos = BlockScatter(scatter, [P[name] for name, _ in _block_sizes(self, upper)],
+                               spare=bool(upper))
+            cache[key] = pos
         return pos
 
     def chunks(self):
@@ -278,7 +317,7 @@ class MixedUPPhiForm:
         parts.append((dNphii @ D)[:, :, 0])
         return np.concatenate(parts, axis=1)
 
-    def _element_blocks(self, r, sl) -> np.ndarray:
+    def _element_blocks(self, r, sl, upper: bool = False) -> np.ndarray:
         """Tangent blocks of a chunk written into one flat buffer (layouts need no
         transposes; the matmuls write in place), ordered as `_chunk_positions`."""
         w = self.w[sl]
@@ -286,7 +325,7 @@ class MixedUPPhiForm:
         mp, mf = self.m_p, self.m_phi
         dNt, dNphit = self.dNt[sl], self.dNphit[sl]
         dNi, dNphii = _left_factors(self, sl)
-        sizes = self._block_sizes()
+        sizes = _block_sizes(self, upper)
         per = sum(n for _, n in sizes)
         buf = _thread_buffer(self._work, ne * per,
                              max(b.stop - b.start for b in self.chunks()) * per)
@@ -306,7 +345,8 @@ class MixedUPPhiForm:
             np.matmul(dNi[a:b], V, out=uu[a:b])
             A = r.A_FG[a:b].reshape(nb, nq, 9, 3)                          # e q (K a) L
             np.matmul(dNi[a:b], (A @ dNphit[a:b]).reshape(nb, nq * 3, 3 * mf), out=uf[a:b])
-        views["fu"][:] = views["uf"]
+        if "fu" in views:
+            views["fu"][:] = views["uf"]
         if self.elastic_volume:    # the equilibrium rows do not depend on phi
             views["uf"][:] = 0.0
         # phi-phi
@@ -316,45 +356,52 @@ class MixedUPPhiForm:
             A = r.A_Fp                                                     # e q K a
             V = (A[..., None] * self.N1[sl][:, :, None, None, :]).reshape(ne, nq * 3, 3 * mp)
             np.matmul(dNi, V, out=views["up"].reshape(ne, 27, 3 * mp))
-            views["pu"][:] = views["up"]
+            if "pu" in views:
+                views["pu"][:] = views["up"]
             if "pp" in views:
                 views["pp"][:] = (r.A_pp * np.einsum("eqk,eql,eq->ekl", self.N1[sl],
                                                      self.N1[sl], w)).ravel()
         return buf
 
-    def _assemble_chunk(self, xf, k, sl, grad_div, total):
+    def _assemble_chunk(self, xf, k, sl, grad_div, total, upper=False):
         """Chunk ``k``'s element blocks and internal forces added into ``total`` (an
         :class:`OrderedSum`)."""
         try:
             r = self._response(xf, sl, grad_div=grad_div)
-            blocks = self._element_blocks(r, sl)
+            blocks = self._element_blocks(r, sl, upper)
             re = self._element_residual(r, sl)
         except Exception:
             total.add(k, None, None)     # the later chunks wait for this one's turn
             raise
-        total.add(k, self._chunk_positions(sl), blocks, self.edofs[sl].ravel(), re.ravel())
+        total.add(k, self._chunk_positions(sl, upper), blocks, self.edofs[sl].ravel(),
+                  re.ravel())
 
     # ------------------------------------------------------------------ assembly
-    def assemble(self, xf: np.ndarray, grad_div: float | None = None):
+    def assemble(self, xf: np.ndarray, grad_div: float | None = None, upper: bool = False):
         """CSR data of the reduced tangent and the *full* internal force vector at the full
         dof vector ``xf`` (element chunks in ``threads`` worker threads; numpy releases the
-        GIL in the batched matmuls); ``grad_div`` overrides the form's stabilisation.
+        GIL in the batched matmuls); ``grad_div`` overrides the form's stabilisation;
+        ``upper``: the data of the upper triangle (pattern :attr:`upper_scatter`).
 
         Every chunk adds its element blocks into one data array (``np.add.at`` through
         32-bit positions, in chunk order), not into a partial sum of its own."""
         chunks = list(self.chunks())
-        total = OrderedSum(self.scatter.nnz + 1, self.n_full)
+        scatter = self.structure(upper)[0]
+        total = OrderedSum(scatter.nnz + (scatter.n + 1 if upper else 1), self.n_full)
         with single_threaded_blas():   # small products: BLAS threads cost more than they gain
             if self.threads > 1 and len(chunks) > 1:
                 if self._pool is None:
                     self._pool = ThreadPoolExecutor(self.threads)
-                list(self._pool.map(lambda ks: self._assemble_chunk(xf, *ks, grad_div, total),
-                                    enumerate(chunks)))
+                list(self._pool.map(
+                    lambda ks: self._assemble_chunk(xf, *ks, grad_div, total, upper),
+                    enumerate(chunks)))
             else:
                 for k, sl in enumerate(chunks):
-                    self._assemble_chunk(xf, k, sl, grad_div, total)
+                    self._assemble_chunk(xf, k, sl, grad_div, total, upper)
         trim_heap()     # the chunks' freed temporaries
-        return total.data[: self.scatter.nnz], total.vector
+        if upper:
+            return drop_spare_slots(total.data, scatter.indptr), total.vector
+        return total.data[: scatter.nnz], total.vector
 
     def element_residuals(self, xf: np.ndarray) -> np.ndarray:
         """Internal force vectors of every element, shape ``(nel, m)``, in the order of
