@@ -160,7 +160,7 @@ def read_rows(path: Path) -> list[dict]:
         rows = list(csv.DictReader(f))
     for r in rows:
         for k, v in r.items():
-            if k not in ("mesh", "class", "physical_class", "branch", "reason"):
+            if k not in ("mesh", "class", "physical_class", "branch", "reason", "model"):
                 r[k] = float(v) if v not in ("", None) else float("nan")
     return rows
 

@@ -164,6 +164,10 @@ def build_parser() -> argparse.ArgumentParser:
     pb.add_argument("--D0-max", dest="D0_max", type=float,
                     help="last charge target (default: 1.5 for alpha = 0.05, 3.3 for "
                          "alpha = 1; see validation.postbuckling.WINDOW)")
+    pb.add_argument("--model", choices=["quarter", "x1"], default="quarter",
+                    help="quarter: symmetry planes x1 = 0 and x3 = 0 (modes symmetric in x3); "
+                         "x1: the plane x1 = 0 only, the whole width (modes of either "
+                         "parity in x3; N3 then counts the whole width)")
     pb.add_argument("--solver", choices=["auto", "superlu", "pardiso"], default="auto",
                     help="linear solver and inertia method (auto: PARDISO if installed)")
     pb.add_argument("--out", required=True, type=_out_dir, help="output folder")
@@ -279,12 +283,14 @@ def _cmd_post_buckling(args) -> int:
                          "--solver superlu")
 
     def show(row):
-        print(f"alpha = {row['alpha']:g} {row['mesh']}: D0_b = {row['D0_b']:.4f}, from the "
+        print(f"alpha = {row['alpha']:g} {row['model']} {row['mesh']}: "
+              f"D0_b = {row['D0_b']:.4f}, from the "
               f"branch {row['D0_b_pitchfork']:.4f}; deflection {row['deflection_last']:.3f} "
               f"mm at D0 = {row['D0_last']:.3g}; {row['seconds']:.0f} s"
               + (f" ({row['reason']})" if row["reason"] else ""), flush=True)
 
-    run_post_buckling(args.out, **opts, solver=args.solver, progress=show)
+    run_post_buckling(args.out, **opts, solver=args.solver, model=args.model,
+                      progress=show)
     print(f"wrote {args.out / 'post-buckling.csv'}, {args.out / 'post-buckling.png'}")
     return 0
 

@@ -37,16 +37,19 @@ from skfem_dielectric.symmetry_classes import class_stability
 
 from .buckling import append_rows, read_rows
 
-__all__ = ["COLUMNS", "SUMMARY_COLUMNS", "QUICK", "FULL", "WINDOW", "run_one", "run_post_buckling",
+__all__ = ["COLUMNS", "SUMMARY_COLUMNS", "QUICK", "FULL", "WINDOW", "MODELS", "run_one", "run_post_buckling",
            "post_buckling_figure"]
 
-COLUMNS = ("alpha", "mesh", "branch", "D0", "deflection", "lam1", "lam1_fundamental",
+COLUMNS = ("alpha", "mesh", "model", "branch", "D0", "deflection", "lam1", "lam1_fundamental",
            "lam1_homogeneous", "min_P33", "eigenvalue", "n_negative_own", "n_negative")
-SUMMARY_COLUMNS = ("alpha", "s", "mesh", "ndofs", "D0_b", "D0_b_pitchfork", "b", "switch_D0",
+SUMMARY_COLUMNS = ("alpha", "s", "mesh", "model", "ndofs", "D0_b", "D0_b_pitchfork", "b", "switch_D0",
                    "switch_amplitude", "D0_last", "deflection_last", "lam1_last",
                    "lam1_fundamental_last", "lam1_homogeneous_last", "max_n_negative_own",
                    "min_eigenvalue_buckled",
                    "reason", "seconds")
+#: models that can bend: name -> symmetry planes (axes); ``"x1"`` keeps the whole width,
+#: for critical modes antisymmetric in ``x3`` as well
+MODELS = {"quarter": (1, 3), "x1": (1,)}
 #: backward targets: D0_b + f (D0_switch - D0_b)
 BACK_FRACTIONS = (0.5, 0.25, 0.12, 0.06)
 QUICK = {"alphas": (0.05,), "meshes": ((10, 2, 5),), "D0_step": 0.05, "D0_max": 1.0}
@@ -61,9 +64,9 @@ def _mesh_name(el) -> str:
     return "x".join(str(int(n)) for n in el)
 
 
-def _fundamental(alpha, elements, D0, solver):
+def _fundamental(alpha, elements, D0, solver, model):
     newton = dict(linear_solver=solver, max_cutbacks=6, max_iter=25, rtol=1e-9)
-    res = fe.keplinger_plate(alpha, D0=D0, elements=tuple(elements), symmetry="quarter",
+    res = fe.keplinger_plate(alpha, D0=D0, elements=tuple(elements), symmetry=MODELS[model],
                              grad_div=10.0, **newton)
     return res, newton
 
@@ -93,29 +96,31 @@ def _counts(pb, st, method) -> dict:
 
 
 def run_one(alpha: float, elements, *, D0_step: float, D0_max: float,
-            D0_from: float = 0.0, solver: str = "pardiso", shapes_dir: Path | None = None
-            ) -> tuple[dict, list[dict]]:
-    """One alpha x quarter mesh: fundamental ramp (steps of 0.25 up to ``D0_from``, then
+            D0_from: float = 0.0, solver: str = "pardiso", model: str = "quarter",
+            shapes_dir: Path | None = None) -> tuple[dict, list[dict]]:
+    """One alpha x mesh of ``model`` (:data:`MODELS`): fundamental ramp (steps of 0.25 up to ``D0_from``, then
     ``D0_step``; the spectrum from ``D0_from`` on), ``D0_b``, branch switch, the buckled
     branch forward to ``D0_max`` and back.  Returns the summary row and the state rows."""
     t0 = time.time()
     D0 = np.round(np.concatenate([np.arange(0.25, D0_from - 1e-9, 0.25),
                                   np.arange(D0_from, D0_max + 1e-9, D0_step)]), 10)
     D0 = D0[D0 > 0]
-    res, newton = _fundamental(alpha, elements, D0, solver)
+    if model not in MODELS:
+        raise ValueError(f"model must be one of {tuple(MODELS)}, got {model!r}")
+    res, newton = _fundamental(alpha, elements, D0, solver, model)
     pb = res.problem
     mesh = _mesh_name(elements)
     method = "pardiso" if solver == "pardiso" else "auto"
     charge = [st for st in res.steps
               if np.asarray(st.load)[1] >= max(D0_from, 1e-12) - 1e-9]
     s = float(np.asarray(charge[0].load)[0]) if charge else float("nan")
-    model = an.NeoHookean()
+    material = an.NeoHookean()
 
     def homogeneous(d):
-        return float(an.uniaxial_lam1(d, s, model))
+        return float(an.uniaxial_lam1(d, s, material))
 
     d_b, i_sw, eig = _locate(pb, charge, method, newton)
-    rows = [{"alpha": alpha, "mesh": mesh, "branch": "fundamental",
+    rows = [{"alpha": alpha, "mesh": mesh, "model": model, "branch": "fundamental",
              "D0": float(st.load[1]),
              "deflection": midplane_deflection(pb, st.x, st.load),
              "lam1": st.quantities["lam1"], "lam1_fundamental": st.quantities["lam1"],
@@ -123,7 +128,7 @@ def run_one(alpha: float, elements, *, D0_step: float, D0_max: float,
              "min_P33": st.quantities["min_P33"],
              "eigenvalue": eig[k] if k < len(eig) else np.nan,
              **_counts(pb, st, method)} for k, st in enumerate(charge)]
-    summary = {"alpha": alpha, "s": s, "mesh": mesh, "ndofs": pb.ndofs, "D0_b": d_b,
+    summary = {"alpha": alpha, "s": s, "mesh": mesh, "model": model, "ndofs": pb.ndofs, "D0_b": d_b,
                "D0_b_pitchfork": np.nan, "b": np.nan, "switch_D0": np.nan,
                "switch_amplitude": np.nan, "D0_last": np.nan, "deflection_last": np.nan,
                "lam1_last": np.nan, "lam1_fundamental_last": np.nan,
@@ -151,7 +156,8 @@ def run_one(alpha: float, elements, *, D0_step: float, D0_max: float,
     for d, w, st in br.states():
         q = st.quantities if st is not None else None
         lab = (critical_mode(pb, st.x, st.load, method=method) if st is not None else None)
-        buckled.append({"alpha": alpha, "mesh": mesh, "branch": "buckled", "D0": d,
+        buckled.append({"alpha": alpha, "mesh": mesh, "model": model, "branch": "buckled",
+                        "D0": d,
                         "deflection": w,
                         "lam1": q["lam1"] if q else pb.postprocess(br.switch.x,
                                                                    sw.load)["lam1"],
@@ -182,30 +188,31 @@ def run_one(alpha: float, elements, *, D0_step: float, D0_max: float,
         X = pb.b2.doflocs
         mid = np.flatnonzero(np.abs(X[1]) < 1e-9 * pb.plate.H)
         u2 = pb.full(st.x, st.load)[1:pb.n_u:3][mid]
-        np.savez(shapes_dir / f"{alpha:g}_{mesh}.npz", X1=X[0][mid], X3=X[2][mid], u2=u2,
+        np.savez(shapes_dir / f"{alpha:g}_{model}_{mesh}.npz", X1=X[0][mid], X3=X[2][mid], u2=u2,
                  D0=float(st.load[1]))
     summary["seconds"] = round(time.time() - t0, 1)
     return summary, rows
 
 
 def run_post_buckling(out: Path, *, alphas, meshes, D0_step: float, D0_max: float | None,
-                      solver: str = "pardiso", progress=None) -> list[dict]:
+                      solver: str = "pardiso", model: str = "quarter",
+                      progress=None) -> list[dict]:
     """The study: every alpha x mesh not yet in ``out/post-buckling-summary.csv``, then
     the figure.  Each weight's spectrum scan starts at ``WINDOW[alpha][0]`` (``D0_step``
     for a weight not in it); ``D0_max=None`` ends it at ``WINDOW[alpha][1]`` (1.5)."""
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
     table = out / "post-buckling-summary.csv"
-    done = {(r["alpha"], r["mesh"]) for r in read_rows(table)}
+    done = {(r["alpha"], r["mesh"], r["model"]) for r in read_rows(table)}
     for alpha in alphas:
         start, top = WINDOW.get(float(alpha), (D0_step, 1.5))
         top = top if D0_max is None else D0_max
         start = min(start, top)
         for el in meshes:
-            if (float(alpha), _mesh_name(el)) in done:
+            if (float(alpha), _mesh_name(el), model) in done:
                 continue
             summary, rows = run_one(float(alpha), el, D0_step=D0_step, D0_max=top,
-                                    D0_from=start, solver=solver,
+                                    D0_from=start, solver=solver, model=model,
                                     shapes_dir=out / ".post-buckling")
             append_rows(out / "post-buckling.csv", COLUMNS, rows)
             append_rows(table, SUMMARY_COLUMNS, [summary])
@@ -217,54 +224,62 @@ def run_post_buckling(out: Path, *, alphas, meshes, D0_step: float, D0_max: floa
     return summary
 
 
+def _unfold(z, model):
+    """Mid-plane points and ``u2`` of a saved shape over the whole plate (mirror images
+    through the model's symmetry planes; the state is symmetric in them)."""
+    X1, X3, u2 = z["X1"], z["X3"], z["u2"]
+    for ax in MODELS[model]:
+        if ax == 1:
+            X1, X3, u2 = np.concatenate([X1, -X1]), np.concatenate([X3, X3]), np.tile(u2, 2)
+        else:
+            X1, X3, u2 = np.concatenate([X1, X1]), np.concatenate([X3, -X3]), np.tile(u2, 2)
+    return X1, X3, u2
+
+
 def post_buckling_figure(summary, rows, shapes_dir: Path, path: Path) -> Path:
-    """One row of panels per alpha: mid-plane deflection vs ``D0`` per mesh, ``lam1`` at
-    the centre minus the homogeneous closed form (fundamental and buckled branches), the
-    buckled shape on the finest mesh."""
+    """One row of panels per alpha: mid-plane deflection vs ``D0`` per model and mesh,
+    ``lam1`` at the centre minus the homogeneous closed form (fundamental and buckled
+    branches), the buckled shape of the largest model."""
     alphas = sorted({r["alpha"] for r in summary})
     fig, axes = plt.subplots(len(alphas), 3, figsize=(14, 3.6 * len(alphas)),
                              squeeze=False, constrained_layout=True)
     for ax3, alpha in zip(axes, alphas):
-        mine = [r for r in summary if r["alpha"] == alpha]
-        meshes = sorted({r["mesh"] for r in mine}, key=lambda m: int(m.split("x")[0]))
-        for m in meshes:
-            b = [r for r in rows if r["alpha"] == alpha and r["mesh"] == m
-                 and r["branch"] == "buckled"]
-            line, = ax3[0].plot([r["D0"] for r in b], [r["deflection"] for r in b], "o-",
-                                ms=3, label=f"quarter {m}")
-            d_b = next(r for r in mine if r["mesh"] == m)["D0_b"]
-            if np.isfinite(d_b):
-                ax3[0].axvline(d_b, ls=":", lw=0.8, color=line.get_color())
+        mine = sorted((r for r in summary if r["alpha"] == alpha),
+                      key=lambda r: (r["model"], r["ndofs"]))
+        for r in mine:
+            key = (r["mesh"], r["model"])
+            b = [q for q in rows if q["alpha"] == alpha and (q["mesh"], q["model"]) == key
+                 and q["branch"] == "buckled"]
+            f = [q for q in rows if q["alpha"] == alpha and (q["mesh"], q["model"]) == key
+                 and q["branch"] == "fundamental"]
+            name = f"{r['model']} {r['mesh']}"
+            line, = ax3[0].plot([q["D0"] for q in b], [q["deflection"] for q in b], "o-",
+                                ms=3, label=name)
+            if np.isfinite(r["D0_b"]):
+                ax3[0].axvline(r["D0_b"], ls=":", lw=0.8, color=line.get_color())
+            ax3[1].plot([q["D0"] for q in b], [q["lam1"] - q["lam1_homogeneous"] for q in b],
+                        "o-", ms=3, color=line.get_color(), label=f"buckled {name}")
+            ax3[1].plot([q["D0"] for q in f], [q["lam1"] - q["lam1_homogeneous"] for q in f],
+                        "s--", ms=3, mfc="none", lw=0.8, color=line.get_color(),
+                        label=f"fundamental {name}")
         ax3[0].set(xlabel="D0", ylabel="mid-plane deflection max |u2| (mm)",
                    title=f"alpha = {alpha:g}: buckled branch (dotted: D0_b)")
         ax3[0].legend(fontsize=7)
-        fine = meshes[-1]
-        for m in meshes:
-            b = [r for r in rows if r["alpha"] == alpha and r["mesh"] == m
-                 and r["branch"] == "buckled"]
-            f = [r for r in rows if r["alpha"] == alpha and r["mesh"] == m
-                 and r["branch"] == "fundamental"]
-            line, = ax3[1].plot([r["D0"] for r in b],
-                                [r["lam1"] - r["lam1_homogeneous"] for r in b], "o-", ms=3,
-                                label=f"buckled {m}")
-            ax3[1].plot([r["D0"] for r in f], [r["lam1"] - r["lam1_homogeneous"] for r in f],
-                        "s--", ms=3, mfc="none", lw=0.8, color=line.get_color(),
-                        label=f"fundamental {m}")
         ax3[1].axhline(0, color="k", lw=0.6)
         ax3[1].set(xlabel="D0", ylabel="lam1 (FE, centre) - lam1 (homogeneous)",
                    title=f"alpha = {alpha:g}: centre stretch against Eq. (DEuniax)")
-        ax3[1].legend(fontsize=7)
-        npz = shapes_dir / f"{alpha:g}_{fine}.npz"
+        ax3[1].legend(fontsize=6)
+        big = max(mine, key=lambda r: r["ndofs"])
+        npz = shapes_dir / f"{alpha:g}_{big['model']}_{big['mesh']}.npz"
         if npz.exists():
             z = np.load(npz)
-            X1 = np.concatenate([z["X1"], -z["X1"], z["X1"], -z["X1"]])
-            X3 = np.concatenate([z["X3"], z["X3"], -z["X3"], -z["X3"]])
-            u2 = np.tile(z["u2"], 4)
+            X1, X3, u2 = _unfold(z, big["model"])
             lim = max(float(np.abs(u2).max()), 1e-300)
             t = ax3[2].tricontourf(X1, X3, u2, 21, cmap="RdBu_r", vmin=-lim, vmax=lim)
             fig.colorbar(t, ax=ax3[2], shrink=0.8, label="u2 (mm)")
             ax3[2].set(aspect="equal", xlabel="X1 (mm)", ylabel="X3 (mm)",
-                       title=f"{fine}: mid-plane deflection at D0 = {float(z['D0']):.3g}")
+                       title=f"{big['model']} {big['mesh']}: mid-plane deflection at "
+                             f"D0 = {float(z['D0']):.3g}")
     fig.savefig(path, dpi=110)
     plt.close(fig)
     return path
