@@ -134,12 +134,9 @@ def build_parser() -> argparse.ArgumentParser:
             "DIR/buckling-scan.csv and DIR/buckling.png. Default: alpha = 1, 0.3, 1.5, 0.7, "
             "0.05 on 10x1x5, 20x1x10, 40x1x20, D0 step 0.25 (hours on 2 cores); --quick: "
             "alpha = 1 on 10x1x5 and 20x1x10, D0 step 0.5 (minutes).")
-    k.add_argument("--quick", action="store_true", help="alpha = 1, two coarse meshes")
-    k.add_argument("--alpha", nargs="+", type=float, metavar="A", help="weight fractions")
-    k.add_argument("--meshes", nargs="+", type=_mesh_triple, metavar="N1xN2xN3",
-                   help="eighth-model meshes, e.g. 10x1x5 20x1x10")
-    k.add_argument("--D0-step", dest="D0_step", type=float, help="charge step of the scan")
-    k.add_argument("--D0-max", dest="D0_max", type=float, help="last charge target")
+    _study_arguments(k, "alpha = 1, two coarse meshes",
+                     "eighth-model meshes, e.g. 10x1x5 20x1x10", "charge step of the scan",
+                     "last charge target")
     k.add_argument("--solver", choices=["auto", "superlu", "pardiso"], default="pardiso",
                    help="linear solver and inertia method (PARDISO: the fast extra)")
     k.add_argument("--out", required=True, type=_out_dir, help="output folder")
@@ -155,15 +152,11 @@ def build_parser() -> argparse.ArgumentParser:
              "present) and DIR/post-buckling.png. Default: alpha = 0.05 and 1 on the "
              "quarter meshes 10x2x5, 14x2x7, 20x2x10 (about an hour on 2 cores); --quick: "
              "alpha = 0.05 on 10x2x5 up to D0 = 1 (about a minute).")
-    pb.add_argument("--quick", action="store_true", help="alpha = 0.05, one coarse mesh")
-    pb.add_argument("--alpha", nargs="+", type=float, metavar="A", help="weight fractions")
-    pb.add_argument("--meshes", nargs="+", type=_mesh_triple, metavar="N1xN2xN3",
-                    help="quarter-model meshes with an even N2, e.g. 10x2x5 20x2x10")
-    pb.add_argument("--D0-step", dest="D0_step", type=float,
-                    help="charge step of the scan and the branch (default 0.05)")
-    pb.add_argument("--D0-max", dest="D0_max", type=float,
-                    help="last charge target (default: 1.5 for alpha = 0.05, 3.3 for "
-                         "alpha = 1; see validation.postbuckling.WINDOW)")
+    _study_arguments(pb, "alpha = 0.05, one coarse mesh",
+                     "quarter-model meshes with an even N2, e.g. 10x2x5 20x2x10",
+                     "charge step of the scan and the branch (default 0.05)",
+                     "last charge target (default: 1.5 for alpha = 0.05, 3.3 for alpha = 1; "
+                     "see validation.postbuckling.WINDOW)")
     pb.add_argument("--model", choices=["quarter", "x1"], default="quarter",
                     help="quarter: symmetry planes x1 = 0 and x3 = 0 (modes symmetric in x3); "
                          "x1: the plane x1 = 0 only, the whole width (modes of either "
@@ -252,6 +245,34 @@ def _check_mesh(name: str, mesh) -> None:
                          f"{' '.join(map(str, mesh))}")
 
 
+def _study_arguments(p, quick: str, meshes: str, step: str, top: str) -> None:
+    """The options shared by the ``buckling`` and ``post-buckling`` studies."""
+    p.add_argument("--quick", action="store_true", help=quick)
+    p.add_argument("--alpha", nargs="+", type=float, metavar="A", help="weight fractions")
+    p.add_argument("--meshes", nargs="+", type=_mesh_triple, metavar="N1xN2xN3", help=meshes)
+    p.add_argument("--D0-step", dest="D0_step", type=float, help=step)
+    p.add_argument("--D0-max", dest="D0_max", type=float, help=top)
+
+
+def _study_options(args, quick: dict, full: dict) -> dict:
+    """The study's settings: the ``--quick`` or default ones, overridden by the options
+    given, each checked (``ValueError`` naming the option)."""
+    opts = dict(quick if args.quick else full)
+    for key in ("alpha", "meshes", "D0_step", "D0_max"):
+        value = getattr(args, key)
+        if value is not None:
+            opts["alphas" if key == "alpha" else key] = value
+    _positive("--D0-step", opts["D0_step"])
+    if opts["D0_max"] is not None:
+        _positive("--D0-max", opts["D0_max"])
+    for a in opts["alphas"]:
+        _positive("--alpha", a)
+    if args.solver == "pardiso" and not pardiso_installed():
+        raise ValueError("--solver pardiso needs the fast extra (pypardiso); use "
+                         "--solver superlu")
+    return opts
+
+
 def _mesh_triple(text: str) -> tuple[int, int, int]:
     """``"20x1x10"`` -> ``(20, 1, 10)`` (argparse type of ``--meshes``)."""
     try:
@@ -264,23 +285,11 @@ def _mesh_triple(text: str) -> tuple[int, int, int]:
 
 
 def _cmd_post_buckling(args) -> int:
-    opts = dict(POST_QUICK if args.quick else POST_FULL)
-    for key in ("alpha", "meshes", "D0_step", "D0_max"):
-        value = getattr(args, key)
-        if value is not None:
-            opts["alphas" if key == "alpha" else key] = value
-    _positive("--D0-step", opts["D0_step"])
-    if opts["D0_max"] is not None:
-        _positive("--D0-max", opts["D0_max"])
-    for a in opts["alphas"]:
-        _positive("--alpha", a)
+    opts = _study_options(args, POST_QUICK, POST_FULL)
     for m in opts["meshes"]:
         if m[1] % 2:
             raise ValueError(f"--meshes: N2 must be even (nodes on the mid-plane), got "
                              f"{'x'.join(map(str, m))}")
-    if args.solver == "pardiso" and not pardiso_installed():
-        raise ValueError("--solver pardiso needs the fast extra (pypardiso); use "
-                         "--solver superlu")
 
     def show(row):
         print(f"alpha = {row['alpha']:g} {row['model']} {row['mesh']}: "
@@ -296,18 +305,7 @@ def _cmd_post_buckling(args) -> int:
 
 
 def _cmd_buckling(args) -> int:
-    opts = dict(BUCKLING_QUICK if args.quick else BUCKLING_FULL)
-    for key in ("alpha", "meshes", "D0_step", "D0_max"):
-        value = getattr(args, key)
-        if value is not None:
-            opts["alphas" if key == "alpha" else key] = value
-    _positive("--D0-step", opts["D0_step"])
-    _positive("--D0-max", opts["D0_max"])
-    for a in opts["alphas"]:
-        _positive("--alpha", a)
-    if args.solver == "pardiso" and not pardiso_installed():
-        raise ValueError("--solver pardiso needs the fast extra (pypardiso); use "
-                         "--solver superlu")
+    opts = _study_options(args, BUCKLING_QUICK, BUCKLING_FULL)
 
     def show(row):
         print(f"alpha = {row['alpha']:g} {row['mesh']}: D0_b = {row['D0_b']:.4f} "
