@@ -123,14 +123,12 @@ def test_trim_heap_is_harmless():
     assert trim_heap() in (True, False)        # found once, callable again
 
 
-@pytest.mark.parametrize("star", [False, True])
-def test_block_scatter_adds_as_the_positions(star):
-    # 16-bit offsets in the rows (or, with a row of more than 65 535 entries, the 32-bit
-    # positions) against np.bincount of ScatterMap.positions, eliminated dofs included
-    from skfem_dielectric.assembly import BlockScatter
-
-    rng = np.random.default_rng(11)
-    if star:      # dof 0 coupled to 70 000 others: its row does not fit 16-bit offsets
+def _scatter_case(star: bool, seed: int):
+    """Element dofs (reduced, eliminated ones -1) and two block pairs: 500 random 12-dof
+    elements on 4000 dofs, or with ``star`` dof 0 coupled to 70 000 others (a row that
+    does not fit 16-bit offsets)."""
+    rng = np.random.default_rng(seed)
+    if star:
         n_full = 70_001
         dofs = np.c_[np.zeros(n_full - 1, int), np.arange(1, n_full)]
     else:
@@ -139,8 +137,18 @@ def test_block_scatter_adds_as_the_positions(star):
     red = DofReduction(n_full, fixed=rng.choice(np.arange(1, n_full), 40, replace=False),
                        tied=[np.arange(10, 20)])
     d = red.index[dofs]
-    sc = ScatterMap(d, red.n)
     blocks = [(d[:, :, None], d[:, None, :]), (d[:, :1, None], d[:, None, 1:])]
+    return rng, red, d, blocks
+
+
+@pytest.mark.parametrize("star", [False, True])
+def test_block_scatter_adds_as_the_positions(star):
+    # 16-bit offsets in the rows (or, with a row of more than 65 535 entries, the 32-bit
+    # positions) against np.bincount of ScatterMap.positions, eliminated dofs included
+    from skfem_dielectric.assembly import BlockScatter
+
+    rng, red, d, blocks = _scatter_case(star, 11)
+    sc = ScatterMap(d, red.n)
     bs = BlockScatter(sc, blocks)
     pos = np.concatenate([sc.positions(r, c).ravel() for r, c in blocks]).astype(np.int64)
     assert bs.size == pos.size and np.array_equal(bs.positions(), pos)
@@ -161,18 +169,8 @@ def test_upper_triangle_in_the_spare_layout(star):
     # entries added in the same order)
     from skfem_dielectric.assembly import BlockScatter, drop_spare_slots
 
-    rng = np.random.default_rng(12)
-    if star:      # a row of 70 000 entries: 32-bit positions instead of 16-bit offsets
-        n_full = 70_001
-        dofs = np.c_[np.zeros(n_full - 1, int), np.arange(1, n_full)]
-    else:
-        n_full = 4000
-        dofs = rng.integers(0, n_full, size=(500, 12))
-    red = DofReduction(n_full, fixed=rng.choice(np.arange(1, n_full), 40, replace=False),
-                       tied=[np.arange(10, 20)])
-    d = red.index[dofs]
+    rng, red, d, blocks = _scatter_case(star, 12)
     full, up = ScatterMap(d, red.n), ScatterMap(d, red.n, upper=True)
-    blocks = [(d[:, :, None], d[:, None, :]), (d[:, :1, None], d[:, None, 1:])]
     vals = rng.standard_normal(sum(np.broadcast(r, c).size for r, c in blocks))
     whole = np.zeros(full.nnz + 1)
     BlockScatter(full, blocks).add_into(whole, vals.copy())
