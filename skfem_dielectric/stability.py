@@ -155,7 +155,8 @@ def lowest_modes(K: sp.spmatrix, M: sp.spmatrix, k: int, n_negative: int = 0,
       shift moves down by decades (from ``sigma_start`` by factors of ``sigma_growth``
       when given, e.g. 1.5 times the previous state's lowest eigenvalue) until the inertia of
       ``K - sigma M`` shows no eigenvalue below it; the interval between the last two
-      shifts is then halved geometrically until their ratio is at most 2 (Lanczos
+      shifts is then halved geometrically (systems of more than ``DENSE_LIMIT // 10``
+      unknowns) until their ratio is at most 2 (Lanczos
       separates the negative ones best with the shift near the lowest), and the ones
       nearest to the shift are the lowest; the number asked for grows until all the
       negative ones wanted are found.  Without PARDISO the SuperLU factors that counted
@@ -217,7 +218,8 @@ def lowest_modes(K: sp.spmatrix, M: sp.spmatrix, k: int, n_negative: int = 0,
             hi, sig = sig, sig * grow
         # the lowest eigenvalue lies between sig and hi: halve that interval (geometrically)
         # until sig is at most twice it, where Lanczos separates the negative ones best
-        while hi is not None and sig / hi > 2.0:
+        # (sparse factorisations; a small system's dense count costs more than it saves)
+        while hi is not None and sig / hi > 2.0 and n > DENSE_LIMIT // 10:
             mid = -np.sqrt(sig * hi)
             below, s_mid = _below(shifted(mid), n - nd, use_pardiso, shift_solver, orders)
             if below > 0:
