@@ -35,7 +35,8 @@ from .drivers import newton_guards
 from .modes import classify_mode
 from .plate import PlateProblem
 from .ramp import RampResult
-from .stability import counted_inertia, lowest_modes
+from .inertia import inertia_factors, reusable_factors
+from .stability import lowest_modes
 from .symmetry_classes import class_mode_full, class_tangent, union_tangent
 
 __all__ = ["ModeLabel", "BucklingLoad", "corner_radius", "class_spectra", "physical_modes",
@@ -159,8 +160,11 @@ def class_spectra(problem: PlateProblem, x: np.ndarray, load: Any, *, extra: int
         if only is not None and c.name not in only:
             continue
         Kc = class_tangent(c, K)
-        n_neg = counted_inertia(Kc, method)[1] - c.layout.n_multipliers
-        vals, vecs = lowest_modes(Kc, c.metric, n_neg + extra, max(n_neg, 0), tol=1e-10)
+        inertia, factors = inertia_factors(Kc, method)
+        n_neg = inertia[1] - c.layout.n_multipliers
+        vals, vecs = lowest_modes(Kc, c.metric, n_neg + extra, max(n_neg, 0), tol=1e-10,
+                                  factors=reusable_factors(factors, inertia, n_neg))
+        del factors
         out.append((c, n_neg, vals, vecs))
     return out
 

@@ -49,6 +49,10 @@ class StabilityMonitor:
     method
         Inertia method where the ramp's factors do not show the inertia (see
         :func:`~skfem_dielectric.stability.tangent_inertia`).
+    all_negative
+        At least as many eigenpairs as negative eigenvalues (``max(k, n_negative)``, as
+        :func:`~skfem_dielectric.stability.tangent_stability`), e.g. to classify every
+        unstable mode.
 
     Attributes
     ----------
@@ -76,10 +80,12 @@ class StabilityMonitor:
     0
     """
 
-    def __init__(self, k: int = 0, *, tol: float = 1e-6, method: str = "auto"):
+    def __init__(self, k: int = 0, *, tol: float = 1e-6, method: str = "auto",
+                 all_negative: bool = False):
         self.k = check_nonnegative_int("k", k)
         self.tol = check_positive("tol", tol)
         self.method = method
+        self.all_negative = bool(all_negative)
         self.history: list[tuple[Any, int, int, np.ndarray]] = []
         self.last: StabilityResult | None = None
         self.seconds: list[float] = []
@@ -97,7 +103,7 @@ class StabilityMonitor:
                              "no stability statement")
         t0 = time.perf_counter()
         reuse: dict[str, Any] = {}
-        if self.k:
+        if self.k or self.all_negative:
             if self._metric is None or self._metric[0] is not problem:
                 M = metric_matrix(problem)
                 md = M.diagonal()
@@ -118,7 +124,8 @@ class StabilityMonitor:
                 reuse["v0"] = sq * prev.modes[d, 0]
             reuse["shift_solver"] = self._shift
         st = tangent_stability(problem, K, k=self.k, method=self.method, tol=self.tol,
-                               factors=solver, metric=M if self.k else None, **reuse)
+                               factors=solver, all_negative=self.all_negative,
+                               metric=M if self.k or self.all_negative else None, **reuse)
         self.last = st
         self.history.append((load, st.n_negative, st.n_zero, st.eigenvalues.copy()))
         self.seconds.append(time.perf_counter() - t0)

@@ -35,117 +35,16 @@ from typing import Any
 import numpy as np
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
-from scipy.sparse.csgraph import reverse_cuthill_mckee
 
+from .inertia import (DENSE_LIMIT, INERTIA_METHODS, constrained_order, counted_inertia,
+                      inertia_factors, reusable_factors, symmetric_lu, tangent_inertia)
 from .linear import LinearSolver, PardisoSolver, pardiso_available
 from .problem import Problem
 
-__all__ = ["tangent_inertia", "counted_inertia", "StabilityResult", "stability_analysis", "tangent_stability",
+# the inertia functions live in .inertia; the names here are kept for existing imports
+__all__ = ["tangent_inertia", "counted_inertia", "constrained_order", "INERTIA_METHODS",
+           "DENSE_LIMIT", "StabilityResult", "stability_analysis", "tangent_stability",
            "metric_matrix", "lowest_modes"]
-
-INERTIA_METHODS = ("auto", "superlu", "pardiso", "dense")
-#: systems up to this size may be counted densely
-DENSE_LIMIT = 3000
-
-
-def tangent_inertia(K: sp.spmatrix, method: str = "auto") -> tuple[int, int, int]:
-    """Inertia ``(n_positive, n_negative, n_zero)`` of a symmetric sparse matrix.
-
-    Parameters
-    ----------
-    K
-        Symmetric (possibly indefinite, saddle-point) matrix.
-    method
-        ``"pardiso"`` (MKL, Bunch-Kaufman LDL^T), ``"superlu"`` (symmetric-mode LU with
-        diagonal pivots, ``U = D L^T``), ``"dense"`` (eigenvalues; small systems) or
-        ``"auto"`` (PARDISO if installed, else SuperLU).
-
-    Returns
-    -------
-    tuple of int
-
-    Raises
-    ------
-    ValueError
-        Unknown ``method``, a non-square matrix, or a SuperLU factorisation that needed
-        off-diagonal pivots (its diagonal then says nothing about the inertia).
-    """
-    if method not in INERTIA_METHODS:
-        raise ValueError(f"method must be one of {INERTIA_METHODS}, got {method!r}")
-    if K.shape[0] != K.shape[1]:
-        raise ValueError(f"K must be square, got shape {K.shape}")
-    n = K.shape[0]
-    if method == "auto":
-        method = "pardiso" if pardiso_available() else "superlu"
-    if method == "dense":
-        ev = np.linalg.eigvalsh(K.toarray())
-        tol = n * np.finfo(float).eps * max(1.0, float(np.abs(ev).max()))
-        return int(np.sum(ev > tol)), int(np.sum(ev < -tol)), int(np.sum(np.abs(ev) <= tol))
-    if method == "pardiso":
-        solver = PardisoSolver()
-        solver.solve(K, np.zeros(n))
-        return solver.inertia
-    lu = spla.splu(sp.csc_matrix(K), permc_spec="MMD_AT_PLUS_A", diag_pivot_thresh=0.0,
-                   options={"SymmetricMode": True})
-    if not np.array_equal(lu.perm_r, lu.perm_c):
-        # a zero pivot: a multiplier (zero diagonal) eliminated before the displacements
-        # it couples to; retry with an order that puts each such unknown after all its
-        # neighbours (then its pivot is the Schur complement -b^T A^-1 b, non-zero)
-        order = constrained_order(K)
-        lu = spla.splu(sp.csc_matrix(K)[order][:, order], permc_spec="NATURAL",
-                       diag_pivot_thresh=0.0, options={"SymmetricMode": True})
-        if not np.array_equal(lu.perm_r, lu.perm_c):
-            raise ValueError("SuperLU needed off-diagonal pivots: no inertia from its "
-                             "diagonal (use method='dense' or 'pardiso')")
-    d = lu.U.diagonal()
-    return int(np.sum(d > 0)), int(np.sum(d < 0)), int(np.sum(d == 0))
-
-
-def constrained_order(K: sp.spmatrix) -> np.ndarray:
-    """A symmetric elimination order for a saddle-point matrix: reverse Cuthill-McKee
-    (bandwidth), with every unknown of zero diagonal (a pressure-like multiplier) moved
-    right after the last of its neighbours, so that it is eliminated after every unknown
-    it couples to and its pivot is a Schur complement, not zero."""
-    A = sp.csr_matrix(K, copy=True)
-    A.eliminate_zeros()
-    n = A.shape[0]
-    pos = np.empty(n)
-    pos[reverse_cuthill_mckee(A, symmetric_mode=True)] = np.arange(n)
-    key = pos.copy()
-    zero = np.flatnonzero((A.diagonal() == 0) & (np.diff(A.indptr) > 0))
-    if zero.size:
-        last = np.maximum.reduceat(pos[A.indices], A.indptr[:-1][np.diff(A.indptr) > 0])
-        nonempty = np.flatnonzero(np.diff(A.indptr) > 0)
-        full_last = np.full(n, -np.inf)
-        full_last[nonempty] = last
-        key[zero] = full_last[zero] + 0.5
-    return np.argsort(key, kind="stable")
-
-
-def counted_inertia(K: sp.spmatrix, method: str = "auto") -> tuple[int, int, int]:
-    """:func:`tangent_inertia` with the fallback of the stability analyses: small systems
-    (``n <= DENSE_LIMIT / 10`` without PARDISO) are counted densely, and where SuperLU
-    meets a zero pivot (a multiplier eliminated before its displacements) systems up to
-    :data:`DENSE_LIMIT` unknowns are counted densely instead.
-
-    Raises
-    ------
-    ValueError
-        As :func:`tangent_inertia`; for a larger system whose SuperLU factorisation needed
-        off-diagonal pivots, one naming the remedy (the ``fast`` extra, PARDISO).
-    """
-    if method == "auto" and not pardiso_available() and K.shape[0] <= DENSE_LIMIT // 10:
-        method = "dense"
-    try:
-        return tangent_inertia(K, method)
-    except ValueError as exc:
-        if not (method in ("auto", "superlu") and "off-diagonal pivots" in str(exc)):
-            raise
-        if K.shape[0] > DENSE_LIMIT:
-            raise ValueError(f"{exc}; this tangent ({K.shape[0]} unknowns) is too large "
-                             "to be counted densely: install the 'fast' extra (PARDISO)"
-                             ) from None
-        return tangent_inertia(K, "dense")
 
 
 def metric_matrix(problem: Problem) -> sp.csr_matrix:
@@ -165,6 +64,32 @@ def _pencil_solve(Ks: sp.spmatrix, use_pardiso: bool, solver: PardisoSolver | No
         solver.solve(Ks, np.zeros(Ks.shape[0]))
         return solver.resolve
     return spla.splu(sp.csc_matrix(Ks), permc_spec="MMD_AT_PLUS_A").solve
+
+
+def _below(Ks: sp.spmatrix, n_m: int, use_pardiso: bool, solver: PardisoSolver | None = None,
+           orders: list | None = None) -> tuple[int, Any]:
+    """Eigenvalues of the pencil below the shift of ``Ks = K - sigma M`` (its negative
+    pivots less the ``n_m`` multipliers') and a solve with ``Ks`` where the factorisation
+    that counted them gives one (else ``None``).  ``orders`` (a list) keeps the SuperLU
+    elimination order of the first shift for the next ones (same pattern, same zero
+    diagonal)."""
+    n = Ks.shape[0]
+    if use_pardiso:         # the factors that give the inertia serve the solves
+        ps = solver if solver is not None else PardisoSolver()
+        ps.solve(Ks, np.zeros(n))
+        return ps.inertia[1] - n_m, ps.resolve
+    if n <= DENSE_LIMIT // 10:
+        return tangent_inertia(Ks, "dense")[1] - n_m, None
+    orders = [] if orders is None else orders
+    try:
+        inertia, solve, order = symmetric_lu(Ks, orders[0] if orders else None)
+    except ValueError:      # SuperLU without diagonal pivots
+        if not pardiso_available():
+            return 0, None  # keep this shift
+        return tangent_inertia(Ks, "pardiso")[1] - n_m, None
+    if not orders:
+        orders.append(order)
+    return inertia[1] - n_m, solve
 
 
 def _eig_near(solve, sigma: float, d: np.ndarray, sq: np.ndarray, n: int, m: int,
@@ -229,8 +154,13 @@ def lowest_modes(K: sp.spmatrix, M: sp.spmatrix, k: int, n_negative: int = 0,
     * the ``n_negative`` negative ones (known from the inertia) by spectrum slicing: the
       shift moves down by decades (from ``sigma_start`` by factors of ``sigma_growth``
       when given, e.g. 1.5 times the previous state's lowest eigenvalue) until the inertia of
-      ``K - sigma M`` shows no eigenvalue below it, and the ones nearest to it are the
-      lowest; the number asked for grows until all the negative ones wanted are found.
+      ``K - sigma M`` shows no eigenvalue below it; the interval between the last two
+      shifts is then halved geometrically (systems of more than ``DENSE_LIMIT // 10``
+      unknowns) until their ratio is at most 2 (Lanczos
+      separates the negative ones best with the shift near the lowest), and the ones
+      nearest to the shift are the lowest; the number asked for grows until all the
+      negative ones wanted are found.  Without PARDISO the SuperLU factors that counted
+      at the last shift (:func:`~skfem_dielectric.inertia.symmetric_lu`) serve its solves.
 
     ``shift_solver``, a :class:`~skfem_dielectric.linear.PardisoSolver`, factorises the
     shifted matrices with its symbolic analysis kept from call to call; ``v0`` (length
@@ -275,26 +205,28 @@ def lowest_modes(K: sp.spmatrix, M: sp.spmatrix, k: int, n_negative: int = 0,
     parts = []
     n_neg = max(0, int(n_negative))
     if n_neg:
-        sig, grow, solve = tiny, 10.0, None
+        sig, grow, hi, orders = tiny, 10.0, None, []
         if sigma_start is not None and sigma_start < sig:
             sig, grow = float(sigma_start), float(sigma_growth)
         for _ in range(40):
             # spectrum slicing: the shift below the lowest eigenvalue (no eigenvalue under
             # it: n_neg(K - sigma M) = n - nd, the multipliers' count); a shift near zero
             # would return every soft positive mode nearer to zero than the negative ones
-            if use_pardiso:     # the factors that give the inertia serve the solves
-                ps = shift_solver if shift_solver is not None else PardisoSolver()
-                ps.solve(shifted(sig), np.zeros(n))
-                below, solve = ps.inertia[1] - (n - nd), ps.resolve
-            else:
-                try:
-                    below = tangent_inertia(shifted(sig), "auto" if n > DENSE_LIMIT // 10
-                                            else "dense")[1] - (n - nd)
-                except ValueError:   # SuperLU without diagonal pivots: keep this shift
-                    below = 0
+            below, solve = _below(shifted(sig), n - nd, use_pardiso, shift_solver, orders)
             if below <= 0:
                 break
-            sig *= grow
+            hi, sig = sig, sig * grow
+        # the lowest eigenvalue lies between sig and hi: halve that interval (geometrically)
+        # until sig is at most twice it, where Lanczos separates the negative ones best
+        # (sparse factorisations; a small system's dense count costs more than it saves)
+        while hi is not None and sig / hi > 2.0 and n > DENSE_LIMIT // 10:
+            mid = -np.sqrt(sig * hi)
+            below, s_mid = _below(shifted(mid), n - nd, use_pardiso, shift_solver, orders)
+            if below > 0:
+                hi = mid
+                solve = None if use_pardiso else solve    # one solver, its factors replaced
+            else:
+                sig, solve = mid, s_mid
         if solve is None:
             solve = _pencil_solve(shifted(sig), use_pardiso, shift_solver)
         # the ``want`` eigenvalues nearest the shift below them all are the lowest (asking
@@ -468,9 +400,14 @@ def tangent_stability(problem: Problem, K: sp.spmatrix, *, k: int = 0,
         raise ValueError(f"unknown keyword arguments {sorted(unknown)} (allowed: "
                          "sigma_start, sigma_growth, shift_solver, v0)")
     inertia = factors.factor_inertia() if factors is not None else None
-    if inertia is None:
-        inertia = counted_inertia(K, method)
     n_m = problem.layout.n_multipliers
+    if inertia is None and factors is None and (k or all_negative):
+        # the factorisation that counts also serves the shift-0 solves of the modes
+        inertia, own = inertia_factors(K, method)
+        factors = reusable_factors(own, inertia, inertia[1] - n_m)
+        del own
+    elif inertia is None:
+        inertia = counted_inertia(K, method)
     out = StabilityResult(inertia[1] - n_m, inertia[2], tuple(inertia), n_m)
     if all_negative:
         k = max(int(k), out.n_negative)

@@ -74,6 +74,19 @@ def test_monitor_counts_and_modes_equal_the_dense_spectrum(solver):
     assert res.factorisations <= plain.factorisations + len(res.steps)
 
 
+@pytest.mark.parametrize("solver", SOLVERS)
+def test_monitor_all_negative_gives_every_negative_mode(solver):
+    # k = 0 with all_negative: one mode per negative eigenvalue (none without), equal to the
+    # dense spectrum (as tangent_stability(all_negative=True), the harness's columns)
+    mon = fe.StabilityMonitor(k=0, tol=1e-12, all_negative=True)
+    pb, res = _quarter_ramp(solver, mon)
+    for st, (load, n_neg, n_zero, ev) in zip(res.steps, mon.history):
+        ref = _pencil_eigenvalues(pb, pb.assemble(st.x, st.load)[0])
+        assert ev.size == n_neg
+        assert ev == pytest.approx(ref[:n_neg], rel=1e-7, abs=1e-12)
+    assert min(h[1] for h in mon.history) == 0 and max(h[1] for h in mon.history) > 0
+
+
 def test_reuse_factors_starts_with_a_chord_step():
     pb = fe.keplinger_problem(elements=(4, 1, 2))
     s = fe.keplinger_s(1.0, g=9.81)

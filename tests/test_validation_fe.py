@@ -8,7 +8,8 @@ import numpy as np
 import pytest
 
 from validation import cases as vc
-from validation.fe import keplinger_s, run_fe
+from validation.fe import (build_problem, keplinger_s, pardiso_installed, run_fe,
+                           stability_columns)
 from validation.sweep import read_table, run_case
 
 
@@ -125,3 +126,23 @@ def test_maxwell_keplinger_against_coupled_and_resume(tmp_path):
     # (the clamps act near the ends only; measured 2.5e-3 for the coupled plate)
     np.testing.assert_allclose(t["lam1_fe"][m], t["lam1_analytic"][m], rtol=1e-2)
     assert np.all(t["stable"][m] == None)        # noqa: E711 (non-symmetric: no verdict)
+
+
+@pytest.mark.skipif(not pardiso_installed(), reason="needs PARDISO (the fast extra)")
+def test_pardiso_columns_come_from_the_ramps_factors():
+    # with PARDISO the clamped 3D plate's stability columns are read from the ramp's own
+    # factorisations (validation.fe.stability_monitor): the counts of a fresh analysis of
+    # each state, its lowest eigenvalue within the Lanczos tolerance 1e-6
+    spec = vc.RunSpec("uniaxial", "neo-Hookean", "coupled", keplinger_s(1.0),
+                      (0.0, 1.0, 2.0, 3.0), alpha=1.0, mesh=(("n1", 8), ("n2", 1), ("n3", 4)),
+                      stop_at_breakdown=False)
+    seen = []
+    run_fe(spec, 0, None, lambda i, rec, st: seen.append((rec, st)) and False,
+           linear_solver="pardiso")
+    assert [rec.D0 for rec, _ in seen] == list(spec.D0)
+    problem = build_problem(spec)
+    for rec, st in seen:
+        fresh = stability_columns(spec, problem, st["x"], st["load"])
+        assert (rec.n_negative, rec.n_unstable, rec.stable) == \
+            (fresh["n_negative"], fresh["n_unstable"], fresh["stable"])
+        assert rec.lowest_eig == pytest.approx(fresh["lowest_eig"], rel=1e-6)
