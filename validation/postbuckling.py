@@ -172,6 +172,12 @@ def run_one(alpha: float, elements, *, D0_step: float, D0_max: float,
         summary["D0_b_pitchfork"], summary["b"] = br.pitchfork(4)
     except ValueError as exc:
         summary["reason"] = str(exc)
+    else:
+        if summary["b"] <= 0 or abs(summary["D0_b_pitchfork"] - d_b) > 0.25 * (d_sw - d_b):
+            summary["reason"] = (f"the branch reached does not bifurcate at D0_b = {d_b:.4f}: "
+                                 f"its pitchfork fit gives {summary['D0_b_pitchfork']:.4f}, "
+                                 f"b = {summary['b']:.3g} (another buckled branch, or a "
+                                 f"subcritical bifurcation)")
     last = buckled[-1]
     summary.update(D0_last=last["D0"], deflection_last=last["deflection"],
                    lam1_last=last["lam1"], lam1_fundamental_last=last["lam1_fundamental"],
@@ -278,7 +284,7 @@ def post_buckling_figure(summary, rows, shapes_dir: Path, path: Path) -> Path:
             t = ax3[2].tricontourf(X1, X3, u2, 21, cmap="RdBu_r", vmin=-lim, vmax=lim)
             fig.colorbar(t, ax=ax3[2], shrink=0.8, label="u2 (mm)")
             ax3[2].set(aspect="equal", xlabel="X1 (mm)", ylabel="X3 (mm)",
-                       title=f"{big['model']} {big['mesh']}: mid-plane deflection at "
+                       title=f"{big['model']} {big['mesh']}: mid-plane u2, "
                              f"D0 = {float(z['D0']):.3g}")
     fig.savefig(path, dpi=110)
     plt.close(fig)
