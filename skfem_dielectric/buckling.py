@@ -172,7 +172,7 @@ def class_spectra(problem: PlateProblem, x: np.ndarray, load: Any, *, extra: int
 def physical_modes(problem: PlateProblem, x: np.ndarray, load: Any, *, extra: int = 2,
                    grad_div: float | None = None, method: str = "auto",
                    radius: float | None = None, stop_at_physical: bool = True,
-                   ) -> tuple[list[ModeLabel], int]:
+                   only: Sequence[str] | None = None) -> tuple[list[ModeLabel], int]:
     """Classified modes of the whole plate at a state, ascending.
 
     Parameters
@@ -185,16 +185,20 @@ def physical_modes(problem: PlateProblem, x: np.ndarray, load: Any, *, extra: in
         Corner radius (default :func:`corner_radius`).
     stop_at_physical
         Stop classifying after the first physical mode.
+    only
+        Names of the classes to analyse (default all, the whole plate).
 
     Returns
     -------
     labels : list of ModeLabel
         The classified modes, ascending.
     n_negative : int
-        Negative eigenvalues of the whole plate's reduced stiffness.
+        Negative eigenvalues of the whole plate's reduced stiffness (of the classes
+        ``only``).
     """
     r = corner_radius(problem) if radius is None else check_positive("radius", radius)
-    spectra = class_spectra(problem, x, load, extra=extra, grad_div=grad_div, method=method)
+    spectra = class_spectra(problem, x, load, extra=extra, grad_div=grad_div, method=method,
+                            only=only)
     xf = problem.full(x, load)
     order = sorted((float(v), i, j) for i, (_, _, vals, _) in enumerate(spectra)
                    for j, v in enumerate(vals))

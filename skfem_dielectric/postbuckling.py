@@ -31,20 +31,21 @@ from typing import Any, Sequence
 
 import numpy as np
 
-from .buckling import ModeLabel, class_spectra, corner_radius
-from .checks import check_count, check_positive
+from .buckling import ModeLabel, lowest_physical
+from .checks import check_count, check_positive, check_vector
 from .drivers import newton_guards, run_ramp
-from .modes import classify_mode
 from .plate import PlateProblem
 from .ramp import RampResult, ramp
-from .symmetry_classes import class_mode_full, class_stability, symmetry_classes
+from .symmetry_classes import class_stability, symmetry_classes
 
-__all__ = ["midplane_deflection", "critical_mode", "BranchSwitch", "switch_branch",
-           "follow_branch", "PostBuckledBranch", "post_buckled_branch"]
+__all__ = ["midplane_nodes", "midplane_deflection", "critical_mode", "BranchSwitch",
+           "switch_branch", "follow_branch", "PostBuckledBranch", "post_buckled_branch"]
 
 
-def _check_bending_model(problem) -> np.ndarray:
-    """Mid-plane displacement nodes of a plate model without the ``x2`` symmetry plane."""
+def midplane_nodes(problem: PlateProblem) -> np.ndarray:
+    """Indices of the displacement nodes on the mid-plane ``X2 = 0`` of a plate model
+    without the ``x2`` symmetry plane (``ValueError`` for a model that cannot bend or
+    has no nodes there: an odd number of elements through the thickness)."""
     if not isinstance(problem, PlateProblem):
         raise ValueError(f"problem must be a PlateProblem, got {type(problem).__name__}")
     if 2 in problem.plate.symmetry:
@@ -75,18 +76,10 @@ def midplane_deflection(problem: PlateProblem, x: np.ndarray, load: Any) -> floa
         In the plate's length unit (mm for the Keplinger plate); zero (round-off) on any
         state symmetric through the thickness.
     """
-    mid = _check_bending_model(problem)
-    x = _check_state(problem, x)
+    mid = midplane_nodes(problem)
+    x = check_vector("x", x, problem.ndofs)
     u2 = problem.full(x, load)[1:problem.n_u:3]
     return float(np.abs(u2[mid]).max())
-
-
-def _check_state(problem, x) -> np.ndarray:
-    x = np.asarray(x, dtype=float)
-    if x.shape != (problem.ndofs,) or not np.all(np.isfinite(x)):
-        raise ValueError(f"x must be a finite vector of shape ({problem.ndofs},), "
-                         f"got shape {x.shape}")
-    return x
 
 
 def critical_mode(problem: PlateProblem, x: np.ndarray, load: Any, *, extra: int = 2,
@@ -122,20 +115,11 @@ def critical_mode(problem: PlateProblem, x: np.ndarray, load: Any, *, extra: int
         full plate's nodal displacements, full dof vector ``mode``); ``None`` if no
         computed mode is physical.
     """
-    _check_bending_model(problem)
-    x = _check_state(problem, x)
-    extra = check_count("extra", extra)
-    r = corner_radius(problem) if radius is None else check_positive("radius", radius)
-    c, _, vals, vecs = class_spectra(problem, x, load, extra=extra, grad_div=grad_div,
-                                     method=method, only=[symmetry_classes(problem)[0].name])[0]
-    xf = problem.full(x, load)
-    for j in np.argsort(vals):
-        w = class_mode_full(c, vecs[:, j])
-        lab = classify_mode(problem, xf, w, symmetry=c.name, radius=r)
-        if lab["kind"] == "physical":
-            return ModeLabel(float(vals[j]), c.name, dict(c.increments),
-                             lab["corner_share"], lab["mesh_scale"], lab["kind"], w)
-    return None
+    midplane_nodes(problem)
+    x = check_vector("x", x, problem.ndofs)
+    own = symmetry_classes(problem)[0].name
+    return lowest_physical(problem, x, load, extra=extra, method=method, grad_div=grad_div,
+                           radius=radius, only=[own])[0]
 
 
 @dataclass
@@ -208,8 +192,8 @@ def switch_branch(problem: PlateProblem, x: np.ndarray, load: Any, mode: np.ndar
     BranchSwitch
         A failed attempt is recorded in ``tried``, never raised.
     """
-    mid = _check_bending_model(problem)
-    x = _check_state(problem, x)
+    mid = midplane_nodes(problem)
+    x = check_vector("x", x, problem.ndofs)
     load = np.asarray(load, dtype=float)
     H = problem.plate.H
     mode = np.asarray(mode, dtype=float)
@@ -279,8 +263,8 @@ def follow_branch(problem: PlateProblem, x: np.ndarray, load: Any, targets: Sequ
         ``n_negative`` (all classes), ``n_negative_own`` (the model's own class) and
         ``n_negative_classes`` (per class, in :func:`symmetry_classes` order).
     """
-    _check_bending_model(problem)
-    x = _check_state(problem, x)
+    midplane_nodes(problem)
+    x = check_vector("x", x, problem.ndofs)
     targets = [np.asarray(t, dtype=float) for t in targets]
     if not targets:
         raise ValueError("targets must not be empty")

@@ -136,10 +136,8 @@ def build_parser() -> argparse.ArgumentParser:
             "alpha = 1 on 10x1x5 and 20x1x10, D0 step 0.5 (minutes).")
     _study_arguments(k, "alpha = 1, two coarse meshes",
                      "eighth-model meshes, e.g. 10x1x5 20x1x10", "charge step of the scan",
-                     "last charge target")
-    k.add_argument("--solver", choices=["auto", "superlu", "pardiso"], default="pardiso",
-                   help="linear solver and inertia method (PARDISO: the fast extra)")
-    k.add_argument("--out", required=True, type=_out_dir, help="output folder")
+                     "last charge target", "pardiso",
+                     "linear solver and inertia method (PARDISO: the fast extra)")
 
     pb = add("post-buckling", "follow the clamped plate onto its buckled branch",
              "Ramp the clamped Keplinger plate's quarter model (the whole thickness, "
@@ -156,14 +154,12 @@ def build_parser() -> argparse.ArgumentParser:
                      "quarter-model meshes with an even N2, e.g. 10x2x5 20x2x10",
                      "charge step of the scan and the branch (default 0.05)",
                      "last charge target (default: 1.5 for alpha = 0.05, 3.3 for alpha = 1; "
-                     "see validation.postbuckling.WINDOW)")
+                     "see validation.postbuckling.WINDOW)", "auto",
+                     "linear solver and inertia method (auto: PARDISO if installed)")
     pb.add_argument("--model", choices=["quarter", "x1"], default="quarter",
                     help="quarter: symmetry planes x1 = 0 and x3 = 0 (modes symmetric in x3); "
                          "x1: the plane x1 = 0 only, the whole width (modes of either "
                          "parity in x3; N3 then counts the whole width)")
-    pb.add_argument("--solver", choices=["auto", "superlu", "pardiso"], default="auto",
-                    help="linear solver and inertia method (auto: PARDISO if installed)")
-    pb.add_argument("--out", required=True, type=_out_dir, help="output folder")
 
     v = add("validate", "run FE sweeps, overlay them on the theory (main job)",
             "Run the FE ramps of the cases, write DIR/<case>.csv step by step, the figures "
@@ -245,13 +241,17 @@ def _check_mesh(name: str, mesh) -> None:
                          f"{' '.join(map(str, mesh))}")
 
 
-def _study_arguments(p, quick: str, meshes: str, step: str, top: str) -> None:
+def _study_arguments(p, quick: str, meshes: str, step: str, top: str, solver: str,
+                     solver_help: str) -> None:
     """The options shared by the ``buckling`` and ``post-buckling`` studies."""
     p.add_argument("--quick", action="store_true", help=quick)
     p.add_argument("--alpha", nargs="+", type=float, metavar="A", help="weight fractions")
     p.add_argument("--meshes", nargs="+", type=_mesh_triple, metavar="N1xN2xN3", help=meshes)
     p.add_argument("--D0-step", dest="D0_step", type=float, help=step)
     p.add_argument("--D0-max", dest="D0_max", type=float, help=top)
+    p.add_argument("--solver", choices=["auto", "superlu", "pardiso"], default=solver,
+                   help=solver_help)
+    p.add_argument("--out", required=True, type=_out_dir, help="output folder")
 
 
 def _study_options(args, quick: dict, full: dict) -> dict:

@@ -32,7 +32,7 @@ import skfem_dielectric as fe
 from skfem_dielectric.critical import critical_load
 from skfem_dielectric.drivers import newton_guards
 from skfem_dielectric.postbuckling import (critical_mode, midplane_deflection,
-                                           post_buckled_branch)
+                                           midplane_nodes, post_buckled_branch)
 from skfem_dielectric.symmetry_classes import class_stability
 
 from .buckling import append_rows, read_rows
@@ -192,7 +192,7 @@ def run_one(alpha: float, elements, *, D0_step: float, D0_max: float,
         st = [t[2] for t in br.states() if t[2] is not None][-1]
         shapes_dir.mkdir(parents=True, exist_ok=True)
         X = pb.b2.doflocs
-        mid = np.flatnonzero(np.abs(X[1]) < 1e-9 * pb.plate.H)
+        mid = midplane_nodes(pb)
         u2 = pb.full(st.x, st.load)[1:pb.n_u:3][mid]
         np.savez(shapes_dir / f"{alpha:g}_{model}_{mesh}.npz", X1=X[0][mid], X3=X[2][mid], u2=u2,
                  D0=float(st.load[1]))

@@ -19,7 +19,7 @@ independently of the eigenvalues (:meth:`~skfem_dielectric.postbuckling.PostBuck
 import numpy as np
 
 import skfem_dielectric as fe
-from skfem_dielectric.postbuckling import critical_mode, post_buckled_branch
+from skfem_dielectric.postbuckling import critical_mode, midplane_nodes, post_buckled_branch
 
 res = fe.keplinger_plate(0.05, D0=[0.75, 0.8], elements=(10, 2, 5), symmetry="quarter",
                          grad_div=10.0, rtol=1e-9, max_cutbacks=6, max_iter=25)
@@ -52,7 +52,7 @@ if __name__ == "__main__":
     ax.legend(fontsize=8)
     last = [s for s in br.states() if s[2] is not None][-1][2]
     X = pb.b2.doflocs
-    mid = np.flatnonzero(np.abs(X[1]) < 1e-9)
+    mid = midplane_nodes(pb)
     u2 = pb.full(last.x, last.load)[1:pb.n_u:3][mid]
     X1 = np.concatenate([X[0][mid], -X[0][mid], X[0][mid], -X[0][mid]])
     X3 = np.concatenate([X[2][mid], X[2][mid], -X[2][mid], -X[2][mid]])
