@@ -34,107 +34,14 @@ import os
 
 import numpy as np
 import scipy.sparse as sp
-import scipy.sparse.linalg as spla
 
 from .assembly import trim_heap
+from .solver_base import LinearSolver, SuperLUSolver, whole_matrix
 from .symmetric import SymmetricUpper, same_memory, same_pattern
 
-__all__ = ["LinearSolver", "SuperLUSolver", "PardisoSolver", "PardisoLUSolver",
+__all__ = ["LinearSolver", "SuperLUSolver", "whole_matrix", "PardisoSolver", "PardisoLUSolver",
            "get_linear_solver", "nonsymmetric_solver", "pardiso_available",
            "new_pypardiso_solver"]
-
-
-class LinearSolver:
-    """Interface of a sparse linear solver (documentation base class).
-
-    Subclasses implement :meth:`solve`.  ``inertia`` is ``None`` or the tuple
-    ``(n_positive, n_negative, n_zero)`` of the last factorised matrix.  ``reads_upper``:
-    the solver reads only the upper triangle of a symmetric matrix, and takes it as a
-    :class:`~skfem_dielectric.symmetric.SymmetricUpper` (every solver accepts one).
-    """
-
-    name = "base"
-    inertia: tuple[int, int, int] | None = None
-    reads_upper = False
-
-    def solve(self, K: sp.spmatrix, b: np.ndarray) -> np.ndarray:  # pragma: no cover
-        """Return ``x`` with ``K x = b``."""
-        raise NotImplementedError
-
-    def resolve(self, b: np.ndarray) -> np.ndarray | None:
-        """Solve with the last factorised matrix (``None`` if not supported)."""
-        return None
-
-    def discard(self) -> None:
-        """Free the last factorisation (a new matrix is factorised next): :meth:`resolve`
-        returns ``None`` until the next :meth:`solve`."""
-
-    def factor_inertia(self) -> tuple[int, int, int] | None:
-        """Inertia ``(n_positive, n_negative, n_zero)`` of the last factorised matrix if
-        the factors show it (``None`` otherwise)."""
-        return self.inertia
-
-
-class SuperLUSolver(LinearSolver):
-    """scipy SuperLU direct solver.
-
-    Parameters
-    ----------
-    permc_spec
-        Column ordering passed to :func:`scipy.sparse.linalg.splu`; ``"MMD_AT_PLUS_A"``
-        (minimum degree on the symmetric pattern, fastest on our saddle-point tangents) or
-        ``"COLAMD"``, ``"MMD_ATA"``, ``"NATURAL"``.
-    diag_pivot_thresh
-        Threshold for partial pivoting; the default 0.1 prefers diagonal pivots, which keeps
-        the fill of the symmetric ordering while remaining stable for saddle-point matrices.
-
-    Notes
-    -----
-    SuperLU does not report the inertia; ``inertia`` stays ``None``.
-    """
-
-    name = "superlu"
-
-    def __init__(self, permc_spec: str = "MMD_AT_PLUS_A", diag_pivot_thresh: float = 0.1):
-        allowed = ("MMD_AT_PLUS_A", "COLAMD", "MMD_ATA", "NATURAL")
-        if permc_spec not in allowed:
-            raise ValueError(f"permc_spec must be one of {allowed}, got {permc_spec!r}")
-        self.permc_spec = permc_spec
-        self.diag_pivot_thresh = float(diag_pivot_thresh)
-        self.inertia = None
-
-    def solve(self, K: sp.spmatrix, b: np.ndarray) -> np.ndarray:
-        """Factorise ``K`` (CSC copy) and solve ``K x = b``."""
-        self._lu = None
-        lu = spla.splu(sp.csc_matrix(_whole(K)), permc_spec=self.permc_spec,
-                       diag_pivot_thresh=self.diag_pivot_thresh,
-                       options={"SymmetricMode": True})
-        self._lu = lu
-        return lu.solve(np.asarray(b, dtype=float))
-
-    def discard(self) -> None:
-        """Free the LU factors."""
-        self._lu = None
-
-    def resolve(self, b: np.ndarray) -> np.ndarray | None:
-        """Solve with the last LU factors."""
-        lu = getattr(self, "_lu", None)
-        return None if lu is None else lu.solve(np.asarray(b, dtype=float))
-
-    def factor_inertia(self) -> tuple[int, int, int] | None:
-        """Inertia of the last factorised (symmetric) matrix when SuperLU kept to
-        diagonal pivots (equal row and column permutations, so ``U = D L^T`` and
-        Sylvester's law gives the inertia from the signs of ``diag(U)``), else ``None``."""
-        lu = getattr(self, "_lu", None)
-        if lu is None or not np.array_equal(lu.perm_r, lu.perm_c):
-            return None
-        d = lu.U.diagonal()
-        return int(np.sum(d > 0)), int(np.sum(d < 0)), int(np.sum(d == 0))
-
-
-def _whole(K):
-    """``K`` as a sparse matrix (a :class:`SymmetricUpper` as its whole matrix)."""
-    return K.tocsr() if isinstance(K, SymmetricUpper) else K
 
 
 def _compress_into(keep: np.ndarray, a: np.ndarray, out: np.ndarray,
@@ -343,9 +250,18 @@ class PardisoSolver(LinearSolver):
                         ) + (U, keep, shared)
         return U
 
+    def _matrix(self, K: sp.spmatrix) -> sp.csr_matrix:
+        """The CSR matrix PARDISO reads: the upper triangle (:meth:`_upper`)."""
+        return self._upper(K)
+
+    def _read_inertia(self, n: int) -> tuple[int, int, int] | None:
+        """Sylvester inertia of the last factorisation, from ``iparm(22)``, ``iparm(23)``."""
+        npos, nneg = int(self._ps.iparm[21]), int(self._ps.iparm[22])
+        return npos, nneg, n - npos - nneg
+
     def solve(self, K: sp.spmatrix, b: np.ndarray) -> np.ndarray:
         """Factorise ``K`` (analysis reused for an unchanged pattern) and solve ``K x = b``."""
-        U = self._upper(K)
+        U = self._matrix(K)
         b = np.asfortranarray(np.asarray(b, dtype=np.float64))
         if np.any(np.diff(U.indptr) == 0):
             raise ValueError("matrix is singular: it has an empty row")
@@ -360,9 +276,7 @@ class PardisoSolver(LinearSolver):
                                                            or U.indices.flags.writeable)
                              else (U.indptr.copy(), U.indices.copy()))
         self._call(22, U, b)
-        n = K.shape[0]
-        npos, nneg = int(self._ps.iparm[21]), int(self._ps.iparm[22])
-        self.inertia = (npos, nneg, n - npos - nneg)
+        self.inertia = self._read_inertia(K.shape[0])
         x = self._call(33, U, b)
         self._last = U
         return np.ascontiguousarray(self._refined(K, b, x))
@@ -416,26 +330,63 @@ class PardisoSolver(LinearSolver):
             pass
 
 
-class PardisoLUSolver(LinearSolver):
+class PardisoLUSolver(PardisoSolver):
     """MKL PARDISO for non-symmetric tangents (``mtype = 11``, the whole matrix).
 
     The symmetric-indefinite :class:`PardisoSolver` reads only the upper triangle, which is
     wrong for the follower loads of the Maxwell-traction coupling; this one factorises the
-    whole matrix.  It reports no inertia (a non-symmetric matrix has no stability verdict).
+    whole matrix (LU with PARDISO's defaults for non-symmetric matrices: pivot perturbation
+    ``1e-13``, scaling and weighted matching).  Like :class:`PardisoSolver` it keeps the
+    symbolic analysis while the sparsity pattern stays the same, solves again with the last
+    factors (:meth:`~PardisoSolver.resolve`, the chord steps of
+    :func:`~skfem_dielectric.newton.newton`), frees them on
+    :meth:`~PardisoSolver.discard` and refines the solution with the matrix.  It reports no
+    inertia (a non-symmetric matrix has no stability verdict).
+
+    Parameters
+    ----------
+    refine
+        Maximum iterative-refinement steps per solve (see :class:`PardisoSolver`).
+    ordering
+        Fill-reducing ordering, as for :class:`PardisoSolver`.
     """
 
     name = "pardiso-lu"
-    inertia = None
+    reads_upper = False
 
-    def __init__(self):
-        self._ps = new_pypardiso_solver(11)
+    def __init__(self, refine: int = 2, ordering: str = "minimum-degree"):
+        if ordering not in _ORDERINGS:
+            raise ValueError(f"ordering must be one of {tuple(_ORDERINGS)}, got {ordering!r}")
+        self._ps = new_pypardiso_solver(mtype=11)
+        p = self._ps
+        p.set_iparm(1, 1)    # use the iparm values below
+        p.set_iparm(2, _ORDERINGS[ordering])
+        p.set_iparm(8, 0)    # no refinement inside PARDISO (see ``refine``)
+        p.set_iparm(10, 13)  # pivot perturbation 1e-13 (PARDISO's non-symmetric default)
+        p.set_iparm(11, 1)   # scaling
+        p.set_iparm(13, 1)   # weighted matching
+        self._direct = hasattr(p, "_mkl_pardiso")
+        if self._direct:
+            p.set_iparm(35, 1)   # zero-based indptr/indices, as they are
+        self._pattern: tuple[np.ndarray, np.ndarray] | None = None
+        self._ucache = None
+        self.refine = int(refine)
+        self.ordering = ordering
+        self.inertia = None
 
-    def solve(self, K: sp.spmatrix, b: np.ndarray) -> np.ndarray:
-        """Factorise ``K`` and solve ``K x = b``."""
-        A = sp.csr_matrix(_whole(K))
-        A.sort_indices()
-        self._ps.factorize(A)
-        return np.ascontiguousarray(self._ps.solve(A, np.asarray(b, dtype=float)))
+    def _matrix(self, K: sp.spmatrix) -> sp.csr_matrix:
+        """The whole matrix as CSR with sorted int32 indices (``K``'s own arrays where
+        they already are)."""
+        A = sp.csr_matrix(whole_matrix(K))
+        if A.indptr.dtype != np.int32 or A.indices.dtype != np.int32 \
+                or not A.has_sorted_indices:
+            A = sp.csr_matrix((A.data.copy(), A.indices.astype(np.int32),
+                               A.indptr.astype(np.int32)), shape=A.shape)
+            A.sort_indices()
+        return A
+
+    def _read_inertia(self, n: int) -> None:
+        return None
 
 
 def get_linear_solver(name: str | LinearSolver = "auto", *, symmetric: bool = True,

@@ -7,7 +7,8 @@ import pytest
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
-from skfem_dielectric.linear import PardisoSolver, new_pypardiso_solver, pardiso_available
+from skfem_dielectric.linear import (PardisoLUSolver, PardisoSolver, new_pypardiso_solver,
+                                     pardiso_available)
 
 pytestmark = pytest.mark.skipif(not pardiso_available(), reason="needs pypardiso")
 
@@ -55,6 +56,34 @@ def test_two_nonsymmetric_pypardiso_solvers_are_independent():
         # diagonally dominant non-symmetric matrices: LU agrees with SuperLU to round-off
         np.testing.assert_allclose(ps.solve(M, b), spla.spsolve(M.tocsc(), b), rtol=1e-10,
                                    atol=1e-13)
+
+
+def test_pardiso_lu_keeps_its_analysis_and_solves_again_with_its_factors(monkeypatch):
+    rng = np.random.default_rng(4)
+    n = 60
+    P = sp.random(n, n, density=0.1, random_state=rng) + n * sp.identity(n)
+    K1 = sp.csr_matrix(P)
+    K1.sort_indices()
+    K2 = K1.copy()
+    K2.data = K2.data * (1.0 + 0.3 * rng.standard_normal(K2.nnz))   # same pattern
+    solver = PardisoLUSolver()
+    phases = []
+    call = solver._call
+    monkeypatch.setattr(solver, "_call", lambda ph, A, b: phases.append(ph) or call(ph, A, b))
+    b = np.linspace(-1.0, 1.0, n)
+    # non-symmetric, diagonally dominant (cond < 10): LU agrees with SuperLU to round-off
+    for K in (K1, K2):
+        np.testing.assert_allclose(solver.solve(K, b), spla.spsolve(K.tocsc(), b),
+                                   rtol=1e-10, atol=1e-13)
+    # one symbolic analysis (phase 11) for the two matrices of one pattern
+    assert phases.count(11) == 1 and phases.count(22) == 2
+    # a chord step: the last factors solve a new right-hand side without factorising
+    c = np.cos(np.arange(n, dtype=float))
+    np.testing.assert_allclose(solver.resolve(c), spla.spsolve(K2.tocsc(), c), rtol=1e-10,
+                               atol=1e-13)
+    assert phases.count(22) == 2 and solver.inertia is None
+    solver.discard()
+    assert solver.resolve(c) is None
 
 
 @pytest.mark.skipif(not pardiso_available(), reason="needs pypardiso")
