@@ -146,3 +146,19 @@ def test_pardiso_columns_come_from_the_ramps_factors():
         assert (rec.n_negative, rec.n_unstable, rec.stable) == \
             (fresh["n_negative"], fresh["n_unstable"], fresh["stable"])
         assert rec.lowest_eig == pytest.approx(fresh["lowest_eig"], rel=1e-6)
+
+
+def test_a_target_the_ramp_cannot_reach_ends_the_run_with_its_reason():
+    # D0 = 60 is far beyond what the clamped plate carries: the ramp gets part of the way
+    # (sub-steps converge past D0 = 3), then fails after its cut-backs.  The furthest
+    # converged sub-step is no target: the runner reports the three targets only and
+    # returns the failure (the harness records it as a row), instead of raising.
+    spec = vc.RunSpec("uniaxial", "neo-Hookean", "coupled", keplinger_s(1.0),
+                      (0.0, 1.5, 3.0, 60.0), alpha=1.0, mesh=(("n1", 4), ("n2", 1), ("n3", 2)),
+                      stop_at_breakdown=False)
+    seen = []
+    out = run_fe(spec, 0, None, lambda i, rec, st: seen.append((i, rec.D0)) and False)
+    assert seen == [(0, 0.0), (1, 1.5), (2, 3.0)]
+    assert not out.converged and "not reached" in out.reason
+    # the failed attempt lies past the last target reached, towards the unreachable one
+    assert 3.0 < out.failed_D0 < 60.0
