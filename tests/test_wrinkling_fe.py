@@ -76,3 +76,32 @@ def test_wrinkling_rows_resume_from_the_csv(tmp_path, monkeypatch):
     path.write_text("control,mode,other\n")          # another file: recomputed
     calls.clear()
     assert wr.wrinkling_rows(quick=True, path=path) == first and len(calls) == n
+
+
+def test_the_mode_near_zero_is_the_mode_of_the_full_search():
+    # the root searches take the mode's eigenvalue from the k eigenvalues nearest to zero
+    # (one factorisation) and fall back to the full search; near the bifurcation both
+    # must give the same eigenpair.  Section of the symmetric mode, lam = 1.5, kh = 2
+    # (8 to 10 negative eigenvalues of other modes lie below it there, one at -6.5e-3 next
+    # to its -1.1e-4), at 0.999 and 1.001 of its located critical charge.
+    import numpy as np
+
+    import skfem_dielectric as fe
+    from skfem_dielectric.wrinkling_fe import _mode_near_zero, section_mode_eigenvalue
+
+    ref = float(an.critical_D0(1.5, 2.0, mode="symmetric"))
+    pb = fe.wrinkling_section(1.5, 2.0, "symmetric", "charge", n1=8, n2=9)
+    crit = fe.section_critical_load(pb, "symmetric", 0.95 * ref, 1.05 * ref)
+    x = pb.initial_state()
+    for f in (0.999, 1.001):
+        load = np.array([0.0, 0.0, f * crit.load])
+        res = fe.ramp(pb, [load], x0=x, start=np.zeros(3), atol=1e-10, rtol=1e-11)
+        x = res.x
+        near = _mode_near_zero(pb, x, load, "symmetric")
+        full, n_neg, _ = section_mode_eigenvalue(pb, x, load, "symmetric")
+        # one eigenvalue of one matrix by two shift-invert Lanczos runs (ARPACK tol 1e-12
+        # and 1e-10 on 1/(lambda - sigma)): equal to 1e-8 of the eigenvalue scale
+        assert abs(near - full) <= 1e-8 * max(1.0, abs(full)), (f, near, full)
+        # the sign changes across the located load, as the root search needs
+        assert (near > 0) == (f < 1.0)
+        assert n_neg >= 7
