@@ -24,6 +24,8 @@ only if its onset converges under refinement (``validation.buckling`` compares m
 
 from __future__ import annotations
 
+import os
+from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass, field
 from typing import Any, Sequence
 
@@ -36,6 +38,7 @@ from .modes import classify_mode
 from .plate import PlateProblem
 from .ramp import RampResult
 from .inertia import inertia_factors, reusable_factors
+from .linear import pardiso_available
 from .stability import lowest_modes
 from .symmetry_classes import class_mode_full, class_tangent, union_tangent
 
@@ -124,9 +127,19 @@ def corner_radius(problem: PlateProblem) -> float:
     return max(2.0 * problem.plate.H, d)
 
 
+def _spectra_threads(method: str) -> int:
+    """Worker threads of :func:`class_spectra`: two (at most the cores) where SuperLU or a
+    dense count factorises the classes (single-threaded, and they release the GIL:
+    two classes at once use both cores), one where PARDISO does (its MKL threads already
+    use them)."""
+    uses_pardiso = method == "pardiso" or (method == "auto" and pardiso_available())
+    return 1 if uses_pardiso else max(1, min(2, os.cpu_count() or 1))
+
+
 def class_spectra(problem: PlateProblem, x: np.ndarray, load: Any, *, extra: int = 2,
                   grad_div: float | None = None, method: str = "auto",
-                  only: Sequence[str] | None = None) -> list[tuple]:
+                  only: Sequence[str] | None = None,
+                  threads: int | None = None) -> list[tuple]:
     """Per symmetry class: every negative eigenpair and ``extra`` more above them.
 
     :func:`~skfem_dielectric.symmetry_classes.class_stability` asks each class for the
@@ -147,26 +160,36 @@ def class_spectra(problem: PlateProblem, x: np.ndarray, load: Any, *, extra: int
         Inertia method.
     only
         Names of the classes to analyse (default all).
+    threads
+        Classes analysed at once (default two where SuperLU factorises, one with PARDISO,
+        whose own threads use the cores).  The classes are independent: the result is
+        the same bit for bit whatever the number.
 
     Returns
     -------
     list of (SymmetryClass, n_negative, eigenvalues, modes)
-        Modes as vectors of the class's unknowns (unit in the class metric).
+        Modes as vectors of the class's unknowns (unit in the class metric), in the order
+        of the classes.
     """
     extra = check_count("extra", extra)
+    threads = _spectra_threads(method) if threads is None else check_count("threads",
+                                                                            threads)
     classes, K = union_tangent(problem, x, load, grad_div)
-    out = []
-    for c in classes:
-        if only is not None and c.name not in only:
-            continue
+
+    def spectrum(c):
         Kc = class_tangent(c, K)
         inertia, factors = inertia_factors(Kc, method)
         n_neg = inertia[1] - c.layout.n_multipliers
         vals, vecs = lowest_modes(Kc, c.metric, n_neg + extra, max(n_neg, 0), tol=1e-10,
                                   factors=reusable_factors(factors, inertia, n_neg))
         del factors
-        out.append((c, n_neg, vals, vecs))
-    return out
+        return c, n_neg, vals, vecs
+
+    todo = [c for c in classes if only is None or c.name in only]
+    if threads == 1 or len(todo) < 2:
+        return [spectrum(c) for c in todo]
+    with ThreadPoolExecutor(min(threads, len(todo))) as pool:
+        return list(pool.map(spectrum, todo))
 
 
 def physical_modes(problem: PlateProblem, x: np.ndarray, load: Any, *, extra: int = 2,

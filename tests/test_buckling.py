@@ -7,7 +7,8 @@ import pytest
 
 import analytic as an
 import skfem_dielectric as fe
-from skfem_dielectric.buckling import buckling_load, corner_radius, physical_modes
+from skfem_dielectric.buckling import (buckling_load, class_spectra, corner_radius,
+                                      physical_modes)
 from skfem_dielectric.drivers import equibiaxial_problem, keplinger_problem
 from skfem_dielectric.symmetry_classes import class_stability
 from validation.cli import main
@@ -73,6 +74,22 @@ def test_buckling_load_is_the_full_plates_eigenvalue_crossing(end_compression):
     # mesh's to 1e-8 (tests/test_symmetry_classes.py): agreement to twice the tolerance
     assert abs(out.load[0] - ref.load[0]) <= 2e-5
     assert out.load[1] == 1.0 and out.D0_b == 1.0
+
+
+def test_class_spectra_in_threads_are_the_serial_ones(end_compression):
+    # the classes are independent problems: analysed two at a time (SuperLU releases the
+    # GIL) they give the serial result bit for bit, in the order of the classes
+    pb, states = end_compression
+    x, load = states[-1]
+    one = class_spectra(pb, x, load, method="superlu", threads=1)
+    two = class_spectra(pb, x, load, method="superlu", threads=2)
+    assert [c.name for c, *_ in two] == [c.name for c, *_ in one] and len(one) == 8
+    # the most compressed state has negative eigenvalues: the spectrum slicing runs
+    assert sum(n for _, n, _, _ in one) >= 1
+    for (_, n1, v1, w1), (_, n2, v2, w2) in zip(one, two):
+        assert n1 == n2 and np.array_equal(v1, v2) and np.array_equal(w1, w2)
+    with pytest.raises(ValueError, match="threads must be"):
+        class_spectra(pb, x, load, threads=0)
 
 
 def test_corner_radius_covers_the_corner_element():
