@@ -151,19 +151,21 @@ class PardisoSolver(LinearSolver):
 
     name = "pardiso"
     reads_upper = True
+    _mtype = -2                      # real symmetric indefinite
+    _pivoting = {10: 8, 21: 1}       # pivot perturbation 1e-8, Bunch-Kaufman pivoting
 
     def __init__(self, refine: int = 2, ordering: str = "minimum-degree"):
         if ordering not in _ORDERINGS:
             raise ValueError(f"ordering must be one of {tuple(_ORDERINGS)}, got {ordering!r}")
-        self._ps = new_pypardiso_solver(mtype=-2)   # library located once per process
+        self._ps = new_pypardiso_solver(mtype=self._mtype)   # library located once
         p = self._ps
         p.set_iparm(1, 1)    # use the iparm values below
         p.set_iparm(2, _ORDERINGS[ordering])
         p.set_iparm(8, 0)    # no refinement inside PARDISO (see ``refine``)
-        p.set_iparm(10, 8)   # pivot perturbation 1e-8
-        p.set_iparm(11, 1)   # symmetric scaling
-        p.set_iparm(13, 1)   # symmetric weighted matching (recommended for saddle points)
-        p.set_iparm(21, 1)   # Bunch-Kaufman pivoting
+        p.set_iparm(11, 1)   # (symmetric) scaling
+        p.set_iparm(13, 1)   # (symmetric) weighted matching (recommended for saddle points)
+        for i, v in self._pivoting.items():
+            p.set_iparm(i, v)
         # zero-based index arrays: PARDISO reads the upper triangle's own indptr/indices
         # (no one-based copy; pypardiso's generic call adds one to them, so only where the
         # call below is used)
@@ -353,26 +355,8 @@ class PardisoLUSolver(PardisoSolver):
 
     name = "pardiso-lu"
     reads_upper = False
-
-    def __init__(self, refine: int = 2, ordering: str = "minimum-degree"):
-        if ordering not in _ORDERINGS:
-            raise ValueError(f"ordering must be one of {tuple(_ORDERINGS)}, got {ordering!r}")
-        self._ps = new_pypardiso_solver(mtype=11)
-        p = self._ps
-        p.set_iparm(1, 1)    # use the iparm values below
-        p.set_iparm(2, _ORDERINGS[ordering])
-        p.set_iparm(8, 0)    # no refinement inside PARDISO (see ``refine``)
-        p.set_iparm(10, 13)  # pivot perturbation 1e-13 (PARDISO's non-symmetric default)
-        p.set_iparm(11, 1)   # scaling
-        p.set_iparm(13, 1)   # weighted matching
-        self._direct = hasattr(p, "_mkl_pardiso")
-        if self._direct:
-            p.set_iparm(35, 1)   # zero-based indptr/indices, as they are
-        self._pattern: tuple[np.ndarray, np.ndarray] | None = None
-        self._ucache = None
-        self.refine = int(refine)
-        self.ordering = ordering
-        self.inertia = None
+    _mtype = 11                      # real non-symmetric
+    _pivoting = {10: 13}             # pivot perturbation 1e-13 (the non-symmetric default)
 
     def _matrix(self, K: sp.spmatrix) -> sp.csr_matrix:
         """The whole matrix as CSR with sorted int32 indices (``K``'s own arrays where

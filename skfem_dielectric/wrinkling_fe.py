@@ -121,19 +121,29 @@ def section_mode_eigenvalue(pb: CrossSection, x: np.ndarray, load, mode: str,
     K, _ = pb.assemble(x, load)
     n_neg = tangent_stability(pb, K, method=method).n_negative
     M = metric_matrix(pb)
-    a = pb.L1 / 2
     n_finite = int(M.diagonal().sum())
     while True:
         kk = min(k + max(0, n_neg), n_finite - 2)
         vals, vecs = lowest_modes(K, M, kk, max(0, n_neg))
-        for j in range(kk):          # ascending: the lowest mode of index n and the class
-            xs, u2, parity = _top_profile(pb, vecs[:, j])
-            cls = "symmetric" if (pb.thickness == "half" or parity < 0) else "antisymmetric"
-            if cls == want and fourier_index(xs, u2, a) == n:
-                return float(vals[j]), n_neg, vecs[:, j]
+        j = _first_mode(pb, vals, vecs, want, n)
+        if j is not None:
+            return float(vals[j]), n_neg, vecs[:, j]
         if k >= 64 or kk == n_finite - 2:
             return float("nan"), n_neg, None
         k *= 2
+
+
+def _first_mode(pb: CrossSection, vals: np.ndarray, vecs: np.ndarray, mode: str,
+                n: int) -> int | None:
+    """Index of the lowest of the eigenpairs ``(vals, vecs)`` whose mode is
+    ``cos(n pi X1/a)`` of class ``mode`` (``None`` if none is)."""
+    a = pb.L1 / 2
+    for j in np.argsort(vals, kind="stable"):
+        xs, u2, parity = _top_profile(pb, vecs[:, j])
+        cls = "symmetric" if (pb.thickness == "half" or parity < 0) else "antisymmetric"
+        if cls == mode and fourier_index(xs, u2, a) == n:
+            return int(j)
+    return None
 
 
 def _mode_near_zero(pb: CrossSection, x: np.ndarray, load, mode: str, n: int = 1,
@@ -145,18 +155,28 @@ def _mode_near_zero(pb: CrossSection, x: np.ndarray, load, mode: str, n: int = 1
     Near a bifurcation the sought eigenvalue is itself near zero, so this finds the same
     eigenpair as :func:`section_mode_eigenvalue` (the lowest mode of index ``n`` and the
     class: an overtone of the same index is stiffer) at a fraction of its cost; the root
-    searches call it first and fall back to :func:`section_mode_eigenvalue`."""
+    searches call it first and fall back to :func:`section_mode_eigenvalue`
+    (:func:`_tracked_eigenvalue`)."""
     K, _ = pb.assemble(x, load)
     M = metric_matrix(pb)
     k = min(k, int(M.diagonal().sum()) - 2)
     vals, vecs = lowest_modes(K, M, k, sigma=0.0)
-    a = pb.L1 / 2
-    for j in np.argsort(vals, kind="stable"):        # ascending, as section_mode_eigenvalue
-        xs, u2, parity = _top_profile(pb, vecs[:, j])
-        cls = "symmetric" if (pb.thickness == "half" or parity < 0) else "antisymmetric"
-        if cls == mode and fourier_index(xs, u2, a) == n:
-            return float(vals[j])
-    return float("nan")
+    j = _first_mode(pb, vals, vecs, mode, n)
+    return float("nan") if j is None else float(vals[j])
+
+
+def _tracked_eigenvalue(pb: CrossSection, x: np.ndarray, load, mode: str,
+                        count: bool = False) -> tuple[float, int | None]:
+    """The eigenvalue of the mode ``n = 1`` of class ``mode`` for a root search:
+    :func:`_mode_near_zero`, else (or with ``count``, which needs the inertia)
+    :func:`section_mode_eigenvalue`; with the count of negative eigenvalues where that
+    was computed (``None`` otherwise).  ``nan`` if neither finds the mode."""
+    if not count:
+        eig = _mode_near_zero(pb, x, load, mode)
+        if math.isfinite(eig):
+            return eig, None
+    eig, n_neg, _ = section_mode_eigenvalue(pb, x, load, mode)
+    return eig, n_neg
 
 
 @dataclass
@@ -226,11 +246,7 @@ def section_critical_load(pb: CrossSection, mode: str, lo: float, hi: float, *,
 
     def g(v, count=False):
         solve(v)
-        if not count:       # the mode among the eigenvalues nearest to zero (no count)
-            eig = _mode_near_zero(pb, state["x"], state["load"], mode)
-            if math.isfinite(eig):
-                return eig, None
-        eig, n_neg, _ = section_mode_eigenvalue(pb, state["x"], state["load"], mode)
+        eig, n_neg = _tracked_eigenvalue(pb, state["x"], state["load"], mode, count)
         if not math.isfinite(eig):
             raise ValueError(f"no {mode} mode n = 1 among the 64 lowest modes at load {v}")
         return eig, n_neg
@@ -279,9 +295,7 @@ def section_critical_stretch(kh: float, mode: str, lo: float, hi: float, *, n1: 
                    atol=1e-10, rtol=1e-11, linear_solver=SOLVER)
         if not res.converged:
             raise ValueError(f"no equilibrium at lam = {lam}: {res.reason}")
-        eig = _mode_near_zero(pb, res.x, np.zeros(3), mode)
-        if not math.isfinite(eig):
-            eig = section_mode_eigenvalue(pb, res.x, np.zeros(3), mode)[0]
+        eig = _tracked_eigenvalue(pb, res.x, np.zeros(3), mode)[0]
         if not math.isfinite(eig):
             raise ValueError(f"no {mode} mode n = 1 among the 64 lowest modes at lam = {lam}")
         return eig
