@@ -5,8 +5,8 @@ Rules (checked here):
 * every fenced block names its language; ``text`` (formulas, diagrams, synopses) and MyST
   directives (```` ```{toctree} ````) are not code;
 * ``python`` blocks run top to bottom, one namespace per page (a page reads like one
-  session), in a temporary folder with the Agg backend; each block in under
-  ``BLOCK_LIMIT`` seconds;
+  session), in a temporary folder with the Agg backend (no timing: speed is measured in
+  ``benchmarks/``, never in the suite);
 * ``bash`` blocks run line by line in a temporary folder with this interpreter's
   ``bin`` first on ``PATH``;
 * a block right after ``<!-- not run: <reason> -->`` is skipped (the reason is required);
@@ -20,7 +20,6 @@ import os
 import re
 import subprocess
 import sys
-import time
 from pathlib import Path
 
 import matplotlib
@@ -30,9 +29,8 @@ matplotlib.use("Agg")
 
 ROOT = Path(__file__).resolve().parents[1]
 PAGES = [ROOT / "README.md"] + sorted((ROOT / "docs").glob("*.md"))
-#: 30 s on an idle 2-core machine is the announced limit; the bound leaves room for a
-#: loaded test machine
-BLOCK_LIMIT = 60.0
+#: a hang guard for a bash block, not a speed check (speed is measured in benchmarks/)
+HANG_TIMEOUT = 1800.0
 NOT_CODE = ("text",)
 RUN = ("python", "bash")
 _FENCE = re.compile(r"^(?P<indent> {0,3})(?P<fence>`{3,})(?P<info>[^`\n]*)$")
@@ -112,14 +110,11 @@ def test_python_blocks_run(page, tmp_path, monkeypatch):
     for b in blocks(page):
         if b["lang"] != "python" or b["not_run"]:
             continue
-        t0 = time.perf_counter()
         try:
             exec(compile(b["body"], f"{page.name}:{b['line']}", "exec"), ns)
         except Exception as exc:                    # name the block in the failure
             raise AssertionError(f"{page.name}:{b['line']}: {type(exc).__name__}: "
                                  f"{str(exc)[:300]}") from exc
-        elapsed = time.perf_counter() - t0
-        assert elapsed < BLOCK_LIMIT, f"{page.name}:{b['line']} took {elapsed:.0f} s"
     plt.close("all")
 
 
@@ -130,11 +125,9 @@ def test_bash_blocks_run(page, tmp_path):
     for b in blocks(page):
         if b["lang"] != "bash" or b["not_run"]:
             continue
-        t0 = time.perf_counter()
         r = subprocess.run(["bash", "-euo", "pipefail", "-c", b["body"]], cwd=tmp_path,
-                           env=env, capture_output=True, text=True, timeout=10 * BLOCK_LIMIT)
+                           env=env, capture_output=True, text=True, timeout=HANG_TIMEOUT)
         assert r.returncode == 0, f"{page.name}:{b['line']}: {r.stderr[-500:]}"
-        assert time.perf_counter() - t0 < BLOCK_LIMIT
 
 
 def test_not_run_markers_give_a_reason():

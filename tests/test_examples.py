@@ -8,7 +8,6 @@ backend, in a temporary working directory so that nothing lands in the repositor
 from __future__ import annotations
 
 import runpy
-import time
 from pathlib import Path
 
 import numpy as np
@@ -162,13 +161,9 @@ def test_example_runs(path, tmp_path, monkeypatch):
 
     monkeypatch.chdir(tmp_path)
     monkeypatch.setattr(plt, "show", lambda *a, **k: None)
-    t0 = time.perf_counter()
     ns = runpy.run_path(str(path), run_name="__main__")
-    elapsed = time.perf_counter() - t0
     plt.close("all")
     assert (tmp_path / f"{path.stem}.png").exists()     # the figure is saved, not only shown
-    # in class on 2 cores each runs in < 30 s (measured <= 8 s idle); generous under load
-    assert elapsed < 120.0, f"{path.stem} took {elapsed:.0f} s"
     if path.stem == "ex05_new_model":
         # the contract's default load vector (central differences, h = 1e-6) against the
         # model's closed form: r is linear in s and quadratic in D0, so the difference is
