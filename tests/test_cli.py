@@ -78,13 +78,13 @@ def test_validate_keplinger_3d_and_membrane(tmp_path, monkeypatch):
     for variant in ("coupled", "membrane"):
         brk = [summary["breakdown_D0"][f"uniaxial_nh_{variant}_a{a:g}"] for a in (0.3, 1.0, 1.5)]
         assert None not in brk and np.all(np.diff(brk) > 0), brk
-    # 3D: the stability verdict (inertia of the coupled tangent) is computed when PARDISO is
-    # there; the charge-controlled equilibria before the breakdown are stable (paper Sec. 3)
-    from skfem_dielectric.linear import pardiso_available
-
+    # 3D: the eighth model's own tangent has no physical negative eigenvalue before the
+    # breakdown (the charge-controlled equilibria are stable, paper Sec. 3), but it cannot
+    # show the plate's bending modes and these runs have no whole-plate spectrum: the
+    # whole-plate verdict is unknown (empty), never True, with either linear solver
     sel = (t["variant"] == "coupled") & ~np.array([bool(b) for b in t["breakdown"]])
-    if pardiso_available():
-        assert all(t["stable"][sel])
+    assert sel.any() and all(v is None for v in t["stable"][sel]), list(t["stable"][sel])
+    assert all(n == 0 for n in t["n_unstable"][sel])
 
 
 def test_simulate_exports_vtu(tmp_path):

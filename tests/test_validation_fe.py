@@ -9,7 +9,8 @@ import pytest
 
 from validation import cases as vc
 from validation.fe import (build_problem, keplinger_s, pardiso_installed, run_fe,
-                           stability_columns)
+                           stability_columns, whole_plate_verdict)
+from validation.records import StepRecord
 from validation.sweep import read_table, run_case
 
 
@@ -143,8 +144,11 @@ def test_pardiso_columns_come_from_the_ramps_factors():
     problem = build_problem(spec)
     for rec, st in seen:
         fresh = stability_columns(spec, problem, st["x"], st["load"])
-        assert (rec.n_negative, rec.n_unstable, rec.stable) == \
-            (fresh["n_negative"], fresh["n_unstable"], fresh["stable"])
+        assert (rec.n_negative, rec.n_unstable) == (fresh["n_negative"], fresh["n_unstable"])
+        # the column is the whole-plate verdict of the fresh analysis (an eighth model
+        # without the whole plate's spectrum: unknown unless a physical mode is negative)
+        own = StepRecord(rec.D0, rec.lam1, rec.lam3, rec.min_P33, stable=fresh["stable"])
+        assert rec.stable == whole_plate_verdict(spec, problem, own)
         assert rec.lowest_eig == pytest.approx(fresh["lowest_eig"], rel=1e-6)
 
 
@@ -162,3 +166,55 @@ def test_a_target_the_ramp_cannot_reach_ends_the_run_with_its_reason():
     assert not out.converged and "not reached" in out.reason
     # the failed attempt lies past the last target reached, towards the unreachable one
     assert 3.0 < out.failed_D0 < 60.0
+
+
+def test_stable_column_never_true_on_a_buckled_state(tmp_path, monkeypatch):
+    # the quick case's alpha = 1 run (10 x 1 x 5 eighth model, whole-plate spectrum at every
+    # state), cut to the states around its buckling load: the model's own (symmetric-class)
+    # tangent has no physical negative eigenvalue on any of them, the whole plate's spectrum
+    # has one from D0 = 3 on (its lowest physical eigenvalue 7.9e-4 at 2.5, -1.4e-3 at 3)
+    quick = next(r for r in vc.CASES["uni-axial-ideal"].quick
+                 if r.variant == "coupled" and r.alpha == 1.0 and r.buckling)
+    spec = vc.RunSpec(quick.geometry, quick.model, quick.variant, quick.s, (0.0, 2.5, 3.0),
+                      alpha=1.0, mesh=quick.mesh, buckling=True, stop_at_breakdown=False)
+    case = vc.Case("uni-axial-ideal", "uni-axial-ideal", "test", "uniaxial", quick=(spec,),
+                   full=(spec,))
+    seen = []
+
+    def runner(spec, start, state, on_step):
+        return run_fe(spec, start, state,
+                      lambda i, rec, st: seen.append((rec, st)) or on_step(i, rec, st),
+                      linear_solver="superlu")
+
+    run_case(case, tmp_path, quick=True, runner=runner, progress=False)
+    t = read_table(tmp_path / "uni-axial-ideal.csv")
+    ev, stable = t["physical_eig"], list(t["stable"])
+    assert np.isfinite(ev).all() and (ev < 0).any() and (ev > 0).any(), ev
+    # the column is the whole plate's verdict: False exactly where a physical mode is negative
+    assert stable == [not bool(e < 0) for e in ev], (list(ev), stable)
+    # ... and the symmetric class alone would have said True everywhere (what the column
+    # must not report): the rule is what makes the difference
+    problem = build_problem(spec)
+    own = [stability_columns(spec, problem, st["x"], st["load"])["stable"] for _, st in seen]
+    assert own == [True] * len(ev)
+
+
+@pytest.mark.parametrize("variant, symmetry, own, plate, expected", [
+    ("coupled", ("x1", "x2", "x3"), True, None, None),     # eighth model alone: unknown
+    ("coupled", ("x1", "x2", "x3"), False, None, False),   # a physical negative: unstable
+    ("coupled", ("x1", "x2", "x3"), True, (4, 1e-3), True),    # whole plate: none negative
+    ("coupled", ("x1", "x2", "x3"), True, (4, -1e-3), False),  # whole plate: one negative
+    ("coupled", ("x1", "x2", "x3"), True, (2, float("nan")), True),  # only flagged modes
+    ("coupled", (), True, None, True),                     # no symmetry plane: every mode
+    ("membrane", (), True, None, None),                    # no out-of-plane mode
+    ("maxwell", ("x1", "x2", "x3"), None, None, None),     # no symmetric tangent
+])
+def test_whole_plate_verdict_rule(variant, symmetry, own, plate, expected):
+    from types import SimpleNamespace
+
+    spec = vc.RunSpec("uniaxial", "neo-Hookean", variant, keplinger_s(1.0), (0.0,), alpha=1.0)
+    problem = SimpleNamespace(plate=SimpleNamespace(symmetry=symmetry))
+    rec = StepRecord(0.0, 1.0, 1.0, 0.0, stable=own)
+    if plate is not None:
+        rec.n_negative_plate, rec.physical_eig = plate
+    assert whole_plate_verdict(spec, problem, rec) is expected

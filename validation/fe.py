@@ -379,6 +379,46 @@ def plate_buckling_columns(spec: RunSpec, problem, x, load) -> dict:
             "physical_class": phys.symmetry if phys is not None else ""}
 
 
+def whole_plate_verdict(spec: RunSpec, problem, rec: StepRecord) -> bool | None:
+    """The ``stable`` column: the verdict on the whole plate, never ``True`` on a model
+    that cannot show the unstable mode.
+
+    ``rec.stable`` arrives as the verdict of the model's own tangent
+    (:func:`stability_columns`).  A symmetry-reduced 3D plate sees only the increments
+    that keep its symmetry planes, a membrane no out-of-plane mode at all, so their
+    ``True`` says nothing about the plate: the column is
+
+    * ``False`` when a physical negative eigenvalue was found, on the model's own tangent
+      (``n_unstable > 0``) or in the whole plate's spectrum over every symmetry class
+      (``physical_eig < 0``);
+    * ``True`` only when no physical negative eigenvalue was found by an analysis that can
+      show every mode: the whole plate's spectrum (runs with ``n_negative_plate``) or the
+      model's own tangent when the 3D model has no symmetry plane;
+    * ``None`` (empty: unknown) otherwise, and for the non-symmetric Maxwell variants.
+
+    Parameters
+    ----------
+    spec : RunSpec
+    problem
+        The problem of :func:`build_problem`.
+    rec : StepRecord
+        The state's record with the model's own verdict in ``stable`` and, for runs that
+        analyse the whole plate, ``n_negative_plate`` and ``physical_eig``.
+
+    Returns
+    -------
+    bool or None
+    """
+    own = rec.stable
+    if own is None or own is False:
+        return own
+    if rec.n_negative_plate is not None:
+        return not bool(np.isfinite(rec.physical_eig) and rec.physical_eig < 0)
+    if not _is_membrane(spec) and not tuple(problem.plate.symmetry):
+        return own
+    return None
+
+
 def _step_record(spec: RunSpec, problem, step, analysis=None) -> StepRecord:
     """The :class:`StepRecord` of a converged target, with the centre line if recorded."""
     q = step.quantities
@@ -387,6 +427,7 @@ def _step_record(spec: RunSpec, problem, step, analysis=None) -> StepRecord:
                      iterations=step.iterations,
                      **stability_columns(spec, problem, step.x, step.load, analysis),
                      **plate_buckling_columns(spec, problem, step.x, step.load))
+    rec.stable = whole_plate_verdict(spec, problem, rec)
     c = _centre_line(spec, problem, step)
     rec.min_P33_interior = _interior_min(c["x1"], c["P33"])
     if spec.record_fields:
