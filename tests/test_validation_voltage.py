@@ -50,3 +50,32 @@ def test_voltage_control_case_csv_figure_and_report(tmp_path, one_run):
     summary = json.loads((out / "summary.json").read_text())["cases"]["voltage-control"]
     assert summary["max_rel_error"] < vvc.LIMIT_TOL
     assert "| voltage-control |" in (out / "report.md").read_text()
+
+
+def _path_rows(*paths):
+    """Rows of :data:`VOLTAGE_COLUMNS` holding only what the caption and titles read."""
+    col = vvc.VOLTAGE_COLUMNS
+    rows = []
+    for model, loading, s, alpha in paths:
+        r = [None] * len(col)
+        for k, v in dict(run=f"{model} {loading} {s} {alpha}", model=model, loading=loading, s=s, alpha=alpha).items():
+            r[col.index(k)] = v
+        rows.append(r)
+    return rows
+
+
+def test_caption_and_titles_name_only_the_paths_drawn():
+    quick = _path_rows(("neo-Hookean", "equibiaxial", 1.0, None),
+                       ("neo-Hookean", "uniaxial-free", 1.0, None))
+    caption = vvc.voltage_caption(quick, quick=True)
+    # the quick paths belong to the paper's Figs. nh-d-e and figde only: no Gent figure,
+    # no Keplinger plate, and the one mesh is the homogeneous element
+    assert caption.startswith("Paper Figs. ") and "(nh-d-e, figde)" in caption
+    assert "gent-d-e" not in caption and "Keplinger" not in caption
+    assert "Quick run; meshes: 3D fully coupled: 1 element (homogeneous state)." in caption
+    assert vvc._panel_title([], True) == "equi-biaxial dead load: no FE path"
+    full = quick + _path_rows(("Gent", "equibiaxial", 1.0, None),
+                              ("neo-Hookean", "uniaxial", 2.993, 1.0))
+    caption = vvc.voltage_caption(full, quick=False)
+    assert "gent-d-e" in caption and "uni-axial-ideal" in caption and "Full run" in caption
+    assert "10 x 1 x 5 elements (eighth of the Keplinger plate)" in caption

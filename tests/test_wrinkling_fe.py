@@ -16,6 +16,7 @@ def test_quick_grid_matches_the_dispersion_relation(tmp_path, capsys):
     t = read_table(tmp_path / "wrinkling-fe.csv")
     assert list(t) == WRINKLING_COLUMNS
     assert (tmp_path / "wrinkling-fe.png").stat().st_size > 10_000
+    assert (tmp_path / "wrinkling-fe.pdf").stat().st_size > 10_000
     rows = 0
     for i in range(len(t["lam"])):
         if t["note"][i] == "no root of the dispersion relation":
@@ -105,3 +106,13 @@ def test_the_mode_near_zero_is_the_mode_of_the_full_search():
         # the sign changes across the located load, as the root search needs
         assert (near > 0) == (f < 1.0)
         assert n_neg >= 7
+
+
+def test_caption_gives_the_run_and_the_mesh_range():
+    rows = [["charge", "symmetric", 1.5, 2.0, 5.4, 5.4, 0.0, "8x30", 0, 0, ""],
+            ["charge", "antisymmetric", 1.5, 0.5, 3.3, 3.3, 0.0, "8x2", 0, 0, ""]]
+    text = wr.wrinkling_caption(rows, quick=True)
+    assert text == ("Paper Sec. 3 (Stroh dispersion relation). Quick run; meshes: "
+                    "2D cross-section: 8 x 2 to 8 x 30 elements (per half-wave x modelled "
+                    "thickness).")
+    assert wr.wrinkling_caption([], quick=None).endswith("FE run; meshes: unknown.")

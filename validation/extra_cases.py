@@ -4,8 +4,9 @@ The registered :data:`~validation.cases.CASES` are FE charge ramps drawn over a 
 figure.  The cases here compute other things -- the continuation through the voltage-
 controlled snap-through (:mod:`validation.voltage_control`) and the FE wrinkling of the
 cross-section against the Stroh analysis (:mod:`validation.wrinkling`) -- and report one
-error measure with its own tolerance.  Each writes ``DIR/<name>.csv`` and
-``DIR/<name>.png``.
+error measure with its own tolerance.  Each writes ``DIR/<name>.csv`` and the figure
+``DIR/<name>.png|pdf``, with the caption line of the case figures
+(:func:`validation.figures.run_caption`).
 """
 
 from __future__ import annotations

@@ -6,6 +6,12 @@ draws and returns the axes; nothing here shows or saves a figure except
 at the first figure, so importing this module sets none).
 FE data are the tidy tables of :func:`validation.sweep.read_table` (``None``
 draws the analytic curves alone).
+
+The names of the FE models and markers in legends and caption lines
+(:data:`MODEL_NAME`, :data:`BREAKDOWN_NAME`, :data:`BUCKLING_NAME`, :data:`LIMIT_NAME`)
+and the caption line itself (:func:`run_caption`, :func:`add_caption`) are shared by
+every figure of ``skfem-dielectric validate``, also those of ``voltage-control`` and
+``wrinkling-fe``, so that one set of names stands in the figures and the docs.
 """
 
 from __future__ import annotations
@@ -35,7 +41,16 @@ __all__ = [
     "uniaxial_voltage_locus",
     "case_figure",
     "figure_caption",
+    "run_caption",
+    "mesh_caption",
+    "plate_mesh_text",
+    "add_caption",
+    "tag_panels",
     "save_figure",
+    "MODEL_NAME",
+    "BREAKDOWN_NAME",
+    "BUCKLING_NAME",
+    "LIMIT_NAME",
 ]
 
 #: The paper's figure numbers, in the order the paper shows them.
@@ -51,9 +66,22 @@ _VARIANT_MARKER = {"coupled": dict(marker="o", mfc="none", ms=12, mew=1.3),
                    "membrane-maxwell": dict(marker="D", ms=3.4, mew=0.6)}
 _BREAKDOWN_MARKER = {"coupled": dict(marker="o", ms=19), "maxwell": dict(marker="s", ms=14),
                      "membrane": dict(marker="^", ms=12)}
-_VARIANT_LABEL = {"coupled": "FE 3D, fully coupled", "maxwell": "FE 3D, Maxwell traction",
-                  "membrane": "FE 2D membrane, coupled",
-                  "membrane-maxwell": "FE 2D membrane, Maxwell (local field)"}
+
+#: The names of the FE models in every legend and caption line (docs/gallery.md and
+#: docs/cli.md use the same): the keys are the ``variant`` values of the CSVs, plus
+#: ``"section"``, the cross-section of ``wrinkling-fe``.  No name holds a comma, so that
+#: a caption can list several.
+MODEL_NAME = {"coupled": "3D fully coupled", "maxwell": "3D Maxwell traction",
+              "membrane": "2D membrane", "membrane-maxwell": "2D membrane (local-field Maxwell)",
+              "section": "2D cross-section"}
+#: Legend name of the red open marker: the first step with compressive ``P33`` near the
+#: clamps (``P33/mu < -0.01``) or that the solver could not reach.
+BREAKDOWN_NAME = "P33 breakdown"
+#: Legend name of the red cross: the zero crossing of the lowest physical eigenvalue of
+#: the whole plate, ``D0_b``.
+BUCKLING_NAME = "buckling load"
+#: Legend name of the star of ``voltage-control``: the maximum of ``E0`` on a path.
+LIMIT_NAME = "limit point (snap-through)"
 
 
 def _new_axes(ax, n=1, figsize=None):
@@ -101,7 +129,7 @@ def _variant_legend(ax, fe):
     """Legend entries for the FE marker styles actually drawn."""
     if fe is None or not len(fe.get("run", [])):
         return []
-    return [Line2D([], [], ls="none", color="k", label=_VARIANT_LABEL[v], **_VARIANT_MARKER[v])
+    return [Line2D([], [], ls="none", color="k", label=MODEL_NAME[v], **_VARIANT_MARKER[v])
             for v in _VARIANT_MARKER if v in set(fe["variant"])]
 
 
@@ -347,11 +375,13 @@ def plot_uniaxial_wrinkling(fe=None, alphas=ALPHAS, ax=None, D0max=7.0):
     Neo-Hookean loading curves Eq. (DEuniax) for ``s = alpha m g/(mu A)``, the
     thick-plate limit (dashed blue, Eq. thick-uni-axial), the thin-plate limit
     (dashed black, Eq. thin-uni-axial, the ``s = 0`` curve), the wrinkling zone
-    between them, the FE dots of the clamped plate, a red open marker, of the shape of
-    the run's FE model, around the dot where the P33 criterion says each FE run breaks
-    down (``P33`` near the clamps compressive, or no convergence), and a red cross at
-    the buckling load ``D0_b`` of the runs analysed with the whole plate's spectrum
+    between them, the FE dots of the clamped plate, per run a red open marker of the
+    shape of its FE model around the dot of its "P33 breakdown" (:data:`BREAKDOWN_NAME`:
+    the first step with ``P33/mu < -0.01`` near the clamps or that the solver could not
+    reach), and a red cross at the "buckling load"
+    ``D0_b`` (:data:`BUCKLING_NAME`) of the runs analysed with the whole plate's spectrum
     (the zero crossing of the lowest physical eigenvalue, column ``physical_eig``).
+    The FE models are named by :data:`MODEL_NAME` in the legend.
 
     Returns
     -------
@@ -406,12 +436,12 @@ def plot_uniaxial_wrinkling(fe=None, alphas=ALPHAS, ax=None, D0max=7.0):
     ax.set_ylabel(r"$D_0$")
     handles, _ = ax.get_legend_handles_labels()
     crosses = [Line2D([], [], ls="none", color="red", mfc="none", mew=1.6,
-                      label=f"P33 criterion ($P_{{33}}/\\mu < -0.01$), {_VARIANT_LABEL[v][3:]}",
+                      label=f"{BREAKDOWN_NAME} ($P_{{33}}/\\mu < -0.01$), {MODEL_NAME[v]}",
                       **dict(_BREAKDOWN_MARKER[v], ms=0.6 * _BREAKDOWN_MARKER[v]["ms"]))
                for v in _BREAKDOWN_MARKER if v in broken]
     if buckled:
         crosses.insert(0, Line2D([], [], ls="none", color="red", marker="x", ms=8, mew=2.2,
-                                 label="buckling (FE stability: whole-plate spectrum), "
+                                 label=f"{BUCKLING_NAME} (whole-plate spectrum), "
                                  + r"$\alpha = $" + ", ".join(buckled)))
     ax.legend(handles=handles + _variant_legend(ax, fe) + crosses, fontsize=8,
               loc="center left", bbox_to_anchor=(1.01, 0.5))
@@ -519,16 +549,12 @@ def plot_p33_profiles(fields, fe=None, ax=None, variant="coupled"):
     ax.set_xlabel(r"$X_1$ along the centre line (cm, reference)")
     ax.set_ylabel(r"$P_{33}/\mu$")
     ax.legend(fontsize=7, ncol=2, loc="upper center")
-    ax.set_title(f"Keplinger plate, $\\alpha = 1$: lateral stress, {_VARIANT_LABEL[variant]}",
+    ax.set_title(f"Keplinger plate, $\\alpha = 1$: lateral stress, {MODEL_NAME[variant]}",
                  fontsize=10)
     return ax
 
 
 # --------------------------------------------------------------------------- per case
-_MODEL_NAME = {"coupled": "3D fully coupled", "maxwell": "3D Maxwell traction",
-               "membrane": "2D membrane", "membrane-maxwell": "2D membrane (Maxwell)"}
-
-
 def _run_setting(name, fe, fields):
     """``(quick, specs)``: which run setting produced the table (``None`` if unknown).
 
@@ -557,20 +583,91 @@ def _run_setting(name, fe, fields):
     return fits[0], tuple(r for r in case.runs(fits[0]) if r.key in keys)
 
 
+def plate_mesh_text(variant: str, mesh: dict) -> str:
+    """The mesh of a plate model in words, such as ``"10 x 1 x 5 elements (eighth of the
+    plate)"``.
+
+    Parameters
+    ----------
+    variant : str
+        FE variant (``"membrane..."``: the quarter of the mid-plane, else the 3D eighth).
+    mesh : dict
+        Elements ``{"n1": ., "n2": ., "n3": .}`` of the symmetric model.
+
+    Returns
+    -------
+    str
+    """
+    if (mesh.get("n1"), mesh.get("n2"), mesh.get("n3")) == (1, 1, 1):
+        return "1 element (homogeneous state)"
+    if variant.startswith("membrane"):
+        return f"{mesh['n1']} x {mesh['n3']} elements (quarter plate)"
+    return f"{mesh['n1']} x {mesh['n2']} x {mesh['n3']} elements (eighth of the plate)"
+
+
+def mesh_caption(items) -> str:
+    """The meshes part of a caption line from ``(model name, mesh text)`` pairs.
+
+    Models on the same mesh are listed together, several meshes of the same models are
+    joined by "and": ``"3D fully coupled, 3D Maxwell traction: 10 x 1 x 5 elements
+    (eighth of the plate); 2D membrane: 20 x 10 elements (quarter plate)"``.
+
+    Parameters
+    ----------
+    items : iterable of (str, str)
+
+    Returns
+    -------
+    str
+    """
+    by_mesh: dict[str, list[str]] = {}
+    for model, text in items:
+        names = by_mesh.setdefault(text, [])
+        if model not in names:
+            names.append(model)
+    by_models: dict[tuple, list[str]] = {}
+    for text, names in by_mesh.items():
+        by_models.setdefault(tuple(names), []).append(text)
+    return "; ".join(f"{', '.join(names)}: {' and '.join(texts)}"
+                     for names, texts in by_models.items())
+
+
 def _mesh_text(specs) -> str:
-    groups: dict[str, list[str]] = {}
-    for r in specs:
-        m = r.mesh_dict
-        if (m.get("n1"), m.get("n2"), m.get("n3")) == (1, 1, 1):
-            text = "1 element (homogeneous state)"
-        elif r.variant.startswith("membrane"):
-            text = f"{m['n1']} x {m['n3']} elements (quarter plate)"
-        else:
-            text = f"{m['n1']} x {m['n2']} x {m['n3']} elements (eighth of the plate)"
-        names = groups.setdefault(text, [])
-        if _MODEL_NAME[r.variant] not in names:
-            names.append(_MODEL_NAME[r.variant])
-    return "; ".join(f"{', '.join(v)}: {k}" for k, v in groups.items())
+    return mesh_caption((MODEL_NAME[r.variant], plate_mesh_text(r.variant, r.mesh_dict))
+                        for r in specs)
+
+
+def run_caption(head: str, quick: bool | None, meshes: str) -> str:
+    """One caption line: what the figure compares with, quick or full run, the meshes.
+
+    The line reads ``"<head>. Quick run; meshes: <meshes>."``.
+
+    Parameters
+    ----------
+    head : str
+        What the figure compares with, e.g. ``"Paper Fig. 5 (uni-axial-ideal)"``.
+    quick : bool or None
+        ``True``: quick run, ``False``: full run, ``None``: not known ("FE run").
+    meshes : str
+        The FE models and their meshes (:func:`mesh_caption`); empty: "unknown".
+
+    Returns
+    -------
+    str
+    """
+    run = {True: "Quick run", False: "Full run", None: "FE run"}[quick]
+    return f"{head}. {run}; meshes: {meshes or 'unknown'}."
+
+
+def add_caption(fig, text: str):
+    """Put the caption line ``text`` under the figure (small, grey), as every figure of
+    ``skfem-dielectric validate`` has it.
+
+    Returns
+    -------
+    matplotlib Text
+    """
+    return fig.supxlabel(text, fontsize=8, color="0.25")
 
 
 def figure_caption(name: str, fe=None, fields=None) -> str:
@@ -594,8 +691,7 @@ def figure_caption(name: str, fe=None, fields=None) -> str:
         if fields is None:
             return f"{head}. Analytic curves only (no FE run)."
         return f"{head}. FE fields."
-    run = {True: "quick run", False: "full run", None: "FE run"}[quick]
-    return f"{head}. {run[0].upper() + run[1:]}; meshes: {_mesh_text(specs) or 'unknown'}."
+    return run_caption(head, quick, _mesh_text(specs))
 
 
 def case_figure(name: str, fe=None, fields=None):
@@ -608,7 +704,7 @@ def case_figure(name: str, fe=None, fields=None):
     matplotlib Figure
     """
     fig = _case_figure(name, fe, fields)
-    fig.supxlabel(figure_caption(name, fe, fields), fontsize=8, color="0.25")
+    add_caption(fig, figure_caption(name, fe, fields))
     return fig
 
 
@@ -620,14 +716,14 @@ def _case_figure(name, fe, fields):
         plot_equibiaxial_loading(model, s_values, "D0", fe=fe, ax=axes[0])
         plot_equibiaxial_loading(model, s_values, "E0", fe=fe, ax=axes[1])
         _shared_legend(fig, axes)
-        _tag(axes)
+        tag_panels(axes)
         return fig
     if name == "gent-equi-biaxial":
         fig, axes = plt.subplots(1, 2, figsize=(13, 5.0), layout="constrained", sharey=True)
         for ax, model in zip(axes, ("neo-Hookean", "Gent")):
             plot_equibiaxial_wrinkling(model, fe=fe, ax=ax)
         _shared_legend(fig, axes)             # clear of the s = 4.5 curve
-        _tag(axes)
+        tag_panels(axes)
         return fig
     if name == "figde":
         fig, axes = plt.subplots(1, 2, figsize=(12, 4.6), layout="constrained")
@@ -636,7 +732,7 @@ def _case_figure(name, fe, fields):
         plot_uniaxial_loading("neo-Hookean", (0, 1, 2, 3), "E0", fe=fe, ax=axes[1],
                               palette=palette)
         _shared_legend(fig, axes)             # (a)'s legend covered the s = 3, 4 curves
-        _tag(axes)
+        tag_panels(axes)
         return fig
     if name == "uni-axial-ideal":
         fig, ax = plt.subplots(figsize=(10, 5.4), layout="constrained")
@@ -647,7 +743,7 @@ def _case_figure(name, fe, fields):
             raise ValueError("case 'lambda1-3' needs FE fields (run validate)")
         fig, axes = plt.subplots(1, 2, figsize=(9, 5.8), layout="constrained")
         plot_stretch_maps(fields, axes=axes)
-        _tag(axes)
+        tag_panels(axes)
         return fig
     if name == "zs22":
         if fields is None:
@@ -662,7 +758,7 @@ def _case_figure(name, fe, fields):
         hi = max(ax.get_ylim()[1] for ax in axes)
         for ax in axes:                       # one P33 scale for every model
             ax.set_ylim(lo, hi)
-        _tag(axes)
+        tag_panels(axes)
         return fig
     raise ValueError(f"no figure for case {name!r}")
 
@@ -681,7 +777,7 @@ def _shared_legend(fig, axes):
     fig.legend(handles, labels, loc="outside right center", fontsize=8)
 
 
-def _tag(axes):
+def tag_panels(axes):
     """``(a)``, ``(b)``, ... in front of the panel titles, off the data."""
     for ax, t in zip(axes, "abcdef"):
         ax.set_title(f"({t}) " + ax.get_title(), fontsize=10)

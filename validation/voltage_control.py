@@ -12,10 +12,12 @@ limit point and the second stays zero.
 Runs: the homogeneous equi-biaxial plate (neo-Hookean ``s = 0, 1, 2, 3``, Fig. nh-d-e;
 Gent ``s = 0, 1, 2.3, 3``, Fig. gent-d-e), the homogeneous uni-axial dead load
 (neo-Hookean ``s = 0 ... 3``, Fig. figde), and in full runs the clamped Keplinger plate
-per ``alpha`` (coarse mesh).  The limit point of each run is compared with
+per ``alpha`` (coarse mesh); quick runs only the neo-Hookean ``s = 1`` plate under each
+homogeneous loading.  The limit point of each run is compared with
 :func:`analytic.max_E0`.  Written as ``DIR/voltage-control.csv`` (one row per point of
 a path) and ``DIR/voltage-control.png|pdf`` (charge against voltage: FE dots on the
-analytic loading curves and the ``det H* = 0`` locus).
+analytic loading curves and the ``det H* = 0`` locus; titles, legends and the caption
+line name only the paths drawn, with the names of :mod:`validation.figures`).
 """
 
 from __future__ import annotations
@@ -27,17 +29,20 @@ from pathlib import Path
 
 import matplotlib.pyplot as plt
 import numpy as np
+from matplotlib.lines import Line2D
 
 import analytic as an
 import skfem_dielectric as fe
 
 from .cases import analytic_model
 from .fe import keplinger_s
+from .figures import (LIMIT_NAME, MODEL_NAME, PAPER_FIGURE, add_caption, mesh_caption,
+                      run_caption, save_figure, tag_panels)
 from .specs import ALPHAS
 from .store import write_csv_atomic
 
 __all__ = ["VOLTAGE_CONTROL", "VOLTAGE_COLUMNS", "LIMIT_TOL", "voltage_runs", "voltage_rows",
-           "voltage_figure", "run_voltage_control"]
+           "voltage_figure", "voltage_caption", "run_voltage_control"]
 
 VOLTAGE_CONTROL = "voltage-control"
 VOLTAGE_TITLE = ("charge vs voltage through the snap-through: FE continuation, limit points "
@@ -165,56 +170,151 @@ def _curve(ax, model, loading, s, lam_hi, style, colour):
     ax.plot(E0, D0, style, color=colour, lw=1.1)
 
 
-def voltage_figure(rows: list[list], ax=None):
-    """Charge ``D0`` against voltage ``E0``: FE points of every path (filled: stable under
-    voltage control, open: unstable; stars: the located limit points), the analytic
-    loading curves and the voltage-control limit locus ``det H* = 0`` (dotted)."""
-    if ax is None:
-        _, ax = plt.subplots(1, 2, figsize=(11, 4.6))
+#: the paper's figure of each kind of path (see :data:`validation.figures.PAPER_FIGURE`)
+_PATH_FIGURE = {("equibiaxial", "neo-Hookean"): "nh-d-e", ("equibiaxial", "Gent"): "gent-d-e",
+                ("uniaxial-free", "neo-Hookean"): "figde", ("uniaxial", "neo-Hookean"):
+                "uni-axial-ideal"}
+
+
+def _paths(rows: list[list]) -> list[dict]:
+    """One dict per path of ``rows``: ``run, model, loading, s, alpha`` and its rows."""
     col = {c: VOLTAGE_COLUMNS.index(c) for c in VOLTAGE_COLUMNS}
-    runs = list(dict.fromkeys(r[1] for r in rows))
-    panels = {"equibiaxial": ax[0], "uniaxial-free": ax[1], "uniaxial": ax[1]}
-    in_panel: dict = {}
-    for run in runs:
-        rr = [r for r in rows if r[1] == run]
-        model, loading, s, alpha = (rr[0][col[c]] for c in ("model", "loading", "s", "alpha"))
-        a = panels[loading]
-        k = in_panel.setdefault(id(a), [0])
-        colour = plt.cm.tab10(k[0] % 10)
-        k[0] += 1
-        lam = np.array([r[col["lam1_fe"]] for r in rr])
-        style = "--" if model == "Gent" else "-"
-        if alpha is None:
-            _curve(a, analytic_model(model), loading, s, 1.02 * lam.max(), style, colour)
-        E0 = np.array([r[col["E0"]] for r in rr])
-        D0 = np.array([r[col["D0"]] for r in rr])
-        stable = np.array([r[col["stable"]] is True for r in rr])
-        mk = "s" if alpha is not None else ("^" if model == "Gent" else "o")
-        label = (f"{'NH' if model == 'neo-Hookean' else 'Gent'}, "
-                 + (f"alpha = {alpha:g}" if alpha is not None else f"s = {s:g}"))
-        a.plot(E0[stable], D0[stable], mk, color=colour, ms=5, label=label)
-        a.plot(E0[~stable], D0[~stable], mk, mfc="none", color=colour, ms=5)
-        lim = [i for i, r in enumerate(rr) if r[col["kind"]] == "limit"]
-        a.plot(E0[lim], D0[lim], "*", color="crimson", ms=12, mec="k", mew=0.5)
+    out = []
+    for run in dict.fromkeys(r[col["run"]] for r in rows):
+        rr = [r for r in rows if r[col["run"]] == run]
+        out.append({c: rr[0][col[c]] for c in ("run", "model", "loading", "s", "alpha")}
+                   | {"rows": rr})
+    return out
+
+
+def voltage_caption(rows: list[list], quick: bool | None = None) -> str:
+    """The caption line of :func:`voltage_figure`: the paper's figures of the paths drawn,
+    quick/full run and the FE meshes.
+
+    Parameters
+    ----------
+    rows : list of list
+        Rows of :func:`voltage_rows`.
+    quick : bool, optional
+        Which run setting produced them (``None``: not known).
+
+    Returns
+    -------
+    str
+    """
+    paths = _paths(rows)
+    names = [n for n in PAPER_FIGURE if any(_PATH_FIGURE.get((p["loading"], p["model"])) == n
+                                            for p in paths)]
+    nums = ", ".join(str(PAPER_FIGURE[n]) for n in names)
+    head = (f"Paper Fig{'s' if len(names) > 1 else ''}. {nums} ({', '.join(names)}) under "
+            "voltage control" if names else "Voltage control")
+    n1, n2, n3 = KEPLINGER_MESH
+    meshes = [(MODEL_NAME["coupled"], "1 element (homogeneous state)" if p["alpha"] is None
+               else f"{n1} x {n2} x {n3} elements (eighth of the Keplinger plate)")
+              for p in paths]
+    return run_caption(head, quick, mesh_caption(meshes))
+
+
+def _panel_title(loading_paths: list[dict], equibiaxial: bool) -> str:
+    """What a panel shows: the loading, the materials or plates drawn, the paper's
+    figures."""
+    if equibiaxial:
+        models = list(dict.fromkeys(p["model"] for p in loading_paths))
+        figs = [_PATH_FIGURE[("equibiaxial", m)] for m in models]
+        what = " and ".join(models)
+        title = "equi-biaxial dead load"
+    else:
+        parts, figs = [], []
+        if any(p["alpha"] is None for p in loading_paths):
+            parts.append("free lateral edges")
+            figs.append("figde")
+        if any(p["alpha"] is not None for p in loading_paths):
+            parts.append("Keplinger plate")
+            figs.append("uni-axial-ideal")
+        what = " and ".join(parts)
+        title = "uni-axial dead load"
+    if not loading_paths:
+        return f"{title}: no FE path"
+    return f"{title}: {what} (Fig{'s' if len(figs) > 1 else ''}. {', '.join(figs)})"
+
+
+def voltage_figure(rows: list[list], ax=None, quick: bool | None = None):
+    """Charge ``D0`` against voltage ``E0`` of every path of ``rows``.
+
+    Panel (a) the equi-biaxial, (b) the uni-axial dead load: the FE points of the
+    voltage-controlled continuation (:data:`validation.figures.MODEL_NAME` ``"coupled"``;
+    filled: stable under voltage control, open: unstable), red stars at the located
+    limit points (:data:`validation.figures.LIMIT_NAME`), the analytic loading curves
+    of the homogeneous paths (solid: neo-Hookean, dashed: Gent) and the neo-Hookean
+    voltage-control limit locus ``det H* = 0`` (dotted).  Titles and legends name only
+    what is drawn; the caption line is :func:`voltage_caption`.
+
+    Parameters
+    ----------
+    rows : list of list
+        Rows of :func:`voltage_rows`.
+    ax : pair of matplotlib Axes, optional
+    quick : bool, optional
+        Which run setting produced ``rows`` (for the caption line).
+
+    Returns
+    -------
+    pair of matplotlib Axes
+    """
+    if ax is None:
+        _, ax = plt.subplots(1, 2, figsize=(12, 5.0), layout="constrained")
+    col = {c: VOLTAGE_COLUMNS.index(c) for c in VOLTAGE_COLUMNS}
+    paths = _paths(rows)
+    panel_of = {"equibiaxial": 0, "uniaxial-free": 1, "uniaxial": 1}
+    drawn = [{"unstable": False, "limit": False} for _ in ax]
+    for i, a in enumerate(ax):
+        mine = [p for p in paths if panel_of[p["loading"]] == i]
+        for k, p in enumerate(mine):
+            rr, colour = p["rows"], plt.cm.tab10(k % 10)
+            lam = np.array([r[col["lam1_fe"]] for r in rr], dtype=float)
+            style = "--" if p["model"] == "Gent" else "-"
+            if p["alpha"] is None:
+                _curve(a, analytic_model(p["model"]), p["loading"], p["s"],
+                       1.02 * np.nanmax(lam), style, colour)
+            E0 = np.array([r[col["E0"]] for r in rr], dtype=float)
+            D0 = np.array([r[col["D0"]] for r in rr], dtype=float)
+            stable = np.array([r[col["stable"]] is True for r in rr])
+            label = (f"Keplinger plate, $\\alpha = {p['alpha']:g}$" if p["alpha"] is not None
+                     else f"{p['model']}, $s = {p['s']:g}$")
+            a.plot(E0[stable], D0[stable], "o", color=colour, ms=5)
+            a.plot(E0[~stable], D0[~stable], "o", mfc="none", color=colour, ms=5)
+            # the legend entry: the path's colour, with its analytic curve's style if drawn
+            a.plot([], [], "o", ls=style if p["alpha"] is None else "none", color=colour,
+                   ms=5, label=label)
+            lim = [j for j, r in enumerate(rr) if r[col["kind"]] == "limit"]
+            a.plot(E0[lim], D0[lim], "*", color="crimson", ms=12, mec="k", mew=0.5, zorder=4)
+            drawn[i]["unstable"] |= bool((~stable).any())
+            drawn[i]["limit"] |= bool(lim)
+        a.set_title(_panel_title(mine, i == 0), fontsize=10)
     lam = np.linspace(1.0, 6.0, 400)
     ax[0].plot(an.voltage_limit_D0(lam) / lam ** 4, an.voltage_limit_D0(lam), ":k", lw=1.3,
-               label="det H* = 0 (neo-Hookean)")
+               label=r"$\det\mathcal{H}^* = 0$ (voltage control limit, neo-Hookean)")
     ax[1].plot(an.uniaxial_voltage_limit_E0(lam), an.uniaxial_voltage_limit_D0(lam), ":k",
-               lw=1.3, label="det H* = 0 (neo-Hookean)")
-    for a, title in zip(ax, ("equi-biaxial dead load (Figs. nh-d-e, gent-d-e)",
-                             "uni-axial dead load (Fig. figde), Keplinger plate (squares)")):
-        a.set_xlabel("E0 (voltage)")
-        a.set_ylabel("D0 (charge; log scale)")
-        a.set_title(title, fontsize=10)
+               lw=1.3, label=r"$\det\mathcal{H}^* = 0$ (voltage control limit, neo-Hookean)")
+    name = MODEL_NAME["coupled"]
+    for a, d in zip(ax, drawn):
+        handles, _ = a.get_legend_handles_labels()
+        keys = [Line2D([], [], ls="none", marker="o", color="k", ms=5,
+                       label=f"{name}, stable (voltage control)")]
+        if d["unstable"]:
+            keys.append(Line2D([], [], ls="none", marker="o", mfc="none", color="k", ms=5,
+                               label=f"{name}, unstable (voltage control)"))
+        if d["limit"]:
+            keys.append(Line2D([], [], ls="none", marker="*", color="crimson", ms=12, mec="k",
+                               mew=0.5, label=LIMIT_NAME))
+        a.set_xlabel(r"$E_0$ (voltage)")
+        a.set_ylabel(r"$D_0$ (charge, log scale)")
         a.set_xlim(0.0, 0.8)
         a.set_yscale("log")
         a.set_ylim(0.02, 200.0)
-        a.legend(fontsize=7, loc="lower right", ncol=2)
-    ax[0].figure.text(0.5, 0.005, "FE continuation under voltage control: filled = stable, "
-                      "open = unstable (voltage-controlled stiffness), star = limit point "
-                      "(snap-through); lines: analytic loading curves (dashed and triangles: "
-                      "Gent)",
-                      ha="center", fontsize=8)
+        a.legend(handles=handles + keys, fontsize=7, loc="lower right")
+    tag_panels(ax)
+    add_caption(ax[0].figure, voltage_caption(rows, quick))
     return ax
 
 
@@ -246,14 +346,8 @@ def run_voltage_control(out, quick: bool = False, on_run=None) -> tuple[list[Pat
     rows = voltage_rows(quick, on_run)
     csv_path = write_csv_atomic(out / f"{VOLTAGE_CONTROL}.csv", VOLTAGE_COLUMNS,
                                 [[_fmt(v) for v in r] for r in rows])
-    ax = voltage_figure(rows)
-    fig = ax[0].figure
-    fig.tight_layout(rect=(0, 0.03, 1, 1))
-    paths = [csv_path]
-    for ext in ("png", "pdf"):
-        paths.append(out / f"{VOLTAGE_CONTROL}.{ext}")
-        fig.savefig(paths[-1], dpi=120)
-    plt.close(fig)
+    ax = voltage_figure(rows, quick=quick)
+    paths = [csv_path] + save_figure(ax[0].figure, out, VOLTAGE_CONTROL)
     col = {c: VOLTAGE_COLUMNS.index(c) for c in VOLTAGE_COLUMNS}
     lam_err, E0_err, reasons = {}, {}, {}
     for run in dict.fromkeys(r[1] for r in rows):

@@ -7,7 +7,8 @@ sliding ends (:func:`skfem_dielectric.wrinkling_section`,
 :func:`analytic.critical_D0`, the finite-thickness dispersion relation of the paper's
 Sec. 3 (under voltage control both are the critical ``D0 = lam^4 E0``).  Written as
 ``DIR/wrinkling-fe.csv`` (one row per grid point; a point without a Stroh root says so)
-and ``DIR/wrinkling-fe.png`` (FE dots on the dispersion curves).  The CSVs are rewritten
+and ``DIR/wrinkling-fe.png|pdf`` (FE dots on the dispersion curves, with the caption
+line and the model names of :mod:`validation.figures`).  The CSVs are rewritten
 (atomically) after every row, and a rerun into the same folder keeps the rows it finds
 there (same columns and grid point) and computes only the missing ones: an interrupted run
 resumes.
@@ -15,24 +16,25 @@ resumes.
 
 from __future__ import annotations
 
+import csv
 import math
 from pathlib import Path
 
 import matplotlib.pyplot as plt
 import numpy as np
+from matplotlib.lines import Line2D
 from matplotlib.ticker import NullFormatter, ScalarFormatter
 from scipy.optimize import brentq
 
 import analytic as an
 import skfem_dielectric as fe
 
-import csv
-
+from .figures import MODEL_NAME, add_caption, mesh_caption, run_caption, save_figure, tag_panels
 from .store import write_csv_atomic
 
 __all__ = ["WRINKLING_COLUMNS", "ELASTIC_COLUMNS", "wrinkling_grid", "wrinkling_rows",
            "elastic_grid", "elastic_rows", "stroh_critical_stretch", "run_wrinkling_fe",
-           "wrinkling_figure"]
+           "wrinkling_figure", "wrinkling_caption"]
 
 WRINKLING_COLUMNS = ["control", "mode", "lam", "kh", "D0_fe", "D0_stroh", "rel_error", "mesh",
                      "n_negative_below", "n_stroh_below", "note"]
@@ -215,58 +217,119 @@ def _elastic_panel(a, rows):
         if pts:
             x, y = zip(*pts)
             a.plot(x, y, mk, mfc="none", color="C3", ms=7,
-                   label=f"FE, {mode}")
+                   label=f"{MODEL_NAME['section']}, {mode}")
     a.axhline(an.surface_instability_stretch(), color="0.5", lw=0.8, ls=":",
-              label="thick limit 0.666")
+              label=r"thick-plate limit $\lambda = 0.666$")
     thin = kh[kh < 2.5]
-    a.plot(thin, 1 - thin**2 / 18, ":", color="C0", lw=1.0, label="Euler: 1 - (kh)^2/18")
+    a.plot(thin, 1 - thin**2 / 18, ":", color="C0", lw=1.0, label=r"Euler: $1 - (kh)^2/18$")
     a.set_xscale("log")
-    a.set_xlabel("kh (deformed thickness)")
-    a.set_ylabel("critical stretch lam (D0 = 0)")
-    a.set_title("uncharged plate in compression")
+    a.set_xticks([0.3, 1, 3, 10, 30])
+    a.xaxis.set_major_formatter(ScalarFormatter())
+    a.xaxis.set_minor_formatter(NullFormatter())
+    a.set_xlabel(r"$kh$ (deformed thickness)")
+    a.set_ylabel(r"critical stretch $\lambda$ ($D_0 = 0$)")
+    a.set_title("uncharged plate in compression", fontsize=10)
     a.legend(fontsize=7, loc="upper right")
 
 
-def wrinkling_figure(rows: list[list], ax=None, elastic: list[list] | None = None):
-    """FE dots on the Stroh dispersion curves ``D0(kh)``, one panel per control, and (with
-    ``elastic`` rows) a third panel of the uncharged plate's critical stretch."""
+def wrinkling_caption(rows: list[list], elastic: list[list] | None = None,
+                      quick: bool | None = None) -> str:
+    """The caption line of :func:`wrinkling_figure`: what it compares with, quick/full
+    run and the meshes of the cross-section (elements per half-wave x across the
+    modelled thickness: half of it for the symmetric modes, all of it for the
+    antisymmetric ones).
+
+    Parameters
+    ----------
+    rows, elastic : list of list
+        Rows of :func:`wrinkling_rows` and :func:`elastic_rows`.
+    quick : bool, optional
+        Which run setting produced them (``None``: not known).
+
+    Returns
+    -------
+    str
+    """
+    meshes = {r[7] for r in rows if r[7]} | {r[5] for r in elastic or () if r[5]}
+    sizes = sorted({tuple(int(n) for n in m.split("x")) for m in meshes}, key=lambda m: m[::-1])
+    text = " x ".join(map(str, sizes[0])) if sizes else ""
+    if len(sizes) > 1:
+        text += " to " + " x ".join(map(str, sizes[-1]))
+    mesh = [(MODEL_NAME["section"], f"{text} elements (per half-wave x modelled thickness)")]
+    return run_caption("Paper Sec. 3 (Stroh dispersion relation)", quick,
+                       mesh_caption(mesh) if sizes else "")
+
+
+def wrinkling_figure(rows: list[list], ax=None, elastic: list[list] | None = None,
+                     quick: bool | None = None):
+    """FE critical loads on the Stroh dispersion curves ``D0(kh)``.
+
+    One panel per control (open markers: the FE cross-section,
+    :data:`validation.figures.MODEL_NAME` ``"section"``; circles symmetric, squares
+    antisymmetric modes; lines: :func:`analytic.critical_D0`) and, with ``elastic``
+    rows, a third panel of the uncharged plate's critical stretch.  The caption line is
+    :func:`wrinkling_caption`.
+
+    Parameters
+    ----------
+    rows : list of list
+        Rows of :func:`wrinkling_rows`.
+    ax : sequence of matplotlib Axes, optional
+        Two (three with ``elastic``).
+    elastic : list of list, optional
+        Rows of :func:`elastic_rows`.
+    quick : bool, optional
+        Which run setting produced the rows (for the caption line).
+
+    Returns
+    -------
+    sequence of matplotlib Axes
+    """
     if ax is None:
         _, ax = plt.subplots(1, 3 if elastic is not None else 2,
-                             figsize=(16 if elastic is not None else 11, 4.2))
+                             figsize=(16 if elastic is not None else 11, 4.6),
+                             layout="constrained")
     if elastic is not None:
         _elastic_panel(ax[2], elastic)
     kh = np.logspace(np.log10(0.3), np.log10(8.0), 60)
     lams = sorted({r[2] for r in rows})
     colours = dict(zip(lams, plt.cm.viridis(np.linspace(0.1, 0.8, len(lams)))))
+    styles = (("symmetric", "-", "o"), ("antisymmetric", "--", "s"))
+    drawn = set()
     for a, control in zip(ax, CONTROLS):
         for lam in lams:
-            for mode, ls, mk in (("symmetric", "-", "o"), ("antisymmetric", "--", "s")):
+            for mode, ls, mk in styles:
                 a.plot(kh, an.critical_D0(lam, kh, mode=mode, control=control), ls,
                        color=colours[lam], lw=1.2,
-                       label=f"Stroh, lam = {lam:g}, {mode}" if control == "charge" else None)
+                       label=f"Stroh, $\\lambda = {lam:g}$, {mode}"
+                       if control == "charge" else None)
                 pts = [(r[3], r[4]) for r in rows
                        if r[0] == control and r[1] == mode and r[2] == lam and r[4] is not None]
                 if pts:
                     x, y = zip(*pts)
                     a.plot(x, y, mk, mfc="none", color=colours[lam], ms=7)
+                    drawn.add(mode)
         a.set_xscale("log")
         a.set_xticks([0.3, 0.5, 1, 2, 5])
         a.xaxis.set_major_formatter(ScalarFormatter())
         a.xaxis.set_minor_formatter(NullFormatter())
-        a.set_xlabel("kh (deformed thickness)")
-        a.set_ylabel("critical D0" + (" = lam^4 E0" if control == "voltage" else ""))
-        a.set_title(f"{control} control")
-    ax[0].legend(fontsize=7, loc="upper right")
-    ax[0].figure.text(0.5, 0.005, "FE wrinkling of the section with sliding ends (open markers: "
-                      "circles symmetric, squares antisymmetric) on the finite-thickness "
-                      "dispersion relation (paper Sec. 3)", ha="center", fontsize=8)
+        a.set_xlabel(r"$kh$ (deformed thickness)")
+        a.set_ylabel(r"critical $D_0$" + (r" $= \lambda^4 E_0$" if control == "voltage" else ""))
+        a.set_title(f"{control} control", fontsize=10)
+    handles, _ = ax[0].get_legend_handles_labels()
+    handles += [Line2D([], [], ls="none", marker=mk, mfc="none", color="k", ms=7,
+                       label=f"{MODEL_NAME['section']}, {mode}")
+                for mode, _, mk in styles if mode in drawn]
+    ax[0].legend(handles=handles, fontsize=7, loc="upper right")
+    tag_panels(ax)
+    add_caption(ax[0].figure, wrinkling_caption(rows, elastic, quick))
     return ax
 
 
 def run_wrinkling_fe(out, quick: bool = False, on_row=None,
                      on_elastic_row=None) -> list[Path]:
-    """Write ``out/wrinkling-fe.csv``, ``out/wrinkling-fe-elastic.csv`` and
-    ``out/wrinkling-fe.png``; return their paths."""
+    """Write ``out/wrinkling-fe.csv``, ``out/wrinkling-fe-elastic.csv`` and the figure
+    ``out/wrinkling-fe.png`` and ``.pdf``; return their paths (in this order)."""
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
     csv_path, csv_elastic = out / "wrinkling-fe.csv", out / "wrinkling-fe-elastic.csv"
@@ -274,10 +337,5 @@ def run_wrinkling_fe(out, quick: bool = False, on_row=None,
     write_csv_atomic(csv_path, WRINKLING_COLUMNS, [[_fmt(v) for v in r] for r in rows])
     elastic = elastic_rows(quick, on_elastic_row, path=csv_elastic)
     write_csv_atomic(csv_elastic, ELASTIC_COLUMNS, [[_fmt(v) for v in r] for r in elastic])
-    ax = wrinkling_figure(rows, elastic=elastic)
-    fig = ax[0].figure
-    fig.tight_layout(rect=(0, 0.03, 1, 1))
-    png = out / "wrinkling-fe.png"
-    fig.savefig(png, dpi=120)
-    plt.close(fig)
-    return [csv_path, csv_elastic, png]
+    ax = wrinkling_figure(rows, elastic=elastic, quick=quick)
+    return [csv_path, csv_elastic] + save_figure(ax[0].figure, out, "wrinkling-fe")
