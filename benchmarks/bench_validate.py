@@ -1,9 +1,10 @@
 """Benchmark: the whole validation job, ``skfem-dielectric validate``, case by case.
 
 Runs the command in a child process into a fresh folder (``--out`` to keep it) and prints,
-per case, its runtime (``summary.json``), FE runs, FE steps and Newton iterations (the
+per case, its wall runtime (``summary.json``), FE runs, FE steps and Newton iterations (the
 case CSV's ``iterations`` column: Newton and chord steps of the charge-ramp cases), the
-verdict of the report; then the total wall time, the child's peak resident memory and
+verdict of the report; then the job's CPU seconds (user + system, the figure that does
+not depend on other jobs), the total wall time, the child's peak resident memory and
 the load average before and after (other jobs on the machine slow every CPU-bound step).
 
 The README's main job is ``--quick`` with the default install (SuperLU); the full run is
@@ -56,7 +57,7 @@ def _verdicts(report: Path) -> dict[str, str]:
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--quick", action="store_true", help="the README's quick job")
-    ap.add_argument("--solver", choices=("superlu", "pardiso"), default="superlu")
+    ap.add_argument("--solver", choices=("auto", "superlu", "pardiso"), default="superlu")
     ap.add_argument("--case", nargs="+", default=None, help="cases (default: all)")
     ap.add_argument("--out", default=None, help="output folder (default: a temporary one)")
     args = ap.parse_args(argv)
@@ -78,22 +79,24 @@ def main(argv=None) -> int:
     t0 = time.perf_counter()
     proc = subprocess.run(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
     wall = time.perf_counter() - t0
-    peak_mb = resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss / 1024
+    child = resource.getrusage(resource.RUSAGE_CHILDREN)
+    peak_mb, cpu = child.ru_maxrss / 1024, child.ru_utime + child.ru_stime
     if proc.returncode != 0:
         print(proc.stderr.strip().splitlines()[-1] if proc.stderr.strip() else "failed")
         print(f"exit code {proc.returncode}")
         return 1
     summary = json.loads((out / "summary.json").read_text())["cases"]
     verdicts = _verdicts(out / "report.md")
-    print(f"{'case':18s} {'runtime s':>10s} {'FE runs':>8s} {'FE steps':>9s} "
+    print(f"{'case':18s} {'wall s':>10s} {'FE runs':>8s} {'FE steps':>9s} "
           f"{'iterations':>10s}  verdict")
     for name, c in summary.items():
         its = _iterations(out / f"{name}.csv")
         print(f"{name:18s} {float(c.get('runtime_s') or 0):10.1f} {c.get('n_runs', ''):>8} "
               f"{c.get('n_steps', ''):>9} {'' if its is None else its:>10}  "
               f"{verdicts.get(name, '?')}")
-    print(f"wall time {wall:.1f} s (with the interpreter start and the figures), "
-          f"peak RSS {peak_mb:.0f} MB, load average after {os.getloadavg()[0]:.2f}")
+    print(f"CPU time {cpu:.1f} s (user + system of the job and its workers), wall time "
+          f"{wall:.1f} s (with the interpreter start and the figures), peak RSS "
+          f"{peak_mb:.0f} MB, load average after {os.getloadavg()[0]:.2f}")
     if tmp is not None:
         tmp.cleanup()
     return 0

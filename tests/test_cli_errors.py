@@ -11,7 +11,6 @@ import errno
 import os
 import random
 import re
-import time
 
 import pytest
 
@@ -229,7 +228,7 @@ def _fatal(rng, cmd, tmp):
         "validate": [
             lambda: (["--jobs", rng.choice(["0", "-1", "x", "1.5", ""])], {2}),
             lambda: (["--case", rng.choice(["nope", "", "NH-D-E"])], {2}),
-            lambda: (["--solver", rng.choice(["auto", "mumps", ""])], {2}),
+            lambda: (["--solver", rng.choice(["mumps", "", "PARDISO"])], {2}),
             lambda: (["--out", ""], {2}),
             lambda: (["--out", f], {3}),
             lambda: (["--out", f + "/below"], {3}),
@@ -275,7 +274,7 @@ def test_fuzz_bad_invocations(tmp_path, capsys, monkeypatch):
     monkeypatch.setitem(vc.CASES, "nh-d-e", tiny_case())
     (tmp_path / "a-file").write_text("keep")
     rng = random.Random(20201101)
-    t0, seen = time.perf_counter(), {}
+    seen = {}
     for _ in range(220):
         argv, codes = generate(rng, tmp_path)
         code, out, err = run_cli(argv, capsys)
@@ -287,7 +286,6 @@ def test_fuzz_bad_invocations(tmp_path, capsys, monkeypatch):
             lines = err.strip().splitlines()
             assert len(lines) == 1 and lines[0].startswith("skfem-dielectric"), (argv, err)
         seen[code] = seen.get(code, 0) + 1
-    assert time.perf_counter() - t0 < 30
     assert {0, 2, 3} <= set(seen) and sum(seen.values()) == 220, seen
     assert (tmp_path / "a-file").read_text() == "keep"
     # nothing was computed: no case CSV anywhere (every invocation failed before FE work)
@@ -326,3 +324,30 @@ def test_bad_scheduler_address(tmp_path, capsys):
                             "--scheduler", "http://nowhere:1"], capsys)
     assert_one_line_error(code, err, 2)
     assert "--scheduler must be a dask scheduler address" in err
+
+
+@pytest.mark.parametrize("cmd", ["buckling", "post-buckling"])
+@pytest.mark.parametrize("bad, expect", [
+    (["--D0-step", "-0.5"], 2),
+    (["--D0-step", "x"], 2),
+    (["--D0-max", "0"], 2),
+    (["--alpha", "0"], 2),
+    (["--meshes", "10x1"], 2),
+    (["--solver", "mumps"], 2),
+    (["--out", "a-file"], 3),
+] + ([(["--solver", "pardiso"], 2)] if not pardiso_installed() else []))
+def test_study_commands_bad_input(cmd, bad, expect, tmp_path, capsys, monkeypatch):
+    # each mistake stops the study before any FE work: one line, its exit code, no file
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "a-file").write_text("keep")
+    argv = [cmd, "--quick"] + bad + ([] if "--out" in bad else ["--out", "res"])
+    code, out, err = run_cli(argv, capsys)
+    assert_one_line_error(code, err, expect)
+    assert not (tmp_path / "res").exists() and (tmp_path / "a-file").read_text() == "keep"
+
+
+def test_post_buckling_odd_thickness_count(tmp_path, capsys):
+    code, _, err = run_cli(["post-buckling", "--meshes", "10x1x5", "--out",
+                            str(tmp_path / "res")], capsys)
+    assert_one_line_error(code, err, 2)
+    assert "N2 must be even" in err and "10x1x5" in err

@@ -45,7 +45,9 @@ SCAN_COLUMNS = (["alpha", "mesh", "D0", "n_negative", "lowest", "physical", "phy
 #: the same ramp without grad-div (the harness's form): its P33 onsets and Newton limit
 PLAIN_COLUMNS = (["alpha", "mesh"] + [f"P33_onset_{k}" for k in P33_SETS]
                  + ["newton_limit", "D0_max", "seconds"])
-QUICK = {"alphas": (1.0,), "meshes": ((10, 1, 5), (20, 1, 10)), "D0_step": 0.5,
+#: ``--quick``: the mesh and step of the quick ``validate`` run's alpha = 1 plate, so that
+#: both report the same D0_b
+QUICK = {"alphas": (1.0,), "meshes": ((10, 1, 5),), "D0_step": 0.5,
          "D0_max": 5.0}
 FULL = {"alphas": (1.0, 0.3, 1.5, 0.7, 0.05),
         "meshes": ((10, 1, 5), (20, 1, 10), (40, 1, 20)), "D0_step": 0.25, "D0_max": 6.0}
@@ -87,7 +89,7 @@ def _mesh_name(el) -> str:
 
 
 def run_one(alpha: float, elements, *, D0_step: float, D0_max: float,
-            solver: str = "pardiso", modes_dir: Path | None = None
+            solver: str = "auto", modes_dir: Path | None = None
             ) -> tuple[dict, list[dict]]:
     """One alpha x mesh: ramp, P33 onsets, buckling load.  Returns the row and the scan."""
     t0 = time.time()
@@ -134,7 +136,7 @@ def run_one(alpha: float, elements, *, D0_step: float, D0_max: float,
 
 
 def run_plain(alpha: float, elements, *, D0_step: float, D0_max: float,
-              solver: str = "pardiso") -> dict:
+              solver: str = "auto") -> dict:
     """The plain form (``grad_div = 0``, as the validation harness ramps it) on the same
     targets: its ``P33`` onsets and where Newton stops (``nan``: all targets reached)."""
     t0 = time.time()
@@ -177,7 +179,7 @@ def append_rows(path: Path, columns, rows) -> None:
 
 
 def run_buckling(out: Path, *, alphas, meshes, D0_step: float, D0_max: float,
-                 solver: str = "pardiso", progress=None) -> list[dict]:
+                 solver: str = "auto", progress=None) -> list[dict]:
     """The study: every alpha x mesh not yet in ``out/buckling.csv``, then the figure."""
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
@@ -185,6 +187,9 @@ def run_buckling(out: Path, *, alphas, meshes, D0_step: float, D0_max: float,
     plain = out / "buckling-plain.csv"
     done = {(r["alpha"], r["mesh"]) for r in read_rows(table)}
     done_plain = {(r["alpha"], r["mesh"]) for r in read_rows(plain)}
+    footer = (f"skfem-dielectric buckling: eighth-model meshes "
+              f"{', '.join(_mesh_name(el) for el in meshes)}, D0 step {D0_step:g} up to "
+              f"{D0_max:g}, linear solver {solver}")
     for alpha in alphas:
         for el in meshes:
             key = (float(alpha), _mesh_name(el))
@@ -193,14 +198,18 @@ def run_buckling(out: Path, *, alphas, meshes, D0_step: float, D0_max: float,
                                     solver=solver, modes_dir=out / ".modes")
                 append_rows(out / "buckling-scan.csv", SCAN_COLUMNS, scan)
                 append_rows(table, COLUMNS, [row])
+                # the figure follows the table: a long study shows every finished row
+                buckling_figure(read_rows(table), read_rows(out / "buckling-scan.csv"),
+                                out / ".modes", out / "buckling.png", footer=footer)
                 if progress is not None:
                     progress(row)
             if key not in done_plain:
                 append_rows(plain, PLAIN_COLUMNS, [run_plain(float(alpha), el, D0_step=D0_step,
                                                          D0_max=D0_max, solver=solver)])
     rows = read_rows(table)
-    buckling_figure(rows, read_rows(out / "buckling-scan.csv"), out / ".modes",
-                    out / "buckling.png")
+    if rows:
+        buckling_figure(rows, read_rows(out / "buckling-scan.csv"), out / ".modes",
+                        out / "buckling.png", footer=footer)
     return rows
 
 
@@ -220,9 +229,10 @@ def richardson(h, values) -> tuple[float, float, float]:
     return ext, abs(ext - v[2]), p
 
 
-def buckling_figure(rows, scan, modes_dir: Path, path: Path) -> Path:
+def buckling_figure(rows, scan, modes_dir: Path, path: Path, footer: str = "") -> Path:
     """One row of panels per alpha: lowest physical eigenvalue vs ``D0`` per mesh, the
-    ``P33`` minima vs ``D0`` on the finest mesh, the critical mode's deflection map."""
+    ``P33`` minima vs ``D0`` on the finest mesh, the critical mode's deflection map;
+    written to ``path`` (PNG) and beside it as PDF, with ``footer`` under the panels."""
     alphas = sorted({r["alpha"] for r in rows})
     fig, axes = plt.subplots(len(alphas), 3, figsize=(14, 3.4 * len(alphas)), squeeze=False,
                              constrained_layout=True)
@@ -256,6 +266,11 @@ def buckling_figure(rows, scan, modes_dir: Path, path: Path) -> Path:
             r = next(r for r in mine if r["mesh"] == fine)
             ax3[2].set(aspect="equal", xlabel="X1 (mm)", ylabel="X3 (mm)",
                        title=f"mode at D0_b = {r['D0_b']:.4f}: {r['class']}")
-    fig.savefig(path, dpi=110)
+    if footer:
+        fig.text(0.5, 0.0, footer, ha="center", va="top", fontsize=7, color="0.3")
+    path = Path(path)
+    fig.savefig(path, dpi=110, bbox_inches="tight", metadata={"Software": None})
+    fig.savefig(path.with_suffix(".pdf"), bbox_inches="tight",
+                metadata={"CreationDate": None, "Creator": None, "Producer": None})
     plt.close(fig)
     return path

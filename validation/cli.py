@@ -11,6 +11,7 @@ import argparse
 import csv
 import functools
 import math
+import os
 import sys
 import time
 from importlib.metadata import PackageNotFoundError, version
@@ -25,6 +26,7 @@ from .postbuckling import FULL as POST_FULL, QUICK as POST_QUICK, run_post_buckl
 from .figures import case_figure, save_figure
 from .wrinkling import run_wrinkling_fe
 from .specs import MODELS, VARIANTS
+from .report import verdict_lines
 from .store import write_text_atomic
 from .sweep import validate
 from .extra_cases import EXTRA_CASES
@@ -131,13 +133,15 @@ def build_parser() -> argparse.ArgumentParser:
             "class), locate the first physical buckling load D0_b to 1e-4 and compare it with "
             "the onsets of compressive P33 and the Newton limit: DIR/buckling.csv (one row "
             "per alpha x mesh, written as each is done; a rerun skips the rows present), "
-            "DIR/buckling-scan.csv and DIR/buckling.png. Default: alpha = 1, 0.3, 1.5, 0.7, "
+            "DIR/buckling-scan.csv and DIR/buckling.png|pdf (redrawn after each row). "
+            "Default: alpha = 1, 0.3, 1.5, 0.7, "
             "0.05 on 10x1x5, 20x1x10, 40x1x20, D0 step 0.25 (hours on 2 cores); --quick: "
-            "alpha = 1 on 10x1x5 and 20x1x10, D0 step 0.5 (minutes).")
-    _study_arguments(k, "alpha = 1, two coarse meshes",
+            "alpha = 1 on 10x1x5 (the quick validate run's mesh), D0 step 0.5 (about a "
+            "minute).")
+    _study_arguments(k, "alpha = 1 on the coarse mesh 10x1x5",
                      "eighth-model meshes, e.g. 10x1x5 20x1x10", "charge step of the scan",
-                     "last charge target", "pardiso",
-                     "linear solver and inertia method (PARDISO: the fast extra)")
+                     "last charge target", "auto",
+                     "linear solver and inertia method (auto: PARDISO if installed)")
 
     pb = add("post-buckling", "follow the clamped plate onto its buckled branch",
              "Ramp the clamped Keplinger plate's quarter model (the whole thickness, "
@@ -147,7 +151,7 @@ def build_parser() -> argparse.ArgumentParser:
              "state, both branches: mid-plane deflection, lam1 at the centre against the "
              "homogeneous closed form, stability counts), DIR/post-buckling-summary.csv "
              "(one row per alpha x mesh, written as each is done; a rerun skips the rows "
-             "present) and DIR/post-buckling.png. Default: alpha = 0.05 and 1 on the "
+             "present) and DIR/post-buckling.png|pdf. Default: alpha = 0.05 and 1 on the "
              "quarter meshes 10x2x5, 14x2x7, 20x2x10 (about an hour on 2 cores); --quick: "
              "alpha = 0.05 on 10x2x5 up to D0 = 1 (about a minute).")
     _study_arguments(pb, "alpha = 0.05, one coarse mesh",
@@ -181,11 +185,12 @@ def build_parser() -> argparse.ArgumentParser:
                         "of --jobs worker processes; needs the 'cluster' extra "
                         "(pip install -e '.[cluster]')")
     v.add_argument("--force", action="store_true", help="recompute instead of resuming")
-    v.add_argument("--solver", choices=["superlu", "pardiso"], default="superlu",
-                   help="linear solver of the FE ramps: superlu (deterministic: a "
-                        "resumed run repeats the uninterrupted one bit for bit) or pardiso "
-                        "(faster on fine meshes, needs the 'fast' extra; multi-threaded, so "
-                        "the last digits may differ between runs)")
+    v.add_argument("--solver", choices=["auto", "superlu", "pardiso"], default="auto",
+                   help="linear solver of the FE ramps: auto (PARDISO if the 'fast' extra "
+                        "is installed, else SuperLU), superlu (deterministic: a resumed run "
+                        "repeats the uninterrupted one bit for bit) or pardiso (faster on "
+                        "fine meshes, needs the 'fast' extra; multi-threaded, so the last "
+                        "digits may differ between runs)")
     v.add_argument("--no-progress", action="store_true", help="no progress bars")
 
     s = add("simulate", "run one FE ramp and export VTU/XDMF", SIM_HELP)
@@ -267,9 +272,7 @@ def _study_options(args, quick: dict, full: dict) -> dict:
         _positive("--D0-max", opts["D0_max"])
     for a in opts["alphas"]:
         _positive("--alpha", a)
-    if args.solver == "pardiso" and not pardiso_installed():
-        raise ValueError("--solver pardiso needs the fast extra (pypardiso); use "
-                         "--solver superlu")
+    args.solver = _solver(args.solver)
     return opts
 
 
@@ -300,7 +303,7 @@ def _cmd_post_buckling(args) -> int:
 
     run_post_buckling(args.out, **opts, solver=args.solver, model=args.model,
                       progress=show)
-    print(f"wrote {args.out / 'post-buckling.csv'}, {args.out / 'post-buckling.png'}")
+    print(f"wrote {args.out / 'post-buckling.csv'}, {args.out / 'post-buckling.png'} (and .pdf)")
     return 0
 
 
@@ -314,19 +317,20 @@ def _cmd_buckling(args) -> int:
               f"{row['seconds']:.0f} s", flush=True)
 
     run_buckling(args.out, **opts, solver=args.solver, progress=show)
-    print(f"wrote {args.out / 'buckling.csv'}, {args.out / 'buckling.png'}")
+    print(f"wrote {args.out / 'buckling.csv'}, {args.out / 'buckling.png'} (and .pdf)")
     return 0
 
 
 def _cmd_list(args) -> int:
-    w = max(len(n) for n in list(CASES) + list(EXTRA_CASES))
-    print(f"{'case':<{w}}  {'paper figure':<18} {'runs quick/full':<16} description")
-    for c in CASES.values():
-        runs = f"{len(c.quick)}/{len(c.full)}"
-        print(f"{c.name:<{w}}  {c.figure:<18} {runs:<16} {c.title}")
-    for c in EXTRA_CASES.values():
-        runs = f"{c.count(True)}/{c.count(False)}"
-        print(f"{c.name:<{w}}  {c.figure[:18]:<18} {runs:<16} {c.title}")
+    rows = [(c.name, c.figure, f"{len(c.quick)}/{len(c.full)}", c.title)
+            for c in CASES.values()]
+    rows += [(c.name, c.figure, f"{c.count(True)}/{c.count(False)}", c.title)
+             for c in EXTRA_CASES.values()]
+    head = ("case", "paper figure", "runs quick/full", "description")
+    # every column as wide as its longest entry: nothing is cut, the columns stay aligned
+    w = [max(len(r[i]) for r in rows + [head]) for i in range(3)]
+    for r in [head] + rows:
+        print("  ".join(f"{v:<{n}}" for v, n in zip(r, w)) + "  " + r[3])
     return 0
 
 
@@ -377,15 +381,29 @@ def _dask_executor(address: str, jobs: int):
                          f"'local', got {address!r} ({exc})") from None
 
 
+def _solver(name: str) -> str:
+    """The linear solver a command uses: ``auto`` is PARDISO when pypardiso (the ``fast``
+    extra) is installed, else SuperLU; ``pardiso`` without it is a ``ValueError``."""
+    if name == "pardiso" and not pardiso_installed():
+        raise ValueError("--solver pardiso needs pypardiso (pip install -e '.[fast]'); "
+                         "use --solver auto or superlu")
+    if name == "auto":
+        return "pardiso" if pardiso_installed() else "superlu"
+    return name
+
+
+def _cpu_seconds() -> float:
+    """CPU seconds of this process and its finished worker processes (user + system)."""
+    t = os.times()
+    return t.user + t.system + t.children_user + t.children_system
+
+
 def _cmd_validate(args) -> int:
-    if args.solver == "pardiso" and not pardiso_installed():
-        raise ValueError("--solver pardiso needs pypardiso (pip install -e '.[fast]'), "
-                         "got no pypardiso")
+    solver = _solver(args.solver)
     if args.scheduler is not None and not args.scheduler.strip():
         raise ValueError("--scheduler must be a scheduler address or 'local', got ''")
-    t0 = time.perf_counter()
-    runner = None if args.solver == "superlu" else functools.partial(run_fe,
-                                                                     linear_solver=args.solver)
+    t0, cpu0 = time.perf_counter(), _cpu_seconds()
+    runner = None if solver == "superlu" else functools.partial(run_fe, linear_solver=solver)
     kw = dict(quick=args.quick, force=args.force, runner=runner,
               progress=False if args.no_progress else None)
     if args.scheduler:
@@ -401,8 +419,11 @@ def _cmd_validate(args) -> int:
                 print(f"skfem-dielectric: {line}", file=sys.stderr)
     else:
         results = validate(args.case, args.out, jobs=args.jobs, **kw)
-    print((args.out / "report.md").read_text(), end="")
-    print(f"\nwall time {time.perf_counter() - t0:.1f} s; results in {args.out}")
+    for line in verdict_lines(results):
+        print(line)
+    print(f"report: {args.out / 'report.md'} (errors, breakdown and buckling loads, figures); "
+          f"linear solver {solver}; {_cpu_seconds() - cpu0:.1f} s CPU, "
+          f"{time.perf_counter() - t0:.1f} s wall")
     return 0 if all(r.n_steps or not r.n_runs for r in results) else 1
 
 
@@ -462,11 +483,7 @@ def _cmd_bench(args) -> int:
     _positive("--D0-max", args.D0_max)
     _positive("--alpha", args.alpha)
     _check_mesh("--mesh", args.mesh)
-    if args.solver == "pardiso" and not pardiso_installed():
-        raise ValueError("--solver pardiso needs pypardiso (pip install -e '.[fast]'), "
-                         "got no pypardiso")
-    used = args.solver if args.solver != "auto" else \
-        ("pardiso" if pardiso_installed() else "superlu")
+    used = _solver(args.solver)
     print(f"linear solver: {used}" + (" (chosen by 'auto': PARDISO if pypardiso is installed, "
                                       "else SuperLU)" if args.solver == "auto" else ""))
     for line in bench(mesh=tuple(args.mesh), alpha=args.alpha, D0_max=args.D0_max,

@@ -96,7 +96,7 @@ def _counts(pb, st, method) -> dict:
 
 
 def run_one(alpha: float, elements, *, D0_step: float, D0_max: float,
-            D0_from: float = 0.0, solver: str = "pardiso", model: str = "quarter",
+            D0_from: float = 0.0, solver: str = "auto", model: str = "quarter",
             shapes_dir: Path | None = None) -> tuple[dict, list[dict]]:
     """One alpha x mesh of ``model`` (:data:`MODELS`): fundamental ramp (steps of 0.25 up to ``D0_from``, then
     ``D0_step``; the spectrum from ``D0_from`` on), ``D0_b``, branch switch, the buckled
@@ -201,7 +201,7 @@ def run_one(alpha: float, elements, *, D0_step: float, D0_max: float,
 
 
 def run_post_buckling(out: Path, *, alphas, meshes, D0_step: float, D0_max: float | None,
-                      solver: str = "pardiso", model: str = "quarter",
+                      solver: str = "auto", model: str = "quarter",
                       progress=None) -> list[dict]:
     """The study: every alpha x mesh not yet in ``out/post-buckling-summary.csv``, then
     the figure.  Each weight's spectrum scan starts at ``WINDOW[alpha][0]`` (``D0_step``
@@ -210,6 +210,9 @@ def run_post_buckling(out: Path, *, alphas, meshes, D0_step: float, D0_max: floa
     out.mkdir(parents=True, exist_ok=True)
     table = out / "post-buckling-summary.csv"
     done = {(r["alpha"], r["mesh"], r["model"]) for r in read_rows(table)}
+    footer = (f"skfem-dielectric post-buckling: {model} model, meshes "
+              f"{', '.join(_mesh_name(el) for el in meshes)}, D0 step {D0_step:g}, "
+              f"linear solver {solver}")
     for alpha in alphas:
         start, top = WINDOW.get(float(alpha), (D0_step, 1.5))
         top = top if D0_max is None else D0_max
@@ -222,11 +225,16 @@ def run_post_buckling(out: Path, *, alphas, meshes, D0_step: float, D0_max: floa
                                     shapes_dir=out / ".post-buckling")
             append_rows(out / "post-buckling.csv", COLUMNS, rows)
             append_rows(table, SUMMARY_COLUMNS, [summary])
+            # the figure follows the table: a long study shows every finished row
+            post_buckling_figure(read_rows(table), read_rows(out / "post-buckling.csv"),
+                                 out / ".post-buckling", out / "post-buckling.png",
+                                 footer=footer)
             if progress is not None:
                 progress(summary)
     summary = read_rows(table)
-    post_buckling_figure(summary, read_rows(out / "post-buckling.csv"),
-                         out / ".post-buckling", out / "post-buckling.png")
+    if summary:
+        post_buckling_figure(summary, read_rows(out / "post-buckling.csv"),
+                             out / ".post-buckling", out / "post-buckling.png", footer=footer)
     return summary
 
 
@@ -242,10 +250,12 @@ def _unfold(z, model):
     return X1, X3, u2
 
 
-def post_buckling_figure(summary, rows, shapes_dir: Path, path: Path) -> Path:
+def post_buckling_figure(summary, rows, shapes_dir: Path, path: Path,
+                         footer: str = "") -> Path:
     """One row of panels per alpha: mid-plane deflection vs ``D0`` per model and mesh,
     ``lam1`` at the centre minus the homogeneous closed form (fundamental and buckled
-    branches), the buckled shape of the largest model."""
+    branches), the buckled shape of the largest model; written to ``path`` (PNG) and
+    beside it as PDF, with ``footer`` under the panels."""
     alphas = sorted({r["alpha"] for r in summary})
     fig, axes = plt.subplots(len(alphas), 3, figsize=(14, 3.6 * len(alphas)),
                              squeeze=False, constrained_layout=True)
@@ -286,6 +296,11 @@ def post_buckling_figure(summary, rows, shapes_dir: Path, path: Path) -> Path:
             ax3[2].set(aspect="equal", xlabel="X1 (mm)", ylabel="X3 (mm)",
                        title=f"{big['model']} {big['mesh']}: mid-plane u2, "
                              f"D0 = {float(z['D0']):.3g}")
-    fig.savefig(path, dpi=110)
+    if footer:
+        fig.text(0.5, 0.0, footer, ha="center", va="top", fontsize=7, color="0.3")
+    path = Path(path)
+    fig.savefig(path, dpi=110, bbox_inches="tight", metadata={"Software": None})
+    fig.savefig(path.with_suffix(".pdf"), bbox_inches="tight",
+                metadata={"CreationDate": None, "Creator": None, "Producer": None})
     plt.close(fig)
     return path

@@ -1,4 +1,5 @@
-"""A minimal progress bar on stderr (no dependency), silent when not on a terminal."""
+"""Progress on stderr (no dependency): a bar on a terminal, one line per finished run
+elsewhere (logs, pipes, CI), nothing when switched off."""
 
 from __future__ import annotations
 
@@ -21,8 +22,9 @@ class Progress:
     stream : file-like, optional
         Where to draw; ``sys.stderr`` by default.
     enabled : bool, optional
-        Force the bar on or off; by default it is drawn only when ``stream``
-        is a terminal, so logs, pipes and worker processes stay clean.
+        ``True``: the bar; ``False``: nothing at all; ``None`` (default): the bar when
+        ``stream`` is a terminal, else only the lines of :meth:`line` (one per finished
+        run), so that a log shows progress without carriage returns.
 
     Examples
     --------
@@ -44,10 +46,11 @@ class Progress:
         self.total = int(total)
         self.desc = desc
         self.stream = sys.stderr if stream is None else stream
-        if enabled is None:
-            isatty = getattr(self.stream, "isatty", None)
-            enabled = bool(isatty and isatty())
-        self.enabled = enabled
+        isatty = getattr(self.stream, "isatty", None)
+        tty = bool(isatty and isatty())
+        #: draw the bar; write the lines of :meth:`line` instead when not on a terminal
+        self.enabled = tty if enabled is None else bool(enabled)
+        self.lines = enabled is None and not tty
         self.count = 0
         self._t0 = time.perf_counter()
         self._last_len = 0
@@ -56,6 +59,21 @@ class Progress:
         """Advance by ``n`` units and redraw with an optional short ``note``."""
         self.count = min(self.total, self.count + n)
         self._draw(note)
+
+    def line(self, message: str) -> None:
+        """One line ``skfem-dielectric: desc: message`` when not on a terminal (the bar,
+        when drawn, shows the same progress; nothing when progress is off).
+
+        Examples
+        --------
+        >>> import io
+        >>> buf = io.StringIO()
+        >>> Progress(3, "nh-d-e", stream=buf).line("run a: 3 steps")
+        >>> buf.getvalue()
+        'skfem-dielectric: nh-d-e: run a: 3 steps\\n'
+        """
+        if self.lines:
+            notice(f"{self.desc}: {message}" if self.desc else message, self.stream)
 
     def _draw(self, note: str = "") -> None:
         if not self.enabled:

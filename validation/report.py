@@ -11,7 +11,7 @@ from .figures import PAPER_FIGURE
 from .store import write_text_atomic
 from .extra_cases import EXTRA_CASES
 
-__all__ = ["summary_dict", "write_summary", "write_report", "HOMOGENEOUS_TOL", "CLAMPED_TOL"]
+__all__ = ["summary_dict", "write_summary", "write_report", "verdict_lines", "HOMOGENEOUS_TOL", "CLAMPED_TOL"]
 
 
 def summary_dict(results, *, quick: bool) -> dict:
@@ -101,6 +101,33 @@ def _verdict(err, tol) -> str:
     if err is None:
         return "no FE step"
     return "pass" if err <= tol else "**FAIL**"
+
+
+def verdict_lines(results) -> list[str]:
+    """One line per case for the end of a run: its verdict against its tolerance.
+
+    Parameters
+    ----------
+    results : sequence of CaseResult
+
+    Returns
+    -------
+    list of str
+
+    Examples
+    --------
+    >>> from validation.sweep import CaseResult
+    >>> verdict_lines([CaseResult("nh-d-e", "fig:nh-d-e", "nh-d-e.csv", 12, 84, 9.3e-11)])
+    ['nh-d-e: pass (max rel. error 9.30e-11, tolerance 1e-08, 84 FE steps)']
+    """
+    out = []
+    for r in results:
+        tol = _tolerance(r.name)
+        verdict = _verdict(r.max_rel_error, tol).strip("*").lower()
+        err = "" if r.max_rel_error is None else \
+            f"max rel. error {_g(r.max_rel_error)}, tolerance {tol:g}, "
+        out.append(f"{r.name}: {verdict} ({err}{r.n_steps} FE steps)")
+    return out
 
 
 def write_report(results, folder, *, quick: bool) -> Path:

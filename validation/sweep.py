@@ -466,7 +466,8 @@ def _run_locked(case, runs, csv_path, fields_path, state_dir, runner, progress,
     files.rewrite()
     total = sum(len(spec.D0) - start for spec, start, *_ in plan)
     with Progress(total, case.name, enabled=progress) as bar:
-        for spec, start, state, rows, frows in plan:
+        for i, (spec, start, state, rows, frows) in enumerate(plan):
+            cpu, count = time.process_time(), bar.count
             try:
                 _run_one(case, spec, start, state, runner, files, rows, frows, state_dir, bar)
             except _ResumeFailed as exc:
@@ -476,6 +477,8 @@ def _run_locked(case, runs, csv_path, fields_path, state_dir, runner, progress,
                 files.drop(spec.key)
                 _run_one(case, spec, 0, None, runner, files, RowDigest(), RowDigest(),
                          state_dir, bar)
+            bar.line(f"run {i + 1}/{len(plan)} {spec.key}: {bar.count - count} of "
+                     f"{len(spec.D0) - start} targets, {time.process_time() - cpu:.1f} s CPU")
     files.rewrite()
     result = summarise_case(case, csv_path, n_runs=len(runs))
     result.resumed_steps = resumed
@@ -623,6 +626,8 @@ def run_cases(cases: Iterable[Case | str], out, *, quick: bool = False, force: b
             for c, f in zip(cases, futures):
                 results.append(f.result())
                 bar.update(note=c.name)
+                bar.line(f"{c.name}: {results[-1].n_steps} FE steps, "
+                         f"{results[-1].runtime_s:.1f} s")
         return results
     finally:
         if own:
@@ -664,7 +669,10 @@ def validate(cases: Iterable[Case | str] | None, out, *, quick: bool = False,
     for r in results:
         make_figure(r.name, out)
     for name in (c for c in cases if c in EXTRA_CASES):
+        cpu = time.process_time()
         results.append(extra_case_result(name, out, quick=quick))
+        Progress(1, name, enabled=progress).line(
+            f"{results[-1].n_steps} FE points, {time.process_time() - cpu:.1f} s CPU")
     out = Path(out)
     (out / ".state").mkdir(parents=True, exist_ok=True)
     with FolderLock(out / ".state" / "summary.lock", f"the summary of {out}", wait=True):
