@@ -54,6 +54,30 @@ numpydoc_class_members_toctree = False
 numpydoc_xref_param_type = False
 nitpicky = False
 
+# A module whose name is also a function of its package (``skfem_dielectric.ramp`` and
+# the function ``skfem_dielectric.ramp``; likewise ``newton``, ``continuation`` and
+# ``symmetry_classes``) is a module here: autosummary resolves a dotted name as
+# ``package.attribute`` first, which would document the function in place of the
+# module page and leave the module's classes (``RampResult``, ...) out of the reference.
+import importlib                                                    # noqa: E402
+
+import sphinx.ext.autosummary as _autosummary                       # noqa: E402
+
+_PACKAGES = ("analytic", "skfem_dielectric", "validation")
+_import_by_name = _autosummary._import_by_name
+
+
+def _module_first(name, grouped_exception=True):
+    if "." in name and name.split(".")[0] in _PACKAGES:
+        try:
+            return importlib.import_module(name), None, name
+        except ImportError:
+            pass
+    return _import_by_name(name, grouped_exception)
+
+
+_autosummary._import_by_name = _module_first
+
 # --- gallery -------------------------------------------------------------------------
 sphinx_gallery_conf = {
     "examples_dirs": "examples",
