@@ -28,6 +28,7 @@ import skfem_dielectric as fe
 from skfem_dielectric.buckling import buckling_load
 from skfem_dielectric.modes import top_deflection
 
+from .figures import save_figure
 from .sweep import BREAKDOWN_TOL
 
 __all__ = ["COLUMNS", "SCAN_COLUMNS", "PLAIN_COLUMNS", "P33_SETS", "p33_measures", "onset",
@@ -266,11 +267,12 @@ def buckling_figure(rows, scan, modes_dir: Path, path: Path, footer: str = "") -
             r = next(r for r in mine if r["mesh"] == fine)
             ax3[2].set(aspect="equal", xlabel="X1 (mm)", ylabel="X3 (mm)",
                        title=f"mode at D0_b = {r['D0_b']:.4f}: {r['class']}")
+        else:                                 # no crossing in the scanned range
+            ax3[2].axis("off")
+            ax3[2].text(0.5, 0.5, f"{fine}: no buckling load\nin the scanned range",
+                        ha="center", va="center", transform=ax3[2].transAxes)
     if footer:
         fig.text(0.5, 0.0, footer, ha="center", va="top", fontsize=7, color="0.3")
     path = Path(path)
-    fig.savefig(path, dpi=110, bbox_inches="tight", metadata={"Software": None})
-    fig.savefig(path.with_suffix(".pdf"), bbox_inches="tight",
-                metadata={"CreationDate": None, "Creator": None, "Producer": None})
-    plt.close(fig)
+    save_figure(fig, path.parent, path.stem, dpi=110, bbox_inches="tight")
     return path

@@ -783,11 +783,29 @@ def tag_panels(axes):
         ax.set_title(f"({t}) " + ax.get_title(), fontsize=10)
 
 
-def save_figure(fig, folder, stem: str) -> list[Path]:
-    """Write ``fig`` as ``folder/stem.png`` and ``.pdf`` (no timestamps) and close it."""
+def save_figure(fig, folder, stem: str, dpi: int = 130, bbox_inches=None) -> list[Path]:
+    """Write ``fig`` as ``folder/stem.png`` and ``.pdf`` (no timestamps) and close it.
+
+    Parameters
+    ----------
+    fig : matplotlib Figure
+    folder : path-like
+    stem : str
+        File name without suffix.
+    dpi : int, optional
+        Resolution of the PNG.
+    bbox_inches : str, optional
+        ``"tight"`` crops both files to what is drawn (figures without a layout engine).
+
+    Returns
+    -------
+    list of Path
+        The PNG and the PDF.
+    """
     folder = Path(folder)
     paths = [folder / f"{stem}.png", folder / f"{stem}.pdf"]
-    fig.savefig(paths[0], dpi=130, metadata={"Software": None})
-    fig.savefig(paths[1], metadata={"CreationDate": None, "Creator": None, "Producer": None})
+    fig.savefig(paths[0], dpi=dpi, bbox_inches=bbox_inches, metadata={"Software": None})
+    fig.savefig(paths[1], bbox_inches=bbox_inches,
+                metadata={"CreationDate": None, "Creator": None, "Producer": None})
     plt.close(fig)
     return paths

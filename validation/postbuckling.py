@@ -36,6 +36,7 @@ from skfem_dielectric.postbuckling import (critical_mode, midplane_deflection,
 from skfem_dielectric.symmetry_classes import class_stability
 
 from .buckling import append_rows, read_rows
+from .figures import save_figure
 
 __all__ = ["COLUMNS", "SUMMARY_COLUMNS", "QUICK", "FULL", "WINDOW", "MODELS", "run_one", "run_post_buckling",
            "post_buckling_figure"]
@@ -299,8 +300,5 @@ def post_buckling_figure(summary, rows, shapes_dir: Path, path: Path,
     if footer:
         fig.text(0.5, 0.0, footer, ha="center", va="top", fontsize=7, color="0.3")
     path = Path(path)
-    fig.savefig(path, dpi=110, bbox_inches="tight", metadata={"Software": None})
-    fig.savefig(path.with_suffix(".pdf"), bbox_inches="tight",
-                metadata={"CreationDate": None, "Creator": None, "Producer": None})
-    plt.close(fig)
+    save_figure(fig, path.parent, path.stem, dpi=110, bbox_inches="tight")
     return path
