@@ -2,6 +2,9 @@
 
 ``mixed_upphi``
     3D mixed u-p-phi volume form of the incompressible ideal dielectric (hexahedra).
+``reference``
+    the same form as plain scikit-fem integrands (:class:`reference.ReferenceForm`):
+    slow, readable, the statement the fast assembly is tested against.
 ``maxwell_traction``
     the Maxwell traction on the deformed boundary, its follower-load linearisation, and
     its boundary form on a 3D plate.

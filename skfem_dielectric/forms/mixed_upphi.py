@@ -25,7 +25,8 @@ component), ``p`` continuous Q1, ``phi`` Q2 (default) or Q1; 27 Gauss points per
 (``intorder=4``).  Everything is computed with batched numpy over (element, quadrature
 point) arrays and scattered through precomputed positions
 (:class:`~skfem_dielectric.assembly.ScatterMap`), in element chunks assembled by worker
-threads.
+threads.  :class:`~skfem_dielectric.forms.reference.ReferenceForm` states the same form as
+plain scikit-fem integrands (the maths, readably); the two are tested equal.
 """
 
 from __future__ import annotations
