@@ -19,6 +19,7 @@ from .export import step_mesh, write_vtu_series, write_xdmf
 from .forms.maxwell_traction import maxwell_stress, maxwell_traction, maxwell_traction_field
 from .forms.membrane import membrane_kernel
 from .forms.plane_strain import cross_section_kernel
+from .kinematics import segment_det_limit
 from .linear import (LinearSolver, PardisoLUSolver, PardisoSolver, SuperLUSolver,
                      get_linear_solver, nonsymmetric_solver, pardiso_available)
 from .loads import charge_targets, keplinger_s, preload_then_charge, remaining_targets
@@ -29,7 +30,7 @@ from .mesh import PlateMesh, plate_mesh
 from .mesh2d import point_gradients
 from .monitor import StabilityMonitor
 from .modes import classify_mode, lowest_physical_eigenvalue, mode_mesh, write_mode_vtu
-from .newton import NewtonResult, newton, segment_det_limit
+from .newton import NewtonResult, newton
 from .plate import PlateProblem
 from .problem import Layout, Problem
 from .ramp import RampResult, StepResult, ramp

@@ -16,8 +16,9 @@ inverted element) passes ``step_limit(x, dx) -> alpha_max``, the largest step fr
 along ``dx`` that stays inside; a step is then started at ``alpha = alpha_max / 2`` when
 ``alpha_max < 1`` (and backtracked from there), never beyond the boundary.  ``admissible(x)
 -> reason`` (empty when admissible) is asked of every converged state: a state it rejects
-ends the solve with ``converged=False`` and that reason.  :func:`segment_det_limit` is the
-``det F > 0`` step limit along a segment of deformation gradients.
+ends the solve with ``converged=False`` and that reason
+(:func:`~skfem_dielectric.kinematics.segment_det_limit` is the ``det F > 0`` step limit
+along a segment of deformation gradients).
 """
 
 from __future__ import annotations
@@ -33,7 +34,7 @@ from .checks import (check_callable, check_count, check_nonnegative, check_nonne
                      check_tolerances)
 from .linear import LinearSolver, get_linear_solver
 
-__all__ = ["NewtonResult", "newton", "segment_det_limit"]
+__all__ = ["NewtonResult", "newton"]
 
 
 @dataclass
@@ -85,83 +86,6 @@ class NewtonResult:
 
 def _norm(r: np.ndarray) -> float:
     return float(np.linalg.norm(r))
-
-
-def _cof(A: np.ndarray) -> np.ndarray:
-    """Cofactor matrices of ``A[..., 3, 3]`` (rows are cross products of rows of ``A``)."""
-    return np.stack([np.cross(A[..., 1, :], A[..., 2, :]), np.cross(A[..., 2, :], A[..., 0, :]),
-                     np.cross(A[..., 0, :], A[..., 1, :])], axis=-2)
-
-
-def segment_det_limit(F0: np.ndarray, dF: np.ndarray, tol: float = 1e-8) -> float:
-    """Largest ``alpha`` in ``(0, 1]`` with ``det(F0 + a dF) > tol det F0`` for all ``a`` in
-    ``[0, alpha)`` at every point.
-
-    Parameters
-    ----------
-    F0, dF
-        Deformation gradients and their increments, shape ``(n, 3, 3)``; ``det F0 > 0``.
-    tol
-        Relative floor of the determinant.  A floor above zero also catches a segment that
-        only *touches* ``det F = 0`` (a double root, e.g. two stretches passing through
-        zero together, which turns the body inside out while ``det F`` keeps its sign).
-
-    Returns
-    -------
-    float
-        1.0 if the whole segment is admissible; 0.0 if ``det F0 <= 0`` somewhere.
-
-    Notes
-    -----
-    ``det(F0 + a dF) = c0 + c1 a + c2 a^2 + c3 a^3`` with ``c0 = det F0``,
-    ``c1 = cof F0 : dF``, ``c2 = cof dF : F0``, ``c3 = det dF``; between the critical
-    points of the cubic it is monotone, so its first crossing of the floor is bracketed
-    and found by bisection.
-    """
-    F0 = np.asarray(F0, dtype=float).reshape(-1, 3, 3)
-    dF = np.asarray(dF, dtype=float).reshape(-1, 3, 3)
-    c0 = np.linalg.det(F0)
-    if not np.all(c0 > 0):
-        return 0.0
-    c1 = np.einsum("nij,nij->n", _cof(F0), dF)
-    c2 = np.einsum("nij,nij->n", _cof(dF), F0)
-    c3 = np.linalg.det(dF)
-    g0 = (1.0 - tol) * c0
-    # on [0, 1] the cubic is at least g0 - |c1| - |c2| - |c3|: where that is positive the
-    # point cannot cross the floor (most points of a Newton step), the others are analysed
-    near = np.flatnonzero(np.abs(c1) + np.abs(c2) + np.abs(c3) >= g0)
-    if near.size == 0:
-        return 1.0
-    c0, c1, c2, c3, g0 = c0[near], c1[near], c2[near], c3[near], g0[near]
-
-    def g(a, i=slice(None)):
-        return ((c3[i] * a + c2[i]) * a + c1[i]) * a + g0[i]
-
-    # critical points: 3 c3 a^2 + 2 c2 a + c1 = 0 (or linear when c3 = 0)
-    qa, qb, qc = 3.0 * c3, 2.0 * c2, c1
-    disc = qb * qb - 4.0 * qa * qc
-    sq = np.sqrt(np.maximum(disc, 0.0))
-    with np.errstate(divide="ignore", invalid="ignore"):
-        lin = np.where(qb != 0, -qc / qb, np.nan)
-        r1 = np.where(qa != 0, (-qb - sq) / (2.0 * qa), lin)
-        r2 = np.where(qa != 0, (-qb + sq) / (2.0 * qa), np.nan)
-    r1 = np.where(disc >= 0, r1, np.nan)
-    r2 = np.where(disc >= 0, r2, np.nan)
-    cps = np.stack([np.zeros_like(c0), r1, r2, np.ones_like(c0)], axis=1)
-    cps = np.where((cps > 0) & (cps < 1) | (cps == 0) | (cps == 1), cps, 1.0)
-    cps = np.sort(cps, axis=1)
-    gv = np.stack([g(cps[:, k]) for k in range(4)], axis=1)
-    bad = gv <= 0
-    hit = np.nonzero(bad.any(axis=1))[0]
-    if hit.size == 0:
-        return 1.0
-    k = np.argmax(bad[hit], axis=1)
-    lo, hi = cps[hit, k - 1], cps[hit, k]       # g(lo) > 0 >= g(hi), g monotone between
-    for _ in range(60):
-        mid = 0.5 * (lo + hi)
-        pos = g(mid, hit) > 0
-        lo, hi = np.where(pos, mid, lo), np.where(pos, hi, mid)
-    return float(max(lo.min(), 0.0))
 
 
 def newton(assemble: Callable[[np.ndarray], tuple[sp.spmatrix, np.ndarray]],

@@ -59,7 +59,7 @@ from .forms.maxwell_traction import MaxwellBoundary
 from .forms.mixed_upphi import MixedUPPhiForm
 from .materials import FORMULATIONS, MIXED_FORMULATIONS
 from .mesh import PlateMesh
-from .newton import segment_det_limit
+from .kinematics import segment_det_limit
 from .plate_post import plate_quantities, plate_step_mesh, plate_stresses, evaluate_fields
 from .problem import Layout, Problem
 from .symmetric import SymmetricUpper
@@ -453,7 +453,7 @@ class PlateProblem(Problem):
         """Largest ``alpha`` in ``(0, 1]`` with ``det F(x + a dx) > 0`` at every quadrature
         point for all ``a`` in ``[0, alpha]`` (a ``step_limit`` of
         :func:`~skfem_dielectric.newton.newton`, by
-        :func:`~skfem_dielectric.newton.segment_det_limit`); 0.0 if ``det F(x) <= 0``."""
+        :func:`~skfem_dielectric.kinematics.segment_det_limit`); 0.0 if ``det F(x) <= 0``."""
         x0, x1, alpha = self.full(x, load), self.full(x + dx, load), 1.0
         for sl in self.form.chunks():
             F0, F1 = (self.form.deformation_gradient(v, sl).reshape(3, 3, -1) for v in (x0, x1))

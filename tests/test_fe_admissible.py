@@ -9,7 +9,7 @@ import pytest
 import analytic
 import skfem_dielectric as sd
 from skfem_dielectric import newton, plate_admissible, preload_then_charge, ramp
-from skfem_dielectric.newton import segment_det_limit
+from skfem_dielectric.kinematics import segment_det_limit
 
 GENT = analytic.Gent(97.2)
 
