@@ -7,8 +7,8 @@ Usage::
 
 Ramps the eighth model (PARDISO) and prints per converged step: the centre stretch, the
 inertia verdict, ``min det F`` and the ``S33/mu`` of largest magnitude at the quadrature
-points with their positions (``skfem_dielectric.failure.plate_failure_cause``), and from
-``--eig-from`` on the lowest eigenvalues of the reduced stiffness with, per mode, the
+points with their positions (``skfem_dielectric.models.plate.failure.plate_failure_cause``), and
+from ``--eig-from`` on the lowest eigenvalues of the reduced stiffness with, per mode, the
 fraction of its displacement norm within two thicknesses of the clamp/free-edge corner
 (``c``) and its overlap with the charge load vector (``f``, ``|w.q|/(|w||q|)``: a limit
 point has a vanishing eigenvalue whose mode is not orthogonal to the load).  If the ramp
@@ -27,12 +27,12 @@ import numpy as np
 
 def main(argv=None) -> int:
     from skfem_dielectric import keplinger_problem, keplinger_s
-    from skfem_dielectric.drivers import plate_admissible, run_ramp
-    from skfem_dielectric.failure import plate_failure_cause
-    from skfem_dielectric.linear import get_linear_solver
-    from skfem_dielectric.loads import preload_then_charge
-    from skfem_dielectric.newton import newton
-    from skfem_dielectric.stability import tangent_stability
+    from skfem_dielectric.gallery.drivers import plate_admissible, run_ramp
+    from skfem_dielectric.gallery.loads import preload_then_charge
+    from skfem_dielectric.linalg.linear import get_linear_solver
+    from skfem_dielectric.models.plate.failure import plate_failure_cause
+    from skfem_dielectric.solvers.newton import newton
+    from skfem_dielectric.stability.analysis import tangent_stability
 
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--alpha", type=float, default=0.05)

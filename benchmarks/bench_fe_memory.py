@@ -98,7 +98,7 @@ def run(a) -> dict:
 
     from skfem_dielectric import get_linear_solver, keplinger_plate
     from skfem_dielectric.forms.mixed_upphi import MixedUPPhiForm
-    from skfem_dielectric.linear import PardisoSolver
+    from skfem_dielectric.linalg.linear import PardisoSolver
 
     with Sampler() as smp:
         imports = _status()[0]

@@ -54,9 +54,10 @@ numpydoc_class_members_toctree = False
 numpydoc_xref_param_type = False
 nitpicky = False
 
-# A module whose name is also a function of its package (``skfem_dielectric.ramp`` and
-# the function ``skfem_dielectric.ramp``; likewise ``newton``, ``continuation`` and
-# ``symmetry_classes``) is a module here: autosummary resolves a dotted name as
+# A module whose name is also a function of its package (the module
+# ``skfem_dielectric.solvers.ramp`` and the function ``ramp`` that ``skfem_dielectric.solvers``
+# re-exports; likewise ``newton`` and ``continuation`` of ``solvers``, ``symmetry_classes`` of
+# ``skfem_dielectric.models.plate``) is a module here: autosummary resolves a dotted name as
 # ``package.attribute`` first, which would document the function in place of the
 # module page and leave the module's classes (``RampResult``, ...) out of the reference.
 import importlib                                                    # noqa: E402
@@ -110,9 +111,9 @@ html_static_path = []
 #
 # - skfem_dielectric.forms.maxwell_traction (module): an indented formula after a comma
 #   instead of "::", so "|F D_L|^2" reads as an RST substitution;
-# - skfem_dielectric.mesh (module): a simple table whose first column is narrower than
+# - skfem_dielectric.fem.mesh (module): a simple table whose first column is narrower than
 #   its entries (docutils: "Malformed table");
-# - skfem_dielectric.loads.preload_then_charge: "k = 1 .. n" in the first sentence, which
+# - skfem_dielectric.gallery.loads.preload_then_charge: "k = 1 .. n" in the first sentence, which
 #   autosummary cuts at ". " inside an inline literal.
 def _table_as_literal(lines):
     out, inside = [], False
@@ -151,8 +152,8 @@ def _fix_maxwell(lines):
 
 _DOCSTRING_FIXES = {
     "skfem_dielectric.forms.maxwell_traction": _fix_maxwell,
-    "skfem_dielectric.mesh": _fix_mesh,
-    "skfem_dielectric.loads.preload_then_charge": _fix_preload,
+    "skfem_dielectric.fem.mesh": _fix_mesh,
+    "skfem_dielectric.gallery.loads.preload_then_charge": _fix_preload,
 }
 
 

@@ -3,41 +3,45 @@
 Every model is a :class:`Problem` (module :mod:`skfem_dielectric.problem`): the Newton
 solver, the load ramp and the export work on any of them.  Models: :class:`PlateProblem`
 (3D, fully coupled or Maxwell-traction coupling), :class:`MembranePlate` (2D membrane),
-:class:`CrossSection` (2D generalised plane strain).  Weak forms: :mod:`skfem_dielectric.forms`.
+:class:`CrossSection` (2D generalised plane strain).
+
+The subpackages, bottom up (docs/architecture.md): :mod:`skfem_dielectric.fem`
+(discretisation machinery), :mod:`skfem_dielectric.forms` (weak forms),
+:mod:`skfem_dielectric.linalg` (linear solvers, symmetric storage, inertia),
+:mod:`skfem_dielectric.stability` (stability of a converged state),
+:mod:`skfem_dielectric.models` (the FE models) and :mod:`skfem_dielectric.solvers`
+(Newton, ramp, continuation, critical load) side by side, :mod:`skfem_dielectric.gallery`
+(the paper's plates and load paths) and :mod:`skfem_dielectric.studies` (the paper's
+analyses).  The names below are re-exported from them.
 """
 
-from .assembly import DofReduction, ScatterMap
-from .continuation import (ContinuationEvent, ContinuationPoint, ContinuationResult,
-                           continuation)
-from .critical import CriticalLoad, critical_load
-from .cross_section import CrossSection
-from .drivers import (cross_section_ramp, equibiaxial_plate, equibiaxial_problem,
-                      keplinger_plate, keplinger_problem, maxwell_equibiaxial,
-                      maxwell_keplinger, membrane_keplinger, membrane_ramp, newton_guards,
-                      plate_admissible, run_ramp)
+from . import fem, forms, gallery, linalg, models, solvers, stability, studies
 from .export import step_mesh, write_vtu_series, write_xdmf
+from .fem import DofReduction, PlateMesh, ScatterMap, plate_mesh, point_gradients
 from .forms.maxwell_traction import maxwell_stress, maxwell_traction, maxwell_traction_field
 from .forms.membrane import membrane_kernel
 from .forms.plane_strain import cross_section_kernel
+from .gallery import (charge_targets, cross_section_ramp, equibiaxial_plate,
+                      equibiaxial_problem, keplinger_plate, keplinger_problem, keplinger_s,
+                      maxwell_equibiaxial, maxwell_keplinger, membrane_keplinger, membrane_ramp,
+                      newton_guards, plate_admissible, preload_then_charge, remaining_targets,
+                      run_ramp)
 from .kinematics import segment_det_limit
-from .linear import (LinearSolver, PardisoLUSolver, PardisoSolver, SuperLUSolver,
+from .linalg import (LinearSolver, PardisoLUSolver, PardisoSolver, SuperLUSolver,
                      get_linear_solver, nonsymmetric_solver, pardiso_available)
-from .loads import charge_targets, keplinger_s, preload_then_charge, remaining_targets
 from .materials import (GentDielectric, IdealDielectric, NeoHookeanDielectric, PointResponse,
                         ideal_dielectric_response, make_material)
-from .membrane import MembranePlate
-from .mesh import PlateMesh, plate_mesh
-from .mesh2d import point_gradients
-from .monitor import StabilityMonitor
-from .modes import classify_mode, lowest_physical_eigenvalue, mode_mesh, write_mode_vtu
-from .newton import NewtonResult, newton
-from .plate import PlateProblem
+from .models import (ClassStability, CrossSection, MembranePlate, PlateProblem,
+                     class_stability, classify_mode, lowest_physical_eigenvalue, mode_mesh,
+                     symmetry_classes, write_mode_vtu)
 from .problem import Layout, Problem
-from .ramp import RampResult, StepResult, ramp
-from .snap_through import SnapThrough, homogeneous_plate, voltage_snap_through
-from .stability import StabilityResult, stability_analysis, tangent_inertia, tangent_stability
-from .symmetry_classes import ClassStability, class_stability, symmetry_classes
-from .wrinkling_fe import section_critical_load, section_critical_stretch, wrinkling_section
+from .solvers import (ContinuationEvent, ContinuationPoint, ContinuationResult, CriticalLoad,
+                      NewtonResult, RampResult, StepResult, continuation, critical_load, newton,
+                      ramp)
+from .stability import (StabilityMonitor, StabilityResult, stability_analysis, tangent_inertia,
+                        tangent_stability)
+from .studies import (SnapThrough, homogeneous_plate, section_critical_load,
+                      section_critical_stretch, voltage_snap_through, wrinkling_section)
 
 __all__ = [
     # the contract and the machinery

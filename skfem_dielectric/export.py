@@ -46,7 +46,7 @@ def write_vtu_series(result, directory: str | Path, prefix: str = "step",
     Parameters
     ----------
     result
-        :class:`~skfem_dielectric.newton.RampResult` (its ``problem`` is used unless
+        :class:`~skfem_dielectric.solvers.ramp.RampResult` (its ``problem`` is used unless
         ``problem`` is given).
     directory
         Output directory (created if missing).

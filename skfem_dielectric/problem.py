@@ -2,8 +2,8 @@
 
 A *problem* is a discretised model whose unknowns have been reduced (Dirichlet conditions
 eliminated, tied dofs such as a rigid clamp merged into one unknown).  The machinery of
-the package -- :func:`~skfem_dielectric.newton.newton`,
-:func:`~skfem_dielectric.ramp.ramp`, :mod:`~skfem_dielectric.export` -- and the
+the package -- :func:`~skfem_dielectric.solvers.newton.newton`,
+:func:`~skfem_dielectric.solvers.ramp.ramp`, :mod:`~skfem_dielectric.export` -- and the
 stability and continuation analyses work on any subclass of :class:`Problem`; they never
 look inside a model.
 
@@ -58,8 +58,8 @@ from typing import Any
 import numpy as np
 import scipy.sparse as sp
 
-from .assembly import DofReduction
-from .symmetric import SymmetricUpper
+from .fem.assembly import DofReduction
+from .linalg.symmetric import SymmetricUpper
 
 __all__ = ["Layout", "Problem"]
 
@@ -95,7 +95,7 @@ class Layout:
     @classmethod
     def from_reduction(cls, red: DofReduction, fields: dict[str, slice],
                        multipliers: tuple[str, ...] = ()) -> "Layout":
-        """Layout of a :class:`~skfem_dielectric.assembly.DofReduction` whose full dofs
+        """Layout of a :class:`~skfem_dielectric.fem.assembly.DofReduction` whose full dofs
         are grouped in contiguous ranges ``fields`` (name -> slice of full dofs)."""
         blocks = {}
         for name, sl in fields.items():
@@ -142,7 +142,7 @@ class Problem(ABC):
 
     def assemble_upper(self, x: np.ndarray, load: Any) -> tuple[SymmetricUpper, np.ndarray]:
         """The symmetric tangent as its upper triangle
-        (:class:`~skfem_dielectric.symmetric.SymmetricUpper`) and the residual, for a
+        (:class:`~skfem_dielectric.linalg.symmetric.SymmetricUpper`) and the residual, for a
         solver that reads only that triangle (the ramp's Newton iterations with the
         symmetric PARDISO); default: from :meth:`assemble`.  Models override it to
         assemble the triangle directly."""

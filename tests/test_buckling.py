@@ -1,4 +1,4 @@
-"""First physical buckling load of a plate (skfem_dielectric.buckling)."""
+"""First physical buckling load of a plate (skfem_dielectric.studies.buckling)."""
 
 from __future__ import annotations
 
@@ -7,10 +7,10 @@ import pytest
 
 import analytic as an
 import skfem_dielectric as fe
-from skfem_dielectric.buckling import (buckling_load, class_spectra, corner_radius,
+from skfem_dielectric.gallery.drivers import equibiaxial_problem, keplinger_problem
+from skfem_dielectric.models.plate.symmetry_classes import class_stability
+from skfem_dielectric.studies.buckling import (buckling_load, class_spectra, corner_radius,
                                       physical_modes)
-from skfem_dielectric.drivers import equibiaxial_problem, keplinger_problem
-from skfem_dielectric.symmetry_classes import class_stability
 from validation.cli import main
 from validation.records import buckling_crossing
 

@@ -7,8 +7,8 @@ import pytest
 import scipy.sparse as sp
 
 import skfem_dielectric as fe
-from skfem_dielectric.continuation import continuation
 from skfem_dielectric.problem import Layout, Problem
+from skfem_dielectric.solvers.continuation import continuation
 
 
 class Truss(Problem):

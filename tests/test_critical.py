@@ -1,4 +1,4 @@
-"""Critical load on a load path (skfem_dielectric.critical)."""
+"""Critical load on a load path (skfem_dielectric.solvers.critical)."""
 
 from __future__ import annotations
 
@@ -9,7 +9,7 @@ import pytest
 import scipy.sparse as sp
 
 from skfem_dielectric import Layout, Problem
-from skfem_dielectric.critical import critical_load
+from skfem_dielectric.solvers.critical import critical_load
 
 
 class Branch(Problem):

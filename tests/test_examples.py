@@ -119,8 +119,8 @@ def _eighth_class_crossing() -> float:
     """D0 where the lowest eigenvalue of the class x1 S, x2 A, x3 S of the eighth model
     10 x 1 x 5 of the alpha = 0.05 Keplinger plate (grad-div 10) changes sign."""
     import skfem_dielectric as fe
-    from skfem_dielectric.buckling import class_spectra
-    from skfem_dielectric.drivers import newton_guards
+    from skfem_dielectric.gallery.drivers import newton_guards
+    from skfem_dielectric.studies.buckling import class_spectra
 
     res = fe.keplinger_plate(0.05, D0=[0.75, 0.8], elements=(10, 1, 5), grad_div=10.0,
                              rtol=1e-9, max_cutbacks=6, max_iter=25)
@@ -138,7 +138,7 @@ def _full_plate_lowest_eig() -> float:
     """Lowest eigenvalue of the reduced stiffness of the full 8 x 2 x 4 clamped plate at
     s = -0.4, D0 = 1 (the mirror image of the example's eighth model)."""
     import skfem_dielectric as fe
-    from skfem_dielectric.drivers import keplinger_problem
+    from skfem_dielectric.gallery.drivers import keplinger_problem
 
     pb = keplinger_problem(size=(8.0, 1.0, 4.0), elements=(8, 2, 4), symmetry="full")
     tg = [np.array([-0.4, 1.0]) * t for t in np.linspace(0.25, 1.0, 4)]

@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 import scipy.sparse as sp
 
-from skfem_dielectric.assembly import (DofReduction, ScatterMap, blas_threads,
+from skfem_dielectric.fem.assembly import (DofReduction, ScatterMap, blas_threads,
                                        single_threaded_blas)
 
 
@@ -91,7 +91,7 @@ def test_ordered_sum_adds_the_chunks_in_order_whatever_the_threads():
     # is the sequential sum bit for bit (and np.bincount's to round-off)
     from concurrent.futures import ThreadPoolExecutor
 
-    from skfem_dielectric.assembly import OrderedSum
+    from skfem_dielectric.fem.assembly import OrderedSum
 
     rng = np.random.default_rng(5)
     chunks = [(rng.integers(0, 101, 5000).astype(np.int32), rng.standard_normal(5000))
@@ -115,7 +115,7 @@ def test_ordered_sum_adds_the_chunks_in_order_whatever_the_threads():
 
 
 def test_trim_heap_is_harmless():
-    from skfem_dielectric.assembly import trim_heap
+    from skfem_dielectric.fem.assembly import trim_heap
 
     a = np.ones(1 << 22)
     del a
@@ -145,7 +145,7 @@ def _scatter_case(star: bool, seed: int):
 def test_block_scatter_adds_as_the_positions(star):
     # 16-bit offsets in the rows (or, with a row of more than 65 535 entries, the 32-bit
     # positions) against np.bincount of ScatterMap.positions, eliminated dofs included
-    from skfem_dielectric.assembly import BlockScatter
+    from skfem_dielectric.fem.assembly import BlockScatter
 
     rng, red, d, blocks = _scatter_case(star, 11)
     sc = ScatterMap(d, red.n)
@@ -167,7 +167,7 @@ def test_upper_triangle_in_the_spare_layout(star):
     # entries below the diagonal and the eliminated columns into each row's spare slot),
     # compacted in place: the upper triangle of the whole matrix, bit for bit (the same
     # entries added in the same order)
-    from skfem_dielectric.assembly import BlockScatter, drop_spare_slots
+    from skfem_dielectric.fem.assembly import BlockScatter, drop_spare_slots
 
     rng, red, d, blocks = _scatter_case(star, 12)
     full, up = ScatterMap(d, red.n), ScatterMap(d, red.n, upper=True)
@@ -188,8 +188,8 @@ def test_upper_triangle_in_the_spare_layout(star):
 
 
 def test_symmetric_upper_products_and_whole_matrix():
-    from skfem_dielectric.linear import SuperLUSolver
-    from skfem_dielectric.symmetric import SymmetricUpper
+    from skfem_dielectric.linalg.linear import SuperLUSolver
+    from skfem_dielectric.linalg.symmetric import SymmetricUpper
 
     rng = np.random.default_rng(13)
     A = sp.random(60, 60, density=0.1, random_state=rng)

@@ -1,4 +1,5 @@
-"""Tests of the 2D generalised-plane-strain cross-section (skfem_dielectric.cross_section)."""
+"""Tests of the 2D generalised-plane-strain cross-section
+(skfem_dielectric.models.cross_section)."""
 
 import numpy as np
 import pytest

@@ -3,8 +3,8 @@
 import meshio
 import numpy as np
 
-from skfem_dielectric.drivers import equibiaxial_plate
 from skfem_dielectric.export import write_vtu_series, write_xdmf
+from skfem_dielectric.gallery.drivers import equibiaxial_plate
 
 
 def test_vtu_series_and_xdmf_hold_the_homogeneous_state(tmp_path):

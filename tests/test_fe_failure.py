@@ -8,8 +8,8 @@ import numpy as np
 import pytest
 from scipy.optimize import brentq
 
-from skfem_dielectric.drivers import equibiaxial_problem, run_ramp
-from skfem_dielectric.failure import StepLimitCounter, plate_failure_cause
+from skfem_dielectric.gallery.drivers import equibiaxial_problem, run_ramp
+from skfem_dielectric.models.plate.failure import StepLimitCounter, plate_failure_cause
 
 
 def test_step_limit_counter_counts_the_shortened_steps():

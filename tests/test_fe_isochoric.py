@@ -19,7 +19,7 @@ import numpy as np
 import pytest
 from scipy.optimize import brentq, root
 
-from skfem_dielectric.drivers import equibiaxial_plate
+from skfem_dielectric.gallery.drivers import equibiaxial_plate
 
 JM = 97.2
 

@@ -7,7 +7,7 @@ import pytest
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
-from skfem_dielectric.linear import (PardisoLUSolver, PardisoSolver, new_pypardiso_solver,
+from skfem_dielectric.linalg.linear import (PardisoLUSolver, PardisoSolver, new_pypardiso_solver,
                                      pardiso_available)
 
 pytestmark = pytest.mark.skipif(not pardiso_available(), reason="needs pypardiso")
@@ -88,7 +88,7 @@ def test_pardiso_lu_keeps_its_analysis_and_solves_again_with_its_factors(monkeyp
 
 @pytest.mark.skipif(not pardiso_available(), reason="needs pypardiso")
 def test_pardiso_reuses_the_upper_triangle_of_a_shared_pattern(monkeypatch):
-    from skfem_dielectric.assembly import ScatterMap
+    from skfem_dielectric.fem.assembly import ScatterMap
 
     # 1-D chain of 2-node elements with element matrices [[2, -1], [-1, 2]] + diag shift:
     # SPD tridiagonal, solved exactly; the second matrix shares the read-only pattern
@@ -111,8 +111,8 @@ def test_pardiso_reuses_the_upper_triangle_of_a_shared_pattern(monkeypatch):
 
 
 def test_pardiso_overwrites_the_upper_triangle_in_place():
-    from skfem_dielectric.assembly import ScatterMap
-    from skfem_dielectric.linear import _compress_into
+    from skfem_dielectric.fem.assembly import ScatterMap
+    from skfem_dielectric.linalg.linear import _compress_into
 
     # blocks of the copy: across block boundaries, as a[keep]
     rng = np.random.default_rng(4)
@@ -165,7 +165,7 @@ def test_pardiso_factorises_a_given_upper_triangle():
     # a SymmetricUpper is handed to PARDISO as it is (no selection, no cache), its
     # read-only pattern recognised by its memory; the refinement's products are those of
     # the whole matrix
-    from skfem_dielectric.symmetric import SymmetricUpper
+    from skfem_dielectric.linalg.symmetric import SymmetricUpper
 
     K, b = saddle(80, 30, 9), np.sin(np.arange(110.0))
     T = sp.triu(K, format="csr")

@@ -1,10 +1,10 @@
-"""Tests of the 2D incompressible dielectric membrane (skfem_dielectric.membrane)."""
+"""Tests of the 2D incompressible dielectric membrane (skfem_dielectric.models.membrane)."""
 
 import numpy as np
 import pytest
 
-from skfem_dielectric.materials import GentDielectric, NeoHookeanDielectric
 from skfem_dielectric import membrane_kernel
+from skfem_dielectric.materials import GentDielectric, NeoHookeanDielectric
 
 MU, EPS, JM = 1.3, 0.7, 20.0
 

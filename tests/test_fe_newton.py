@@ -6,8 +6,8 @@ import numpy as np
 import pytest
 import scipy.sparse as sp
 
-from skfem_dielectric.linear import get_linear_solver, pardiso_available
 from skfem_dielectric import Layout, Problem, RampResult, StepResult, newton, ramp
+from skfem_dielectric.linalg.linear import get_linear_solver, pardiso_available
 
 
 class Cubic(Problem):

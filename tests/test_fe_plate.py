@@ -12,10 +12,10 @@ import scipy.sparse as sp
 from scipy.optimize import brentq
 from skfem import MeshHex
 
-from skfem_dielectric.drivers import equibiaxial_plate
+from skfem_dielectric.fem.mesh import plate_mesh
+from skfem_dielectric.gallery.drivers import equibiaxial_plate
 from skfem_dielectric.materials import NeoHookeanDielectric
-from skfem_dielectric.mesh import plate_mesh
-from skfem_dielectric.plate import PlateProblem
+from skfem_dielectric.models.plate.problem import PlateProblem
 
 JM = 97.2
 
@@ -150,7 +150,8 @@ def test_bad_inputs():
         equibiaxial_plate(float("nan"), [1.0])
 
 
-@pytest.mark.skipif(not __import__("skfem_dielectric.linear", fromlist=["x"]).pardiso_available(),
+@pytest.mark.skipif(not __import__("skfem_dielectric.linalg.linear",
+                                    fromlist=["x"]).pardiso_available(),
                     reason="inertia needs PARDISO")
 def test_charge_control_is_stable_by_inertia():
     # Paper Sec. 4: charge-controlled activation of the neo-Hookean plate is always
@@ -201,7 +202,7 @@ def test_upper_triangle_assembled_directly(options):
     # assemble_upper scatters only the upper triangle (the entries below the diagonal into
     # the rows' spare slots, the p-u and phi-u blocks not at all): the upper triangle of
     # the whole tangent bit for bit, and the same residual; the whole pattern is not made
-    from skfem_dielectric.symmetric import SymmetricUpper
+    from skfem_dielectric.linalg.symmetric import SymmetricUpper
 
     pm = plate_mesh(4.0, 1.0, 2.0, 3, 1, 2, symmetry="full")
     pr = PlateProblem(pm, NeoHookeanDielectric(1.0, 1.0), loading="uniaxial", **options)
@@ -219,7 +220,7 @@ def test_upper_triangle_assembled_directly(options):
 
 def test_ramp_hands_the_upper_triangle_to_a_solver_that_reads_it(monkeypatch):
     from skfem_dielectric import ramp
-    from skfem_dielectric.linear import SuperLUSolver
+    from skfem_dielectric.linalg.linear import SuperLUSolver
 
     pm = plate_mesh(4.0, 1.0, 2.0, 3, 1, 2, symmetry="full")
     pr = PlateProblem(pm, NeoHookeanDielectric(1.0, 1.0), loading="uniaxial")

@@ -11,7 +11,7 @@ import pytest
 import scipy.sparse as sp
 from skfem import MeshHex
 
-from skfem_dielectric.assembly import DofReduction
+from skfem_dielectric.fem.assembly import DofReduction
 from skfem_dielectric.forms.mixed_upphi import MixedUPPhiForm
 from skfem_dielectric.forms.reference import ReferenceForm
 from skfem_dielectric.materials import GentDielectric, NeoHookeanDielectric

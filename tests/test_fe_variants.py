@@ -10,13 +10,13 @@ import numpy as np
 import pytest
 from scipy.optimize import brentq
 
-from skfem_dielectric.materials import GentDielectric, NeoHookeanDielectric
 from skfem_dielectric import (CrossSection, MembranePlate, PlateProblem, cross_section_ramp,
                               keplinger_plate, maxwell_equibiaxial, maxwell_keplinger,
                               membrane_keplinger, membrane_ramp, nonsymmetric_solver,
                               pardiso_available, write_vtu_series)
-from skfem_dielectric.mesh import plate_mesh
 from skfem_dielectric import ramp
+from skfem_dielectric.fem.mesh import plate_mesh
+from skfem_dielectric.materials import GentDielectric, NeoHookeanDielectric
 
 
 def maxwell_plate(plate, material, **options):

@@ -8,11 +8,11 @@ import numpy as np
 import pytest
 
 import skfem_dielectric as fe
-from skfem_dielectric.drivers import keplinger_problem
-from skfem_dielectric.modes import (classify_mode, corner_elements, element_energies,
+from skfem_dielectric.gallery.drivers import keplinger_problem
+from skfem_dielectric.models.plate.modes import (classify_mode, corner_elements, element_energies,
                                     lowest_physical_eigenvalue,
                                     energy_share, mesh_scale, top_deflection, write_mode_vtu)
-from skfem_dielectric.symmetry_classes import class_mode_full, class_stability
+from skfem_dielectric.models.plate.symmetry_classes import class_mode_full, class_stability
 
 
 @pytest.fixture(scope="module")

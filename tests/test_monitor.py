@@ -16,8 +16,8 @@ import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
 import skfem_dielectric as fe
-from skfem_dielectric.linear import SuperLUSolver, get_linear_solver
-from skfem_dielectric.stability import (constrained_order, lowest_modes, metric_matrix,
+from skfem_dielectric.linalg.linear import SuperLUSolver, get_linear_solver
+from skfem_dielectric.stability.analysis import (constrained_order, lowest_modes, metric_matrix,
                                         tangent_inertia)
 
 SOLVERS = ["superlu"] + (["pardiso"] if fe.pardiso_available() else [])

@@ -1,4 +1,4 @@
-"""The post-buckled branch of the clamped plate (skfem_dielectric.postbuckling)."""
+"""The post-buckled branch of the clamped plate (skfem_dielectric.studies.postbuckling)."""
 
 from __future__ import annotations
 
@@ -6,12 +6,12 @@ import numpy as np
 import pytest
 
 import skfem_dielectric as fe
-from skfem_dielectric.buckling import class_spectra
-from skfem_dielectric.critical import critical_load
-from skfem_dielectric.drivers import newton_guards
-from skfem_dielectric.postbuckling import (critical_mode, midplane_deflection,
+from skfem_dielectric.gallery.drivers import newton_guards
+from skfem_dielectric.models.plate.symmetry_classes import class_stability
+from skfem_dielectric.solvers.critical import critical_load
+from skfem_dielectric.studies.buckling import class_spectra
+from skfem_dielectric.studies.postbuckling import (critical_mode, midplane_deflection,
                                            post_buckled_branch, switch_branch)
-from skfem_dielectric.symmetry_classes import class_stability
 from validation.buckling import read_rows
 from validation.cli import main
 

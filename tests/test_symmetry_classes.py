@@ -7,9 +7,9 @@ import pytest
 
 import analytic as an
 import skfem_dielectric as fe
-from skfem_dielectric.drivers import equibiaxial_problem, keplinger_problem
-from skfem_dielectric.plate import plate_reduction
-from skfem_dielectric.symmetry_classes import class_stability
+from skfem_dielectric.gallery.drivers import equibiaxial_problem, keplinger_problem
+from skfem_dielectric.models.plate.problem import plate_reduction
+from skfem_dielectric.models.plate.symmetry_classes import class_stability
 
 SIZE = (8.0, 1.0, 4.0)
 # the same plate on mirror-image meshes: eighth (x1, x2, x3 planes), half (x2) and full

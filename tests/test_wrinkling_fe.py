@@ -88,7 +88,7 @@ def test_the_mode_near_zero_is_the_mode_of_the_full_search():
     import numpy as np
 
     import skfem_dielectric as fe
-    from skfem_dielectric.wrinkling_fe import _mode_near_zero, section_mode_eigenvalue
+    from skfem_dielectric.studies.wrinkling_fe import _mode_near_zero, section_mode_eigenvalue
 
     ref = float(an.critical_D0(1.5, 2.0, mode="symmetric"))
     pb = fe.wrinkling_section(1.5, 2.0, "symmetric", "charge", n1=8, n2=9)

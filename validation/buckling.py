@@ -2,7 +2,7 @@
 
 For each weight ``alpha`` and mesh the eighth model (grad-div 10, which lets Newton pass
 the clamp/free-edge corner) is ramped in ``D0``; its states are scanned with the whole
-plate's spectrum (:func:`skfem_dielectric.buckling.buckling_load`) and the first physical
+plate's spectrum (:func:`skfem_dielectric.studies.buckling.buckling_load`) and the first physical
 buckling load ``D0_b`` located to ``1e-4``.  Next to it: the onsets of compressive
 ``P33/mu < -BREAKDOWN_TOL`` (the paper's breakdown, Conroy Broderick, Righi, Destrade and
 Ogden, "Stability analysis of charge-controlled soft dielectric plates", Int. J. Eng.
@@ -25,8 +25,8 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 import skfem_dielectric as fe
-from skfem_dielectric.buckling import buckling_load
-from skfem_dielectric.modes import top_deflection
+from skfem_dielectric.models.plate.modes import top_deflection
+from skfem_dielectric.studies.buckling import buckling_load
 
 from .figures import save_figure
 from .sweep import BREAKDOWN_TOL

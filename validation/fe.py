@@ -14,7 +14,7 @@ touches the FE package in a few small functions, one per job:
 * :func:`keplinger_s` -- the Keplinger plate's dead load.
 
 :func:`run_fe` is the default runner of :func:`validation.sweep.run_case`: it ramps
-the load (pre-load first, then the charge targets) with :func:`skfem_dielectric.ramp`
+the load (pre-load first, then the charge targets) with :func:`skfem_dielectric.solvers.ramp.ramp`
 and reports each converged target as a :class:`~validation.records.StepRecord`. The
 saved state is the ramp's reduced solution vector and its load, so a resumed ramp
 continues bit for bit.
@@ -34,8 +34,8 @@ import meshio
 import numpy as np
 
 import skfem_dielectric as fe
-import skfem_dielectric.buckling as fe_buckling
-import skfem_dielectric.modes as fe_modes
+import skfem_dielectric.studies.buckling as fe_buckling
+import skfem_dielectric.models.plate.modes as fe_modes
 
 from .records import RunOutcome, StepRecord
 from .specs import GENT_JM, KEPLINGER, RunSpec
@@ -68,7 +68,7 @@ RTOL = {"equibiaxial": 1e-11, "uniaxial": 1e-9}
 MEMBRANE_TOL = {"atol": 1e-10, "rtol": 1e-10}
 #: Cut-backs per target and Newton iterations per attempt, every variant.
 MAX_CUTBACKS, MAX_ITER = 6, 25
-#: chord factor of the ramps' Newton solves (:func:`skfem_dielectric.newton`): a
+#: chord factor of the ramps' Newton solves (:func:`skfem_dielectric.solvers.newton.newton`): a
 #: factorisation is reused while the residual contracts at least tenfold per step.  No
 #: secant predictor: it depends on the state before the last one, so a resumed ramp would
 #: not repeat the uninterrupted one bit for bit (and past the breakdown it can jump to
@@ -174,7 +174,7 @@ def ramp_targets(spec: RunSpec) -> list:
 
 
 def ramp_settings(spec: RunSpec, linear_solver="superlu") -> dict:
-    """Keyword arguments of :func:`skfem_dielectric.ramp` for ``spec``.
+    """Keyword arguments of :func:`skfem_dielectric.solvers.ramp.ramp` for ``spec``.
 
     Parameters
     ----------
@@ -219,7 +219,7 @@ def stability_columns(spec: RunSpec, problem, x, load, analysis=None) -> dict:
     (:func:`skfem_dielectric.tangent_stability`; of the model's own tangent, for the
     homogeneous equi-biaxial plate of the grad-div stabilised one,
     :data:`STABILITY_GRAD_DIV`, which has the same state), ``n_unstable`` those whose mode
-    is classified physical (:func:`skfem_dielectric.modes.classify_mode`: not at a
+    is classified physical (:func:`skfem_dielectric.models.plate.modes.classify_mode`: not at a
     clamp/free-edge corner, not mesh-scale), ``lowest_eig`` the lowest eigenvalue
     (Euclidean metric of the displacement unknowns); ``stable`` is ``n_unstable == 0``.
     All ``None`` for the Maxwell-traction variants (non-symmetric tangent).
@@ -363,7 +363,7 @@ def plate_buckling_columns(spec: RunSpec, problem, x, load) -> dict:
     """The whole plate's spectrum at a state of a run with ``spec.buckling``:
     ``n_negative_plate`` (negative eigenvalues over every symmetry class of the eighth
     model), ``physical_eig`` (the lowest eigenvalue whose mode is classified physical,
-    :func:`skfem_dielectric.buckling.lowest_physical`; ``nan`` if none of the computed
+    :func:`skfem_dielectric.studies.buckling.lowest_physical`; ``nan`` if none of the computed
     ones is) and ``physical_class`` (its symmetry class).  Empty for other runs, and where
     the spectrum cannot be computed (a ``ValueError``, e.g. a class tangent too large to
     be counted without PARDISO)."""

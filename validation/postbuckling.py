@@ -3,7 +3,7 @@
 For each weight ``alpha`` and mesh the *quarter* model (symmetry planes ``x1 = 0`` and
 ``x3 = 0``, the whole thickness: it can bend; grad-div 10 as in :mod:`validation.buckling`)
 is ramped in ``D0`` on its fundamental (symmetric) branch; the lowest physical eigenvalue of
-its own class (:func:`skfem_dielectric.postbuckling.critical_mode`) locates the buckling
+its own class (:func:`skfem_dielectric.studies.postbuckling.critical_mode`) locates the buckling
 load ``D0_b`` to ``1e-4``; at the first scanned state past it Newton is started from the
 fundamental state plus the critical mode (branch switching on the perfect plate) and the
 buckled branch is followed forward to ``D0_max`` and back towards ``D0_b``.  The
@@ -29,11 +29,11 @@ import numpy as np
 
 import analytic as an
 import skfem_dielectric as fe
-from skfem_dielectric.critical import critical_load
-from skfem_dielectric.drivers import newton_guards
-from skfem_dielectric.postbuckling import (critical_mode, midplane_deflection,
+from skfem_dielectric.gallery.drivers import newton_guards
+from skfem_dielectric.models.plate.symmetry_classes import class_stability
+from skfem_dielectric.solvers.critical import critical_load
+from skfem_dielectric.studies.postbuckling import (critical_mode, midplane_deflection,
                                            midplane_nodes, post_buckled_branch)
-from skfem_dielectric.symmetry_classes import class_stability
 
 from .buckling import append_rows, read_rows
 from .figures import save_figure

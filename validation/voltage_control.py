@@ -1,8 +1,8 @@
 """The case ``voltage-control``: the paper's contrast of charge and voltage control, by FE.
 
 Each run follows a plate under voltage control at a fixed dead load ``s`` by
-pseudo-arclength continuation (:func:`skfem_dielectric.continuation`) through the
-maximum of ``E0`` -- the snap-through, ``det H* = 0`` (Sec. 3.1; Sec. 5, Fig. figde) --
+pseudo-arclength continuation (:func:`skfem_dielectric.solvers.continuation.continuation`) through
+the maximum of ``E0`` -- the snap-through, ``det H* = 0`` (Sec. 3.1; Sec. 5, Fig. figde) --
 and on along the branch a voltage ramp cannot reach.  At every state it counts the
 negative eigenvalues of the voltage-controlled reduced stiffness (``n_unstable``) and,
 for the homogeneous plates, of the charge-controlled one at the same state

@@ -1,7 +1,7 @@
 """Fully coupled 3D finite elements: equi-biaxial and clamped (Keplinger) plates
 ================================================================================
 
-The 3D u-p-phi model of :mod:`skfem_dielectric.plate` discretises an incompressible
+The 3D u-p-phi model of :mod:`skfem_dielectric.models.plate.problem` discretises an incompressible
 ideal-dielectric plate with Taylor-Hood Q2/Q1 hexahedra (displacement ``u`` Q2, pressure
 ``p`` Q1) and a Q2 electric potential ``phi``; the total energy
 

@@ -15,8 +15,8 @@ The field ``E0`` (the voltage) has a maximum, :math:`E_0 = \sqrt{3}/2^{4/3}` at
 ramp cannot go beyond it and snaps through.  The charge ``D0`` grows monotonically
 along the whole curve, and under charge control every state is stable.
 
-A voltage ramp (:func:`skfem_dielectric.ramp`) stops at the maximum.  Pseudo-arclength
-continuation (:func:`skfem_dielectric.continuation`, used by
+A voltage ramp (:func:`skfem_dielectric.solvers.ramp.ramp`) stops at the maximum.  Pseudo-arclength
+continuation (:func:`skfem_dielectric.solvers.continuation.continuation`, used by
 :func:`skfem_dielectric.voltage_snap_through`) makes ``E0`` an unknown and passes it:
 the path turns back in ``E0`` while ``lam`` keeps growing.  At every state the number
 of negative eigenvalues of the reduced stiffness is counted twice

@@ -5,8 +5,8 @@ Buckling modes of a clamped plate from its eighth: symmetry classes
 An eighth model (symmetry planes :math:`x_1 = 0`, :math:`x_2 = 0`, :math:`x_3 = 0`) only
 admits increments that are mirror-symmetric with respect to every plane: it cannot bend.
 Switching each plane between symmetric and antisymmetric conditions
-(:func:`skfem_dielectric.plate.plate_reduction`) gives the eight classes of increments
-of the whole plate; the tangent of the whole plate is block diagonal in them, so
+(:func:`skfem_dielectric.models.plate.problem.plate_reduction`) gives the eight classes of
+increments of the whole plate; the tangent of the whole plate is block diagonal in them, so
 :func:`skfem_dielectric.class_stability` returns the whole plate's negative-eigenvalue
 count and lowest modes at the cost of eight factorisations of the eighth model's size.
 
@@ -14,16 +14,17 @@ Here a slender clamped plate (8 x 1 x 4 thicknesses) is compressed end to end pa
 Euler load (``s = -0.4``) and charged (``D0 = 1``).  The eighth model's own class is
 stable; four classes have one negative eigenvalue each, all antisymmetric through the
 thickness (bending).  The maps show the top-face deflection of their modes over the whole
-plate, unfolded by each class's parities (:func:`skfem_dielectric.modes.top_deflection`);
-:func:`skfem_dielectric.modes.classify_mode` says where their energy sits.
+plate, unfolded by each class's parities
+(:func:`skfem_dielectric.models.plate.modes.top_deflection`);
+:func:`skfem_dielectric.models.plate.modes.classify_mode` says where their energy sits.
 """
 
 import numpy as np
 
 import skfem_dielectric as fe
-from skfem_dielectric.drivers import keplinger_problem
-from skfem_dielectric.modes import top_deflection
-from skfem_dielectric.symmetry_classes import class_mode_full
+from skfem_dielectric.gallery.drivers import keplinger_problem
+from skfem_dielectric.models.plate.modes import top_deflection
+from skfem_dielectric.models.plate.symmetry_classes import class_mode_full
 
 pb = keplinger_problem(size=(8.0, 1.0, 4.0), elements=(4, 1, 2), symmetry="eighth")
 targets = [np.array([-0.4, 1.0]) * t for t in np.linspace(0.25, 1.0, 4)]

@@ -7,19 +7,20 @@ The lightly loaded Keplinger plate (:math:`\alpha = 0.05`) buckles laterally at
 quarter model (symmetry planes :math:`x_1 = 0`, :math:`x_3 = 0`, the whole thickness, so
 that it can bend) changes sign.  A load-controlled Newton from the fundamental state stays
 on the now unstable symmetric branch; started from the fundamental state plus the
-critical mode (:func:`skfem_dielectric.postbuckling.switch_branch`) it converges to the
+critical mode (:func:`skfem_dielectric.studies.postbuckling.switch_branch`) it converges to the
 buckled equilibrium of the perfect plate, which the ramp then follows forward and back
-towards the buckling load (:func:`skfem_dielectric.postbuckling.post_buckled_branch`).
+towards the buckling load (:func:`skfem_dielectric.studies.postbuckling.post_buckled_branch`).
 
 Near a symmetric bifurcation the load is even in the deflection amplitude :math:`w`,
 :math:`D_0 = D_{0b} + b w^2 + c w^4`: the branch alone gives the buckling load again,
-independently of the eigenvalues (:meth:`~skfem_dielectric.postbuckling.PostBuckledBranch.pitchfork`).
+independently of the eigenvalues
+(:meth:`~skfem_dielectric.studies.postbuckling.PostBuckledBranch.pitchfork`).
 """
 
 import numpy as np
 
 import skfem_dielectric as fe
-from skfem_dielectric.postbuckling import critical_mode, midplane_nodes, post_buckled_branch
+from skfem_dielectric.studies.postbuckling import critical_mode, midplane_nodes, post_buckled_branch
 
 res = fe.keplinger_plate(0.05, D0=[0.75, 0.8], elements=(10, 2, 5), symmetry="quarter",
                          grad_div=10.0, rtol=1e-9, max_cutbacks=6, max_iter=25)

@@ -57,7 +57,7 @@ from __future__ import annotations
 import numpy as np
 from skfem import ElementHex2, FacetBasis
 
-from ..assembly import ScatterMap
+from ..fem.assembly import ScatterMap
 from ..kinematics import cof3, det3, inv3
 
 __all__ = ["maxwell_stress", "maxwell_traction", "maxwell_traction_field",
@@ -248,7 +248,7 @@ class MaxwellBoundary:
     off_phi
         Offset of the potential in the full dof vector ``[u (node-major), p, phi]``.
     red
-        The model's :class:`~skfem_dielectric.assembly.DofReduction`.
+        The model's :class:`~skfem_dielectric.fem.assembly.DofReduction`.
     eps
         Permittivity.
     field : {"electrostatic", "local"}

@@ -24,7 +24,7 @@ Discretisation (Taylor-Hood, locking-free): ``u`` continuous Q2 (``ElementHex2``
 component), ``p`` continuous Q1, ``phi`` Q2 (default) or Q1; 27 Gauss points per element
 (``intorder=4``).  Everything is computed with batched numpy over (element, quadrature
 point) arrays and scattered through precomputed positions
-(:class:`~skfem_dielectric.assembly.ScatterMap`), in element chunks assembled by worker
+(:class:`~skfem_dielectric.fem.assembly.ScatterMap`), in element chunks assembled by worker
 threads.  :class:`~skfem_dielectric.forms.reference.ReferenceForm` states the same form as
 plain scikit-fem integrands (the maths, readably); the two are tested equal.
 """
@@ -39,7 +39,7 @@ from concurrent.futures import ThreadPoolExecutor
 import numpy as np
 from skfem import Basis, ElementHex1, ElementHex2
 
-from ..assembly import (BlockScatter, DofReduction, OrderedSum, ScatterMap,
+from ..fem.assembly import (BlockScatter, DofReduction, OrderedSum, ScatterMap,
                         drop_spare_slots, single_threaded_blas, trim_heap)
 from ..materials import MIXED_FORMULATIONS, dielectric_response
 
@@ -209,7 +209,7 @@ class MixedUPPhiForm:
         self._work: dict[int, np.ndarray] = {}
 
     def structure(self, upper: bool = False) -> tuple[ScatterMap, dict]:
-        """The :class:`~skfem_dielectric.assembly.ScatterMap` of the tangent (``upper``:
+        """The :class:`~skfem_dielectric.fem.assembly.ScatterMap` of the tangent (``upper``:
         of its upper triangle) and the scatter positions of the chunks, made on first use
         (a model factorised by the symmetric PARDISO never needs the whole pattern)."""
         got = self._structures.get(bool(upper))
@@ -223,12 +223,12 @@ class MixedUPPhiForm:
 
     @property
     def scatter(self) -> ScatterMap:
-        """The :class:`~skfem_dielectric.assembly.ScatterMap` of the whole tangent."""
+        """The :class:`~skfem_dielectric.fem.assembly.ScatterMap` of the whole tangent."""
         return self.structure(False)[0]
 
     @property
     def upper_scatter(self) -> ScatterMap:
-        """The :class:`~skfem_dielectric.assembly.ScatterMap` of the upper triangle."""
+        """The :class:`~skfem_dielectric.fem.assembly.ScatterMap` of the upper triangle."""
         return self.structure(True)[0]
 
     # ------------------------------------------------------------------ layout

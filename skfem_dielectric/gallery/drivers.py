@@ -1,0 +1,471 @@
+"""High-level drivers: build a model, pre-load it, then ramp the charge (or voltage).
+
+Every driver solves in dimensionless units: stresses in units of ``mu``, ``eps = 1``,
+lengths as given (the Keplinger plate in mm), so ``s`` and ``D0`` (``E0``) are the paper's
+dimensionless loads.  The 3D drivers are a *builder* (:func:`equibiaxial_problem`,
+:func:`keplinger_problem`: the :class:`~skfem_dielectric.models.plate.problem.PlateProblem`) and a
+ramp along :func:`~skfem_dielectric.gallery.loads.preload_then_charge` (:func:`run_ramp`); use the
+builders to ramp a plate along a path of your own.  The load of every step is the pair
+``(s, D0)`` (``(s, E0)`` under voltage control).  Each step's ``quantities`` hold the
+post-processed values of the model plus ``phase`` (``"preload"`` or ``"charge"``) and
+``stable`` (inertia verdict with PARDISO, else ``None``).
+
+Resuming: pass ``x0=step.x`` and ``start=step.load`` of a saved step together with the
+*same* arguments; targets up to and including ``start`` are skipped and the remaining steps
+are bit-for-bit those of the uninterrupted run (deterministic linear solver).
+"""
+
+from __future__ import annotations
+
+import math
+from functools import partial
+from typing import Any, Callable, Sequence
+
+import numpy as np
+
+from ..checks import check_count, check_finite, check_positive
+from ..fem.mesh import plate_mesh
+from ..linalg.linear import LinearSolver
+from ..materials import NeoHookeanDielectric, make_material
+from ..models.cross_section import CrossSection
+from ..models.membrane import MembranePlate
+from ..models.plate.failure import StepLimitCounter, describe_failure, plate_failure_cause
+from ..models.plate.problem import PlateProblem
+from ..problem import Problem
+from ..solvers.ramp import RampResult, StepResult, ramp
+from .loads import charge_targets, keplinger_s, preload_then_charge, remaining_targets
+
+__all__ = ["plate_admissible", "newton_guards", "equibiaxial_problem", "keplinger_problem", "run_ramp",
+           "equibiaxial_plate",
+           "keplinger_plate", "maxwell_equibiaxial", "maxwell_keplinger", "membrane_ramp",
+           "membrane_keplinger", "cross_section_ramp"]
+
+
+def _phase(load) -> str:
+    return "preload" if np.asarray(load)[1] == 0 else "charge"
+
+
+def plate_admissible(problem: PlateProblem, x: np.ndarray, load) -> str:
+    """Why the plate state ``x`` is inverted, or ``""`` if it is not.
+
+    Inverted: ``det F <= 0`` at a quadrature point, or ``F11 <= 0`` or ``F33 <= 0`` at the
+    plate centre (the plate turned inside out through a symmetry plane: ``F11 = F33 =
+    -lam``, ``F22 = lam^-2`` has ``det F = 1`` and ``|F e1| = lam``, an equilibrium of the
+    discrete equations that no deformation of the plate reaches).
+    """
+    for _, F, _, _ in problem.quadrature_fields(x, load):
+        J = np.linalg.det(np.moveaxis(F.reshape(3, 3, -1), 2, 0))
+        if not np.all(J > 0):
+            return f"det F = {float(J.min()):.3g} <= 0 at a quadrature point"
+    F = problem.evaluate(x, load, np.zeros((3, 1)))["F"][:, :, 0]
+    if not (F[0, 0] > 0 and F[2, 2] > 0):
+        return (f"inverted deformation: F11 = {F[0, 0]:.6g}, F33 = {F[2, 2]:.6g} at the plate "
+                f"centre (must be > 0)")
+    return ""
+
+
+def _triple(name: str, value, check) -> tuple:
+    """``value`` as a 3-tuple checked entry by entry (``size``: lengths, ``elements``: counts)."""
+    try:
+        items = tuple(value)
+    except TypeError:
+        items = ()
+    if len(items) != 3:
+        raise ValueError(f"{name} must be a triple (x1, x2, x3), got {value!r}")
+    return tuple(check(f"{name}[{i}]", v) for i, v in enumerate(items))
+
+
+def newton_guards(problem: Problem) -> dict:
+    """Ramp options that keep a plate's Newton iterates orientation preserving.
+
+    For a :class:`~skfem_dielectric.models.plate.problem.PlateProblem`:
+    ``step_limit=problem.max_step`` (``det F > 0`` along every Newton step) and
+    ``admissible``: :func:`plate_admissible` (no converged inverted state); ``{}`` for other
+    problems.  Pass them to
+    :func:`~skfem_dielectric.solvers.ramp.ramp` (:func:`run_ramp` does).
+    """
+    if not isinstance(problem, PlateProblem):
+        return {}
+    return {"step_limit": problem.max_step, "admissible": partial(plate_admissible, problem)}
+
+
+def run_ramp(problem: Problem, targets: Sequence[Any], *,
+             on_step: Callable[[StepResult], Any] | None = None,
+             x0: np.ndarray | None = None, start: Any = None,
+             linear_solver: str | LinearSolver = "auto", extra: dict | None = None,
+             **ramp_options) -> RampResult:
+    """Ramp ``problem`` through ``targets``, resuming after ``start``, and tag the steps.
+
+    Parameters
+    ----------
+    problem
+        Any :class:`~skfem_dielectric.problem.Problem` whose loads are ``(s, D0)``-like
+        pairs (the second component 0 marks the pre-load).
+    targets
+        The whole load path (e.g. :func:`~skfem_dielectric.gallery.loads.preload_then_charge`).
+    on_step, x0, start
+        Callback and resume state: with ``start`` (the load of a saved step, which must be
+        one of ``targets``) and ``x0`` (its state) the ramp continues after ``start``.
+    linear_solver
+        Name or instance (:func:`~skfem_dielectric.linalg.linear.get_linear_solver`).
+    extra
+        Quantities added to every step (e.g. ``alpha``); each step also gets ``phase``.
+    **ramp_options
+        Newton and cut-back settings of :func:`~skfem_dielectric.solvers.ramp.ramp`.  For a
+        :class:`~skfem_dielectric.models.plate.problem.PlateProblem` they default to
+        ``step_limit=problem.max_step`` (``det F > 0`` along every Newton step) and
+        ``admissible``: :func:`plate_admissible` (no converged inverted state).
+
+    Returns
+    -------
+    RampResult
+        With ``problem`` set (for evaluation and export of the stored states).  When
+        Newton fails on a plate, ``failure`` holds
+        :func:`~skfem_dielectric.models.plate.failure.plate_failure_cause` of the last converged
+        state and how often the step limit shortened the Newton steps towards the failed target
+        (``step_limited`` of ``newton_steps``, ``smallest_step_limit``), and ``reason``
+        ends with that sentence (docs/validation.md, the corner failure).
+    """
+    targets = list(targets)
+    if start is not None:
+        targets = remaining_targets(targets, start)
+        if x0 is None:
+            raise ValueError("start given without x0")
+    extra = dict(extra or {})
+    for key, value in newton_guards(problem).items():
+        ramp_options.setdefault(key, value)
+    counter = None
+    if isinstance(problem, PlateProblem) and ramp_options.get("step_limit") is not None:
+        counter = ramp_options["step_limit"] = StepLimitCounter(ramp_options["step_limit"])
+
+    def hook(step: StepResult):
+        step.quantities.update(extra)
+        step.quantities["phase"] = _phase(step.load)
+        if counter is not None and step.target_reached:
+            counter.reset()
+        if on_step is not None:
+            on_step(step)
+
+    out = ramp(problem, targets, x0=x0, start=start, on_step=hook,
+               linear_solver=linear_solver, **ramp_options)
+    out.problem = problem
+    if out.failed_at is not None and out.steps and isinstance(problem, PlateProblem):
+        out.failure = plate_failure_cause(problem, out.steps[-1].x, out.steps[-1].load)
+        if counter is not None:
+            out.failure.update(step_limited=counter.limited, newton_steps=counter.calls,
+                               smallest_step_limit=counter.smallest)
+        out.reason += "; " + describe_failure(out.failure)
+    return out
+
+
+def equibiaxial_problem(*, model: Any = "neo-Hookean", Jm: float = 97.2,
+                        size: tuple[float, float, float] = (4.0, 1.0, 4.0),
+                        elements: tuple[int, int, int] = (1, 1, 1), symmetry: str = "eighth",
+                        **options) -> PlateProblem:
+    """The equi-biaxial dead-load plate (dimensionless ``mu = eps = 1``).
+
+    Parameters
+    ----------
+    model, Jm
+        ``"neo-Hookean"``, ``"Gent"`` (with ``Jm``) or a material object.
+    size, elements, symmetry
+        Full plate ``(L1, H, L3)``, elements of the model, symmetry (see
+        :func:`~skfem_dielectric.fem.mesh.plate_mesh`).  The state is homogeneous, so one
+        element suffices.
+    **options
+        :class:`~skfem_dielectric.models.plate.problem.PlateProblem` options (``control``,
+        ``coupling``, ``field``, ``formulation``, ``kappa``, ``phi_element``, ``threads``, ...).
+    """
+    pm = plate_mesh(*_triple("size", size, check_positive),
+                    *_triple("elements", elements, check_count), symmetry=symmetry)
+    return PlateProblem(pm, make_material(model, Jm), loading="equibiaxial", **options)
+
+
+def keplinger_problem(*, model: Any = "neo-Hookean", Jm: float = 97.2,
+                      size: tuple[float, float, float] = (100.0, 1.0, 50.0),
+                      elements: tuple[int, int, int] = (40, 1, 20), symmetry: str = "eighth",
+                      grading: float = 1.0, **options) -> PlateProblem:
+    """The clamped uni-axial Keplinger plate (dimensionless ``mu = eps = 1``, mm).
+
+    A plate ``L1 x H x L3 = 100 x 1 x 50`` (mm) clamped on its short edges ``x1 = +-L1/2``;
+    the clamps have ``u2 = u3 = 0``, the moving clamp translates rigidly in ``x1`` (one
+    shared dof) under the resultant ``s mu A``.  With the default eighth model the symmetry
+    planes ``x1 = 0`` (both clamps equivalent), ``x2 = 0`` (antisymmetric ``phi``) and
+    ``x3 = 0`` are used.
+
+    Parameters
+    ----------
+    model, Jm
+        Material model.
+    size, elements, symmetry, grading
+        Plate ``(L1, H, L3)`` in mm, elements of the model ``(n1, n2, n3)``, symmetry and
+        x1-grading towards the clamp (see :func:`~skfem_dielectric.fem.mesh.plate_mesh`).
+    **options
+        :class:`~skfem_dielectric.models.plate.problem.PlateProblem` options.
+    """
+    pm = plate_mesh(*_triple("size", size, check_positive),
+                    *_triple("elements", elements, check_count), symmetry=symmetry,
+                    grading=grading)
+    return PlateProblem(pm, make_material(model, Jm), loading="uniaxial", **options)
+
+
+def equibiaxial_plate(s: float, D0: Sequence[float], *, model: Any = "neo-Hookean",
+                      Jm: float = 97.2, size: tuple[float, float, float] = (4.0, 1.0, 4.0),
+                      elements: tuple[int, int, int] = (1, 1, 1), symmetry: str = "eighth",
+                      preload_steps: int = 4, control: str = "charge",
+                      coupling: str = "full", field: str = "electrostatic",
+                      formulation: str = "mixed", kappa: float = math.inf,
+                      phi_element: str = "Q2", linear_solver: str = "auto",
+                      on_step: Callable[[StepResult], Any] | None = None,
+                      x0: np.ndarray | None = None, start: Any = None,
+                      rtol: float = 1e-11, max_cutbacks: int = 6) -> RampResult:
+    """Equi-biaxial dead-load plate: pre-load ``s``, then the charge ramp ``D0``.
+
+    Parameters
+    ----------
+    s
+        Dimensionless nominal lateral traction ``t/mu`` on all lateral faces.
+    D0
+        Target values of the charge ramp (``D0 = sigma_F/sqrt(mu eps)``); under
+        ``control="voltage"`` they are ``E0`` values.
+    model, Jm, size, elements, symmetry
+        See :func:`equibiaxial_problem`.
+    preload_steps
+        Number of equal pre-load targets.
+    control, coupling, field, formulation, kappa, phi_element
+        See :class:`~skfem_dielectric.models.plate.problem.PlateProblem`.
+    linear_solver
+        ``"auto"``, ``"superlu"`` or ``"pardiso"`` (for ``coupling="maxwell"`` PARDISO is
+        its general LU).
+    on_step, x0, start
+        Callback and resume state, see the module docstring.
+    rtol, max_cutbacks
+        Newton tolerance (relative to the external load norm) and cut-back limit.
+
+    Returns
+    -------
+    RampResult
+        ``steps[i].quantities["lam1"]`` is the stretch at the plate centre (equal to
+        ``lam3``); compare with Eq. (loading_gent).
+    """
+    s = check_finite("s", s)
+    prob = equibiaxial_problem(model=model, Jm=Jm, size=size, elements=elements,
+                               symmetry=symmetry, control=control, coupling=coupling,
+                               field=field, formulation=formulation, kappa=kappa,
+                               phi_element=phi_element)
+    extra = {"model": type(prob.material).__name__}
+    if coupling == "maxwell":
+        extra["variant"] = f"maxwell-{field}"
+    return run_ramp(prob, preload_then_charge(s, D0, preload_steps), on_step=on_step, x0=x0,
+                    start=start, linear_solver=linear_solver, extra=extra, atol=0.0,
+                    rtol=rtol, max_cutbacks=max_cutbacks)
+
+
+def keplinger_plate(alpha: float | None = 1.0, D0: Sequence[float] = (1, 2, 3, 4, 5, 6), *,
+                    s: float | None = None, g: float = 9.81, m: float = 0.150,
+                    mu: float = 9833.07, A: float = 50e-6, model: Any = "neo-Hookean",
+                    Jm: float = 97.2, size: tuple[float, float, float] = (100.0, 1.0, 50.0),
+                    elements: tuple[int, int, int] = (40, 1, 20), symmetry: str = "eighth",
+                    grading: float = 1.0, preload_steps: int = 3, control: str = "charge",
+                    coupling: str = "full", field: str = "electrostatic",
+                    formulation: str = "mixed", kappa: float = math.inf,
+                    phi_element: str = "Q2", linear_solver: str = "auto",
+                    on_step: Callable[[StepResult], Any] | None = None,
+                    x0: np.ndarray | None = None, start: Any = None, rtol: float = 1e-9,
+                    max_cutbacks: int = 4, max_iter: int = 12,
+                    threads: int | None = None,
+                    stop_on_instability: bool = False, chord: float = 0.1,
+                    predictor: str = "none", grad_div: float = 0.0,
+                    state_analysis: Callable[..., dict] | None = None) -> RampResult:
+    """The uni-axial Keplinger plate: weight on a rigid clamp, then the charge ramp.
+
+    Parameters
+    ----------
+    alpha
+        Weight fraction; ``s = keplinger_s(alpha, g=g, m=m, mu=mu, A=A)`` unless ``s`` is
+        given.
+    D0
+        Target values of the charge ramp (``E0`` values under voltage control).
+    s
+        Dimensionless dead load; overrides ``alpha``.
+    g, m, mu, A
+        Physical data for ``s`` (``g`` default 9.81 m/s^2).
+    model, Jm, size, elements, symmetry, grading
+        See :func:`keplinger_problem`.
+    preload_steps
+        Number of pre-load targets (the ramp cuts back automatically if needed).
+    control, coupling, field, formulation, kappa, phi_element
+        See :class:`~skfem_dielectric.models.plate.problem.PlateProblem`.
+    linear_solver, threads
+        Linear solver name and assembly threads.
+    on_step, x0, start
+        Callback and resume state (see the module docstring).
+    stop_on_instability
+        Stop at the first step whose tangent inertia says unstable (PARDISO only; see
+        :func:`~skfem_dielectric.solvers.ramp.ramp`): the discrete breakdown near the clamps.
+    grad_div
+        Grad-div stabilisation of the mixed form (units of ``mu``, see
+        :class:`~skfem_dielectric.models.plate.problem.PlateProblem`); ``10`` lets Newton pass the
+        clamp/free-edge corner where the plain form stalls on fine meshes
+        (docs/validation.md, the corner failure).  Default 0.
+    rtol, max_cutbacks, max_iter
+        Newton tolerance, cut-back limit and Newton iterations per attempt (converged
+        steps need <= 6 on the 40 x 20 eighth model up to D0 = 5, up to 9 right before the
+        breakdown; a low limit makes the attempts beyond the breakdown cheap).
+    chord, predictor
+        Reuse of the factorisation while the residual contracts by this factor per step
+        (0: factorise in every iteration) and the start of each Newton solve (``"none"``
+        or ``"secant"``; a resumed ramp then repeats the uninterrupted one only within the
+        Newton tolerance); see :func:`~skfem_dielectric.solvers.ramp.ramp`.
+    state_analysis
+        Analysis of every converged state on the factorisation of its tangent, e.g.
+        ``StabilityMonitor(k=5)`` (:mod:`skfem_dielectric.stability.monitor`); see
+        :func:`~skfem_dielectric.solvers.ramp.ramp`.
+
+    Returns
+    -------
+    RampResult
+        Per step: ``lam1``/``lam3`` at the plate centre (compare with Eq. (DEuniax)),
+        ``min_P33`` on the x1 centre line, ``min_P33_clamp`` near the clamp, ``stable``,
+        ``alpha``, ``phase`` and the Newton data.
+    """
+    if s is None:
+        if alpha is None:
+            raise ValueError("give alpha or s")
+        s = keplinger_s(alpha, g=g, m=m, mu=mu, A=A)
+    s = check_finite("s", s)
+    prob = keplinger_problem(model=model, Jm=Jm, size=size, elements=elements,
+                             symmetry=symmetry, grading=grading, control=control,
+                             coupling=coupling, field=field, formulation=formulation,
+                             kappa=kappa, phi_element=phi_element, threads=threads,
+                             grad_div=grad_div)
+    extra = {"alpha": alpha if alpha is not None else float("nan"), "g": g}
+    if coupling == "maxwell":
+        extra["variant"] = f"maxwell-{field}"
+    return run_ramp(prob, preload_then_charge(s, D0, preload_steps), on_step=on_step, x0=x0,
+                    start=start, linear_solver=linear_solver, extra=extra, atol=0.0,
+                    rtol=rtol, max_cutbacks=max_cutbacks, max_iter=max_iter,
+                    stop_on_instability=stop_on_instability, chord=chord,
+                    predictor=predictor, state_analysis=state_analysis)
+
+
+def maxwell_equibiaxial(s: float, D0, *, field: str = "electrostatic", **options) -> RampResult:
+    """:func:`equibiaxial_plate` with ``coupling="maxwell"`` (charge control).
+
+    Returns
+    -------
+    RampResult
+        ``lam1`` at the centre follows Eq. (loading_gent) for either field.
+    """
+    return equibiaxial_plate(s, D0, coupling="maxwell", field=field, **options)
+
+
+def maxwell_keplinger(alpha: float | None = 1.0, D0=(1, 2, 3, 4, 5, 6), *,
+                      field: str = "electrostatic", max_cutbacks: int = 6,
+                      max_iter: int = 25, **options) -> RampResult:
+    """:func:`keplinger_plate` with ``coupling="maxwell"`` (charge control), with the
+    ramp's default Newton budget (6 cut-backs, 25 iterations).
+
+    Returns
+    -------
+    RampResult
+        Per step ``lam1`` at the centre, ``min_P33`` (total stress) on the centre line,
+        ``min_P33_clamp``, ``phase``, ``alpha``.
+    """
+    return keplinger_plate(alpha, D0, coupling="maxwell", field=field,
+                           max_cutbacks=max_cutbacks, max_iter=max_iter, **options)
+
+
+def membrane_ramp(problem: MembranePlate, s: float, D0, **ramp_options) -> RampResult:
+    """Pre-load ``s`` then charge (or voltage) ramp ``D0`` on a membrane problem.
+
+    Parameters
+    ----------
+    problem : MembranePlate
+        The discretised membrane.
+    s : float
+        Dimensionless dead load (nominal stress over ``mu``).
+    D0 : array_like
+        Target values of ``D0`` (charge control) or ``E0`` (voltage control); the
+        ramp goes from the unloaded state to ``(s, D0[0])`` (the pre-load when
+        ``D0[0] = 0``), then through the others in order.
+    **ramp_options
+        Passed to :func:`skfem_dielectric.solvers.ramp.ramp` (``linear_solver``,
+        ``on_step``, ``x0``/``start`` to resume, tolerances, ...).
+
+    Returns
+    -------
+    RampResult
+        One :class:`StepResult` per target with the quantities of
+        :meth:`MembranePlate.postprocess` (``lam1``, ``lam3``, ``min_P33``, ...);
+        ``result.problem`` is ``problem`` (for :mod:`skfem_dielectric.export`).
+    """
+    s = check_finite("s", s)
+    out = ramp(problem, [np.array([s, d]) for d in charge_targets(D0)], **ramp_options)
+    out.problem = problem
+    return out
+
+
+def membrane_keplinger(alpha: float = 1.0, D0=np.arange(0.0, 6.01, 0.5), material=None,
+                       n1: int = 40, n3: int = 20, L1: float = 100.0, L3: float = 50.0,
+                       H: float = 1.0, g: float = 9.81, **ramp_options) -> RampResult:
+    """Membrane model of the clamped uni-axial Keplinger plate under charge control.
+
+    Parameters
+    ----------
+    alpha : float
+        Weight factor, ``s = keplinger_s(alpha, g=g)`` (``m = 150 g``,
+        ``mu = 9833.07 Pa``, ``A = 50 mm^2``).
+    D0 : array_like
+        Charge targets after the pre-load (start with 0 to record it).
+    material : optional
+        Dielectric (default neo-Hookean, ``mu = eps = 1``: the results are
+        dimensionless).
+    n1, n3 : int
+        Q2 elements along the half-length and half-width.
+    L1, L3, H : float
+        Plate size (default 100 x 50 x 1, mm).
+    g : float
+        Gravity used in ``s``.
+    **ramp_options
+        Passed to :func:`skfem_dielectric.solvers.ramp.ramp`.
+
+    Returns
+    -------
+    RampResult
+        Per step ``lam1`` (centre), ``lam3``, ``min_P33`` along the centre line,
+        ``min_P33_clamp`` next to the clamp, ``lam1_mean``.
+    """
+    material = NeoHookeanDielectric(1.0, 1.0) if material is None else material
+    pb = MembranePlate(material, L1=L1, L3=L3, H=H, n1=n1, n3=n3, loading="clamped")
+    return membrane_ramp(pb, keplinger_s(alpha, g=g), D0, **ramp_options)
+
+
+def cross_section_ramp(problem: CrossSection, s1: float, s3: float, D0,
+                       **ramp_options) -> RampResult:
+    """Pre-load ``(s1, s3)`` then the charge (or voltage) ramp on a cross-section.
+
+    Parameters
+    ----------
+    problem : CrossSection
+        The discretised cross-section.
+    s1, s3 : float
+        Dimensionless nominal stresses along x1 and x3 (``s3`` is ignored when
+        ``lam3`` is prescribed). Equi-biaxial: ``s1 = s3 = s``; uni-axial:
+        ``s3 = 0``.
+    D0 : array_like
+        Targets of ``D0`` (or ``E0`` under voltage control).
+    **ramp_options
+        Passed to :func:`skfem_dielectric.solvers.ramp.ramp`.
+
+    Returns
+    -------
+    RampResult
+        Quantities of :meth:`CrossSection.postprocess` per step.
+    """
+    check_finite("s1", s1)
+    check_finite("s3", s3)
+    D0 = charge_targets(D0)
+    out = ramp(problem, [np.array([s1, s3, d]) for d in D0], **ramp_options)
+    out.problem = problem
+    return out

@@ -1,0 +1,429 @@
+"""Sparse linear solvers for the Newton iterations.
+
+A linear solver is any object with a method ``solve(K, b) -> x`` for a square sparse matrix
+``K`` (CSR, symmetric, possibly indefinite: the mixed and coupled tangents are saddle-point
+matrices) and a dense right-hand side ``b``.  Solvers may keep state between calls (for
+instance the symbolic factorisation of a fixed sparsity pattern) and expose the
+*inertia* of the last factorised matrix, which the stability check uses.
+
+Two implementations:
+
+``SuperLUSolver``
+    scipy's SuperLU (``scipy.sparse.linalg.splu``) with a fill-reducing column ordering
+    (``permc_spec``, default ``"MMD_AT_PLUS_A"`` which suits the structurally symmetric
+    pattern).  No extra dependency.
+``PardisoLUSolver``
+    MKL PARDISO as a general (non-symmetric) LU, for the tangents of follower loads
+    (Maxwell-traction coupling); it reports no inertia.
+``PardisoSolver``
+    MKL PARDISO through ``pypardiso`` (the ``fast`` extra), used as a real symmetric
+    indefinite solver (``mtype=-2``, upper triangle only) with the symbolic analysis done
+    once per sparsity pattern and reused for all later numerical factorisations.  PARDISO
+    reports the matrix inertia, used by the stability verdict.  The MKL library is located
+    once per process (:func:`new_pypardiso_solver`); each solver keeps its own PARDISO
+    handle and factorisation.
+
+Use :func:`get_linear_solver` to obtain one by name.
+"""
+
+from __future__ import annotations
+
+import copy
+import ctypes
+import os
+
+import numpy as np
+import scipy.sparse as sp
+
+from ..fem.assembly import trim_heap
+from .solver_base import LinearSolver, SuperLUSolver, whole_matrix
+from .symmetric import SymmetricUpper, same_memory, same_pattern
+
+__all__ = ["LinearSolver", "SuperLUSolver", "whole_matrix", "PardisoSolver", "PardisoLUSolver",
+           "get_linear_solver", "nonsymmetric_solver", "pardiso_available",
+           "new_pypardiso_solver"]
+
+
+def _compress_into(keep: np.ndarray, a: np.ndarray, out: np.ndarray,
+                   block: int = 1 << 20) -> None:
+    """``out[:] = a[keep]`` block by block (``np.compress`` of the whole array makes a
+    temporary 64-bit index of every kept entry, 33 MB on the 40 x 1 x 20 plate)."""
+    o = 0
+    for i in range(0, a.size, block):
+        m = keep[i:i + block]
+        k = int(np.count_nonzero(m))
+        np.compress(m, a[i:i + block], out=out[o:o + k])
+        o += k
+
+
+def _quiet_mkl_threads() -> None:
+    """Let MKL's OpenMP threads sleep as soon as a PARDISO call returns.
+
+    They otherwise spin for ``KMP_BLOCKTIME`` (default 200 ms) after every parallel region
+    and kept both cores of the 2-core benchmark machine busy during the next
+    (numpy-threaded) assembly, slowing it by ~15 %.  The variable is read when the OpenMP
+    runtime starts, so this runs before ``pypardiso`` is imported; a value the user set
+    wins.
+    """
+    os.environ.setdefault("KMP_BLOCKTIME", "0")
+
+
+def pardiso_available() -> bool:
+    """True if ``pypardiso`` (MKL PARDISO) can be imported."""
+    _quiet_mkl_threads()
+    try:
+        import pypardiso  # noqa: F401
+    except Exception:  # pragma: no cover - depends on the environment
+        return False
+    return True
+
+
+def new_pypardiso_solver(mtype: int = 11):
+    """A fresh ``pypardiso.PyPardisoSolver`` without repeating the library search.
+
+    ``PyPardisoSolver()`` looks for the MKL runtime each time it is constructed (a
+    recursive glob under ``sys.prefix``: 0.4-1.8 s); ``import pypardiso`` already does
+    so once for its module-level solver. The new solver shares that solver's loaded
+    library function but gets its own PARDISO handle ``pt``, ``iparm``, ``perm``,
+    matrix type and stored matrix, so solvers with different matrices keep separate
+    factorisations.
+
+    Parameters
+    ----------
+    mtype
+        PARDISO matrix type (11: real non-symmetric, -2: real symmetric indefinite).
+
+    Returns
+    -------
+    pypardiso.PyPardisoSolver
+    """
+    _quiet_mkl_threads()
+    import pypardiso  # lazy: optional dependency
+    from pypardiso.scipy_aliases import pypardiso_solver as loaded
+
+    if not all(hasattr(loaded, a) for a in ("libmkl", "_mkl_pardiso", "_pt_type", "pt",
+                                            "iparm", "perm", "factorized_A")):
+        return pypardiso.PyPardisoSolver(mtype=mtype)   # unknown layout: the slow way
+    ps = copy.copy(loaded)               # shares only the ctypes library handles
+    ps.pt = np.zeros(64, dtype=loaded._pt_type[1])   # as PyPardisoSolver.__init__
+    ps.iparm = np.zeros(64, dtype=np.int32)
+    ps.perm = np.zeros(0, dtype=np.int32)
+    ps.mtype = int(mtype)
+    ps.phase = 13
+    ps.msglvl = False
+    ps.factorized_A = sp.csr_matrix((0, 0))
+    ps._solve_transposed = False
+    return ps
+
+
+_ORDERINGS = {"minimum-degree": 0, "metis": 2, "parallel-metis": 3}   # PARDISO iparm(2)
+
+
+class PardisoSolver(LinearSolver):
+    """MKL PARDISO (via ``pypardiso``), real symmetric indefinite, analysis reused.
+
+    The symbolic analysis (ordering, phase 11) is done the first time a sparsity pattern is
+    seen and reused while ``K.indptr``/``K.indices`` stay the same; each call then only
+    runs the numerical factorisation (phase 22) and the solve (phase 33).  The matrix must be
+    symmetric; only its upper triangle is passed to PARDISO.
+
+    Parameters
+    ----------
+    refine
+        Maximum number of iterative-refinement steps; refinement recovers the accuracy
+        lost by pivot perturbation on saddle-point matrices.  They are done here, with
+        the residual of the matrix passed to :meth:`solve` and a solve with the factors
+        each, not by PARDISO (``iparm(8) = 0``), whose own refinement allocated a work
+        array of the size of the factorised matrix in every solve (100 MB of the
+        80 x 1 x 40 plate's peak).
+    ordering
+        Fill-reducing ordering (``iparm(2)``): ``"minimum-degree"`` (default; on the
+        40 x 1 x 20 Keplinger plate, nearly a 2-D problem, 13.2 M entries in the factors
+        and 273 MB, against 15.5 M and 292 MB for METIS), ``"metis"`` (nested dissection)
+        or ``"parallel-metis"``.
+
+    Notes
+    -----
+    After each factorisation ``inertia = (n_positive, n_negative, n_zero)`` is read from
+    PARDISO ``iparm(22)``, ``iparm(23)`` (Sylvester inertia of the factorised matrix).  The
+    results may differ in the last bits between runs because MKL is multi-threaded.
+    """
+
+    name = "pardiso"
+    reads_upper = True
+    _mtype = -2                      # real symmetric indefinite
+    _pivoting = {10: 8, 21: 1}       # pivot perturbation 1e-8, Bunch-Kaufman pivoting
+
+    def __init__(self, refine: int = 2, ordering: str = "minimum-degree"):
+        if ordering not in _ORDERINGS:
+            raise ValueError(f"ordering must be one of {tuple(_ORDERINGS)}, got {ordering!r}")
+        self._ps = new_pypardiso_solver(mtype=self._mtype)   # library located once
+        p = self._ps
+        p.set_iparm(1, 1)    # use the iparm values below
+        p.set_iparm(2, _ORDERINGS[ordering])
+        p.set_iparm(8, 0)    # no refinement inside PARDISO (see ``refine``)
+        p.set_iparm(11, 1)   # (symmetric) scaling
+        p.set_iparm(13, 1)   # (symmetric) weighted matching (recommended for saddle points)
+        for i, v in self._pivoting.items():
+            p.set_iparm(i, v)
+        # zero-based index arrays: PARDISO reads the upper triangle's own indptr/indices
+        # (no one-based copy; pypardiso's generic call adds one to them, so only where the
+        # call below is used)
+        self._direct = hasattr(p, "_mkl_pardiso")
+        if self._direct:
+            p.set_iparm(35, 1)
+        self._pattern: tuple[np.ndarray, np.ndarray] | None = None
+        self._ucache = None
+        self.refine = int(refine)
+        self.ordering = ordering
+        self.inertia = None
+
+    def _call(self, phase: int, A: sp.csr_matrix, b: np.ndarray) -> np.ndarray:
+        """One PARDISO call with the zero-based int32 ``indptr``/``indices`` of ``A`` as
+        they are (pypardiso would make one-based copies on every call, 17 MB and ~10 ms
+        each on the 40 x 1 x 20 plate); the heap is trimmed after a factorisation or a
+        solve (:func:`~skfem_dielectric.fem.assembly.trim_heap`: their work arrays)."""
+        ps = self._ps
+        ps.set_phase(phase)
+        if not self._direct:
+            x = ps._call_pardiso(A, b)
+        else:
+            x = self._call_direct(phase, A, b)
+        if phase in (22, 33):
+            trim_heap()
+        return x
+
+    def _call_direct(self, phase: int, A: sp.csr_matrix, b: np.ndarray) -> np.ndarray:
+        ps = self._ps
+        x = np.zeros_like(b)
+        err = ctypes.c_int32(0)
+        i32, f64 = ctypes.POINTER(ctypes.c_int32), ctypes.POINTER(ctypes.c_double)
+        ps._mkl_pardiso(ps.pt.ctypes.data_as(ctypes.POINTER(ps._pt_type[0])),
+                        ctypes.byref(ctypes.c_int32(1)), ctypes.byref(ctypes.c_int32(1)),
+                        ctypes.byref(ctypes.c_int32(ps.mtype)),
+                        ctypes.byref(ctypes.c_int32(phase)),
+                        ctypes.byref(ctypes.c_int32(A.shape[0])), A.data.ctypes.data_as(f64),
+                        A.indptr.ctypes.data_as(i32), A.indices.ctypes.data_as(i32),
+                        ps.perm.ctypes.data_as(i32),
+                        ctypes.byref(ctypes.c_int32(1 if b.ndim == 1 else b.shape[1])),
+                        ps.iparm.ctypes.data_as(i32), ctypes.byref(ctypes.c_int32(0)),
+                        b.ctypes.data_as(f64), x.ctypes.data_as(f64), ctypes.byref(err))
+        if err.value != 0:
+            raise RuntimeError(f"PARDISO error {err.value} in phase {phase}")
+        return x
+
+    def _upper(self, K: sp.spmatrix) -> sp.csr_matrix:
+        """Upper triangle of ``K`` (that of a :class:`SymmetricUpper` as it is, with int32
+        indices); the selection is cached for a repeated CSR pattern, whose upper
+        triangle's data are then overwritten in place (no second 33 MB array while the old
+        one is still referenced)."""
+        if isinstance(K, SymmetricUpper):
+            U = K.upper
+            if U.indptr.dtype != np.int32 or U.indices.dtype != np.int32:
+                U = sp.csr_matrix((U.data, U.indices.astype(np.int32),
+                                   U.indptr.astype(np.int32)), shape=U.shape)
+                U.has_sorted_indices = True
+            return U
+        K = sp.csr_matrix(K)
+        c = self._ucache
+        if (c is not None and c[0].shape == K.indptr.shape and c[1].shape == K.indices.shape
+                and ((c[4] and same_memory(c[0], K.indptr) and same_memory(c[1], K.indices))
+                     or (np.array_equal(c[0], K.indptr) and np.array_equal(c[1], K.indices)))):
+            U = c[2]
+            _compress_into(c[3], K.data, U.data)
+            return U
+        K.sort_indices()
+        n = K.shape[0]
+        rows = np.repeat(np.arange(n, dtype=np.int32), np.diff(K.indptr))
+        keep = K.indices >= rows              # a mask: 1 byte per nonzero, not 8
+        counts = np.bincount(rows[keep], minlength=n)
+        del rows
+        indptr = np.concatenate([[0], np.cumsum(counts)]).astype(np.int32)
+        U = sp.csr_matrix((K.data[keep].astype(np.float64), K.indices[keep].astype(np.int32),
+                           indptr), shape=K.shape)
+        U.has_sorted_indices = True
+        if U.indptr.dtype != np.int32 or U.indices.dtype != np.int32:   # PARDISO's int32
+            U.indptr, U.indices = U.indptr.astype(np.int32), U.indices.astype(np.int32)
+        U.indptr.flags.writeable = U.indices.flags.writeable = False   # the solver's own
+        # a read-only pattern (shared by the matrices of a ScatterMap) is recognised by its
+        # memory, in O(1); otherwise keep a copy and compare the contents
+        shared = not (K.indptr.flags.writeable or K.indices.flags.writeable)
+        self._ucache = ((K.indptr, K.indices) if shared else (K.indptr.copy(), K.indices.copy())
+                        ) + (U, keep, shared)
+        return U
+
+    def _matrix(self, K: sp.spmatrix) -> sp.csr_matrix:
+        """The CSR matrix PARDISO reads: the upper triangle (:meth:`_upper`)."""
+        return self._upper(K)
+
+    def _read_inertia(self, n: int) -> tuple[int, int, int] | None:
+        """Sylvester inertia of the last factorisation, from ``iparm(22)``, ``iparm(23)``."""
+        npos, nneg = int(self._ps.iparm[21]), int(self._ps.iparm[22])
+        return npos, nneg, n - npos - nneg
+
+    def solve(self, K: sp.spmatrix, b: np.ndarray) -> np.ndarray:
+        """Factorise ``K`` (analysis reused for an unchanged pattern) and solve ``K x = b``."""
+        U = self._matrix(K)
+        b = np.asfortranarray(np.asarray(b, dtype=np.float64))
+        if np.any(np.diff(U.indptr) == 0):
+            raise ValueError("matrix is singular: it has an empty row")
+        same = self._pattern is not None and same_pattern(self._pattern, U)
+        if not same:
+            if self._pattern is not None:
+                self._call(-1, U, b)  # release the old factorisation
+            self._call(11, U, b)
+            # a read-only pattern (that of a ScatterMap, or the solver's own selection) is
+            # recognised by its memory; otherwise keep a copy to compare with
+            self._pattern = ((U.indptr, U.indices) if not (U.indptr.flags.writeable
+                                                           or U.indices.flags.writeable)
+                             else (U.indptr.copy(), U.indices.copy()))
+        self._call(22, U, b)
+        self.inertia = self._read_inertia(K.shape[0])
+        x = self._call(33, U, b)
+        self._last = U
+        return np.ascontiguousarray(self._refined(K, b, x))
+
+    def _refined(self, K: sp.csr_matrix, b: np.ndarray, x: np.ndarray) -> np.ndarray:
+        """Up to ``refine`` steps ``x += K^-1 (b - K x)`` with the factors, while they
+        lower the residual."""
+        bn = float(np.linalg.norm(b))
+        r = b - K @ x
+        rn = float(np.linalg.norm(r))
+        for _ in range(self.refine):
+            if not rn > 4.0 * np.finfo(float).eps * bn:
+                break
+            xt = x + self._call(33, self._last, np.asfortranarray(r))
+            rt = b - K @ xt
+            rtn = float(np.linalg.norm(rt))
+            if not rtn < rn:
+                break
+            x, r, rn = xt, rt, rtn
+        return x
+
+    def discard(self) -> None:
+        """Free the numerical factorisation (PARDISO phase 0: 100 of the 273 MB of the
+        40 x 1 x 20 Keplinger plate's factors; the analysis is kept) and the matrix it
+        belongs to, so that they are not held while the next tangent is assembled and
+        factorised; :meth:`resolve` returns ``None`` until the next :meth:`solve`."""
+        U = getattr(self, "_last", None)
+        if U is None:
+            return
+        self._last = None
+        self._call(0, U, np.zeros(U.shape[0]))
+        trim_heap()
+
+    def resolve(self, b: np.ndarray) -> np.ndarray | None:
+        """Solve with the last numerical factorisation (PARDISO phase 33), without
+        iterative refinement: the callers (chord steps, the monotonicity test of
+        :func:`~skfem_dielectric.solvers.newton.newton`) use the old factors for an approximate
+        correction, which refinement against the old matrix does not improve."""
+        U = getattr(self, "_last", None)
+        if U is None:
+            return None
+        b = np.asfortranarray(np.asarray(b, dtype=np.float64))
+        return np.ascontiguousarray(self._call(33, U, b))
+
+    def __del__(self):  # pragma: no cover - cleanup
+        try:
+            if self._pattern is not None:
+                self._ps.set_phase(-1)
+                self._ps._call_pardiso(sp.identity(1, format="csr"), np.zeros(1))
+        except Exception:
+            pass
+
+
+class PardisoLUSolver(PardisoSolver):
+    """MKL PARDISO for non-symmetric tangents (``mtype = 11``, the whole matrix).
+
+    The symmetric-indefinite :class:`PardisoSolver` reads only the upper triangle, which is
+    wrong for the follower loads of the Maxwell-traction coupling; this one factorises the
+    whole matrix (LU with PARDISO's defaults for non-symmetric matrices: pivot perturbation
+    ``1e-13``, scaling and weighted matching).  Like :class:`PardisoSolver` it keeps the
+    symbolic analysis while the sparsity pattern stays the same, solves again with the last
+    factors (:meth:`~PardisoSolver.resolve`, the chord steps of
+    :func:`~skfem_dielectric.solvers.newton.newton`), frees them on
+    :meth:`~PardisoSolver.discard` and refines the solution with the matrix.  It reports no
+    inertia (a non-symmetric matrix has no stability verdict).
+
+    Parameters
+    ----------
+    refine
+        Maximum iterative-refinement steps per solve (see :class:`PardisoSolver`).
+    ordering
+        Fill-reducing ordering, as for :class:`PardisoSolver`.
+    """
+
+    name = "pardiso-lu"
+    reads_upper = False
+    _mtype = 11                      # real non-symmetric
+    _pivoting = {10: 13}             # pivot perturbation 1e-13 (the non-symmetric default)
+
+    def _matrix(self, K: sp.spmatrix) -> sp.csr_matrix:
+        """The whole matrix as CSR with sorted int32 indices (``K``'s own arrays where
+        they already are)."""
+        A = sp.csr_matrix(whole_matrix(K))
+        if A.indptr.dtype != np.int32 or A.indices.dtype != np.int32 \
+                or not A.has_sorted_indices:
+            A = sp.csr_matrix((A.data.copy(), A.indices.astype(np.int32),
+                               A.indptr.astype(np.int32)), shape=A.shape)
+            A.sort_indices()
+        return A
+
+    def _read_inertia(self, n: int) -> None:
+        return None
+
+
+def get_linear_solver(name: str | LinearSolver = "auto", *, symmetric: bool = True,
+                      **options) -> LinearSolver:
+    """Return a linear solver by name.
+
+    Parameters
+    ----------
+    name
+        ``"superlu"`` (scipy, always available), ``"pardiso"`` (needs ``pypardiso``) or
+        ``"auto"`` (PARDISO if importable, else SuperLU).  A :class:`LinearSolver`
+        instance, or any object with ``solve(K, b)`` (and optionally ``resolve(b)`` and
+        ``inertia``), is returned unchanged.
+    symmetric
+        Whether the matrices are symmetric; for ``symmetric=False`` PARDISO is the
+        general LU :class:`PardisoLUSolver` (see :func:`nonsymmetric_solver`).
+    **options
+        Passed to the solver's constructor.
+
+    Returns
+    -------
+    LinearSolver
+    """
+    if isinstance(name, LinearSolver) or (not isinstance(name, str)
+                                          and callable(getattr(name, "solve", None))):
+        return name                     # an instance (duck-typed: ``solve(K, b)``)
+    if name == "auto":
+        name = "pardiso" if pardiso_available() else "superlu"
+    if name == "pardiso" and not symmetric and pardiso_available():
+        return PardisoLUSolver(**options)
+    if name == "superlu":
+        return SuperLUSolver(**options)
+    if name == "pardiso":
+        if not pardiso_available():
+            raise ValueError("linear solver 'pardiso' needs pypardiso (pip install "
+                             "'skfem-dielectric[fast]')")
+        return PardisoSolver(**options)
+    raise ValueError(f"linear_solver must be a linear solver name ('auto', 'superlu', "
+                     f"'pardiso') or a solver instance, got {name!r}")
+
+
+def nonsymmetric_solver(name: str | LinearSolver = "superlu") -> LinearSolver:
+    """Linear solver for non-symmetric tangents (Maxwell-traction coupling).
+
+    Parameters
+    ----------
+    name
+        ``"pardiso"``/``"auto"`` give :class:`PardisoLUSolver` (if ``pypardiso`` is
+        installed; ``"auto"`` falls back to SuperLU), ``"superlu"`` SuperLU; an instance is
+        returned unchanged.
+
+    Returns
+    -------
+    LinearSolver
+    """
+    return get_linear_solver(name, symmetric=False)

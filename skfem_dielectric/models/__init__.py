@@ -1,0 +1,30 @@
+"""The FE models, each a :class:`~skfem_dielectric.problem.Problem`: the 2D incompressible
+membrane (:mod:`~skfem_dielectric.models.membrane`), the 2D generalised-plane-strain
+cross-section (:mod:`~skfem_dielectric.models.cross_section`), and the 3D plate with its
+post-processing, symmetry classes, mode classification and failure diagnosis
+(:mod:`skfem_dielectric.models.plate`). A model knows its weak form and its unknowns, not
+how it is solved: it imports neither :mod:`skfem_dielectric.solvers` nor the studies.
+"""
+
+from .membrane import MembranePlate, check_control_coupling
+from .cross_section import CrossSection
+from .plate import (PlateProblem, plate_reduction, increment_classes, evaluate_fields,
+                    plate_stresses, centre_line_points, clamp_line_points, plate_quantities,
+                    plate_step_mesh, SymmetryClass, ClassStability, symmetry_classes,
+                    class_stability, class_mode_full, union_tangent, class_tangent,
+                    element_energies, energy_share, corner_elements, corner_share,
+                    mesh_scale, classify_mode, lowest_physical_eigenvalue, mode_mesh,
+                    write_mode_vtu, top_deflection, MESH_SCALE_LIMIT, CORNER_LIMIT,
+                    StepLimitCounter, plate_failure_cause, describe_failure)
+
+__all__ = [
+    "MembranePlate", "check_control_coupling", "CrossSection", "PlateProblem",
+    "plate_reduction", "increment_classes", "evaluate_fields", "plate_stresses",
+    "centre_line_points", "clamp_line_points", "plate_quantities", "plate_step_mesh",
+    "SymmetryClass", "ClassStability", "symmetry_classes", "class_stability",
+    "class_mode_full", "union_tangent", "class_tangent", "element_energies", "energy_share",
+    "corner_elements", "corner_share", "mesh_scale", "classify_mode",
+    "lowest_physical_eigenvalue", "mode_mesh", "write_mode_vtu", "top_deflection",
+    "MESH_SCALE_LIMIT", "CORNER_LIMIT", "StepLimitCounter", "plate_failure_cause",
+    "describe_failure",
+]

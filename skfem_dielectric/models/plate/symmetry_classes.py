@@ -1,0 +1,248 @@
+"""Stability of a symmetric plate state by symmetry classes of its increments.
+
+A plate model cut by the symmetry planes ``x_i = 0`` computes states that are symmetric
+with respect to every plane; its own constraints admit only the *mirror-symmetric*
+increments.  The full plate's increments are the direct sum of ``2^m`` classes (``m``
+planes; per plane symmetric or antisymmetric,
+:func:`~skfem_dielectric.models.plate.problem.plate_reduction`)
+and its tangent is block diagonal in them.  So the negative-eigenvalue count of the full
+plate is the sum of the classes' counts, and its spectrum the union of theirs, at the cost
+of ``2^m`` factorisations of the reduced model's size: bending (``x2`` antisymmetric) and
+sway modes that the reduced model itself cannot show.
+
+The classes' tangents are assembled once per state on the *union* space (every dof free in
+some class) and restricted by sparse prolongations ``K_c = P_c^T K P_c``.
+"""
+
+from __future__ import annotations
+
+import weakref
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+import scipy.sparse as sp
+
+from ...fem.assembly import DofReduction
+from ...problem import Layout
+from ...stability.analysis import StabilityResult, tangent_stability
+from .problem import PlateProblem, increment_classes, plate_reduction
+
+__all__ = ["SymmetryClass", "ClassStability", "symmetry_classes", "class_stability",
+           "class_mode_full", "union_tangent", "class_tangent"]
+
+#: per base problem: the union-space problem and its classes (built once)
+_CACHE: "weakref.WeakKeyDictionary[PlateProblem, tuple]" = weakref.WeakKeyDictionary()
+
+
+@dataclass
+class SymmetryClass:
+    """One symmetry class of the increments of a plate model.
+
+    Attributes
+    ----------
+    increments
+        Axis -> ``"symmetric"`` or ``"antisymmetric"``.
+    red
+        Its dof reduction (of the full dofs).
+    layout
+        Its :class:`~skfem_dielectric.problem.Layout` (multiplier blocks ``p``, ``phi``).
+    P
+        Prolongation from the class's unknowns to the union space's.
+    metric
+        Diagonal metric of its modes: on each displacement unknown the number of its
+        mirror images in the full plate over ``2^m`` (1 inside, 1/2 on one plane, ...),
+        zero on the multipliers -- so that the Euclidean norm of the full plate's nodal
+        displacements restricts to it, and the classes' eigenvalues are the full plate's.
+    """
+
+    increments: dict[int, str]
+    red: DofReduction
+    layout: Layout
+    P: sp.csr_matrix
+    metric: sp.csr_matrix
+
+    @property
+    def ndofs(self) -> int:
+        """Number of unknowns of the class."""
+        return self.red.n
+
+    @property
+    def name(self) -> str:
+        """E.g. ``"x1 S, x2 A, x3 S"`` (S symmetric, A antisymmetric); ``"full"`` for a
+        model without symmetry planes."""
+        return ", ".join(f"x{ax} {v[0].upper()}"
+                         for ax, v in sorted(self.increments.items())) or "full"
+
+
+@dataclass
+class ClassStability:
+    """Stability of one state over every symmetry class.
+
+    Attributes
+    ----------
+    classes, results
+        The classes and, per class, its
+        :class:`~skfem_dielectric.stability.analysis.StabilityResult`.
+    """
+
+    classes: list[SymmetryClass]
+    results: list[StabilityResult] = field(default_factory=list)
+
+    @property
+    def n_negative(self) -> int:
+        """Negative eigenvalues of the full plate's reduced stiffness (sum over classes)."""
+        return sum(r.n_negative for r in self.results)
+
+    @property
+    def n_zero(self) -> int:
+        """Zero pivots, summed over the classes."""
+        return sum(r.n_zero for r in self.results)
+
+    @property
+    def stable(self) -> bool:
+        """Every class stable."""
+        return all(r.stable for r in self.results)
+
+    def lowest(self, k: int | None = None) -> list[tuple[float, str, int]]:
+        """The computed eigenvalues of all classes, ascending, as ``(value, class name,
+        index of the mode in that class's result)``; the first ``k`` (default all)."""
+        out = [(float(v), c.name, j) for c, r in zip(self.classes, self.results)
+               for j, v in enumerate(r.eigenvalues)]
+        out.sort()
+        return out if k is None else out[:k]
+
+
+def _union(problem: PlateProblem):
+    if problem not in _CACHE:
+        opts = dict(problem.options, increments="union")
+        union = PlateProblem(problem.plate, problem.material, **opts)
+        fields = union.form.fields
+        classes = []
+        for inc in increment_classes(problem.plate.symmetry):
+            red = plate_reduction(problem, inc)
+            free = np.flatnonzero(red.index >= 0)
+            rows, cols = union.red.index[free], red.index[free]
+            pairs = np.unique(np.column_stack([rows, cols]), axis=0)
+            P = sp.csr_matrix((np.ones(len(pairs)), (pairs[:, 0], pairs[:, 1])),
+                              shape=(union.red.n, red.n))
+            layout = Layout.from_reduction(red, fields, ("p", "phi"))
+            classes.append(SymmetryClass(inc, red, layout, P,
+                                         _class_metric(problem, red, layout)))
+        _CACHE[problem] = (union, classes)
+    return _CACHE[problem]
+
+
+def _class_metric(problem: PlateProblem, red: DofReduction, layout: Layout):
+    """Mirror-image weights of the displacement unknowns (see :class:`SymmetryClass`)."""
+    sym = problem.plate.symmetry
+    X = problem.b2.doflocs
+    on_planes = np.zeros(X.shape[1], dtype=int)
+    for ax in sym:
+        on_planes += np.abs(X[ax - 1]) < 1e-9 * problem.plate.L1
+    n_u = problem.n_u
+    free_u = np.flatnonzero(red.index[:n_u] >= 0)
+    unknown = red.index[free_u]
+    weight = np.zeros(red.n)
+    weight[unknown] = 0.5 ** on_planes[free_u // 3]
+    counts = np.bincount(unknown, minlength=red.n)
+    # a tied unknown (the rigid clamp) is one unknown of the full plate per x1 face
+    weight[counts > 1] = 2.0 ** ((1 in sym) - len(sym))
+    for name in layout.multipliers:
+        weight[layout.blocks[name]] = 0.0
+    return sp.diags(weight).tocsr()
+
+
+def symmetry_classes(problem: PlateProblem) -> list[SymmetryClass]:
+    """The ``2^m`` symmetry classes of the increments of ``problem`` (``m`` symmetry
+    planes; the all-symmetric class, the model's own, first)."""
+    if not isinstance(problem, PlateProblem):
+        raise ValueError(f"problem must be a PlateProblem, got {type(problem).__name__}")
+    return _union(problem)[1]
+
+
+def class_stability(problem: PlateProblem, x: np.ndarray, load: Any, *, k: int = 1,
+                    method: str = "auto", grad_div: float | None = None,
+                    all_negative: bool = False, tol: float = 1e-10) -> ClassStability:
+    """Negative-eigenvalue count and lowest modes of every symmetry class at a state.
+
+    Parameters
+    ----------
+    problem
+        A symmetric-coupling :class:`~skfem_dielectric.models.plate.problem.PlateProblem` (its
+        symmetry planes define the classes; a full plate has one class, itself).
+    x, load
+        A state of ``problem`` (reduced vector and load).
+    k
+        Lowest eigenpairs per class (0: counts only).
+    method
+        Inertia method (:func:`~skfem_dielectric.stability.analysis.tangent_inertia`).
+    grad_div
+        Grad-div stabilisation of the analysed tangent in units of ``mu`` (default: the
+        model's own,
+        :meth:`~skfem_dielectric.models.plate.problem.PlateProblem.stabilised_tangent`).
+    all_negative, tol
+        As in :func:`~skfem_dielectric.stability.analysis.tangent_stability`.
+
+    Returns
+    -------
+    ClassStability
+        Modes are vectors of each class's unknowns; :func:`class_mode_full` expands them.
+
+    Raises
+    ------
+    ValueError
+        A non-symmetric (Maxwell) coupling, or ``x`` of the wrong size.
+    """
+    classes, K = union_tangent(problem, x, load, grad_div)
+    out = ClassStability(classes)
+    for c in classes:
+        Kc = class_tangent(c, K)
+        out.results.append(tangent_stability(c, Kc, k=k, method=method,
+                                             all_negative=all_negative, tol=tol,
+                                             metric=c.metric))
+    return out
+
+
+def union_tangent(problem: PlateProblem, x: np.ndarray, load: Any,
+                  grad_div: float | None = None) -> tuple[list[SymmetryClass], sp.csr_matrix]:
+    """The symmetry classes of ``problem`` and the tangent at ``(x, load)`` on their union
+    space, which every class restricts (:func:`class_tangent`).
+
+    Raises
+    ------
+    ValueError
+        A non-symmetric (Maxwell) coupling, or ``x`` of the wrong size.
+    """
+    classes = symmetry_classes(problem)
+    if not problem.symmetric:
+        raise ValueError("the Maxwell coupling has no symmetric tangent: analyse the fully "
+                         "coupled model")
+    x = np.asarray(x, dtype=float)
+    if x.shape != (problem.ndofs,):
+        raise ValueError(f"x must have shape ({problem.ndofs},), got {x.shape}")
+    union = _union(problem)[0]
+    gd = problem.grad_div if grad_div is None else float(grad_div)
+    xf = problem.full(x, load)
+    return classes, union.scatter.csr(union.form.assemble(xf, gd * problem.material.mu)[0])
+
+
+def class_tangent(c: SymmetryClass, K: sp.csr_matrix) -> sp.csr_matrix:
+    """The tangent of class ``c``, ``P_c^T K P_c`` of the union-space tangent ``K``, with
+    every diagonal entry stored."""
+    return _with_diagonal((c.P.T @ K @ c.P).tocoo())
+
+
+def _with_diagonal(K: sp.coo_matrix) -> sp.csr_matrix:
+    """CSR with every diagonal entry stored (explicit zeros of the multiplier block:
+    PARDISO reports a row without its diagonal as empty)."""
+    n = K.shape[0]
+    i = np.arange(n)
+    return sp.csr_matrix((np.concatenate([K.data, np.zeros(n)]),
+                          (np.concatenate([K.row, i]), np.concatenate([K.col, i]))),
+                         shape=K.shape)
+
+
+def class_mode_full(c: SymmetryClass, w: np.ndarray) -> np.ndarray:
+    """Full dof vector of a mode ``w`` of class ``c`` (zeros on its fixed dofs)."""
+    return c.red.expand(np.asarray(w, dtype=float))

@@ -1,0 +1,448 @@
+"""Load ramp with adaptive cut-back for any :class:`~skfem_dielectric.problem.Problem`.
+
+:func:`ramp` drives a problem through a list of target loads.  A load is a float or a 1-D
+array (e.g. ``(s, D0)``); between two consecutive targets the load is interpolated linearly
+and sub-stepped adaptively: a sub-step whose Newton iteration fails is halved (cut-back) up
+to ``max_cutbacks`` times, and after a success the sub-step doubles again (never beyond the
+target).  Every target starts from the full interval, so a target's solution depends only on
+the state at the previous target: resuming a ramp with ``x0=step.x, start=step.load`` gives
+bit-for-bit the same subsequent steps as the uninterrupted run (for a deterministic linear
+solver such as SuperLU).
+
+After each converged target, ``problem.postprocess(x, load)`` gives a dict of quantities
+stored in the :class:`StepResult`, together with ``stable``, the verdict of
+``problem.stability(inertia)`` (``True``/``False``/``None``); then ``on_step(step)`` is
+called (the validation harness writes CSV rows and saves states there).  A target that
+cannot be reached ends the ramp: ``RampResult.converged=False``, ``reason``, ``failed_at``
+(the load of the failed sub-step), a ``RuntimeWarning`` is issued and all converged steps
+are kept; the furthest converged sub-step towards the failed target is appended as a step
+with ``target_reached=False``.
+
+Admissible states: ``step_limit(x, dx, load) -> alpha_max`` caps every Newton step (e.g.
+:meth:`~skfem_dielectric.models.plate.problem.PlateProblem.max_step`, ``det F > 0`` along the step)
+and ``admissible(x, load) -> reason`` rejects a converged state (a rejected sub-step is cut back
+like a failed one).  The ramp does not look for them on the problem: the drivers of
+:mod:`skfem_dielectric.gallery.drivers` pass them for the 3D plate
+(:func:`~skfem_dielectric.gallery.drivers.plate_admissible`); a direct caller passes them itself.
+"""
+
+from __future__ import annotations
+
+import time
+import warnings
+from dataclasses import dataclass, field
+from typing import Any, Callable, Sequence
+
+import numpy as np
+
+from ..checks import (check_callable, check_choice, check_count, check_nonnegative,
+                     check_nonnegative_int, check_tolerances, check_vector)
+from ..linalg.linear import LinearSolver, get_linear_solver
+from ..problem import Problem
+from .newton import newton
+
+__all__ = ["StepResult", "RampResult", "ramp"]
+
+
+@dataclass
+class StepResult:
+    """One converged (or the failed) target load of a ramp.
+
+    Attributes
+    ----------
+    load
+        The target load (float or array, as given to :func:`ramp`).
+    converged
+        True for every step stored in ``RampResult.steps``.
+    iterations
+        Newton iterations (with the chord steps) summed over the sub-steps that reached
+        this target.
+    factorisations
+        Tangents factorised in those iterations.
+    substeps
+        Number of converged sub-steps used (1 = reached in one step).
+    cutbacks
+        Number of failed sub-steps that were halved.
+    residual_norms
+        Residual history of each converged sub-step (list of lists).
+    x
+        Reduced solution vector (pass it as ``x0`` to resume a ramp).
+    quantities
+        Post-processed values from ``problem.postprocess`` (e.g. ``lam1``, ``min_P33``).
+    assembly_seconds, solve_seconds
+        Total wall time spent in assembly and linear solves for this target.
+    inertia
+        Inertia of the last factorised tangent of this step if the linear solver reports it
+        (PARDISO), else ``None``.
+    target_reached
+        False for the last step of a ramp that stopped: the furthest converged sub-step on
+        the way to the target that could not be reached (its ``load`` is intermediate).
+    """
+
+    load: Any
+    converged: bool
+    iterations: int
+    substeps: int
+    cutbacks: int
+    residual_norms: list[list[float]]
+    x: np.ndarray
+    quantities: dict[str, Any] = field(default_factory=dict)
+    assembly_seconds: float = 0.0
+    solve_seconds: float = 0.0
+    inertia: tuple[int, int, int] | None = None
+    target_reached: bool = True
+    factorisations: int = 0
+
+    def __getitem__(self, key: str) -> Any:
+        return self.quantities[key]
+
+
+@dataclass
+class RampResult:
+    """Outcome of a load ramp.
+
+    Attributes
+    ----------
+    steps
+        Converged target steps, in order (the starting state is not included).
+    converged
+        True if every target was reached.
+    reason
+        Empty if converged, else why the ramp stopped.
+    failed_at
+        Load of the sub-step that could not be solved (``None`` if converged).
+    wall_seconds
+        Total wall time of the ramp.
+    problem
+        The problem that was solved (set by the high-level drivers; use it to evaluate or
+        export the stored states), else ``None``.
+    iterations_total, assembly_calls, assembly_seconds, solve_seconds
+        Totals over *all* Newton attempts of the ramp, including failed sub-steps and
+        line-search evaluations (the per-step values count only converged targets).
+    assembly_times, solve_times
+        Wall time of every assembly call and every linear solve, in order (for medians
+        and profiles; their sums are ``assembly_seconds`` and ``solve_seconds``).
+    factorisations, chord_steps
+        Tangents factorised and chord steps (reused factorisation, ``chord > 0``) over
+        all Newton attempts.
+    residual_times, chord_times
+        Wall time of every residual-only evaluation and every chord back-substitution.
+    unstable_at
+        With ``stop_on_instability``: load of the converged (sub-)step whose tangent was
+        judged unstable, where the ramp stopped (``None`` otherwise).
+    failure
+        Where a model's driver diagnoses a Newton failure (the 3D plate:
+        :func:`~skfem_dielectric.gallery.drivers.run_ramp`), its measured cause, else empty.
+    """
+
+    steps: list[StepResult]
+    converged: bool
+    reason: str = ""
+    failed_at: Any = None
+    wall_seconds: float = 0.0
+    problem: Any = None
+    iterations_total: int = 0
+    assembly_calls: int = 0
+    assembly_seconds: float = 0.0
+    solve_seconds: float = 0.0
+    assembly_times: list[float] = field(default_factory=list)
+    solve_times: list[float] = field(default_factory=list)
+    unstable_at: Any = None
+    factorisations: int = 0
+    chord_steps: int = 0
+    residual_times: list[float] = field(default_factory=list)
+    chord_times: list[float] = field(default_factory=list)
+    failure: dict[str, Any] = field(default_factory=dict)
+
+    def column(self, name: str) -> np.ndarray:
+        """Array of quantity ``name`` over the converged steps (``"load"`` and
+        ``"iterations"`` are also accepted)."""
+        if name == "load":
+            return np.array([st.load for st in self.steps], dtype=float)
+        if name in ("iterations", "factorisations"):
+            return np.array([getattr(st, name) for st in self.steps], dtype=int)
+        known = set().union(*(st.quantities for st in self.steps)) if self.steps else set()
+        if name not in known:
+            raise ValueError(
+                f"name must be 'load', 'iterations', 'factorisations' or a post-processed "
+                f"quantity "
+                f"{sorted(known)}, got {name!r}")
+        return np.array([st.quantities[name] for st in self.steps])
+
+    @property
+    def x(self) -> np.ndarray | None:
+        """Reduced solution vector of the last converged step (``None`` if none)."""
+        return self.steps[-1].x if self.steps else None
+
+
+def _as_load(load: Any) -> Any:
+    try:
+        arr = np.asarray(load, dtype=float)
+    except (TypeError, ValueError):
+        raise ValueError(f"loads must be numbers or 1-D arrays, got {load!r}") from None
+    if arr.ndim > 1 or not np.all(np.isfinite(arr)):
+        raise ValueError(f"loads must be finite, got {load!r}")
+    return float(arr) if arr.ndim == 0 else arr.copy()
+
+
+def _secant_guess(problem: Problem, x: np.ndarray, at: Any, back: tuple | None,
+                  load: Any) -> np.ndarray:
+    """Start of the Newton solve at ``load`` from the converged ``x`` at load ``at``: the
+    secant extrapolation through the converged state ``back = (x_old, load_old)`` when the
+    new load increment continues the last one (same direction) and lowers the residual,
+    else ``x``."""
+    if back is None:
+        return x
+    d_old = np.atleast_1d(np.asarray(at, float) - np.asarray(back[1], float))
+    d_new = np.atleast_1d(np.asarray(load, float) - np.asarray(at, float))
+    n_old, n_new = float(np.linalg.norm(d_old)), float(np.linalg.norm(d_new))
+    if not (n_old > 0 and n_new > 0) or abs(d_old @ d_new - n_old * n_new) > 1e-9 * n_old * n_new:
+        return x
+    guess = x + (n_new / n_old) * (x - back[0])
+    try:
+        r_guess, r_x = problem.residual(guess, load), problem.residual(x, load)
+    except (FloatingPointError, ValueError, ZeroDivisionError):
+        return x
+    if np.all(np.isfinite(r_guess)) and np.linalg.norm(r_guess) < np.linalg.norm(r_x):
+        return guess
+    return x
+
+
+def ramp(problem: Problem, loads: Sequence[Any], *, x0: np.ndarray | None = None,
+         start: Any = None, on_step: Callable[[StepResult], Any] | None = None,
+         linear_solver: str | LinearSolver = "superlu", max_cutbacks: int = 6,
+         atol: float = 1e-10, rtol: float = 1e-10, max_iter: int = 25,
+         line_search: bool = True, stop_on_instability: bool = False,
+         step_limit: Callable[[np.ndarray, np.ndarray, Any], float] | None = None,
+         admissible: Callable[[np.ndarray, Any], str] | None = None,
+         chord: float = 0.0, predictor: str = "none",
+         state_analysis: Callable[..., dict] | None = None) -> RampResult:
+    """Run ``problem`` through the target ``loads`` with adaptive sub-stepping.
+
+    Parameters
+    ----------
+    problem
+        A :class:`~skfem_dielectric.problem.Problem`.
+    loads
+        Target loads in order (floats or equal-length 1-D arrays); each is reached and
+        post-processed.  Loads must be finite.
+    x0, start
+        State to start from: the reduced vector and its load.  Default:
+        ``problem.initial_state()`` at zero load.  To resume a ramp pass ``x0=step.x`` and
+        ``start=step.load`` of a saved :class:`StepResult` and the remaining loads.
+    on_step
+        Called as ``on_step(step)`` after every converged target.
+    linear_solver
+        Name or instance (see :func:`skfem_dielectric.linalg.linear.get_linear_solver`; a name
+        gives a non-symmetric solver for a problem whose ``symmetric`` is False); one
+        instance is used for the whole ramp.  A solver that ``reads_upper`` (the symmetric
+        PARDISO) gets the tangents of the Newton iterations from
+        :meth:`~skfem_dielectric.problem.Problem.assemble_upper`.
+    max_cutbacks
+        How many times a failing sub-step may be halved before the ramp stops.
+    atol, rtol, max_iter, line_search, chord
+        Newton settings (see :func:`newton`; ``chord > 0`` reuses a factorisation while
+        the residual contracts at least that much per step); ``rtol`` is relative to
+        ``problem.residual_scale(load)``, or to the first residual of each sub-step
+        where that is ``None``.
+    predictor
+        Start of each Newton solve: ``"none"`` (default; the last converged state) or
+        ``"secant"`` (extrapolated through the last two converged states when the load
+        keeps its direction and the extrapolation lowers the residual).  The secant
+        start depends on the state before the last one, so a resumed ramp repeats the
+        uninterrupted one only within the Newton tolerance.
+    stop_on_instability
+        Stop at the first converged sub-step that ``problem.stability(inertia)`` judges
+        unstable (needs a solver that reports the inertia, i.e. PARDISO; otherwise the
+        verdict is ``None`` and the ramp goes on, with one ``RuntimeWarning``).  That step is kept (``target_reached``
+        False if it is intermediate) and its load is ``unstable_at``.  A load-controlled
+        Newton cannot follow the path through such a point, so without this option the
+        ramp spends its cut-backs trying (see ``docs/fe.md``, breakdown).
+    step_limit, admissible
+        Optional ``step_limit(x, dx, load) -> alpha_max`` and ``admissible(x, load) ->
+        reason`` of the admissible states (see the module docstring and :func:`newton`);
+        a sub-step that converges to a state ``admissible`` rejects is cut back.
+    state_analysis
+        Optional ``state_analysis(problem, x, load, K, solver) -> dict``, called for every kept
+        step with the tangent ``K`` of the converged state, which ``solver`` has just
+        factorised (e.g. :class:`~skfem_dielectric.stability.monitor.StabilityMonitor`: the
+        negative-eigenvalue count from the factors, the lowest modes by
+        back-substitutions); the dict is added to the step's ``quantities``,
+        ``StepResult.inertia`` is that of the converged state's tangent where the factors
+        show it, and the next load step starts with a chord step on these factors
+        (``reuse_factors`` of :func:`newton`), so that the factorisation is not wasted.
+
+    Returns
+    -------
+    RampResult
+        Never raises on non-convergence; warns (``RuntimeWarning``) when it stops early.
+
+    Raises
+    ------
+    ValueError
+        Invalid arguments, each named: ``problem`` not a ``Problem``, non-finite loads,
+        ``x0`` not a finite vector of the problem's length, a callable that is not,
+        ``max_cutbacks < 0``, ``max_iter < 1``, negative tolerances or
+        ``atol = rtol = 0``, ``chord`` outside ``[0, 1)``.
+    """
+    if not isinstance(problem, Problem):
+        raise ValueError("problem must be a skfem_dielectric.Problem (see "
+                         f"skfem_dielectric.problem), got {type(problem).__name__}")
+    for name, f in (("on_step", on_step), ("step_limit", step_limit),
+                    ("admissible", admissible)):
+        check_callable(name, f)
+    check_callable("state_analysis", state_analysis)
+    atol, rtol = check_tolerances(atol, rtol)
+    max_iter = check_count("max_iter", max_iter)
+    max_cutbacks = check_nonnegative_int("max_cutbacks", max_cutbacks)
+    check_choice("predictor", predictor, ("none", "secant"))
+    chord = check_nonnegative("chord", chord)
+    if not chord < 1.0:
+        raise ValueError(f"chord must be in [0, 1), got {chord!r}")
+    t_start = time.perf_counter()
+    solver = get_linear_solver(linear_solver, symmetric=problem.symmetric)
+    # a solver that reads only the upper triangle gets it assembled directly
+    tangent = (problem.assemble_upper if problem.symmetric
+               and getattr(solver, "reads_upper", False) else problem.assemble)
+    try:
+        loads = list(loads)
+    except TypeError:
+        raise ValueError(f"loads must be a sequence of loads, got {loads!r}") from None
+    targets = [_as_load(ld) for ld in loads]
+    x0_ = problem.initial_state()
+    x = np.array(x0_ if x0 is None else check_vector("x0", x0, len(x0_)), dtype=float,
+                 copy=True)
+    if start is None:
+        cur = 0.0 * np.asarray(targets[0], dtype=float) if targets else 0.0
+        cur = _as_load(cur)
+    else:
+        cur = _as_load(start)
+    no_verdict_warned = False
+    back = None          # the converged state before x and its load (secant predictor)
+    out = RampResult(steps=[], converged=True)
+    reuse = False        # the solver holds the factors of the converged state's tangent
+
+    def analyse(load):
+        """``state_analysis`` of the converged ``x``: its tangent factorised by the ramp's
+        solver (counted with the step); returns ``(quantities, inertia)``."""
+        nonlocal reuse, facts, t_asm, t_sol
+        if callable(getattr(solver, "discard", None)):
+            solver.discard()        # the old factors: not held beside the new tangent
+        t = time.perf_counter()
+        K, _ = problem.assemble(x, load)
+        t_asm += time.perf_counter() - t
+        t = time.perf_counter()
+        try:
+            solver.solve(K, np.zeros(K.shape[0]))
+        except Exception as exc:  # a singular tangent: an exactly critical state
+            reuse = False
+            return {"state_analysis_error": f"factorisation failed: {exc}"}, None
+        t_sol += time.perf_counter() - t
+        facts += 1
+        out.factorisations += 1
+        reuse = True
+        return dict(state_analysis(problem, x, load, K, solver)), solver.factor_inertia()
+
+    def record(load, target_reached):
+        """Keep the converged state ``x`` at ``load`` as a step (post-processed, with the
+        stability verdict of its last tangent) and report it to ``on_step``."""
+        nonlocal inertia
+        extra = {}
+        if state_analysis is not None:
+            extra, inertia = analyse(load)
+        step = StepResult(load=load, converged=True, iterations=iters, substeps=subs,
+                          cutbacks=cuts, residual_norms=hist, x=x.copy(),
+                          assembly_seconds=t_asm, solve_seconds=t_sol, inertia=inertia,
+                          target_reached=target_reached, factorisations=facts)
+        step.quantities = dict(problem.postprocess(x, load))
+        step.quantities.update(extra)
+        step.quantities.setdefault("stable", problem.stability(inertia))
+        out.steps.append(step)
+        if on_step is not None:
+            on_step(step)
+
+    for target in targets:
+        a, b = np.asarray(cur, dtype=float), np.asarray(target, dtype=float)
+        frac, dfrac = 0.0, 1.0
+        iters = subs = cuts = facts = 0
+        inertia = None
+        hist: list[list[float]] = []
+        t_asm = t_sol = 0.0
+        failed = ""
+        unstable = None
+        while frac < 1.0:
+            f_new = min(1.0, frac + dfrac)
+            load = _as_load(b if f_new >= 1.0 else a + f_new * (b - a))
+            scale = problem.residual_scale(load)
+            at = _as_load(a + frac * (b - a)) if frac > 0 else cur
+            x_start = _secant_guess(problem, x, at, back, load) if predictor == "secant" else x
+            nr = newton(lambda xx: tangent(xx, load), x_start,
+                        residual=lambda xx: problem.residual(xx, load),
+                        linear_solver=solver, atol=atol, rtol=rtol, scale=scale,
+                        max_iter=max_iter, line_search=line_search,
+                        step_limit=None if step_limit is None else
+                        (lambda xx, dd: step_limit(xx, dd, load)),
+                        admissible=None if admissible is None else
+                        (lambda xx: admissible(xx, load)), chord=chord,
+                        reuse_factors=reuse)
+            reuse = False
+            iters += nr.iterations
+            facts += nr.factorisations
+            out.factorisations += nr.factorisations
+            out.chord_steps += nr.chord_steps
+            out.residual_times.extend(nr.residual_seconds)
+            out.chord_times.extend(nr.chord_seconds)
+            t_asm += sum(nr.assembly_seconds)
+            t_sol += sum(nr.solve_seconds)
+            out.iterations_total += nr.iterations
+            out.assembly_calls += len(nr.assembly_seconds)
+            out.assembly_seconds += sum(nr.assembly_seconds)
+            out.solve_seconds += sum(nr.solve_seconds)
+            out.assembly_times.extend(nr.assembly_seconds)
+            out.solve_times.extend(nr.solve_seconds)
+            if nr.converged:
+                back = (x, at)
+                x = nr.x
+                inertia = nr.inertia
+                frac = f_new
+                subs += 1
+                hist.append(nr.residual_norms)
+                dfrac = min(2.0 * dfrac, 1.0)
+                if stop_on_instability:
+                    verdict = problem.stability(inertia)
+                    if verdict is False:
+                        unstable = load
+                        break
+                    if verdict is None and not no_verdict_warned:
+                        no_verdict_warned = True
+                        warnings.warn("stop_on_instability has no effect: the linear solver "
+                                      "reports no inertia, so there is no stability verdict "
+                                      "(use linear_solver='pardiso')", RuntimeWarning,
+                                      stacklevel=2)
+            else:
+                cuts += 1
+                if cuts > max_cutbacks:
+                    failed = nr.reason
+                    out.failed_at = load
+                    break
+                dfrac *= 0.5
+        if unstable is not None:
+            record(unstable, frac >= 1.0)
+            out.converged = False
+            out.unstable_at = unstable
+            out.reason = (f"stability lost at load {unstable!r} (inertia of the tangent: "
+                          f"{inertia}); stopped on request (stop_on_instability)")
+            warnings.warn(out.reason, RuntimeWarning, stacklevel=2)
+            break
+        if failed:
+            if frac > 0.0:   # keep the furthest converged sub-step towards the target
+                record(_as_load(b if frac >= 1.0 else a + frac * (b - a)), False)
+            out.converged = False
+            out.reason = (f"target load {target!r} not reached after {max_cutbacks} "
+                          f"cut-backs; last Newton failure: {failed}")
+            warnings.warn(out.reason, RuntimeWarning, stacklevel=2)
+            break
+        cur = target
+        record(target, True)
+    out.wall_seconds = time.perf_counter() - t_start
+    return out

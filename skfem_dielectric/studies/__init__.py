@@ -1,0 +1,25 @@
+"""The analyses of the paper, each a model, a solver and the stability put together: the first
+physical buckling load of the clamped plate (:mod:`~skfem_dielectric.studies.buckling`), the
+post-buckled branch (:mod:`~skfem_dielectric.studies.postbuckling`), the voltage-controlled
+snap-through of a homogeneous plate (:mod:`~skfem_dielectric.studies.snap_through`), and the
+FE wrinkling of the cross-section (:mod:`~skfem_dielectric.studies.wrinkling_fe`).
+"""
+
+from .buckling import (ModeLabel, BucklingLoad, corner_radius, class_spectra,
+                       physical_modes, lowest_physical, buckling_load)
+from .postbuckling import (midplane_nodes, midplane_deflection, critical_mode, BranchSwitch,
+                           switch_branch, follow_branch, PostBuckledBranch,
+                           post_buckled_branch)
+from .snap_through import homogeneous_plate, SnapThrough, voltage_snap_through
+from .wrinkling_fe import (wrinkling_section, section_mode_eigenvalue,
+                           section_critical_load, SectionBifurcation,
+                           section_critical_stretch)
+
+__all__ = [
+    "ModeLabel", "BucklingLoad", "corner_radius", "class_spectra", "physical_modes",
+    "lowest_physical", "buckling_load", "midplane_nodes", "midplane_deflection",
+    "critical_mode", "BranchSwitch", "switch_branch", "follow_branch", "PostBuckledBranch",
+    "post_buckled_branch", "homogeneous_plate", "SnapThrough", "voltage_snap_through",
+    "wrinkling_section", "section_mode_eigenvalue", "section_critical_load",
+    "SectionBifurcation", "section_critical_stretch",
+]
