@@ -16,7 +16,7 @@ import numpy as np
 __all__ = ["check_number", "check_positive", "check_nonnegative", "check_count",
            "check_nonnegative_int", "check_finite", "check_choice", "check_callable",
            "check_tolerances", "check_material", "check_vector", "check_file_prefix",
-           "check_energy"]
+           "check_energy", "check_instance"]
 
 
 def check_number(name: str, value: Any) -> float:
@@ -81,6 +81,15 @@ def check_callable(name: str, value: Any, optional: bool = True) -> Any:
     if not (callable(value) or (optional and value is None)):
         raise ValueError(f"{name} must be callable{' or None' if optional else ''}, "
                          f"got {value!r}")
+    return value
+
+
+def check_instance(name: str, value: Any, cls: type, made_by: str) -> Any:
+    """``value`` if it is a ``cls`` (as ``made_by`` returns it), else ``ValueError`` naming
+    ``name`` and the type it got; e.g. the mesh argument of a model."""
+    if not isinstance(value, cls):
+        raise ValueError(f"{name} must be a {cls.__name__} (from {made_by}), got "
+                         f"{type(value).__name__} {value!r:.60}")
     return value
 
 
