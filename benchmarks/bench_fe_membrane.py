@@ -12,12 +12,14 @@ import time
 
 import numpy as np
 
-from skfem_dielectric import MembranePlate, NeoHookeanDielectric, keplinger_s, membrane_ramp
+from skfem_dielectric import (MembranePlate, NeoHookeanDielectric, keplinger_s, membrane_mesh,
+                              membrane_ramp)
 
 
 def main(solver: str = "superlu") -> None:
     t0 = time.perf_counter()
-    pb = MembranePlate(NeoHookeanDielectric(1.0, 1.0), n1=40, n3=20, loading="clamped")
+    pb = MembranePlate(membrane_mesh(100.0, 1.0, 50.0, 40, 20), NeoHookeanDielectric(1.0, 1.0),
+                       loading="uniaxial")
     t_setup = time.perf_counter() - t0
     s = keplinger_s(1.0, g=9.81)
     D0 = np.arange(0.0, 6.01, 1.0)

@@ -31,9 +31,9 @@ from .linalg import (LinearSolver, PardisoLUSolver, PardisoSolver, SuperLUSolver
                      get_linear_solver, nonsymmetric_solver, pardiso_available)
 from .materials import (GentDielectric, IdealDielectric, NeoHookeanDielectric, PointResponse,
                         ideal_dielectric_response, make_material)
-from .models import (ClassStability, CrossSection, MembranePlate, PlateProblem,
-                     class_stability, classify_mode, lowest_physical_eigenvalue, mode_mesh,
-                     symmetry_classes, write_mode_vtu)
+from .models import (ClassStability, CrossSection, MembraneMesh, MembranePlate, PlateProblem,
+                     SectionMesh, class_stability, classify_mode, lowest_physical_eigenvalue,
+                     membrane_mesh, mode_mesh, section_mesh, symmetry_classes, write_mode_vtu)
 from .problem import Layout, Problem
 from .solvers import (ContinuationEvent, ContinuationPoint, ContinuationResult, CriticalLoad,
                       NewtonResult, RampResult, StepResult, continuation, critical_load, newton,
@@ -54,7 +54,8 @@ __all__ = [
     "ideal_dielectric_response", "make_material", "PlateMesh", "plate_mesh",
     "point_gradients",
     # models and their point kernels
-    "PlateProblem", "MembranePlate", "CrossSection", "membrane_kernel",
+    "PlateProblem", "MembranePlate", "CrossSection", "MembraneMesh", "membrane_mesh",
+    "SectionMesh", "section_mesh", "membrane_kernel",
     "cross_section_kernel", "maxwell_stress", "maxwell_traction", "maxwell_traction_field",
     # loads and drivers
     "keplinger_s", "charge_targets", "preload_then_charge", "remaining_targets",

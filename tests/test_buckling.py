@@ -119,7 +119,7 @@ def test_bad_input(end_compression):
         physical_modes(pb, *states[0], radius=-1.0)
     with pytest.raises(ValueError, match="problem must be a PlateProblem"):
         corner_radius(object())
-    res = fe.ramp(fe.CrossSection(fe.NeoHookeanDielectric(), L1=4.0, n1=2, n2=1),
+    res = fe.ramp(fe.CrossSection(fe.section_mesh(4.0, 1.0, 2, 1), fe.NeoHookeanDielectric()),
                   [np.zeros(3)])
     with pytest.raises(ValueError, match="result must come from a plate driver"):
         buckling_load(res)

@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 from scipy.optimize import brentq
 
-from skfem_dielectric import CrossSection, cross_section_ramp
+from skfem_dielectric import CrossSection, cross_section_ramp, section_mesh
 from skfem_dielectric.materials import GentDielectric, NeoHookeanDielectric
 
 MU, EPS, JM = 1.3, 0.7, 20.0
@@ -27,7 +27,7 @@ def _uniaxial_lam1(D0, s):
 @pytest.mark.parametrize("model, s", [("nh", 0.8), ("nh", 2.5), ("gent", 1.5)])
 def test_equibiaxial_matches_closed_form(model, s):
     mat = NeoHookeanDielectric(MU, EPS) if model == "nh" else GentDielectric(MU, EPS, JM)
-    pb = CrossSection(mat, L1=4.0, H=1.0, n1=3, n2=2)
+    pb = CrossSection(section_mesh(4.0, 1.0, 3, 2), mat)
     D0s = [0.0, 2.0, 4.0, 6.0] if model == "nh" else [0.0, 1.0, 2.0]
     res = cross_section_ramp(pb, s, s, D0s)
     assert res.converged
@@ -44,7 +44,7 @@ def test_equibiaxial_matches_closed_form(model, s):
 
 @pytest.mark.parametrize("s", [0.8, 2.993])
 def test_uniaxial_matches_closed_form(s):
-    pb = CrossSection(NeoHookeanDielectric(MU, EPS), L1=4.0, H=1.0, n1=3, n2=2)
+    pb = CrossSection(section_mesh(4.0, 1.0, 3, 2), NeoHookeanDielectric(MU, EPS))
     res = cross_section_ramp(pb, s, 0.0, [0.0, 2.0, 4.0, 6.0])
     assert res.converged
     for st in res.steps:
@@ -58,7 +58,7 @@ def test_uniaxial_matches_closed_form(s):
 def test_prescribed_lam3_matches_biaxial_closed_form():
     """lam3 fixed: t1 = d omega*/d lam1 of Sec. 2.1 with lam2 = 1/(lam1 lam3)."""
     lam3 = 1.2
-    pb = CrossSection(NeoHookeanDielectric(MU, EPS), L1=4.0, H=1.0, n1=3, n2=2, lam3=lam3)
+    pb = CrossSection(section_mesh(4.0, 1.0, 3, 2), NeoHookeanDielectric(MU, EPS), lam3=lam3)
     s = 1.0
     res = cross_section_ramp(pb, s, 0.0, [0.0, 1.5, 3.0])
     assert res.converged
@@ -72,7 +72,7 @@ def test_prescribed_lam3_matches_biaxial_closed_form():
 
 def test_voltage_control_equibiaxial():
     """E0 prescribed: s = lam - lam^-5 - lam^3 E0^2 (D0 = lam^4 E0 in Eq. loading_gent)."""
-    pb = CrossSection(NeoHookeanDielectric(MU, EPS), L1=4.0, H=1.0, n1=2, n2=1,
+    pb = CrossSection(section_mesh(4.0, 1.0, 2, 1), NeoHookeanDielectric(MU, EPS),
                       control="voltage")
     s = 1.0
     res = cross_section_ramp(pb, s, s, [0.0, 0.1, 0.2, 0.3])
@@ -84,7 +84,7 @@ def test_voltage_control_equibiaxial():
 
 
 def test_tangent_matches_finite_differences(assert_tangent_columns):
-    pb = CrossSection(GentDielectric(MU, EPS, JM), L1=4.0, H=1.0, n1=2, n2=2)
+    pb = CrossSection(section_mesh(4.0, 1.0, 2, 2), GentDielectric(MU, EPS, JM))
     rng = np.random.default_rng(5)
     x = pb.initial_state() + 0.01 * rng.standard_normal(pb.ndofs)
     load = (1.0, 0.5, 2.0)
@@ -96,16 +96,26 @@ def test_tangent_matches_finite_differences(assert_tangent_columns):
 
 
 @pytest.mark.parametrize("kw, name", [
-    (dict(L1=0.0), "L1"), (dict(H=-1.0), "H"), (dict(n2=0), "n2"), (dict(lam3=-1.0), "lam3"),
-    (dict(control="current"), "control"),
+    (dict(L1=0.0), "L1"), (dict(H=-1.0), "H"), (dict(n2=0), "n2"),
+    (dict(thickness="quarter"), "thickness"),
+])
+def test_bad_mesh_input_raises(kw, name):
+    size = {**dict(L1=20.0, H=1.0, n1=1, n2=1), **kw}
+    with pytest.raises(ValueError, match=name):
+        section_mesh(**size)
+
+
+@pytest.mark.parametrize("kw, name", [
+    (dict(lam3=-1.0), "lam3"), (dict(lam1=0.0), "lam1"), (dict(control="current"), "control"),
+    (dict(grad_div=-1.0), "grad_div"), (dict(phi_element=2), "phi_element"),
 ])
 def test_bad_input_raises(kw, name):
     with pytest.raises(ValueError, match=name):
-        CrossSection(NeoHookeanDielectric(MU, EPS), **kw)
+        CrossSection(section_mesh(20.0, 1.0, 1, 1), NeoHookeanDielectric(MU, EPS), **kw)
 
 
 def test_bad_load_raises():
-    pb = CrossSection(NeoHookeanDielectric(MU, EPS), n1=1, n2=1)
+    pb = CrossSection(section_mesh(20.0, 1.0, 1, 1), NeoHookeanDielectric(MU, EPS))
     with pytest.raises(ValueError, match="D0"):
         cross_section_ramp(pb, 1.0, 1.0, [0.0, np.nan])
     with pytest.raises(ValueError, match="s1"):

@@ -71,7 +71,7 @@ def test_homogeneous_plate_reproduces_loading_curve(lam1, lam3):
 # --------------------------------------------------------------------------
 from scipy.optimize import brentq  # noqa: E402
 
-from skfem_dielectric import CrossSection, cross_section_ramp  # noqa: E402
+from skfem_dielectric import CrossSection, cross_section_ramp, section_mesh  # noqa: E402
 from skfem_dielectric.materials import GentDielectric, NeoHookeanDielectric  # noqa: E402
 
 
@@ -79,7 +79,7 @@ from skfem_dielectric.materials import GentDielectric, NeoHookeanDielectric  # n
 @pytest.mark.parametrize("s1, s3", [(1.5, 1.5), (0.8, 0.8), (2.993, 0.0), (0.8, 0.0)])
 def test_cross_section_maxwell_matches_closed_form(s1, s3, field):
     mu = 1.3
-    pb = CrossSection(NeoHookeanDielectric(mu, EPS), L1=4.0, H=1.0, n1=3, n2=2,
+    pb = CrossSection(section_mesh(4.0, 1.0, 3, 2), NeoHookeanDielectric(mu, EPS),
                       coupling="maxwell", field=field)
     res = cross_section_ramp(pb, s1, s3, [0.0, 2.0, 4.0, 6.0])
     assert res.converged
@@ -105,7 +105,7 @@ def test_cross_section_maxwell_matches_closed_form(s1, s3, field):
 @pytest.mark.parametrize("field", ["electrostatic", "local"])
 def test_cross_section_maxwell_tangent_matches_finite_differences(field,
                                                                    assert_tangent_columns):
-    pb = CrossSection(GentDielectric(1.3, EPS, 20.0), L1=4.0, H=1.0, n1=2, n2=2,
+    pb = CrossSection(section_mesh(4.0, 1.0, 2, 2), GentDielectric(1.3, EPS, 20.0),
                       coupling="maxwell", field=field)
     rng = np.random.default_rng(7)
     x = pb.initial_state() + 0.01 * rng.standard_normal(pb.ndofs)
@@ -119,23 +119,24 @@ def test_cross_section_maxwell_tangent_matches_finite_differences(field,
 
 
 def test_cross_section_maxwell_bad_input():
+    mesh, mat = section_mesh(20.0, 1.0, 1, 1), NeoHookeanDielectric(1.0, 1.0)
     with pytest.raises(ValueError, match="coupling"):
-        CrossSection(NeoHookeanDielectric(1.0, 1.0), coupling="traction")
+        CrossSection(mesh, mat, coupling="traction")
     with pytest.raises(ValueError, match="control"):
-        CrossSection(NeoHookeanDielectric(1.0, 1.0), coupling="maxwell", control="voltage")
+        CrossSection(mesh, mat, coupling="maxwell", control="voltage")
     with pytest.raises(ValueError, match="field"):
-        CrossSection(NeoHookeanDielectric(1.0, 1.0), coupling="maxwell", field="remote")
+        CrossSection(mesh, mat, coupling="maxwell", field="remote")
 
 
 # --------------------------------------------------------------------------
 # 2D membrane with Maxwell traction
 # --------------------------------------------------------------------------
-from skfem_dielectric import MembranePlate, membrane_ramp  # noqa: E402
+from skfem_dielectric import MembranePlate, membrane_mesh, membrane_ramp  # noqa: E402
 
 
-@pytest.mark.parametrize("loading, s", [("equibiaxial", 1.5), ("uniaxial", 2.993)])
+@pytest.mark.parametrize("loading, s", [("equibiaxial", 1.5), ("uniaxial-free", 2.993)])
 def test_membrane_maxwell_matches_closed_form(loading, s):
-    pb = MembranePlate(NeoHookeanDielectric(1.3, EPS), L1=2.0, L3=1.0, H=0.05, n1=3, n3=2,
+    pb = MembranePlate(membrane_mesh(2.0, 0.05, 1.0, 3, 2), NeoHookeanDielectric(1.3, EPS),
                        loading=loading, coupling="maxwell")
     res = membrane_ramp(pb, s, [0.0, 2.0, 4.0, 6.0])
     assert res.converged
@@ -157,8 +158,8 @@ def test_membrane_maxwell_matches_closed_form(loading, s):
 
 
 def test_membrane_maxwell_tangent_matches_finite_differences(assert_tangent_columns):
-    pb = MembranePlate(GentDielectric(1.3, EPS, 20.0), L1=2.0, L3=1.0, H=0.05, n1=3, n3=2,
-                       loading="clamped", coupling="maxwell")
+    pb = MembranePlate(membrane_mesh(2.0, 0.05, 1.0, 3, 2), GentDielectric(1.3, EPS, 20.0),
+                       loading="uniaxial", coupling="maxwell")
     rng = np.random.default_rng(11)
     x = 0.01 * rng.standard_normal(pb.ndofs)
     load = (1.0, 3.0)

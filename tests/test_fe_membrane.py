@@ -68,7 +68,8 @@ def test_voltage_control_equibiaxial():
 # --------------------------------------------------------------------------
 from scipy.optimize import brentq  # noqa: E402
 
-from skfem_dielectric import MembranePlate, membrane_keplinger, membrane_ramp, ramp  # noqa: E402
+from skfem_dielectric import (MembranePlate, membrane_keplinger, membrane_mesh,  # noqa: E402
+                              membrane_ramp, ramp)
 
 
 def _equibiaxial_lam(D0, s, Jm=np.inf):
@@ -89,7 +90,7 @@ def _uniaxial_lam1(D0, s):
 @pytest.mark.parametrize("model", ["nh", "gent"])
 def test_fe_equibiaxial_matches_closed_form(s, model):
     mat = NeoHookeanDielectric(MU, EPS) if model == "nh" else GentDielectric(MU, EPS, JM)
-    pb = MembranePlate(mat, L1=2.0, L3=1.0, H=0.05, n1=3, n3=2, loading="equibiaxial")
+    pb = MembranePlate(membrane_mesh(2.0, 0.05, 1.0, 3, 2), mat, loading="equibiaxial")
     D0s = [0.0, 1.5, 3.0, 4.5, 6.0] if model == "nh" else [0.0, 1.0, 2.0]
     res = ramp(pb, [(s, d) for d in D0s])
     assert res.converged
@@ -105,7 +106,7 @@ def test_fe_equibiaxial_matches_closed_form(s, model):
 def test_fe_equibiaxial_voltage_control():
     """Voltage control on the stable branch: s = lam - lam^-5 - lam^3 E0^2."""
     mat = NeoHookeanDielectric(MU, EPS)
-    pb = MembranePlate(mat, L1=2.0, L3=1.0, H=0.05, n1=2, n3=2, loading="equibiaxial",
+    pb = MembranePlate(membrane_mesh(2.0, 0.05, 1.0, 2, 2), mat, loading="equibiaxial",
                        control="voltage")
     s = 1.0
     res = ramp(pb, [(s, e) for e in (0.0, 0.1, 0.2, 0.3)])
@@ -119,7 +120,7 @@ def test_fe_equibiaxial_voltage_control():
 @pytest.mark.parametrize("s", [0.8, 2.993])
 def test_fe_uniaxial_matches_closed_form(s):
     mat = NeoHookeanDielectric(MU, EPS)
-    pb = MembranePlate(mat, L1=2.0, L3=1.0, H=0.05, n1=3, n3=2, loading="uniaxial")
+    pb = MembranePlate(membrane_mesh(2.0, 0.05, 1.0, 3, 2), mat, loading="uniaxial-free")
     res = ramp(pb, [(s, d) for d in (0.0, 2.0, 4.0, 6.0)])
     assert res.converged
     for st in res.steps:
@@ -133,7 +134,7 @@ def test_fe_uniaxial_matches_closed_form(s):
 def test_fe_tangent_matches_finite_differences_of_residual(assert_tangent_columns):
     """Assembled reduced tangent (incl. the shared clamp dof) vs central differences."""
     mat = GentDielectric(MU, EPS, JM)
-    pb = MembranePlate(mat, L1=2.0, L3=1.0, H=0.05, n1=3, n3=2, loading="clamped")
+    pb = MembranePlate(membrane_mesh(2.0, 0.05, 1.0, 3, 2), mat, loading="uniaxial")
     rng = np.random.default_rng(3)
     x = 0.01 * rng.standard_normal(pb.ndofs)
     load = (1.0, 2.0)
@@ -147,17 +148,27 @@ def test_fe_tangent_matches_finite_differences_of_residual(assert_tangent_column
 
 @pytest.mark.parametrize("kw, name", [
     (dict(L1=-1.0), "L1"), (dict(H=0.0), "H"), (dict(n1=0), "n1"), (dict(n3=2.5), "n3"),
-    (dict(loading="biaxial"), "loading"), (dict(control="current"), "control"),
     (dict(L3=np.nan), "L3"),
+])
+def test_bad_mesh_input_raises(kw, name):
+    size = {**dict(L1=2.0, H=0.05, L3=1.0, n1=1, n3=1), **kw}
+    with pytest.raises(ValueError, match=name):
+        membrane_mesh(**size)
+
+
+@pytest.mark.parametrize("kw, name", [
+    (dict(loading="biaxial"), "loading"), (dict(loading="clamped"), "loading"),
+    (dict(control="current"), "control"),
 ])
 def test_bad_input_raises(kw, name):
     with pytest.raises(ValueError, match=name):
-        MembranePlate(NeoHookeanDielectric(MU, EPS), **kw)
+        MembranePlate(membrane_mesh(2.0, 0.05, 1.0, 1, 1), NeoHookeanDielectric(MU, EPS), **kw)
 
 
 def test_bad_loads_raise():
 
-    pb = MembranePlate(NeoHookeanDielectric(MU, EPS), n1=1, n3=1)
+    mesh = membrane_mesh(2.0, 0.05, 1.0, 1, 1)
+    pb = MembranePlate(mesh, NeoHookeanDielectric(MU, EPS))
     with pytest.raises(ValueError, match="s must be finite"):
         membrane_ramp(pb, np.nan, [0.0])
     with pytest.raises(ValueError, match="D0"):
@@ -167,6 +178,7 @@ def test_bad_loads_raise():
     with pytest.raises(ValueError, match="alpha"):
         membrane_keplinger(alpha=np.nan, n1=1, n3=1)
     with pytest.raises(ValueError, match="coupling"):
-        MembranePlate(NeoHookeanDielectric(MU, EPS), coupling="both")
+        MembranePlate(mesh, NeoHookeanDielectric(MU, EPS), coupling="both")
     with pytest.raises(ValueError, match="control"):
-        MembranePlate(NeoHookeanDielectric(MU, EPS), coupling="maxwell", control="voltage")
+        MembranePlate(mesh, NeoHookeanDielectric(MU, EPS), coupling="maxwell",
+                      control="voltage")

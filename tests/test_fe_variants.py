@@ -12,8 +12,9 @@ from scipy.optimize import brentq
 
 from skfem_dielectric import (CrossSection, MembranePlate, PlateProblem, cross_section_ramp,
                               keplinger_plate, maxwell_equibiaxial, maxwell_keplinger,
-                              membrane_keplinger, membrane_ramp, nonsymmetric_solver,
-                              pardiso_available, write_vtu_series)
+                              membrane_keplinger, membrane_mesh, membrane_ramp,
+                              nonsymmetric_solver, pardiso_available, section_mesh,
+                              write_vtu_series)
 from skfem_dielectric import ramp
 from skfem_dielectric.fem.mesh import plate_mesh
 from skfem_dielectric.materials import GentDielectric, NeoHookeanDielectric
@@ -165,11 +166,12 @@ def test_export_of_the_2d_variants(tmp_path):
 
     s = 1.5
     for name, res in (
-        ("membrane", membrane_ramp(MembranePlate(NeoHookeanDielectric(MU, EPS), L1=2.0,
-                                                 L3=1.0, H=0.1, n1=2, n3=1,
+        ("membrane", membrane_ramp(MembranePlate(membrane_mesh(2.0, 0.1, 1.0, 2, 1),
+                                                 NeoHookeanDielectric(MU, EPS),
                                                  loading="equibiaxial"), s, [0.0, 2.0])),
-        ("section", cross_section_ramp(CrossSection(NeoHookeanDielectric(MU, EPS), L1=2.0,
-                                                    H=1.0, n1=2, n2=1), s, s, [0.0, 2.0])),
+        ("section", cross_section_ramp(CrossSection(section_mesh(2.0, 1.0, 2, 1),
+                                                    NeoHookeanDielectric(MU, EPS)),
+                                       s, s, [0.0, 2.0])),
     ):
         files = write_vtu_series(res, tmp_path / name)
         assert len(files) == 3 and files[-1].suffix == ".pvd"

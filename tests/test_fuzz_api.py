@@ -127,11 +127,19 @@ def _cases():
         add("PlateProblem", name, values,
             lambda v, name=name: sd.PlateProblem(pm, PB.material, **{name: v}))
     add("PlateProblem", "material", ["rubber", 3, None], lambda v: sd.PlateProblem(pm, v))
-    add("MembranePlate", "material", ["rubber", 1.0] + WORDS[:1], lambda v: sd.MembranePlate(v))
-    add("CrossSection", "material", ["x", None], lambda v: sd.CrossSection(v))
+    mm, sm = sd.membrane_mesh(100.0, 1.0, 50.0, 1, 1), sd.section_mesh(20.0, 1.0, 1, 1)
+    add("MembranePlate", "material", ["rubber", 1.0] + WORDS[:1],
+        lambda v: sd.MembranePlate(mm, v))
+    add("CrossSection", "material", ["x", None], lambda v: sd.CrossSection(sm, v))
     mat = sd.NeoHookeanDielectric(1.0, 1.0)
-    add("MembranePlate", "n1", COUNT, lambda v: sd.MembranePlate(mat, n1=v))
-    add("CrossSection", "L1", POSITIVE, lambda v: sd.CrossSection(mat, L1=v))
+    for label, mesh, model in (("PlateProblem", pm, sd.PlateProblem),
+                               ("MembranePlate", mm, sd.MembranePlate),
+                               ("CrossSection", sm, sd.CrossSection)):
+        add(label, "mesh", [mesh.mesh, None, "x"] + [m for m in (pm, mm, sm) if m is not mesh],
+            lambda v, model=model: model(v, mat))
+    add("membrane_mesh", "n1", COUNT, lambda v: sd.membrane_mesh(100.0, 1.0, 50.0, v, 1))
+    add("section_mesh", "L1", POSITIVE, lambda v: sd.section_mesh(v, 1.0, 1, 1))
+    add("section_mesh", "thickness", CHOICE, lambda v: sd.section_mesh(20.0, 1.0, 1, 1, v))
     add("NeoHookeanDielectric", "mu", POSITIVE, lambda v: sd.NeoHookeanDielectric(v, 1.0))
     add("GentDielectric", "Jm", POSITIVE, lambda v: sd.GentDielectric(1.0, 1.0, v))
     add("make_material", "model", CHOICE + WORDS, lambda v: sd.make_material(v))

@@ -2,11 +2,14 @@
 
 from __future__ import annotations
 
+import inspect
+
 import numpy as np
 import pytest
 
 from skfem_dielectric import (CrossSection, Layout, MembranePlate, NeoHookeanDielectric,
-                              PlateProblem, Problem, plate_mesh, ramp)
+                              PlateProblem, Problem, membrane_mesh, plate_mesh, ramp,
+                              section_mesh)
 
 
 def _plate(**options):
@@ -23,8 +26,9 @@ def _blocks_partition(layout: Layout) -> bool:
     lambda: _plate(),
     lambda: _plate(control="voltage"),
     lambda: _plate(coupling="maxwell", field="local"),
-    lambda: CrossSection(NeoHookeanDielectric(), n1=2, n2=1),
-    lambda: MembranePlate(NeoHookeanDielectric(), n1=2, n3=1),
+    lambda: CrossSection(section_mesh(20.0, 1.0, 2, 1), NeoHookeanDielectric()),
+    lambda: MembranePlate(membrane_mesh(100.0, 1.0, 50.0, 2, 1), NeoHookeanDielectric(),
+                          loading="uniaxial"),
 ], ids=["plate", "plate-voltage", "plate-maxwell-local", "cross-section", "membrane"])
 def test_layout_blocks_partition_the_unknowns(make):
     pb = make()
@@ -38,7 +42,7 @@ def test_layout_multipliers_count_the_negative_eigenvalues_of_the_unloaded_tange
     # eigenvalues as multiplier (p) and potential (phi) unknowns; the unloaded plate is
     # stable, so a dense eigenvalue count must equal the layout's count (an independent
     # check that the layout names the right blocks)
-    for pb in (_plate(), CrossSection(NeoHookeanDielectric(), n1=2, n2=1)):
+    for pb in (_plate(), CrossSection(section_mesh(20.0, 1.0, 2, 1), NeoHookeanDielectric())):
         K, _ = pb.assemble(pb.initial_state(), np.zeros(len(pb.load_names)))
         ev = np.linalg.eigvalsh(K.toarray())
         tol = 1e-10 * np.abs(ev).max()      # round-off of the dense eigensolver
@@ -80,3 +84,46 @@ def test_ramp_rejects_an_object_outside_the_contract():
 def test_layout_rejects_unknown_multiplier_blocks():
     with pytest.raises(ValueError, match="multipliers"):
         Layout(2, {"u": np.arange(2)}, ("p",))
+
+
+# one construction convention: mesh, material, keyword-only options (docs/fe.md)
+MODELS = {
+    "plate": (PlateProblem, plate_mesh(4.0, 1.0, 4.0, 1, 1, 1, symmetry="eighth")),
+    "membrane": (MembranePlate, membrane_mesh(4.0, 1.0, 4.0, 1, 1)),
+    "section": (CrossSection, section_mesh(4.0, 1.0, 1, 1)),
+}
+
+
+@pytest.mark.parametrize("name, value", [
+    ("mesh", plate_mesh(4.0, 1.0, 4.0, 1, 1, 1).mesh), ("mesh", None),
+    ("material", "rubber"), ("material", None),
+    ("loading", "clamped"), ("control", "current"), ("coupling", "both"),
+    ("field", "remote"), ("phi_element", 2), ("intorder", 0), ("intorder", 2.5),
+    ("grad_div", -1.0), ("grad_div", "x"),
+])
+def test_models_reject_the_same_bad_input_alike(name, value):
+    """Every model that has the parameter rejects the value with a ValueError whose
+    message starts with the parameter's name and names the value; all but ``mesh`` (whose
+    message names each model's own mesh type) give the same message word for word."""
+    mat = NeoHookeanDielectric(1.0, 1.0)
+    messages = {}
+    for label, (model, mesh) in MODELS.items():
+        if name not in inspect.signature(model).parameters:
+            continue
+        args = {"mesh": mesh, "material": mat, name: value}
+        with pytest.raises(ValueError, match=rf"^{name} must ") as err:
+            model(args.pop("mesh"), args.pop("material"), **args)
+        messages[label] = str(err.value)
+        shown = type(value).__name__ if name == "mesh" else repr(value)
+        assert shown in messages[label]
+    assert len(messages) >= 2                 # a parameter the models share
+    if name != "mesh":
+        assert len(set(messages.values())) == 1, messages
+
+
+def test_models_take_options_by_keyword_only():
+    """After the mesh and the material every parameter is keyword-only."""
+    for model, _ in MODELS.values():
+        params = list(inspect.signature(model).parameters.values())
+        assert [p.name for p in params[:2]] == ["mesh", "material"]
+        assert all(p.kind is p.KEYWORD_ONLY for p in params[2:])

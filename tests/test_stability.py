@@ -66,8 +66,8 @@ def test_count_equals_dense_eigenvalues_3d_voltage_control():
 @pytest.mark.parametrize("control", ["charge", "voltage"])
 def test_count_equals_dense_eigenvalues_2d_section(control):
     # compressed section without stabilisation: spurious negative modes (count > 0)
-    pb = fe.CrossSection(fe.NeoHookeanDielectric(), L1=4.0, n1=6, n2=3, lam1=0.7, lam3=0.7,
-                         control=control)
+    pb = fe.CrossSection(fe.section_mesh(4.0, 1.0, 6, 3), fe.NeoHookeanDielectric(),
+                         control=control, lam1=0.7, lam3=0.7)
     res = _converged(pb, [np.array([0.0, 0.0, 0.5])])
     ref = _dense_negative(pb, res.x, res.steps[-1].load)
     assert ref > 0
@@ -76,7 +76,8 @@ def test_count_equals_dense_eigenvalues_2d_section(control):
 
 
 def test_lowest_modes_match_the_dense_pencil():
-    pb = fe.CrossSection(fe.NeoHookeanDielectric(), L1=4.0, n1=6, n2=3, lam1=0.7, lam3=0.7)
+    pb = fe.CrossSection(fe.section_mesh(4.0, 1.0, 6, 3), fe.NeoHookeanDielectric(),
+                         lam1=0.7, lam3=0.7)
     res = _converged(pb, [np.array([0.0, 0.0, 0.0])])
     K, _ = pb.assemble(res.x, (0, 0, 0))
     M = metric_matrix(pb)
@@ -107,8 +108,8 @@ def test_grad_div_removes_the_spurious_surface_modes(aspect, spurious):
     n1 = max(1, round((4.0 / 2) / (aspect * 0.5 / n2)))
     counts = {}
     for gd in (0.0, 10.0):
-        pb = fe.CrossSection(fe.NeoHookeanDielectric(), L1=4.0, n1=n1, n2=n2, lam1=0.7,
-                             lam3=0.7, grad_div=gd)
+        pb = fe.CrossSection(fe.section_mesh(4.0, 1.0, n1, n2), fe.NeoHookeanDielectric(),
+                             grad_div=gd, lam1=0.7, lam3=0.7)
         res = _converged(pb, [np.array([0.0, 0.0, 0.0])])
         counts[gd] = stability_analysis(pb, res.x, (0, 0, 0), method="superlu").n_negative
     assert (counts[0.0] > 0) == spurious and counts[10.0] == 0
@@ -126,8 +127,9 @@ def test_grad_div_leaves_homogeneous_states_and_keeps_the_tangent_consistent(
     assert res.column("lam1")[-1] == pytest.approx(ref, rel=1e-10)
     rng = np.random.default_rng(5)
     for prob, load in ((fe.keplinger_problem(elements=(2, 1, 1), grad_div=7.0), (1.0, 2.0)),
-                       (fe.CrossSection(fe.GentDielectric(1.0, 1.0, 20.0), n1=2, n2=1,
-                                        grad_div=7.0), (1.0, 0.5, 2.0))):
+                       (fe.CrossSection(fe.section_mesh(20.0, 1.0, 2, 1),
+                                        fe.GentDielectric(1.0, 1.0, 20.0), grad_div=7.0),
+                        (1.0, 0.5, 2.0))):
         x = prob.initial_state() + 0.01 * rng.standard_normal(prob.ndofs)
         K, _ = prob.assemble(x, load)
         cols = rng.choice(prob.ndofs, 10, replace=False)

@@ -57,9 +57,6 @@ __all__ = [
 
 L1, L3, H = 100.0, 50.0, 1.0     # mm
 MEMBRANE_VARIANTS = ("membrane", "membrane-maxwell")
-#: Loading of the membrane per geometry: the Keplinger plate is clamped.
-MEMBRANE_LOADING = {"equibiaxial": "equibiaxial", "uniaxial": "clamped",
-                    "uniaxial-free": "uniaxial"}
 #: 3D pre-load sub-steps, as the drivers equibiaxial_plate (4) and keplinger_plate (3).
 PRELOAD_STEPS = {"equibiaxial": 4, "uniaxial": 3}
 #: 3D Newton tolerance relative to the external load: as equibiaxial_plate (1e-11) and
@@ -132,9 +129,10 @@ def build_problem(spec: RunSpec):
     m = spec.mesh_dict
     if _is_membrane(spec):
         coupling = "maxwell" if spec.variant == "membrane-maxwell" else "full"
-        return fe.MembranePlate(fe.make_material(spec.model, Jm=GENT_JM), L1=L1, L3=L3, H=H,
-                                n1=m.get("n1", 1), n3=m.get("n3", 1),
-                                loading=MEMBRANE_LOADING[spec.geometry], coupling=coupling)
+        # the geometry names are the models' loadings (the Keplinger plate is "uniaxial")
+        return fe.MembranePlate(fe.membrane_mesh(L1, H, L3, m.get("n1", 1), m.get("n3", 1)),
+                                fe.make_material(spec.model, Jm=GENT_JM),
+                                loading=spec.geometry, coupling=coupling)
     el = (m.get("n1", 1), m.get("n2", 1), m.get("n3", 1))
     # the variant that discretises the fully coupled equations (docs/fe_variants.md)
     coupling = {"coupling": "maxwell", "field": "electrostatic"} \

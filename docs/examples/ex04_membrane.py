@@ -24,11 +24,13 @@ breakdown indicator (Sec. 6).
 
 import numpy as np
 
-from skfem_dielectric import MembranePlate, NeoHookeanDielectric, keplinger_s, membrane_ramp
+from skfem_dielectric import (MembranePlate, NeoHookeanDielectric, keplinger_s, membrane_mesh,
+                              membrane_ramp)
 
 s = keplinger_s(alpha=1.0, g=9.81)  # 2.993
-plate = MembranePlate(NeoHookeanDielectric(mu=1.0, eps=1.0), L1=100.0, L3=50.0, H=1.0,
-                      n1=16, n3=8, loading="clamped")
+# the 100 x 1 x 50 mm plate, 16 x 8 elements on the quarter; "uniaxial": the clamped plate
+plate = MembranePlate(membrane_mesh(100.0, 1.0, 50.0, 16, 8),
+                      NeoHookeanDielectric(mu=1.0, eps=1.0), loading="uniaxial")
 D0 = np.arange(0.0, 6.01, 1.0)
 result = membrane_ramp(plate, s, D0)
 

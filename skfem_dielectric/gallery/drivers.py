@@ -28,7 +28,7 @@ from ..fem.mesh import plate_mesh
 from ..linalg.linear import LinearSolver
 from ..materials import NeoHookeanDielectric, make_material
 from ..models.cross_section import CrossSection
-from ..models.membrane import MembranePlate
+from ..models.membrane import MembranePlate, membrane_mesh
 from ..models.plate.failure import StepLimitCounter, describe_failure, plate_failure_cause
 from ..models.plate.problem import PlateProblem
 from ..problem import Problem
@@ -437,7 +437,7 @@ def membrane_keplinger(alpha: float = 1.0, D0=np.arange(0.0, 6.01, 0.5), materia
         ``min_P33_clamp`` next to the clamp, ``lam1_mean``.
     """
     material = NeoHookeanDielectric(1.0, 1.0) if material is None else material
-    pb = MembranePlate(material, L1=L1, L3=L3, H=H, n1=n1, n3=n3, loading="clamped")
+    pb = MembranePlate(membrane_mesh(L1, H, L3, n1, n3), material, loading="uniaxial")
     return membrane_ramp(pb, keplinger_s(alpha, g=g), D0, **ramp_options)
 
 

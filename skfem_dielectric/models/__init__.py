@@ -6,8 +6,8 @@ post-processing, symmetry classes, mode classification and failure diagnosis
 how it is solved: it imports neither :mod:`skfem_dielectric.solvers` nor the studies.
 """
 
-from .membrane import MembranePlate, check_control_coupling
-from .cross_section import CrossSection
+from .membrane import MembraneMesh, MembranePlate, check_control_coupling, membrane_mesh
+from .cross_section import CrossSection, SectionMesh, section_mesh
 from .plate import (PlateProblem, plate_reduction, increment_classes, evaluate_fields,
                     plate_stresses, centre_line_points, clamp_line_points, plate_quantities,
                     plate_step_mesh, SymmetryClass, ClassStability, symmetry_classes,
@@ -18,7 +18,8 @@ from .plate import (PlateProblem, plate_reduction, increment_classes, evaluate_f
                     StepLimitCounter, plate_failure_cause, describe_failure)
 
 __all__ = [
-    "MembranePlate", "check_control_coupling", "CrossSection", "PlateProblem",
+    "MembranePlate", "MembraneMesh", "membrane_mesh", "check_control_coupling",
+    "CrossSection", "SectionMesh", "section_mesh", "PlateProblem",
     "plate_reduction", "increment_classes", "evaluate_fields", "plate_stresses",
     "centre_line_points", "clamp_line_points", "plate_quantities", "plate_step_mesh",
     "SymmetryClass", "ClassStability", "symmetry_classes", "class_stability",

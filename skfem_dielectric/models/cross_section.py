@@ -28,12 +28,14 @@ the dead nominal traction ``s mu e1``.
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 
 import numpy as np
 import skfem as fe
 from skfem.io.meshio import to_meshio
 
-from ..checks import check_choice, check_count, check_material, check_positive
+from ..checks import (check_choice, check_count, check_instance, check_material,
+                      check_nonnegative, check_positive)
 from ..fem.assembly import DofReduction, ScatterMap
 from ..fem.mesh2d import point_gradients, quarter_quad_mesh
 from ..forms.maxwell_traction import maxwell_nominal_stress, maxwell_stress
@@ -42,10 +44,11 @@ from ..kinematics import det3, plane_strain_F, second_piola
 from ..problem import Layout, Problem
 from .membrane import check_control_coupling
 
-__all__ = ["CrossSection"]
+__all__ = ["CrossSection", "SectionMesh", "section_mesh"]
 
 FIELDS = ("electrostatic", "local")
 THICKNESSES = ("half", "full")
+PHI_ELEMENTS = ("Q1", "Q2")
 
 
 def _component_dofs(basis, boundary: str, comp: str) -> np.ndarray:
@@ -54,21 +57,96 @@ def _component_dofs(basis, boundary: str, comp: str) -> np.ndarray:
     return np.concatenate([d.nodal[comp], d.facet[comp]])
 
 
-class CrossSection(Problem):
-    """Cross-section in generalised plane strain, a :class:`~skfem_dielectric.problem.Problem`.
+@dataclass(frozen=True)
+class SectionMesh:
+    """The modelled part of a plate's cross-section and its geometry.
+
+    Attributes
+    ----------
+    mesh
+        scikit-fem ``MeshQuad`` of ``[0, L1/2] x [0, H/2]`` (``thickness="half"``) or
+        ``[0, L1/2] x [-H/2, H/2]`` (``"full"``), coordinates ``(X1, X2)``, with the
+        boundaries ``sym_x1``, ``x1_plus``, ``top`` and ``sym_x2`` (half) or ``bottom``
+        (full).
+    L1, H
+        Full length and thickness of the plate.
+    n1, n2
+        Elements along the half-length and the modelled thickness.
+    thickness
+        ``"half"`` or ``"full"``.
+    """
+
+    mesh: fe.MeshQuad
+    L1: float
+    H: float
+    n1: int
+    n2: int
+    thickness: str
+
+
+def section_mesh(L1: float, H: float, n1: int, n2: int,
+                 thickness: str = "half") -> SectionMesh:
+    """Structured quadrilateral mesh of a plate's cross-section, the geometry of
+    :class:`CrossSection`.
 
     Parameters
     ----------
+    L1, H
+        Full length (x1) and thickness (x2) of the plate (> 0), in the order of
+        :func:`~skfem_dielectric.fem.mesh.plate_mesh` (a plane-strain section has no
+        width).
+    n1, n2
+        Number of elements along the half-length and the modelled thickness (the half
+        thickness, or the whole one for ``thickness="full"``).
+    thickness
+        ``"half"`` (default): ``[0, H/2]``, the mid-plane ``x2 = 0`` a symmetry plane
+        (``symmetry="half"`` of :func:`~skfem_dielectric.fem.mesh.plate_mesh`), which
+        admits only modes symmetric about it (extensional).  ``"full"``: ``[-H/2, H/2]``,
+        flexural (antisymmetric) modes too.
+
+    Returns
+    -------
+    SectionMesh
+
+    Raises
+    ------
+    ValueError
+        For non-positive sizes or counts or an unknown ``thickness``, naming the parameter.
+
+    Examples
+    --------
+    >>> m = section_mesh(20.0, 1.0, 8, 2, thickness="full")
+    >>> m.mesh.nelements, sorted(m.mesh.boundaries)
+    (16, ['bottom', 'sym_x1', 'top', 'x1_plus'])
+    """
+    L1, H = check_positive("L1", L1), check_positive("H", H)
+    n1, n2 = check_count("n1", n1), check_count("n2", n2)
+    check_choice("thickness", thickness, THICKNESSES)
+    a1, a2 = L1 / 2, H / 2
+    full = thickness == "full"
+    mesh = quarter_quad_mesh(a1, a2, n1, n2,
+                             ("sym_x1", "bottom" if full else "sym_x2", "x1_plus", "top"),
+                             b2=-a2 if full else 0.0)
+    return SectionMesh(mesh=mesh, L1=L1, H=H, n1=n1, n2=n2, thickness=thickness)
+
+
+class CrossSection(Problem):
+    """Cross-section in generalised plane strain, a :class:`~skfem_dielectric.problem.Problem`.
+
+    Constructed as every model of :mod:`skfem_dielectric.models` (docs/fe.md, "Constructing
+    a model"): the mesh first, then the material, then keyword-only options, e.g.
+    ``CrossSection(section_mesh(20, 1, 8, 2), NeoHookeanDielectric(), lam3=1.2)``.
+
+    Parameters
+    ----------
+    mesh : SectionMesh
+        The plate's geometry and mesh, from :func:`section_mesh` (sizes ``L1, H``, element
+        counts ``n1, n2``, ``thickness`` ``"half"`` or ``"full"``); kept as :attr:`plate`.
+        ``"full"``: the bottom face carries the opposite charge (or potential), ``phi`` is
+        pinned at the mid-plane centre under charge control and ``u2`` at ``X1 = L1/4`` (a
+        node of the lowest modes of either class) against the rigid translation.
     material
         Ideal dielectric (``mu``, ``eps``, ``W(I1)``).
-    L1, H : float
-        Reference length and thickness of the whole plate.
-    n1, n2 : int
-        Q2 elements along the half-length and the modelled thickness (the half
-        thickness, or the whole one for ``thickness="full"``).
-    lam3 : float, optional
-        Prescribed out-of-plane stretch. If ``None`` (default), ``lam3`` is an
-        unknown and the load's ``s3`` component prescribes the nominal stress.
     control : {"charge", "voltage"}
         Meaning of the load's last component (``D0`` or ``E0``).
     coupling : {"full", "maxwell"}
@@ -82,26 +160,29 @@ class CrossSection(Problem):
         on the deformed section (default), or the local thin-plate field
         ``D = F D_L/J`` without electrostatics (exact on homogeneous states
         only; see :class:`skfem_dielectric.models.plate.problem.PlateProblem`).
-    thickness : {"half", "full"}
-        ``"half"`` (default): ``[0, H/2]`` with ``u2 = phi = 0`` on the mid-plane, which
-        admits only modes symmetric about it (extensional).  ``"full"``: ``[-H/2, H/2]``,
-        flexural (antisymmetric) modes too; the bottom face carries the opposite charge
-        (or potential), ``phi`` is pinned at the mid-plane centre under charge control and
-        ``u2`` at ``X1 = L1/4`` (a node of the lowest modes of either class) against the
-        rigid translation.
-    lam1 : float, optional
-        Prescribed stretch along x1: the end ``x1 = L1/2`` slides on a rigid wall at
-        ``u1 = (lam1 - 1) L1/2`` (no shear traction), so that the increments of a
-        homogeneous state are Fourier modes ``sin, cos(pi X1/(L1/2))``; the load's ``s1``
-        is then not used.
-    phi_order : int
-        Polynomial order of the potential (2: Q2, default; higher: ``ElementQuadP``).
+    phi_element : {"Q2", "Q1"}
+        Interpolation of the potential (default ``"Q2"``, as for the plate).
     intorder : int
         Quadrature order (4: 3 x 3 Gauss points).
     grad_div : float
         Grad-div stabilisation ``gamma (J - 1)^2 / 2`` in units of ``mu``: removes the
         spurious mesh-scale surface modes from the stability analysis, leaves every
         homogeneous state unchanged (docs/stability.md).  Default 0.
+    lam1 : float, optional
+        Prescribed stretch along x1: the end ``x1 = L1/2`` slides on a rigid wall at
+        ``u1 = (lam1 - 1) L1/2`` (no shear traction), so that the increments of a
+        homogeneous state are Fourier modes ``sin, cos(pi X1/(L1/2))``; the load's ``s1``
+        is then not used.
+    lam3 : float, optional
+        Prescribed out-of-plane stretch. If ``None`` (default), ``lam3`` is an
+        unknown and the load's ``s3`` component prescribes the nominal stress.
+
+    Raises
+    ------
+    ValueError
+        Naming the parameter and the value: a ``mesh`` that is no ``SectionMesh``, a
+        ``material`` that is no dielectric, unknown options, ``coupling="maxwell"`` under
+        voltage control, non-positive ``lam1``/``lam3``, negative ``grad_div``.
 
     Notes
     -----
@@ -111,38 +192,33 @@ class CrossSection(Problem):
     reproduce Eqs. (loading_gent) and (DEuniax) to the Newton tolerance.
     """
 
-    def __init__(self, material, L1: float = 20.0, H: float = 1.0, n1: int = 8,
-                 n2: int = 2, lam3: float | None = None, control: str = "charge",
+    def __init__(self, mesh: SectionMesh, material, *, control: str = "charge",
                  coupling: str = "full", field: str = "electrostatic",
-                 thickness: str = "half", lam1: float | None = None,
-                 phi_order: int = 2, intorder: int = 4, grad_div: float = 0.0):
+                 phi_element: str = "Q2", intorder: int = 4, grad_div: float = 0.0,
+                 lam1: float | None = None, lam3: float | None = None):
+        self.plate = check_instance("mesh", mesh, SectionMesh, "section_mesh")
+        self.material = check_material("material", material)
         check_control_coupling(control, coupling)
         check_choice("field", field, FIELDS)
-        check_choice("thickness", thickness, THICKNESSES)
-        self.thickness = thickness
+        check_choice("phi_element", phi_element, PHI_ELEMENTS)
+        intorder = check_count("intorder", intorder)
+        self.grad_div = check_nonnegative("grad_div", grad_div) * material.mu
         self.lam1_fixed = None if lam1 is None else check_positive("lam1", lam1)
+        self.lam3_fixed = None if lam3 is None else check_positive("lam3", lam3)
+        self.thickness = mesh.thickness
         self.coupling, self.field = coupling, field
         self.symmetric = coupling == "full"
         self.load_names = ("s1", "s3", "D0" if control == "charge" else "E0")
         self._local = coupling == "maxwell" and field == "local"
         self._elastic_volume = coupling == "maxwell" and field == "electrostatic"
-        self.material = check_material("material", material)
-        if not (math.isfinite(float(grad_div)) and float(grad_div) >= 0):
-            raise ValueError(f"grad_div must be a finite number >= 0, got {grad_div!r}")
-        self.grad_div = float(grad_div) * material.mu
-        self.L1, self.H = check_positive("L1", L1), check_positive("H", H)
-        self.n1, self.n2 = check_count("n1", n1), check_count("n2", n2)
-        self.lam3_fixed = None if lam3 is None else check_positive("lam3", lam3)
+        self.L1, self.H = mesh.L1, mesh.H
+        self.n1, self.n2 = mesh.n1, mesh.n2
         self.control = control
-        a1, a2 = self.L1 / 2, self.H / 2
-        full = thickness == "full"
-        mesh = quarter_quad_mesh(a1, a2, self.n1, self.n2,
-                                 ("sym_x1", "bottom" if full else "sym_x2", "x1_plus", "top"),
-                                 b2=-a2 if full else 0.0)
-        self.mesh = mesh
+        a1 = self.L1 / 2
+        full = self.thickness == "full"
+        self.mesh = mesh = mesh.mesh
         eu = fe.ElementVector(fe.ElementQuad2())
-        ephi = fe.ElementQuad2() if phi_order == 2 else fe.ElementQuadP(check_count(
-            "phi_order", phi_order))
+        ephi = fe.ElementQuad2() if phi_element == "Q2" else fe.ElementQuad1()
         self.bu = fe.Basis(mesh, eu, intorder=intorder)
         self.bp = fe.Basis(mesh, fe.ElementQuad1(), quadrature=self.bu.quadrature)
         self.bf = fe.Basis(mesh, ephi, quadrature=self.bu.quadrature)

@@ -7,21 +7,27 @@ unknown.  Weak form and kernels: :mod:`skfem_dielectric.forms.membrane`.
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 import numpy as np
 import scipy.sparse as sp
 import skfem as fe
 from skfem.io.meshio import to_meshio
 
-from ..checks import check_choice, check_count, check_material, check_positive
+from ..checks import (check_choice, check_count, check_instance, check_material,
+                      check_positive)
 from ..fem.assembly import DofReduction, ScatterMap
 from ..fem.mesh2d import BatchedVectorForm, point_gradients, quarter_quad_mesh
 from ..forms.membrane import edge_maxwell_traction, membrane_kernel
 from ..kinematics import det2, inv_t2
 from ..problem import Layout, Problem
 
-__all__ = ["MembranePlate", "CONTROLS", "COUPLINGS", "check_control_coupling"]
+__all__ = ["MembranePlate", "MembraneMesh", "membrane_mesh", "CONTROLS", "COUPLINGS",
+           "check_control_coupling"]
 
-LOADINGS = ("equibiaxial", "uniaxial", "clamped")
+#: the loadings of :class:`~skfem_dielectric.models.plate.problem.PlateProblem`: the same
+#: names for the same set-up
+LOADINGS = ("equibiaxial", "uniaxial", "uniaxial-free", "none")
 CONTROLS = ("charge", "voltage")
 COUPLINGS = ("full", "maxwell")
 
@@ -34,39 +40,112 @@ def check_control_coupling(control: str, coupling: str) -> None:
         raise ValueError(f"coupling 'maxwell' needs control='charge', got {control!r}")
 
 
+@dataclass(frozen=True)
+class MembraneMesh:
+    """The quarter mid-surface of a plate and its geometry.
+
+    Attributes
+    ----------
+    mesh
+        scikit-fem ``MeshQuad`` of ``[0, L1/2] x [0, L3/2]`` (coordinates ``(X1, X3)``) with
+        the boundaries ``sym_x1`` (``X1 = 0``), ``sym_x3`` (``X3 = 0``), ``x1_plus``
+        (``X1 = L1/2``, the loaded edge or clamp) and ``x3_plus`` (``X3 = L3/2``).
+    L1, H, L3
+        Full plate dimensions (length, thickness, width).
+    n1, n3
+        Elements along x1 and x3 on the quarter.
+    """
+
+    mesh: fe.MeshQuad
+    L1: float
+    H: float
+    L3: float
+    n1: int
+    n3: int
+
+
+def membrane_mesh(L1: float, H: float, L3: float, n1: int, n3: int) -> MembraneMesh:
+    """Structured quadrilateral mesh of the quarter mid-surface of a plate
+    ``L1 x H x L3``, the geometry of :class:`MembranePlate`.
+
+    Parameters
+    ----------
+    L1, H, L3
+        Full length (x1), thickness (x2) and width (x3) of the plate (> 0), in the order of
+        :func:`~skfem_dielectric.fem.mesh.plate_mesh`.
+    n1, n3
+        Number of elements along x1 and x3 on the quarter (the in-plane counts of
+        :func:`~skfem_dielectric.fem.mesh.plate_mesh`; a membrane has no elements through
+        the thickness).
+
+    Returns
+    -------
+    MembraneMesh
+
+    Raises
+    ------
+    ValueError
+        For non-positive sizes or counts, naming the parameter.
+
+    Examples
+    --------
+    >>> m = membrane_mesh(100.0, 1.0, 50.0, 4, 2)
+    >>> m.mesh.nelements, m.mesh.p[:, -1].tolist()
+    (8, [50.0, 25.0])
+    """
+    L1, H, L3 = check_positive("L1", L1), check_positive("H", H), check_positive("L3", L3)
+    n1, n3 = check_count("n1", n1), check_count("n3", n3)
+    mesh = quarter_quad_mesh(L1 / 2, L3 / 2, n1, n3, ("sym_x1", "sym_x3", "x1_plus", "x3_plus"))
+    return MembraneMesh(mesh=mesh, L1=L1, H=H, L3=L3, n1=n1, n3=n3)
+
+
 class MembranePlate(Problem):
     """Quarter of a rectangular dielectric membrane, a :class:`~skfem_dielectric.problem.Problem`.
 
     The mid-surface ``[0, L1/2] x [0, L3/2]`` (x1 along the load, x3 across;
     ``X1 = 0`` and ``X3 = 0`` are the symmetry lines through the plate centre)
-    is meshed with ``n1 x n3`` biquadratic quadrilaterals (Q2, 3x3 Gauss points).
+    is meshed with ``n1 x n3`` biquadratic quadrilaterals (Q2, 3x3 Gauss points by default).
     The load is the pair ``(s, D0)``: ``s`` the dimensionless nominal stress
     (force per reference cross-section ``H x width`` over ``mu``) and ``D0 =
     D_L/sqrt(mu eps)`` (charge control) or ``E0 = E_L sqrt(eps/mu)`` (voltage
     control).
 
+    Constructed as every model of :mod:`skfem_dielectric.models` (docs/fe.md, "Constructing
+    a model"): the mesh first, then the material, then keyword-only options, e.g.
+    ``MembranePlate(membrane_mesh(100, 1, 50, 40, 20), NeoHookeanDielectric(),
+    loading="uniaxial")``.
+
     Parameters
     ----------
+    mesh : MembraneMesh
+        The plate's geometry and mesh, from :func:`membrane_mesh` (sizes ``L1, H, L3``,
+        element counts ``n1, n3``); kept as :attr:`plate`.
     material : NeoHookeanDielectric, GentDielectric or IdealDielectric
         Ideal-dielectric material (``mu``, ``eps``, ``W(I1)``).
-    L1, L3, H : float
-        Reference length (x1), width (x3) and thickness of the whole plate.
-    n1, n3 : int
-        Elements along x1 and x3 on the quarter.
-    loading : {"equibiaxial", "uniaxial", "clamped"}
-        ``"equibiaxial"``: dead traction ``s`` on the edges ``X1 = L1/2`` and
-        ``X3 = L3/2``; ``"uniaxial"``: dead traction ``s`` on ``X1 = L1/2``,
-        free edge ``X3 = L3/2``; ``"clamped"``: the Keplinger experiment, the
-        edge ``X1 = L1/2`` is glued to a rigid clamp (``u3 = 0`` and one shared
-        ``u1``) carrying the weight, i.e. the resultant force ``s mu H L3``
-        (full plate), the edge ``X3 = L3/2`` free.
+    loading : {"equibiaxial", "uniaxial", "uniaxial-free", "none"}
+        As for :class:`~skfem_dielectric.models.plate.problem.PlateProblem`:
+        ``"equibiaxial"`` (default): dead traction ``s`` on the edges ``X1 = L1/2`` and
+        ``X3 = L3/2``; ``"uniaxial"``: the Keplinger experiment, the edge ``X1 = L1/2`` is
+        glued to a rigid clamp (``u3 = 0`` and one shared ``u1``) carrying the weight, i.e.
+        the resultant force ``s mu H L3`` (full plate), the edge ``X3 = L3/2`` free;
+        ``"uniaxial-free"``: dead traction ``s`` on ``X1 = L1/2``, free edge ``X3 = L3/2``;
+        ``"none"``: no mechanical load.
     control : {"charge", "voltage"}
         Which electric quantity the load's second component prescribes.
     coupling : {"full", "maxwell"}
         ``"full"``: the charge-controlled energy of :func:`membrane_kernel`;
         ``"maxwell"`` (charge control only): the purely elastic membrane loaded
         by the Maxwell traction of :mod:`skfem_dielectric.forms.maxwell_traction` on its faces
-        and edges (see Notes).
+        and edges, with the local field of the charge (see Notes).
+    intorder : int
+        Quadrature order (4: 3 x 3 Gauss points).
+
+    Raises
+    ------
+    ValueError
+        Naming the parameter and the value: a ``mesh`` that is no ``MembraneMesh``, a
+        ``material`` that is no dielectric, unknown options, ``coupling="maxwell"`` under
+        voltage control.
 
     Notes
     -----
@@ -82,38 +161,35 @@ class MembranePlate(Problem):
     its linearisation in the (then non-symmetric) tangent. On homogeneous
     states both couplings coincide; they differ where ``lam2`` varies.
 
-    For the clamped
-    plate, by symmetry about ``X1 = 0`` the upper (fixed) and lower (moving)
+    For the clamped plate (``loading="uniaxial"``), by symmetry about ``X1 = 0`` the upper (fixed) and lower (moving)
     clamps of the experiment have the same relative motion as the two clamps
     ``X1 = +-L1/2`` of this model.
     """
 
-    def __init__(self, material, L1: float = 100.0, L3: float = 50.0, H: float = 1.0,
-                 n1: int = 40, n3: int = 20, loading: str = "clamped",
-                 control: str = "charge", coupling: str = "full"):
+    def __init__(self, mesh: MembraneMesh, material, *, loading: str = "equibiaxial",
+                 control: str = "charge", coupling: str = "full", intorder: int = 4):
+        self.plate = check_instance("mesh", mesh, MembraneMesh, "membrane_mesh")
+        self.material = check_material("material", material)
         check_choice("loading", loading, LOADINGS)
         check_control_coupling(control, coupling)
+        intorder = check_count("intorder", intorder)
         self.coupling = coupling
         self.symmetric = coupling == "full"
         self.load_names = ("s", "D0") if control == "charge" else ("s", "E0")
-        self.material = check_material("material", material)
-        self.L1, self.L3, self.H = (check_positive("L1", L1), check_positive("L3", L3),
-                                    check_positive("H", H))
-        self.n1, self.n3 = check_count("n1", n1), check_count("n3", n3)
+        self.L1, self.L3, self.H = mesh.L1, mesh.L3, mesh.H
+        self.n1, self.n3 = mesh.n1, mesh.n3
         self.loading, self.control = loading, control
         a1, a3 = self.L1 / 2, self.L3 / 2
-        mesh = quarter_quad_mesh(a1, a3, self.n1, self.n3,
-                                 ("sym_x1", "sym_x3", "x1_plus", "x3_plus"))
-        self.mesh = mesh
+        self.mesh = mesh = mesh.mesh
         elem = fe.ElementVector(fe.ElementQuad2())
-        self.basis = fe.Basis(mesh, elem, intorder=4)
+        self.basis = fe.Basis(mesh, elem, intorder=intorder)
         self.form = BatchedVectorForm(self.basis)
         n = self.basis.N
         dofs = {k: self.basis.get_dofs(k) for k in ("sym_x1", "sym_x3", "x1_plus", "x3_plus")}
         fixed = [dofs["sym_x1"].nodal["u^1"], dofs["sym_x1"].facet["u^1"],
                  dofs["sym_x3"].nodal["u^2"], dofs["sym_x3"].facet["u^2"]]
         tied = np.empty(0, dtype=int)
-        if loading == "clamped":
+        if loading == "uniaxial":
             fixed += [dofs["x1_plus"].nodal["u^2"], dofs["x1_plus"].facet["u^2"]]
             tied = np.unique(np.concatenate([dofs["x1_plus"].nodal["u^1"],
                                              dofs["x1_plus"].facet["u^1"]]))
@@ -125,13 +201,14 @@ class MembranePlate(Problem):
         # external load for s = 1 (force per reference length mu H on the loaded edges)
         mu = material.mu
         f = np.zeros(n)
-        if loading == "clamped":
+        if loading == "uniaxial":
             fred = np.zeros(self.red.n)
             fred[self.tied_index] = mu * self.H * a3  # resultant on the quarter: mu s H L3/2
         else:
             edges = (("x1_plus", 0), ("x3_plus", 1))
-            for name, comp in edges[: 2 if loading == "equibiaxial" else 1]:
-                fb = fe.FacetBasis(mesh, elem, facets=mesh.boundaries[name], intorder=4)
+            for name, comp in edges[: {"equibiaxial": 2, "uniaxial-free": 1}.get(loading, 0)]:
+                fb = fe.FacetBasis(mesh, elem, facets=mesh.boundaries[name],
+                                   intorder=intorder)
                 e = np.zeros(2)
                 e[comp] = mu * self.H
 
@@ -144,7 +221,7 @@ class MembranePlate(Problem):
         self.f_unit = fred
         if coupling == "maxwell":
             facets = np.concatenate([mesh.boundaries["x1_plus"], mesh.boundaries["x3_plus"]])
-            fbm = fe.FacetBasis(mesh, elem, facets=facets, intorder=4)
+            fbm = fe.FacetBasis(mesh, elem, facets=facets, intorder=intorder)
             nb = fbm.Nbfun
             self._mx = dict(
                 V=np.array([np.asarray(fbm.basis[a][0]) for a in range(nb)]),
@@ -288,7 +365,7 @@ class MembranePlate(Problem):
         """Stretches at the plate centre and ``P33`` along the lines.
 
         Returns ``lam1``, ``lam3``, ``lam2`` at the centre, ``lam1_mean``
-        (clamp-to-clamp, clamped loading only, else ``nan``), ``min_P33`` (the
+        (clamp-to-clamp, ``loading="uniaxial"`` only, else ``nan``), ``min_P33`` (the
         minimum of the second Piola ``P33/mu`` along the centre line ``X3 = 0``)
         and ``x_min_P33`` (its ``X1``), and ``min_P33_clamp``/``x3_min_P33_clamp``
         along ``X1 = 0.95 L1/2`` next to the clamp.

@@ -25,9 +25,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..checks import check_choice, check_count, check_positive
+from ..checks import check_choice, check_positive
 from ..materials import NeoHookeanDielectric
-from ..models.cross_section import CrossSection
+from ..models.cross_section import CrossSection, section_mesh
 from ..solvers.critical import illinois
 from ..solvers.ramp import ramp
 from ..stability.analysis import lowest_modes, metric_matrix, tangent_stability
@@ -71,11 +71,9 @@ def wrinkling_section(lam: float, kh: float, mode: str = "symmetric",
     check_choice("mode", mode, MODES)
     check_choice("control", control, CONTROLS)
     a = math.pi / (lam**3 * kh)
-    return CrossSection(material or NeoHookeanDielectric(), L1=2 * a, H=1.0,
-                        n1=check_count("n1", n1), n2=check_count("n2", n2), lam3=lam,
-                        lam1=lam, control=control,
-                        thickness="half" if mode == "symmetric" else "full",
-                        grad_div=grad_div)
+    mesh = section_mesh(2 * a, 1.0, n1, n2, "half" if mode == "symmetric" else "full")
+    return CrossSection(mesh, material or NeoHookeanDielectric(), control=control,
+                        grad_div=grad_div, lam1=lam, lam3=lam)
 
 
 def _top_profile(pb: CrossSection, w: np.ndarray):

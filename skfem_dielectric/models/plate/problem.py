@@ -53,7 +53,8 @@ from typing import Any
 import numpy as np
 from skfem import ElementHex1, ElementHex2, FacetBasis, LinearForm, asm
 
-from ...checks import check_choice, check_count, check_material, check_positive
+from ...checks import (check_choice, check_count, check_instance, check_material,
+                       check_nonnegative, check_positive)
 from ...fem.assembly import DofReduction
 from ...fem.mesh import PlateMesh
 from ...forms.maxwell_traction import MaxwellBoundary
@@ -70,6 +71,7 @@ LOADINGS = ("equibiaxial", "uniaxial", "uniaxial-free", "none")
 CONTROLS = ("charge", "voltage")
 COUPLINGS = ("full", "maxwell")
 FIELDS = ("electrostatic", "local")
+PHI_ELEMENTS = ("Q1", "Q2")
 CLASSES = ("symmetric", "antisymmetric")
 
 
@@ -201,15 +203,22 @@ def _unit_loads(problem, intorder: int):
 class PlateProblem(Problem):
     """Discretised 3D plate, a :class:`~skfem_dielectric.problem.Problem`.
 
+    Constructed as every model of :mod:`skfem_dielectric.models` (docs/fe.md, "Constructing
+    a model"): the mesh first, then the material, then keyword-only options, e.g.
+    ``PlateProblem(plate_mesh(4, 1, 4, 1, 1, 1), NeoHookeanDielectric(), loading="uniaxial")``.
+
     Parameters
     ----------
-    plate
-        :class:`~skfem_dielectric.fem.mesh.PlateMesh`.
+    mesh
+        The plate's geometry and mesh, a :class:`~skfem_dielectric.fem.mesh.PlateMesh` of
+        :func:`~skfem_dielectric.fem.mesh.plate_mesh` (sizes ``L1, H, L3``, element counts
+        ``n1, n2, n3``, symmetry planes); kept as :attr:`plate`.
     material
         Ideal dielectric (``NeoHookeanDielectric``, ``GentDielectric``, ``IdealDielectric``).
     loading
-        ``"equibiaxial"``, ``"uniaxial"`` (clamped Keplinger plate), ``"uniaxial-free"`` or
-        ``"none"``.
+        ``"equibiaxial"`` (default: dead traction on the ``x1`` and ``x3`` faces),
+        ``"uniaxial"`` (the clamped Keplinger plate), ``"uniaxial-free"`` (dead traction on
+        the ``x1`` faces, ``x3`` faces free) or ``"none"``.
     control
         ``"charge"`` (load ``(s, D0)``) or ``"voltage"`` (load ``(s, E0)``).
     coupling
@@ -217,6 +226,14 @@ class PlateProblem(Problem):
         charge control only).
     field
         Field of the Maxwell traction: ``"electrostatic"`` (default) or ``"local"``.
+    phi_element
+        Interpolation of the potential: ``"Q2"`` (default) or ``"Q1"``.
+    intorder
+        Quadrature order (4 -> 27 Gauss points per hexahedron).
+    grad_div
+        Grad-div stabilisation ``gamma (J - 1)^2 / 2`` (in units of ``mu``; mixed
+        formulation): removes spurious mesh-scale modes from the stability analysis,
+        leaves every homogeneous state unchanged (docs/stability.md).  Default 0.
     formulation
         ``"mixed"`` (u-p-phi, default), ``"penalty"`` (u-phi, ``W(I1) + kappa (J-1)^2/2``),
         ``"isochoric"`` (u-phi, COMSOL's ``W(J^(-2/3) I1) + kappa (J-1)^2/2``) or
@@ -224,19 +241,11 @@ class PlateProblem(Problem):
         :mod:`skfem_dielectric.materials`).
     kappa
         Bulk modulus; ``inf`` (the mixed forms only) = exactly incompressible.
-    phi_element
-        ``"Q2"`` (default) or ``"Q1"``.
-    intorder
-        Quadrature order (4 -> 27 Gauss points per hexahedron).
     chunk
         Maximum number of elements assembled per batch (bounds the memory of element
         matrices).
     threads
         Worker threads for the batched assembly (default ``min(2, cpu_count)``).
-    grad_div
-        Grad-div stabilisation ``gamma (J - 1)^2 / 2`` (in units of ``mu``; mixed
-        formulation): removes spurious mesh-scale modes from the stability analysis,
-        leaves every homogeneous state unchanged (docs/stability.md).  Default 0.
     increments
         ``None`` (the model's own constraints) or the symmetry class of the increments
         (:func:`plate_reduction`): a model whose tangent is that class's stiffness.
@@ -244,22 +253,33 @@ class PlateProblem(Problem):
     Raises
     ------
     ValueError
-        Unknown options, non-positive ``kappa``, or a mesh lacking the boundaries the loading
-        needs (e.g. ``x1_plus`` for the clamp, enough symmetry planes for equi-biaxial).
+        Naming the parameter and the value: a ``mesh`` that is no ``PlateMesh``, a
+        ``material`` that is no dielectric, unknown options, non-positive ``kappa``, or a mesh
+        lacking the boundaries the loading needs (e.g. ``x1_plus`` for the clamp, enough
+        symmetry planes for equi-biaxial).
+
+    Notes
+    -----
+    The energy and boundary conditions are those of the module docstring (Eq. (BCS) of the
+    paper); the loads of the uni-axial cases reproduce Eq. (DEuniax), the equi-biaxial one
+    Eq. (loading_gent).
     """
 
-    def __init__(self, plate: PlateMesh, material, *, loading: str = "equibiaxial",
+    def __init__(self, mesh: PlateMesh, material, *, loading: str = "equibiaxial",
                  control: str = "charge", coupling: str = "full",
-                 field: str = "electrostatic", formulation: str = "mixed",
-                 kappa: float = math.inf, phi_element: str = "Q2", intorder: int = 4,
-                 chunk: int = 50, threads: int | None = None, grad_div: float = 0.0,
+                 field: str = "electrostatic", phi_element: str = "Q2", intorder: int = 4,
+                 grad_div: float = 0.0, formulation: str = "mixed",
+                 kappa: float = math.inf, chunk: int = 50, threads: int | None = None,
                  increments=None):
-        if not isinstance(plate, PlateMesh):
-            raise ValueError(f"plate must be a PlateMesh, got {type(plate).__name__}")
+        plate = check_instance("mesh", mesh, PlateMesh, "plate_mesh")
+        check_material("material", material)
         check_choice("loading", loading, LOADINGS)
         check_choice("control", control, CONTROLS)
         check_choice("coupling", coupling, COUPLINGS)
         check_choice("field", field, FIELDS)
+        check_choice("phi_element", phi_element, PHI_ELEMENTS)
+        intorder = check_count("intorder", intorder)
+        grad_div = check_nonnegative("grad_div", grad_div)
         check_choice("formulation", formulation, FORMULATIONS)
         if coupling == "maxwell" and field == "local" and control != "charge":
             raise ValueError("the local Maxwell field is the field of the charge: it needs "
@@ -269,10 +289,6 @@ class PlateProblem(Problem):
         kappa = math.inf if kappa == math.inf else check_positive("kappa", kappa)
         if formulation not in MIXED_FORMULATIONS and not math.isfinite(kappa):
             raise ValueError(f"kappa must be finite for the {formulation} formulation, got inf")
-        check_choice("phi_element", phi_element, ("Q1", "Q2"))
-        grad_div = float(grad_div)
-        if not (math.isfinite(grad_div) and grad_div >= 0):
-            raise ValueError(f"grad_div must be a finite number >= 0, got {grad_div!r}")
         if grad_div and formulation not in MIXED_FORMULATIONS:
             raise ValueError("grad_div needs formulation='mixed' (the penalty form has its "
                              f"own kappa), got {formulation!r}")
@@ -280,8 +296,7 @@ class PlateProblem(Problem):
         self.options = dict(loading=loading, control=control, coupling=coupling, field=field,
                             formulation=formulation, kappa=kappa, phi_element=phi_element,
                             intorder=intorder, chunk=chunk, threads=threads, grad_div=grad_div)
-        check_material("material", material)
-        intorder, chunk = check_count("intorder", intorder), check_count("chunk", chunk)
+        chunk = check_count("chunk", chunk)
         threads = None if threads is None else check_count("threads", threads)
         self.plate, self.material = plate, material
         self.loading, self.control = loading, control
