@@ -41,6 +41,7 @@ from skfem_dielectric.fem.mesh2d import quarter_quad_mesh
 
 
 def outer(a, b):
+    """``a (x) b`` of two vectors at every quadrature point."""
     return np.einsum("i...,j...->ij...", a, b)
 
 
@@ -78,6 +79,16 @@ class PlaneStrainDielectric(Problem):
     Unknowns ``u`` (vector Q2) and ``phi`` (Q2); load ``(s, D0)``.  ``phi`` is the
     potential block: a stable state has exactly as many negative tangent eigenvalues
     as potential unknowns (:meth:`Problem.stability`).
+
+    Parameters
+    ----------
+    mu, eps, kappa : float
+        Shear modulus, permittivity and volume penalty (``kappa >> mu``: nearly
+        incompressible).
+    L1, H : float
+        Length and thickness of the whole cross-section.
+    n1, n2 : int
+        Q2 elements along the half-length and the half-thickness.
     """
 
     load_names = ("s", "D0")
@@ -171,10 +182,13 @@ lam1_next = model.postprocess(sol.x, load_next)["lam1"]
 if __name__ == "__main__":
     import matplotlib.pyplot as plt
 
+    from scipy.optimize import brentq
+
     from analytic import biaxial_stress
 
     D0 = np.array([ld[1] for ld in loads[1:]])
-    grid = np.linspace(1.0, 1.05 * lam1_final, 200)
+    lam_s = brentq(lambda lam1: biaxial_stress(lam1, 1.0, 0.0)[0] - s, 1.0, 3.0)  # D0 = 0
+    grid = np.linspace(lam_s, 1.05 * lam1_final, 200)
     t1, _ = biaxial_stress(grid, 1.0, 0.0)          # t1(lam1, lam3 = 1, D0) is linear in D0^2
     t1_D, _ = biaxial_stress(grid, 1.0, 1.0)
     D0_curve = np.sqrt(np.maximum(0.0, (t1 - s) / (t1 - t1_D)))
@@ -185,7 +199,7 @@ if __name__ == "__main__":
     ax.set_xlabel("D0")
     ax.set_ylabel("lam1")
     ax.set_title(f"plane-strain dielectric, s = {s:g}")
-    ax.legend()
+    ax.legend(loc="upper left", fontsize="small")
     fig.tight_layout()
     fig.savefig("ex13_add_a_model.png", dpi=120)
     plt.show()
