@@ -62,6 +62,27 @@ def _equibiaxial_lam_nh(s: float, D0: float) -> float:
                      if abs(r.imag) < 1e-12))
 
 
+def _plane_strain_state(s: float, D0: float, kappa: float) -> tuple[float, float]:
+    """``(lam1, lam2)`` of the homogeneous plane-strain state (``lam3 = 1``) of ex13: the
+    stationary point of the charge-controlled energy per reference volume (``mu = eps = 1``,
+    ``F = diag(lam1, lam2, 1)``, ``D_L = -D0 e2``, so ``|F D_L|^2 / J = lam2 D0^2 / lam1``)
+    ``(I1 - 3 - 2 ln J)/2 + kappa (ln J)^2/2 + lam2 D0^2/(2 lam1) - s lam1``; its
+    derivatives by complex step (exact to round-off), ``lam2`` for a given ``lam1`` and
+    then ``lam1`` by brentq."""
+    def psi(l1, l2):
+        lnJ = np.log(l1 * l2)
+        return ((l1**2 + l2**2 - 2 - 2 * lnJ) / 2 + kappa * lnJ**2 / 2
+                + l2 * D0**2 / (2 * l1) - s * l1)
+
+    def lam2(l1):
+        return brentq(lambda l2: psi(l1, l2 + 1e-30j).imag / 1e-30, 0.05, 5.0, xtol=1e-15,
+                      rtol=1e-15)
+
+    l1 = brentq(lambda l1: psi(l1 + 1e-30j, lam2(l1)).imag / 1e-30, 1.0, 5.0, xtol=1e-15,
+                rtol=1e-15)
+    return l1, lam2(l1)
+
+
 _S_KEPLINGER = 0.150 * 9.81 / (9833.07 * 50e-6)
 
 # name of the script -> (global variable, reference value, rtol, why this reference)
@@ -112,6 +133,11 @@ PINNED: dict[str, tuple[str, float, float, str]] = {
                            "x1 S, x2 A, x3 S on the eighth model (another model of the same "
                            "discrete problem), located to 1e-5; the fit's truncation about "
                            "1e-5 (measured difference 2e-6)"),
+    "ex13_add_a_model": ("lam1_final", _plane_strain_state(0.5, 2.0, 100.0)[0], 1e-10,
+                         "homogeneous plane-strain state of the compressible u-phi model at "
+                         "s = 0.5, D0 = 2, kappa = 100: stationary point of its energy per "
+                         "volume (complex-step derivatives, brentq); the state is exact in "
+                         "the discrete space, Newton tolerance 1e-12"),
 }
 
 
@@ -169,9 +195,54 @@ def test_example_runs(path, tmp_path, monkeypatch):
         # model's closed form: r is linear in s and quadratic in D0, so the difference is
         # exact up to round-off ~ 1e-16 |r| / h
         assert ns["dr_dload_fd"] == pytest.approx(ns["dr_dload"], rel=1e-8)
+    if path.stem == "ex13_add_a_model":
+        _check_add_a_model(ns)
     if path.stem == "ex09_maxwell_vs_coupled":
         assert ns["gap"] < 1e-9          # the two couplings agree on a homogeneous state
     if path.stem in PINNED:
         name, ref, rtol, _why = PINNED[path.stem]
         ref = ref() if callable(ref) else ref
         assert np.asarray(ns[name], dtype=float) == pytest.approx(ref, rel=rtol)
+
+
+def _check_add_a_model(ns):
+    """The tangent, the stability count and the Newton step of ex13 against references."""
+    model, x, load = ns["model"], ns["result"].x, ns["loads"][-1]
+    K, _ = model.assemble(x, load)
+    d = np.random.default_rng(0).standard_normal(x.size)
+    h = 1e-6
+    fd = (model.residual(x + h * d, load) - model.residual(x - h * d, load)) / (2 * h)
+    # central differences: truncation O(h^2) ~ 1e-12; round-off ~ 1e-16 ||r|| / h, measured
+    # 2e-9 relative; a wrong term of the second variation is O(1) off
+    assert np.linalg.norm(K @ d - fd) <= 1e-7 * np.linalg.norm(fd)
+    # the second variation of an energy is symmetric to round-off (||K|| ~ 1e3)
+    assert abs(K - K.T).max() <= 1e-12 * abs(K).max()
+    # charge control of the homogeneous plate under tension is stable (paper Sec. 5): the
+    # saddle-point tangent has exactly one negative eigenvalue per potential unknown
+    # (Haynsworth inertia additivity, the phi-phi block is negative definite), none more
+    assert ns["verdict"].inertia[1] == model.layout.blocks["phi"].size
+    assert ns["verdict"].n_zero == 0
+    # Newton alone to D0 = 2.25, against the same closed form as the pinned ramp value
+    assert ns["sol"].converged
+    assert ns["lam1_next"] == pytest.approx(_plane_strain_state(0.5, 2.25, 100.0)[0],
+                                            rel=1e-10)
+
+
+def test_add_a_model_tends_to_the_incompressible_curve():
+    """ex13's model for kappa -> infinity: the plane-strain loading curve Eq. (t1t3) with
+    lam3 = 1 (analytic.biaxial_stress), approached at first order in mu/kappa."""
+    from analytic import biaxial_stress
+
+    ns = runpy.run_path(str(EXAMPLES[0].parent / "ex13_add_a_model.py"))
+    s, D0 = 0.5, 2.0
+    lam_inc = brentq(lambda l1: biaxial_stress(l1, 1.0, D0)[0] - s, 1.0, 5.0, xtol=1e-15,
+                     rtol=1e-15)
+    stiff = ns["PlaneStrainDielectric"](kappa=1000.0, n1=1, n2=1)
+    res = ns["ramp"](stiff, [np.array([s, 0.0]), np.array([s, 1.0]), np.array([s, D0])],
+                     atol=1e-12, rtol=1e-12)
+    assert res.converged
+    err_100 = ns["lam1_final"] - lam_inc
+    err_1000 = float(res.column("lam1")[-1]) - lam_inc
+    # the penalty error is c mu/kappa + O((mu/kappa)^2): ten times kappa, a tenth of the
+    # error, up to the second-order term (relative size ~ 1/kappa = 1 %; measured 9.92)
+    assert err_100 / err_1000 == pytest.approx(10.0, rel=0.03)

@@ -85,9 +85,9 @@ def _keplinger(alphas, D0max, n, meshes, variants=KEPLINGER_VARIANTS, record_fie
 
 
 #: weights whose 3D runs of the quick case also get the whole plate's spectrum at every
-#: state (the stability-based breakdown D0_b; a few seconds per state on the quick mesh;
-#: on the full run's 40 x 1 x 20 about a minute per state, so the full run leaves it to
-#: ``skfem-dielectric buckling``)
+#: state (the stability-based breakdown D0_b; on the full run's 40 x 1 x 20 plate it
+#: costs far more per state, so the full run leaves it to ``skfem-dielectric buckling``;
+#: the costs: docs/performance.md)
 BUCKLING_ALPHAS = (1.0,)
 #: last charge target of those runs
 BUCKLING_D0_MAX = 4.0

@@ -69,9 +69,8 @@ MAX_CUTBACKS, MAX_ITER = 6, 25
 #: factorisation is reused while the residual contracts at least tenfold per step.  No
 #: secant predictor: it depends on the state before the last one, so a resumed ramp would
 #: not repeat the uninterrupted one bit for bit (and past the breakdown it can jump to
-#: another branch of the clamped plate).  On the full 40 x 1 x 20 plate, alpha = 1, the
-#: first six targets: fully coupled 23.9 -> 15.3 s, Maxwell traction 31.3 -> 18.6 s
-#: (PARDISO); the FE dots move within the Newton tolerance.
+#: another branch of the clamped plate).  What it saves: docs/performance.md,
+#: "Measurements behind the code"; the FE dots move within the Newton tolerance.
 CHORD = 0.1
 
 
@@ -273,9 +272,9 @@ def stability_monitor(spec: RunSpec, problem, linear_solver="superlu"):
     factors.  That changes the Newton path within its tolerance, and a resumed ramp
     (without those factors at its start) repeats the uninterrupted one only within it,
     which PARDISO's threads allow anyway; with SuperLU the ramp and the columns stay as
-    they are, and a resumed run repeats the uninterrupted one bit for bit.  Measured on
-    the full alpha = 1.5 run (40 x 1 x 20, 19 rows): 124 -> 80 s CPU, peak 1.02 -> 0.75
-    GB, the columns identical to 12 digits and the dots within 3e-10.
+    they are, and a resumed run repeats the uninterrupted one bit for bit.  On the full
+    alpha = 1.5 run (40 x 1 x 20, 19 rows) the columns are identical to 12 digits and the
+    dots within 3e-10 (what it saves: docs/performance.md, "Measurements behind the code").
 
     Parameters
     ----------

@@ -36,13 +36,13 @@ def trim_heap() -> bool:
 
     glibc serves allocations above ``M_MMAP_THRESHOLD`` by ``mmap`` and unmaps them when
     they are freed, but raises the threshold to the size of each such block freed (up to
-    32 MiB): afterwards the assembly's 1-30 MB temporaries (a chunk's material tangent,
-    the sub-batch products) and PARDISO's work arrays (31 MB for the solve phase of the
-    40 x 1 x 20 Keplinger plate) come from the heaps, whose freed space stays resident
-    and is not reused by the larger arrays that follow.  Called after each assembly and
-    each factorisation (a few milliseconds); fixing the threshold instead
-    (``mallopt``) made every large temporary a fresh ``mmap`` and the assembly twice as
-    slow.  A no-op where the C library is not glibc.
+    32 MiB): afterwards the assembly's large temporaries (a chunk's material tangent,
+    the sub-batch products) and PARDISO's work arrays come from the heaps, whose freed
+    space stays resident and is not reused by the larger arrays that follow.  Called
+    after each assembly and each factorisation (cheap beside either); fixing the
+    threshold instead (``mallopt``) made every large temporary a fresh ``mmap`` and the
+    assembly slower.  A no-op where the C library is not glibc.  Sizes and costs:
+    docs/performance.md, "Measurements behind the code".
 
     Returns
     -------
@@ -106,10 +106,8 @@ def single_threaded_blas():
 
     The batched assembly does many small matrix products (27 x 81 by 81 x 243 per
     element), in worker threads; OpenBLAS's own threads on top of them cost more than
-    they gain, the more so on a machine whose cores are busy (measured on the 2-core
-    machine under a load average of ~15: one tangent assembly of the 40 x 1 x 20 plate
-    2-15 s with OpenBLAS's default 2 threads, 0.2-0.5 s with one; one worker thread with
-    2 OpenBLAS threads 25 s).  A no-op where numpy uses another BLAS.
+    they gain, the more so on a machine whose cores are busy (docs/performance.md,
+    "Measurements behind the code").  A no-op where numpy uses another BLAS.
     """
     f = _openblas_threads()
     n = blas_threads() or 1
@@ -207,9 +205,8 @@ class ScatterMap:
         self.n = int(n)
         self.upper = bool(upper)
         nel, m = dofs.shape
-        # sorted unique row-major keys of the valid (row, col) pairs: np.sort + a diff
-        # (0.3 s for the 10.8 M keys of the 34k-dof plate; np.unique took 1.4-3.4 s with the
-        # inverse and up to 16 s without it on numpy 2.4)
+        # sorted unique row-major keys of the valid (row, col) pairs: np.sort + a diff,
+        # faster than np.unique (docs/performance.md)
         keys = self._keys(dofs[:, :, None], dofs[:, None, :]).ravel()
         keys = np.sort(keys[keys >= 0])
         ukeys = keys[np.r_[True, keys[1:] != keys[:-1]]] if keys.size else keys
@@ -222,7 +219,7 @@ class ScatterMap:
         self.indptr = np.concatenate([[0], np.cumsum(np.bincount(r, minlength=self.n))]
                                      ).astype(np.int32)
         self._vmask = dofs >= 0
-        # shared by every matrix :meth:`csr` returns (no 47 MB copy per Newton iteration);
+        # shared by every matrix :meth:`csr` returns (no copy per Newton iteration);
         # read-only so that no caller can corrupt the pattern of the others
         self.indices.flags.writeable = False
         self.indptr.flags.writeable = False
@@ -276,8 +273,8 @@ class ScatterMap:
 
     def _search(self, keys: np.ndarray) -> np.ndarray:
         """``np.searchsorted(self._ukeys, keys)``, through sorted queries when the key and
-        the query index fit in 63 bits together (a merge instead of 10 M binary searches
-        into a 47 MB array: 1.05 -> ~0.5 s on the 34k-dof plate)."""
+        the query index fit in 63 bits together (a merge instead of one binary search per
+        key into the large key array: docs/performance.md)."""
         flat = keys.ravel()
         nbits = max(1, int(flat.size - 1).bit_length())
         top = int(self.n) * int(self.n)
@@ -334,7 +331,7 @@ class OrderedSum:
     waits for its turn and adds its entries (``np.add.at`` through the chunk's 32-bit
     scatter positions, no conversion and no temporary), so that every entry is summed in
     the same order in every run and whatever the threads.  Replaces a partial sum of
-    ``nnz`` entries per chunk (two 63 MB arrays for the 40 x 1 x 20 plate).
+    ``nnz`` entries per chunk (sizes: docs/performance.md).
 
     Parameters
     ----------
@@ -342,8 +339,8 @@ class OrderedSum:
         Length of the data array (``nnz + 1``: the last entry collects the eliminated
         entries' dummy position).
     vector_size
-        Length of a vector summed the same way (the internal forces; one per chunk
-        kept until the end took 87 MB for the 64 chunks of the 80 x 1 x 40 plate).
+        Length of a vector summed the same way (the internal forces; one vector per
+        chunk kept until the end grew with the number of chunks).
     """
 
     def __init__(self, size: int, vector_size: int = 0):
@@ -376,7 +373,7 @@ class BlockScatter:
 
     An entry in row ``R`` of the pattern lands at ``indptr[R] + offset``; the offsets fit
     in 16 bits while every row has fewer than 65 535 entries (up to ~600 for the Q2/Q1/Q2
-    plate), half of 32-bit positions (40 -> 20 MB for the 40 x 1 x 20 plate); the row
+    plate), half the memory of 32-bit positions (docs/performance.md); the row
     starts are gathered block by block from the rows of the element (one per 81 entries of
     the u-u block).  Otherwise the 32-bit positions are kept.
 

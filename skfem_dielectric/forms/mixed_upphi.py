@@ -56,7 +56,7 @@ def _gradient_layouts(basis) -> np.ndarray:
 def _functions_first(dNt: np.ndarray) -> np.ndarray:
     """The gradients ``(e, q, K, i)`` of a chunk as ``(e, i, q * K)``, the left factor of
     the element products (made per chunk: a second layout of the whole mesh's gradients
-    would keep 13 MB more for the 40 x 1 x 20 plate)."""
+    would be kept for the whole assembly; docs/performance.md)."""
     ne, nq, _, nf = dNt.shape
     return np.ascontiguousarray(dNt.transpose(0, 3, 1, 2)).reshape(ne, nf, nq * 3)
 

@@ -47,7 +47,7 @@ __all__ = ["LinearSolver", "SuperLUSolver", "whole_matrix", "PardisoSolver", "Pa
 def _compress_into(keep: np.ndarray, a: np.ndarray, out: np.ndarray,
                    block: int = 1 << 20) -> None:
     """``out[:] = a[keep]`` block by block (``np.compress`` of the whole array makes a
-    temporary 64-bit index of every kept entry, 33 MB on the 40 x 1 x 20 plate)."""
+    temporary 64-bit index of every kept entry: docs/performance.md)."""
     o = 0
     for i in range(0, a.size, block):
         m = keep[i:i + block]
@@ -60,8 +60,8 @@ def _quiet_mkl_threads() -> None:
     """Let MKL's OpenMP threads sleep as soon as a PARDISO call returns.
 
     They otherwise spin for ``KMP_BLOCKTIME`` (default 200 ms) after every parallel region
-    and kept both cores of the 2-core benchmark machine busy during the next
-    (numpy-threaded) assembly, slowing it by ~15 %.  The variable is read when the OpenMP
+    and kept both cores busy during the next (numpy-threaded) assembly, slowing it
+    (docs/performance.md).  The variable is read when the OpenMP
     runtime starts, so this runs before ``pypardiso`` is imported; a value the user set
     wins.
     """
@@ -82,7 +82,8 @@ def new_pypardiso_solver(mtype: int = 11):
     """A fresh ``pypardiso.PyPardisoSolver`` without repeating the library search.
 
     ``PyPardisoSolver()`` looks for the MKL runtime each time it is constructed (a
-    recursive glob under ``sys.prefix``: 0.4-1.8 s); ``import pypardiso`` already does
+    recursive glob under ``sys.prefix``, slow beside a solve: docs/performance.md);
+    ``import pypardiso`` already does
     so once for its module-level solver. The new solver shares that solver's loaded
     library function but gets its own PARDISO handle ``pt``, ``iparm``, ``perm``,
     matrix type and stored matrix, so solvers with different matrices keep separate
@@ -134,12 +135,12 @@ class PardisoSolver(LinearSolver):
         lost by pivot perturbation on saddle-point matrices.  They are done here, with
         the residual of the matrix passed to :meth:`solve` and a solve with the factors
         each, not by PARDISO (``iparm(8) = 0``), whose own refinement allocated a work
-        array of the size of the factorised matrix in every solve (100 MB of the
-        80 x 1 x 40 plate's peak).
+        array of the size of the factorised matrix in every solve (docs/performance.md).
     ordering
         Fill-reducing ordering (``iparm(2)``): ``"minimum-degree"`` (default; on the
         40 x 1 x 20 Keplinger plate, nearly a 2-D problem, 13.2 M entries in the factors
-        and 273 MB, against 15.5 M and 292 MB for METIS), ``"metis"`` (nested dissection)
+        against 15.5 M for METIS; their memory: docs/performance.md), ``"metis"`` (nested
+        dissection)
         or ``"parallel-metis"``.
 
     Notes
@@ -180,8 +181,8 @@ class PardisoSolver(LinearSolver):
 
     def _call(self, phase: int, A: sp.csr_matrix, b: np.ndarray) -> np.ndarray:
         """One PARDISO call with the zero-based int32 ``indptr``/``indices`` of ``A`` as
-        they are (pypardiso would make one-based copies on every call, 17 MB and ~10 ms
-        each on the 40 x 1 x 20 plate); the heap is trimmed after a factorisation or a
+        they are (pypardiso would make one-based copies on every call: docs/performance.md);
+        the heap is trimmed after a factorisation or a
         solve (:func:`~skfem_dielectric.fem.assembly.trim_heap`: their work arrays)."""
         ps = self._ps
         ps.set_phase(phase)
@@ -215,8 +216,8 @@ class PardisoSolver(LinearSolver):
     def _upper(self, K: sp.spmatrix) -> sp.csr_matrix:
         """Upper triangle of ``K`` (that of a :class:`SymmetricUpper` as it is, with int32
         indices); the selection is cached for a repeated CSR pattern, whose upper
-        triangle's data are then overwritten in place (no second 33 MB array while the old
-        one is still referenced)."""
+        triangle's data are then overwritten in place (no second array while the old one
+        is still referenced)."""
         if isinstance(K, SymmetricUpper):
             U = K.upper
             if U.indptr.dtype != np.int32 or U.indices.dtype != np.int32:
@@ -301,8 +302,8 @@ class PardisoSolver(LinearSolver):
         return x
 
     def discard(self) -> None:
-        """Free the numerical factorisation (PARDISO phase 0: 100 of the 273 MB of the
-        40 x 1 x 20 Keplinger plate's factors; the analysis is kept) and the matrix it
+        """Free the numerical factorisation (PARDISO phase 0: a part of the factors'
+        memory, docs/performance.md; the analysis is kept) and the matrix it
         belongs to, so that they are not held while the next tangent is assembled and
         factorised; :meth:`resolve` returns ``None`` until the next :meth:`solve`."""
         U = getattr(self, "_last", None)

@@ -39,7 +39,7 @@ MODES = ("symmetric", "antisymmetric")
 CONTROLS = ("charge", "voltage")
 #: linear solver of the sections' Newton solves: PARDISO where installed.  SuperLU's
 #: threshold pivoting fills the long thin sections' factors badly (8 x 102 elements,
-#: 10 970 unknowns: 11.9 M entries and 3.8 s per factorisation, PARDISO 0.08 s); the
+#: 10 970 unknowns: 11.9 M entries; the cost against PARDISO: docs/performance.md); the
 #: critical loads are located to 1e-6, far above the last bits that PARDISO's threads move.
 SOLVER = "auto"
 
