@@ -28,7 +28,7 @@ from .gallery import (charge_targets, cross_section_ramp, equibiaxial_plate,
                       run_ramp)
 from .kinematics import segment_det_limit
 from .linalg import (LinearSolver, PardisoLUSolver, PardisoSolver, SuperLUSolver,
-                     get_linear_solver, nonsymmetric_solver, pardiso_available)
+                     get_linear_solver, nonsymmetric_solver, pardiso_available, tangent_inertia)
 from .materials import (GentDielectric, IdealDielectric, NeoHookeanDielectric, PointResponse,
                         ideal_dielectric_response, make_material)
 from .models import (ClassStability, CrossSection, MembranePlate, PlateProblem,
@@ -38,8 +38,7 @@ from .problem import Layout, Problem
 from .solvers import (ContinuationEvent, ContinuationPoint, ContinuationResult, CriticalLoad,
                       NewtonResult, RampResult, StepResult, continuation, critical_load, newton,
                       ramp)
-from .stability import (StabilityMonitor, StabilityResult, stability_analysis, tangent_inertia,
-                        tangent_stability)
+from .stability import StabilityMonitor, StabilityResult, stability_analysis, tangent_stability
 from .studies import (SnapThrough, homogeneous_plate, section_critical_load,
                       section_critical_stretch, voltage_snap_through, wrinkling_section)
 

@@ -16,9 +16,10 @@ import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
 import skfem_dielectric as fe
-from skfem_dielectric.linalg.linear import SuperLUSolver, get_linear_solver
-from skfem_dielectric.stability.analysis import (constrained_order, lowest_modes, metric_matrix,
-                                        tangent_inertia)
+from skfem_dielectric.linalg.linear import get_linear_solver
+from skfem_dielectric.linalg.solver_base import SuperLUSolver
+from skfem_dielectric.linalg.inertia import constrained_order, tangent_inertia
+from skfem_dielectric.stability.analysis import lowest_modes, metric_matrix
 
 SOLVERS = ["superlu"] + (["pardiso"] if fe.pardiso_available() else [])
 

@@ -49,7 +49,8 @@ import numpy as np
 import scipy.sparse as sp
 
 from ..checks import check_callable, check_count, check_nonnegative_int, check_positive
-from ..linalg.linear import LinearSolver, nonsymmetric_solver
+from ..linalg.linear import nonsymmetric_solver
+from ..linalg.solver_base import LinearSolver
 from ..problem import Problem
 from ..stability.analysis import metric_matrix, tangent_stability
 from .newton import newton

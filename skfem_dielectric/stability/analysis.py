@@ -36,15 +36,14 @@ import numpy as np
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
-from ..linalg.inertia import (DENSE_LIMIT, INERTIA_METHODS, constrained_order, counted_inertia,
-                      inertia_factors, reusable_factors, symmetric_lu, tangent_inertia)
-from ..linalg.linear import LinearSolver, PardisoSolver, pardiso_available
+from ..linalg.inertia import (DENSE_LIMIT, counted_inertia, inertia_factors, reusable_factors,
+                              symmetric_lu, tangent_inertia)
+from ..linalg.linear import PardisoSolver, pardiso_available
+from ..linalg.solver_base import LinearSolver
 from ..problem import Problem
 
-# the inertia functions live in .inertia; the names here are kept for existing imports
-__all__ = ["tangent_inertia", "counted_inertia", "constrained_order", "INERTIA_METHODS",
-           "DENSE_LIMIT", "StabilityResult", "stability_analysis", "tangent_stability",
-           "metric_matrix", "lowest_modes"]
+__all__ = ["StabilityResult", "stability_analysis", "tangent_stability", "metric_matrix",
+           "lowest_modes"]
 
 
 def metric_matrix(problem: Problem) -> sp.csr_matrix:
@@ -322,7 +321,7 @@ def stability_analysis(problem: Problem, x: np.ndarray, load: Any, *, k: int = 0
     k
         Number of lowest eigenpairs (0: only the count).
     method
-        Inertia method of :func:`tangent_inertia`.
+        Inertia method of :func:`~skfem_dielectric.linalg.inertia.tangent_inertia`.
     rtol
         The state must satisfy ``||r|| <= rtol * residual_scale(load)`` (an equilibrium).
 

@@ -176,7 +176,7 @@ def class_stability(problem: PlateProblem, x: np.ndarray, load: Any, *, k: int =
     k
         Lowest eigenpairs per class (0: counts only).
     method
-        Inertia method (:func:`~skfem_dielectric.stability.analysis.tangent_inertia`).
+        Inertia method (:func:`~skfem_dielectric.linalg.inertia.tangent_inertia`).
     grad_div
         Grad-div stabilisation of the analysed tangent in units of ``mu`` (default: the
         model's own,
