@@ -32,7 +32,7 @@ from .linalg import (LinearSolver, PardisoLUSolver, PardisoSolver, SuperLUSolver
 from .materials import (GentDielectric, IdealDielectric, NeoHookeanDielectric, PointResponse,
                         ideal_dielectric_response, make_material)
 from .models import (ClassStability, CrossSection, MembranePlate, PlateProblem,
-                     class_stability, classify_mode, lowest_physical_eigenvalue, mode_mesh,
+                     class_stability, classify_mode, lowest_physical, mode_mesh,
                      symmetry_classes, write_mode_vtu)
 from .problem import Layout, Problem
 from .solvers import (ContinuationEvent, ContinuationPoint, ContinuationResult, CriticalLoad,
@@ -64,7 +64,7 @@ __all__ = [
     # stability
     "StabilityResult", "StabilityMonitor", "stability_analysis", "tangent_stability", "tangent_inertia",
     "ClassStability", "class_stability", "symmetry_classes", "classify_mode", "mode_mesh",
-    "write_mode_vtu", "lowest_physical_eigenvalue", "CriticalLoad", "critical_load",
+    "write_mode_vtu", "lowest_physical", "CriticalLoad", "critical_load",
     "wrinkling_section", "section_critical_load", "section_critical_stretch",
     # voltage control through the snap-through
     "homogeneous_plate", "voltage_snap_through", "SnapThrough",

@@ -355,7 +355,7 @@ def stability_analysis(problem: Problem, x: np.ndarray, load: Any, *, k: int = 0
 
 
 def tangent_stability(problem: Problem, K: sp.spmatrix, *, k: int = 0,
-                      method: str = "auto", all_negative: bool = False,
+                      method: str = "auto", all_negative: bool = False, extra: int = 0,
                       tol: float = 1e-12, metric: sp.spmatrix | None = None,
                       factors: LinearSolver | None = None, **reuse: Any
                       ) -> StabilityResult:
@@ -371,7 +371,12 @@ def tangent_stability(problem: Problem, K: sp.spmatrix, *, k: int = 0,
     k, method
         As in :func:`stability_analysis`.
     all_negative
-        Return at least as many modes as negative eigenvalues (``k = max(k, n_negative)``).
+        Return at least as many modes as negative eigenvalues, and ``extra`` more
+        (``k = max(k, n_negative + extra)``): the count is known only after the
+        factorisation, so a caller cannot ask for "every negative mode and the next ones"
+        through ``k``.
+    extra
+        Modes above the negative ones with ``all_negative`` (ignored without it).
     tol
         Relative tolerance of the eigenvalues (:func:`lowest_modes`).
     metric
@@ -392,6 +397,8 @@ def tangent_stability(problem: Problem, K: sp.spmatrix, *, k: int = 0,
     """
     if int(k) != k or k < 0:
         raise ValueError(f"k must be an integer >= 0, got {k!r}")
+    if int(extra) != extra or extra < 0:
+        raise ValueError(f"extra must be an integer >= 0, got {extra!r}")
     if K.shape != (problem.ndofs, problem.ndofs):
         raise ValueError(f"K must have shape ({problem.ndofs}, {problem.ndofs}), got {K.shape}")
     unknown = set(reuse) - {"sigma_start", "sigma_growth", "shift_solver", "v0"}
@@ -409,7 +416,7 @@ def tangent_stability(problem: Problem, K: sp.spmatrix, *, k: int = 0,
         inertia = counted_inertia(K, method)
     out = StabilityResult(inertia[1] - n_m, inertia[2], tuple(inertia), n_m)
     if all_negative:
-        k = max(int(k), out.n_negative)
+        k = max(int(k), out.n_negative + int(extra))
     if k:
         M = metric_matrix(problem) if metric is None else metric
         out.eigenvalues, out.modes = lowest_modes(
