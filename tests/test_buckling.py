@@ -9,7 +9,8 @@ import analytic as an
 import skfem_dielectric as fe
 from skfem_dielectric.gallery.drivers import equibiaxial_problem, keplinger_problem
 from skfem_dielectric.models.plate.symmetry_classes import class_stability
-from skfem_dielectric.models.plate.modes import corner_radius, physical_modes
+from skfem_dielectric.models.plate.modes import (LowestPhysical, corner_radius, lowest_physical,
+                                                physical_modes)
 from skfem_dielectric.studies.buckling import buckling_load
 from validation.cli import main
 from validation.records import buckling_crossing
@@ -94,6 +95,24 @@ def test_class_stability_in_threads_is_the_serial_one(end_compression):
         assert np.array_equal(r1.modes, r2.modes)
     with pytest.raises(ValueError, match="threads must be"):
         class_stability(pb, x, load, threads=0)
+
+
+def test_lowest_physical_is_the_first_physical_mode_of_the_whole_plate(end_compression):
+    pb, states = end_compression
+    x, load = states[-1]
+    low = lowest_physical(pb, x, load)
+    # the whole plate's count is the sum of the classes' dense counts (Sylvester, exact)
+    assert low.n_negative == class_stability(pb, x, load, k=0, method="dense").n_negative
+    assert low.n_negative >= 1
+    # the modes are classified in ascending order up to the first physical one, which
+    # carries the indicator
+    values = [m.eigenvalue for m in low.labels]
+    assert values == sorted(values)
+    assert low.labels[-1] is low.label and low.label.kind == "physical"
+    assert all(m.kind != "physical" for m in low.labels[:-1])
+    assert low.eigenvalue == low.label.eigenvalue < 0
+    # without a physical mode among the computed ones the indicator is nan
+    assert np.isnan(LowestPhysical(None, [], 0).eigenvalue)
 
 
 def test_corner_radius_covers_the_corner_element():
