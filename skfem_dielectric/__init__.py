@@ -28,18 +28,17 @@ from .gallery import (charge_targets, cross_section_ramp, equibiaxial_plate,
                       run_ramp)
 from .kinematics import segment_det_limit
 from .linalg import (LinearSolver, PardisoLUSolver, PardisoSolver, SuperLUSolver,
-                     get_linear_solver, nonsymmetric_solver, pardiso_available)
+                     get_linear_solver, nonsymmetric_solver, pardiso_available, tangent_inertia)
 from .materials import (GentDielectric, IdealDielectric, NeoHookeanDielectric, PointResponse,
                         ideal_dielectric_response, make_material)
 from .models import (ClassStability, CrossSection, MembraneMesh, MembranePlate, PlateProblem,
-                     SectionMesh, class_stability, classify_mode, lowest_physical_eigenvalue,
+                     SectionMesh, class_stability, classify_mode, lowest_physical,
                      membrane_mesh, mode_mesh, section_mesh, symmetry_classes, write_mode_vtu)
 from .problem import Layout, Problem
 from .solvers import (ContinuationEvent, ContinuationPoint, ContinuationResult, CriticalLoad,
                       NewtonResult, RampResult, StepResult, continuation, critical_load, newton,
                       ramp)
-from .stability import (StabilityMonitor, StabilityResult, stability_analysis, tangent_inertia,
-                        tangent_stability)
+from .stability import StabilityMonitor, StabilityResult, stability_analysis, tangent_stability
 from .studies import (SnapThrough, homogeneous_plate, section_critical_load,
                       section_critical_stretch, voltage_snap_through, wrinkling_section)
 
@@ -66,7 +65,7 @@ __all__ = [
     # stability
     "StabilityResult", "StabilityMonitor", "stability_analysis", "tangent_stability", "tangent_inertia",
     "ClassStability", "class_stability", "symmetry_classes", "classify_mode", "mode_mesh",
-    "write_mode_vtu", "lowest_physical_eigenvalue", "CriticalLoad", "critical_load",
+    "write_mode_vtu", "lowest_physical", "CriticalLoad", "critical_load",
     "wrinkling_section", "section_critical_load", "section_critical_stretch",
     # voltage control through the snap-through
     "homogeneous_plate", "voltage_snap_through", "SnapThrough",

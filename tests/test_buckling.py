@@ -9,8 +9,9 @@ import analytic as an
 import skfem_dielectric as fe
 from skfem_dielectric.gallery.drivers import equibiaxial_problem, keplinger_problem
 from skfem_dielectric.models.plate.symmetry_classes import class_stability
-from skfem_dielectric.studies.buckling import (buckling_load, class_spectra, corner_radius,
-                                      physical_modes)
+from skfem_dielectric.models.plate.modes import (LowestPhysical, corner_radius, lowest_physical,
+                                                physical_modes)
+from skfem_dielectric.studies.buckling import buckling_load
 from validation.cli import main
 from validation.records import buckling_crossing
 
@@ -76,20 +77,42 @@ def test_buckling_load_is_the_full_plates_eigenvalue_crossing(end_compression):
     assert out.load[1] == 1.0 and out.D0_b == 1.0
 
 
-def test_class_spectra_in_threads_are_the_serial_ones(end_compression):
+def test_class_stability_in_threads_is_the_serial_one(end_compression):
     # the classes are independent problems: analysed two at a time (SuperLU releases the
     # GIL) they give the serial result bit for bit, in the order of the classes
     pb, states = end_compression
     x, load = states[-1]
-    one = class_spectra(pb, x, load, method="superlu", threads=1)
-    two = class_spectra(pb, x, load, method="superlu", threads=2)
-    assert [c.name for c, *_ in two] == [c.name for c, *_ in one] and len(one) == 8
+    spec = dict(k=0, all_negative=True, extra=2, method="superlu")
+    one = class_stability(pb, x, load, threads=1, **spec)
+    two = class_stability(pb, x, load, threads=2, **spec)
+    assert [c.name for c in two.classes] == [c.name for c in one.classes]
+    assert len(one.classes) == 8
     # the most compressed state has negative eigenvalues: the spectrum slicing runs
-    assert sum(n for _, n, _, _ in one) >= 1
-    for (_, n1, v1, w1), (_, n2, v2, w2) in zip(one, two):
-        assert n1 == n2 and np.array_equal(v1, v2) and np.array_equal(w1, w2)
+    assert one.n_negative >= 1
+    for r1, r2 in zip(one.results, two.results):
+        assert r1.n_negative == r2.n_negative
+        assert np.array_equal(r1.eigenvalues, r2.eigenvalues)
+        assert np.array_equal(r1.modes, r2.modes)
     with pytest.raises(ValueError, match="threads must be"):
-        class_spectra(pb, x, load, threads=0)
+        class_stability(pb, x, load, threads=0)
+
+
+def test_lowest_physical_is_the_first_physical_mode_of_the_whole_plate(end_compression):
+    pb, states = end_compression
+    x, load = states[-1]
+    low = lowest_physical(pb, x, load)
+    # the whole plate's count is the sum of the classes' dense counts (Sylvester, exact)
+    assert low.n_negative == class_stability(pb, x, load, k=0, method="dense").n_negative
+    assert low.n_negative >= 1
+    # the modes are classified in ascending order up to the first physical one, which
+    # carries the indicator
+    values = [m.eigenvalue for m in low.labels]
+    assert values == sorted(values)
+    assert low.labels[-1] is low.label and low.label.kind == "physical"
+    assert all(m.kind != "physical" for m in low.labels[:-1])
+    assert low.eigenvalue == low.label.eigenvalue < 0
+    # without a physical mode among the computed ones the indicator is nan
+    assert np.isnan(LowestPhysical(None, [], 0).eigenvalue)
 
 
 def test_corner_radius_covers_the_corner_element():

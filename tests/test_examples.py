@@ -146,14 +146,16 @@ def _eighth_class_crossing() -> float:
     10 x 1 x 5 of the alpha = 0.05 Keplinger plate (grad-div 10) changes sign."""
     import skfem_dielectric as fe
     from skfem_dielectric.gallery.drivers import newton_guards
-    from skfem_dielectric.studies.buckling import class_spectra
+    from skfem_dielectric.models.plate.symmetry_classes import class_stability
 
     res = fe.keplinger_plate(0.05, D0=[0.75, 0.8], elements=(10, 1, 5), grad_div=10.0,
                              rtol=1e-9, max_cutbacks=6, max_iter=25)
     pb, a, b = res.problem, res.steps[-2], res.steps[-1]
 
     def eig(x, ld):
-        return float(class_spectra(pb, x, ld, only=["x1 S, x2 A, x3 S"])[0][2].min())
+        cs = class_stability(pb, x, ld, k=0, all_negative=True, extra=2,
+                             only=["x1 S, x2 A, x3 S"])
+        return float(cs.results[0].eigenvalues.min())
 
     crit = fe.critical_load(pb, a.x, a.load, b.load, eig, tol=1e-5, rtol=1e-9, atol=0.0,
                             **newton_guards(pb))

@@ -188,7 +188,7 @@ def test_upper_triangle_in_the_spare_layout(star):
 
 
 def test_symmetric_upper_products_and_whole_matrix():
-    from skfem_dielectric.linalg.linear import SuperLUSolver
+    from skfem_dielectric.linalg.solver_base import SuperLUSolver
     from skfem_dielectric.linalg.symmetric import SymmetricUpper
 
     rng = np.random.default_rng(13)

@@ -220,7 +220,7 @@ def test_upper_triangle_assembled_directly(options):
 
 def test_ramp_hands_the_upper_triangle_to_a_solver_that_reads_it(monkeypatch):
     from skfem_dielectric import ramp
-    from skfem_dielectric.linalg.linear import SuperLUSolver
+    from skfem_dielectric.linalg.solver_base import SuperLUSolver
 
     pm = plate_mesh(4.0, 1.0, 2.0, 3, 1, 2, symmetry="full")
     pr = PlateProblem(pm, NeoHookeanDielectric(1.0, 1.0), loading="uniaxial")

@@ -16,9 +16,10 @@ import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
 import skfem_dielectric as fe
-from skfem_dielectric.linalg.linear import SuperLUSolver, get_linear_solver
-from skfem_dielectric.stability.analysis import (constrained_order, lowest_modes, metric_matrix,
-                                        tangent_inertia)
+from skfem_dielectric.linalg.linear import get_linear_solver
+from skfem_dielectric.linalg.solver_base import SuperLUSolver
+from skfem_dielectric.linalg.inertia import constrained_order, tangent_inertia
+from skfem_dielectric.stability.analysis import lowest_modes, metric_matrix
 
 SOLVERS = ["superlu"] + (["pardiso"] if fe.pardiso_available() else [])
 
@@ -85,6 +86,26 @@ def test_monitor_all_negative_gives_every_negative_mode(solver):
         assert ev.size == n_neg
         assert ev == pytest.approx(ref[:n_neg], rel=1e-7, abs=1e-12)
     assert min(h[1] for h in mon.history) == 0 and max(h[1] for h in mon.history) > 0
+
+
+def test_all_negative_with_extra_gives_the_next_modes_too():
+    # all_negative with extra = 2: every negative mode and the two above it (the request
+    # per symmetry class of the plate's buckling scan), equal to the dense spectrum
+    pb, res = _quarter_ramp("superlu")
+    signs = set()
+    for st in res.steps:
+        K, _ = pb.assemble(st.x, st.load)
+        out = fe.tangent_stability(pb, K, all_negative=True, extra=2, tol=1e-12)
+        ref = _pencil_eigenvalues(pb, K)
+        assert out.eigenvalues.size == out.n_negative + 2
+        # Lanczos tolerance 1e-12 relative in theta; the dense inverse of a tangent with
+        # condition ~1e8 is good to ~1e-8 relative
+        assert out.eigenvalues == pytest.approx(ref[:out.n_negative + 2], rel=1e-7,
+                                                abs=1e-12)
+        signs.add(out.n_negative > 0)
+    assert signs == {False, True}
+    with pytest.raises(ValueError, match="extra must be an integer >= 0"):
+        fe.tangent_stability(pb, K, all_negative=True, extra=-1)
 
 
 def test_reuse_factors_starts_with_a_chord_step():

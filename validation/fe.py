@@ -34,7 +34,6 @@ import meshio
 import numpy as np
 
 import skfem_dielectric as fe
-import skfem_dielectric.studies.buckling as fe_buckling
 import skfem_dielectric.models.plate.modes as fe_modes
 
 from .records import RunOutcome, StepRecord
@@ -360,7 +359,7 @@ def plate_buckling_columns(spec: RunSpec, problem, x, load) -> dict:
     """The whole plate's spectrum at a state of a run with ``spec.buckling``:
     ``n_negative_plate`` (negative eigenvalues over every symmetry class of the eighth
     model), ``physical_eig`` (the lowest eigenvalue whose mode is classified physical,
-    :func:`skfem_dielectric.studies.buckling.lowest_physical`; ``nan`` if none of the computed
+    :func:`skfem_dielectric.models.plate.modes.lowest_physical`; ``nan`` if none of the computed
     ones is) and ``physical_class`` (its symmetry class).  Empty for other runs, and where
     the spectrum cannot be computed (a ``ValueError``, e.g. a class tangent too large to
     be counted without PARDISO)."""
@@ -368,12 +367,11 @@ def plate_buckling_columns(spec: RunSpec, problem, x, load) -> dict:
             and problem.symmetric):
         return {}
     try:
-        phys, _, n_neg = fe_buckling.lowest_physical(problem, x, load)
+        lowest = fe_modes.lowest_physical(problem, x, load)
     except ValueError:
         return {}
-    return {"n_negative_plate": int(n_neg),
-            "physical_eig": phys.eigenvalue if phys is not None else float("nan"),
-            "physical_class": phys.symmetry if phys is not None else ""}
+    return {"n_negative_plate": int(lowest.n_negative), "physical_eig": lowest.eigenvalue,
+            "physical_class": lowest.label.symmetry if lowest.label is not None else ""}
 
 
 def whole_plate_verdict(spec: RunSpec, problem, rec: StepRecord) -> bool | None:

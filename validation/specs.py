@@ -69,7 +69,7 @@ class RunSpec:
     buckling : bool
         Also analyse every converged state of the clamped plate with the whole plate's
         spectrum (every symmetry class of the eighth model,
-        :func:`skfem_dielectric.studies.buckling.lowest_physical`): the columns
+        :func:`skfem_dielectric.models.plate.modes.lowest_physical`): the columns
         ``n_negative_plate``, ``physical_eig`` and ``physical_class``, whose zero
         crossing is the stability-based breakdown ``D0_b``.  Such a run is the grad-div
         form of the plate (``grad_div = 10``, as the buckling study), so that the analysed

@@ -25,7 +25,7 @@ import numpy as np
 
 from ..checks import check_count, check_finite, check_positive
 from ..fem.mesh import plate_mesh
-from ..linalg.linear import LinearSolver
+from ..linalg.solver_base import LinearSolver
 from ..materials import NeoHookeanDielectric, make_material
 from ..models.cross_section import CrossSection
 from ..models.membrane import MembranePlate, membrane_mesh

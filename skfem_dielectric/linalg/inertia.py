@@ -9,7 +9,7 @@ that ``U = D L^T``), or, for small systems, a dense eigenvalue count.
 :func:`symmetric_lu` keeps the SuperLU factors of such a count, so that the same
 factorisation serves the solves of a shift-invert eigenvalue iteration
 (:func:`~skfem_dielectric.stability.analysis.lowest_modes`); :class:`SymmetricFactors` hands them on
-as a :class:`~skfem_dielectric.linalg.linear.LinearSolver` that has factorised ``K``.
+as a :class:`~skfem_dielectric.linalg.solver_base.LinearSolver` that has factorised ``K``.
 """
 
 from __future__ import annotations
@@ -21,7 +21,8 @@ import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 from scipy.sparse.csgraph import reverse_cuthill_mckee
 
-from .linear import LinearSolver, PardisoSolver, pardiso_available
+from .linear import PardisoSolver, pardiso_available
+from .solver_base import LinearSolver
 
 __all__ = ["INERTIA_METHODS", "DENSE_LIMIT", "tangent_inertia", "constrained_order",
            "counted_inertia", "symmetric_lu", "SymmetricFactors", "inertia_factors",

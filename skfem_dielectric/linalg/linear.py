@@ -39,9 +39,8 @@ from ..fem.assembly import trim_heap
 from .solver_base import LinearSolver, SuperLUSolver, whole_matrix
 from .symmetric import SymmetricUpper, same_memory, same_pattern
 
-__all__ = ["LinearSolver", "SuperLUSolver", "whole_matrix", "PardisoSolver", "PardisoLUSolver",
-           "get_linear_solver", "nonsymmetric_solver", "pardiso_available",
-           "new_pypardiso_solver"]
+__all__ = ["PardisoSolver", "PardisoLUSolver", "get_linear_solver", "nonsymmetric_solver",
+           "pardiso_available", "new_pypardiso_solver"]
 
 
 def _compress_into(keep: np.ndarray, a: np.ndarray, out: np.ndarray,

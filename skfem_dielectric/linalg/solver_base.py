@@ -3,7 +3,7 @@
 :class:`LinearSolver` documents what the Newton iterations, the ramps and the stability
 analysis ask of a solver; :class:`SuperLUSolver` is the default implementation.  The
 PARDISO solvers (``fast`` extra) and :func:`~skfem_dielectric.linalg.linear.get_linear_solver`
-live in :mod:`skfem_dielectric.linalg.linear`, which re-exports these names.
+live in :mod:`skfem_dielectric.linalg.linear`.
 """
 
 from __future__ import annotations

@@ -49,7 +49,8 @@ import numpy as np
 import scipy.sparse as sp
 
 from ..checks import check_callable, check_count, check_nonnegative_int, check_positive
-from ..linalg.linear import LinearSolver, nonsymmetric_solver
+from ..linalg.linear import nonsymmetric_solver
+from ..linalg.solver_base import LinearSolver
 from ..problem import Problem
 from ..stability.analysis import metric_matrix, tangent_stability
 from .newton import newton
@@ -417,7 +418,12 @@ def continuation(problem: Problem, load0: Any = None, direction: Any = None, *,
         return (xx, tt, new, res.iterations, K_), ""
 
     def locate_limit(a, taua, b):
-        """Regula falsi on ``tau_t`` over the arclength from point ``a`` to ``b``."""
+        """Regula falsi on ``tau_t`` over the arclength from point ``a`` to ``b``, with the
+        Illinois halving of the retained end.  It differs from
+        :func:`~skfem_dielectric.solvers.critical.illinois` in what it stops on (the value
+        ``|tau_t| <= locate_tol``; a failed corrector ends it with the last converged
+        point) and in how it rounds (the secant point as ``(lo fhi - hi flo) / (fhi -
+        flo)``): with ``illinois`` the located limit points differ in their last bits."""
         lo, flo = 0.0, taua[1]
         hi = float(np.dot(P.w * taua[0], b.x - a.x) + taua[1] * (b.t - a.t))
         fhi, side, best = b.tangent_t, 0, None

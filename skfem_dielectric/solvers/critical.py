@@ -1,8 +1,8 @@
 """Critical load on a load path: where an eigenvalue of the reduced stiffness crosses zero.
 
 Between a stable state ``(x_a, load_a)`` and a load ``load_b`` where the indicator
-``eig(x, load)`` (the lowest *physical* eigenvalue, e.g.
-:func:`~skfem_dielectric.models.plate.modes.lowest_physical_eigenvalue`) is negative, the load is
+``eig(x, load)`` (the lowest *physical* eigenvalue, e.g. the ``eigenvalue`` of
+:func:`~skfem_dielectric.models.plate.modes.lowest_physical`) is negative, the load is
 parametrised as ``load(t) = load_a + t (load_b - load_a)``, ``t in [0, 1]``, and the root of
 ``t -> eig`` is bracketed by safeguarded secant (Illinois) steps.  Every trial state is
 solved by :func:`~skfem_dielectric.solvers.ramp.ramp` from the stable state ``x_a`` (not from the

@@ -32,7 +32,8 @@ import scipy.sparse as sp
 
 from ..checks import (check_callable, check_count, check_nonnegative, check_nonnegative_int,
                      check_tolerances)
-from ..linalg.linear import LinearSolver, get_linear_solver
+from ..linalg.linear import get_linear_solver
+from ..linalg.solver_base import LinearSolver
 
 __all__ = ["NewtonResult", "newton"]
 

@@ -37,7 +37,8 @@ import numpy as np
 
 from ..checks import (check_callable, check_choice, check_count, check_nonnegative,
                      check_nonnegative_int, check_tolerances, check_vector)
-from ..linalg.linear import LinearSolver, get_linear_solver
+from ..linalg.linear import get_linear_solver
+from ..linalg.solver_base import LinearSolver
 from ..problem import Problem
 from .newton import newton
 

@@ -4,13 +4,11 @@ monitor that records them for every converged state of a ramp
 (:mod:`~skfem_dielectric.stability.monitor`).
 """
 
-from .analysis import (tangent_inertia, counted_inertia, constrained_order, INERTIA_METHODS,
-                       DENSE_LIMIT, StabilityResult, stability_analysis, tangent_stability,
-                       metric_matrix, lowest_modes)
+from .analysis import (StabilityResult, stability_analysis, tangent_stability, metric_matrix,
+                       lowest_modes)
 from .monitor import StabilityMonitor
 
 __all__ = [
-    "tangent_inertia", "counted_inertia", "constrained_order", "INERTIA_METHODS",
-    "DENSE_LIMIT", "StabilityResult", "stability_analysis", "tangent_stability",
-    "metric_matrix", "lowest_modes", "StabilityMonitor",
+    "StabilityResult", "stability_analysis", "tangent_stability", "metric_matrix",
+    "lowest_modes", "StabilityMonitor",
 ]

@@ -36,15 +36,14 @@ import numpy as np
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
-from ..linalg.inertia import (DENSE_LIMIT, INERTIA_METHODS, constrained_order, counted_inertia,
-                      inertia_factors, reusable_factors, symmetric_lu, tangent_inertia)
-from ..linalg.linear import LinearSolver, PardisoSolver, pardiso_available
+from ..linalg.inertia import (DENSE_LIMIT, counted_inertia, inertia_factors, reusable_factors,
+                              symmetric_lu, tangent_inertia)
+from ..linalg.linear import PardisoSolver, pardiso_available
+from ..linalg.solver_base import LinearSolver
 from ..problem import Problem
 
-# the inertia functions live in .inertia; the names here are kept for existing imports
-__all__ = ["tangent_inertia", "counted_inertia", "constrained_order", "INERTIA_METHODS",
-           "DENSE_LIMIT", "StabilityResult", "stability_analysis", "tangent_stability",
-           "metric_matrix", "lowest_modes"]
+__all__ = ["StabilityResult", "stability_analysis", "tangent_stability", "metric_matrix",
+           "lowest_modes"]
 
 
 def metric_matrix(problem: Problem) -> sp.csr_matrix:
@@ -322,7 +321,7 @@ def stability_analysis(problem: Problem, x: np.ndarray, load: Any, *, k: int = 0
     k
         Number of lowest eigenpairs (0: only the count).
     method
-        Inertia method of :func:`tangent_inertia`.
+        Inertia method of :func:`~skfem_dielectric.linalg.inertia.tangent_inertia`.
     rtol
         The state must satisfy ``||r|| <= rtol * residual_scale(load)`` (an equilibrium).
 
@@ -356,7 +355,7 @@ def stability_analysis(problem: Problem, x: np.ndarray, load: Any, *, k: int = 0
 
 
 def tangent_stability(problem: Problem, K: sp.spmatrix, *, k: int = 0,
-                      method: str = "auto", all_negative: bool = False,
+                      method: str = "auto", all_negative: bool = False, extra: int = 0,
                       tol: float = 1e-12, metric: sp.spmatrix | None = None,
                       factors: LinearSolver | None = None, **reuse: Any
                       ) -> StabilityResult:
@@ -372,7 +371,12 @@ def tangent_stability(problem: Problem, K: sp.spmatrix, *, k: int = 0,
     k, method
         As in :func:`stability_analysis`.
     all_negative
-        Return at least as many modes as negative eigenvalues (``k = max(k, n_negative)``).
+        Return at least as many modes as negative eigenvalues, and ``extra`` more
+        (``k = max(k, n_negative + extra)``): the count is known only after the
+        factorisation, so a caller cannot ask for "every negative mode and the next ones"
+        through ``k``.
+    extra
+        Modes above the negative ones with ``all_negative`` (ignored without it).
     tol
         Relative tolerance of the eigenvalues (:func:`lowest_modes`).
     metric
@@ -393,6 +397,8 @@ def tangent_stability(problem: Problem, K: sp.spmatrix, *, k: int = 0,
     """
     if int(k) != k or k < 0:
         raise ValueError(f"k must be an integer >= 0, got {k!r}")
+    if int(extra) != extra or extra < 0:
+        raise ValueError(f"extra must be an integer >= 0, got {extra!r}")
     if K.shape != (problem.ndofs, problem.ndofs):
         raise ValueError(f"K must have shape ({problem.ndofs}, {problem.ndofs}), got {K.shape}")
     unknown = set(reuse) - {"sigma_start", "sigma_growth", "shift_solver", "v0"}
@@ -410,7 +416,7 @@ def tangent_stability(problem: Problem, K: sp.spmatrix, *, k: int = 0,
         inertia = counted_inertia(K, method)
     out = StabilityResult(inertia[1] - n_m, inertia[2], tuple(inertia), n_m)
     if all_negative:
-        k = max(int(k), out.n_negative)
+        k = max(int(k), out.n_negative + int(extra))
     if k:
         M = metric_matrix(problem) if metric is None else metric
         out.eigenvalues, out.modes = lowest_modes(

@@ -10,7 +10,7 @@ monitor reads
 
 * the negative-eigenvalue count of the reduced stiffness, ``n_neg(K) - n_multipliers``
   (the inertia of the factors: PARDISO, or SuperLU when it kept to diagonal pivots; else
-  one extra symmetric factorisation, :func:`~skfem_dielectric.stability.analysis.tangent_inertia`);
+  one extra symmetric factorisation, :func:`~skfem_dielectric.linalg.inertia.tangent_inertia`);
 * with ``k > 0`` the ``k`` lowest eigenpairs
   (:func:`~skfem_dielectric.stability.analysis.lowest_modes`,
   metric of :func:`~skfem_dielectric.stability.analysis.metric_matrix`): for a state without
@@ -31,9 +31,11 @@ from typing import Any
 import numpy as np
 
 from ..checks import check_nonnegative_int, check_positive
-from ..linalg.linear import LinearSolver, PardisoSolver, pardiso_available
+from ..linalg.inertia import DENSE_LIMIT
+from ..linalg.linear import PardisoSolver, pardiso_available
+from ..linalg.solver_base import LinearSolver
 from ..problem import Problem
-from .analysis import DENSE_LIMIT, StabilityResult, metric_matrix, tangent_stability
+from .analysis import StabilityResult, metric_matrix, tangent_stability
 
 __all__ = ["StabilityMonitor"]
 
@@ -49,7 +51,7 @@ class StabilityMonitor:
         Relative Lanczos tolerance of the eigenvalues.
     method
         Inertia method where the ramp's factors do not show the inertia (see
-        :func:`~skfem_dielectric.stability.analysis.tangent_inertia`).
+        :func:`~skfem_dielectric.linalg.inertia.tangent_inertia`).
     all_negative
         At least as many eigenpairs as negative eigenvalues (``max(k, n_negative)``, as
         :func:`~skfem_dielectric.stability.analysis.tangent_stability`), e.g. to classify every

@@ -5,8 +5,7 @@ snap-through of a homogeneous plate (:mod:`~skfem_dielectric.studies.snap_throug
 FE wrinkling of the cross-section (:mod:`~skfem_dielectric.studies.wrinkling_fe`).
 """
 
-from .buckling import (ModeLabel, BucklingLoad, corner_radius, class_spectra,
-                       physical_modes, lowest_physical, buckling_load)
+from .buckling import BucklingLoad, buckling_load
 from .postbuckling import (midplane_nodes, midplane_deflection, critical_mode, BranchSwitch,
                            switch_branch, follow_branch, PostBuckledBranch,
                            post_buckled_branch)
@@ -16,8 +15,7 @@ from .wrinkling_fe import (wrinkling_section, section_mode_eigenvalue,
                            section_critical_stretch)
 
 __all__ = [
-    "ModeLabel", "BucklingLoad", "corner_radius", "class_spectra", "physical_modes",
-    "lowest_physical", "buckling_load", "midplane_nodes", "midplane_deflection",
+    "BucklingLoad", "buckling_load", "midplane_nodes", "midplane_deflection",
     "critical_mode", "BranchSwitch", "switch_branch", "follow_branch", "PostBuckledBranch",
     "post_buckled_branch", "homogeneous_plate", "SnapThrough", "voltage_snap_through",
     "wrinkling_section", "section_mode_eigenvalue", "section_critical_load",

@@ -34,10 +34,10 @@ import numpy as np
 
 from ..checks import check_count, check_positive, check_vector
 from ..gallery.drivers import newton_guards, run_ramp
+from ..models.plate.modes import ModeLabel, lowest_physical
 from ..models.plate.problem import PlateProblem
 from ..models.plate.symmetry_classes import class_stability, symmetry_classes
 from ..solvers.ramp import RampResult, ramp
-from .buckling import ModeLabel, lowest_physical
 
 __all__ = ["midplane_nodes", "midplane_deflection", "critical_mode", "BranchSwitch",
            "switch_branch", "follow_branch", "PostBuckledBranch", "post_buckled_branch"]
@@ -92,7 +92,7 @@ def critical_mode(problem: PlateProblem, x: np.ndarray, load: Any, *, extra: int
     which the model itself can leave the fundamental branch.  Its negative eigenpairs and
     ``extra`` more are computed and classified in ascending order
     (:func:`~skfem_dielectric.models.plate.modes.classify_mode`; clamp-corner and mesh-scale modes
-    are skipped, as in :func:`~skfem_dielectric.studies.buckling.physical_modes`).
+    are skipped, as in :func:`~skfem_dielectric.models.plate.modes.physical_modes`).
 
     Parameters
     ----------
@@ -107,12 +107,12 @@ def critical_mode(problem: PlateProblem, x: np.ndarray, load: Any, *, extra: int
         model's own, the Hessian of its energy), as in
         :func:`~skfem_dielectric.models.plate.symmetry_classes.class_stability`.
     radius
-        Corner radius (default :func:`~skfem_dielectric.studies.buckling.corner_radius`).
+        Corner radius (default :func:`~skfem_dielectric.models.plate.modes.corner_radius`).
 
     Returns
     -------
     ModeLabel or None
-        :class:`~skfem_dielectric.studies.buckling.ModeLabel` (eigenvalue in the metric of the
+        :class:`~skfem_dielectric.models.plate.modes.ModeLabel` (eigenvalue in the metric of the
         full plate's nodal displacements, full dof vector ``mode``); ``None`` if no
         computed mode is physical.
     """
@@ -120,7 +120,7 @@ def critical_mode(problem: PlateProblem, x: np.ndarray, load: Any, *, extra: int
     x = check_vector("x", x, problem.ndofs)
     own = symmetry_classes(problem)[0].name
     return lowest_physical(problem, x, load, extra=extra, method=method, grad_div=grad_div,
-                           radius=radius, only=[own])[0]
+                           radius=radius, only=[own]).label
 
 
 @dataclass

@@ -14,8 +14,9 @@ from .symmetry_classes import (SymmetryClass, ClassStability, symmetry_classes,
                                class_stability, class_mode_full, union_tangent,
                                class_tangent)
 from .modes import (element_energies, energy_share, corner_elements, corner_share,
-                    mesh_scale, classify_mode, lowest_physical_eigenvalue, mode_mesh,
-                    write_mode_vtu, top_deflection, MESH_SCALE_LIMIT, CORNER_LIMIT)
+                    mesh_scale, classify_mode, mode_mesh, write_mode_vtu, top_deflection,
+                    ModeLabel, LowestPhysical, corner_radius, physical_modes,
+                    lowest_physical, MESH_SCALE_LIMIT, CORNER_LIMIT)
 from .failure import StepLimitCounter, plate_failure_cause, describe_failure
 
 __all__ = [
@@ -24,7 +25,8 @@ __all__ = [
     "plate_step_mesh", "SymmetryClass", "ClassStability", "symmetry_classes",
     "class_stability", "class_mode_full", "union_tangent", "class_tangent",
     "element_energies", "energy_share", "corner_elements", "corner_share", "mesh_scale",
-    "classify_mode", "lowest_physical_eigenvalue", "mode_mesh", "write_mode_vtu",
-    "top_deflection", "MESH_SCALE_LIMIT", "CORNER_LIMIT", "StepLimitCounter",
+    "classify_mode", "mode_mesh", "write_mode_vtu", "top_deflection", "ModeLabel",
+    "LowestPhysical", "corner_radius", "physical_modes", "lowest_physical",
+    "MESH_SCALE_LIMIT", "CORNER_LIMIT", "StepLimitCounter",
     "plate_failure_cause", "describe_failure",
 ]

@@ -2,7 +2,9 @@
 
 A negative eigenvalue is physics only when its mode is: the indicators below say where a
 mode of :func:`~skfem_dielectric.tangent_stability` (or of a symmetry class,
-:func:`~skfem_dielectric.class_stability`) sits and at which scale it varies.
+:func:`~skfem_dielectric.models.plate.symmetry_classes.class_stability`) sits and at which
+scale it varies; :func:`lowest_physical` is the lowest mode of the whole plate that sits
+neither at a clamp corner nor at the mesh scale.
 
 ``energy_share``
     the share of the mode's second-variation energy in a set of elements.  The element
@@ -21,20 +23,22 @@ mode of :func:`~skfem_dielectric.tangent_stability` (or of a symmetry class,
 
 from __future__ import annotations
 
+from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
+from typing import Any, Sequence
 
 import meshio
 import numpy as np
 from skfem import Functional
 
+from ...checks import check_count, check_positive
 from .problem import PlateProblem
 from .symmetry_classes import class_mode_full, class_stability
 
 __all__ = ["element_energies", "energy_share", "corner_elements", "corner_share",
-           "mesh_scale", "classify_mode", "lowest_physical_eigenvalue", "mode_mesh",
-           "write_mode_vtu", "top_deflection",
-           "MESH_SCALE_LIMIT", "CORNER_LIMIT"]
+           "mesh_scale", "classify_mode", "mode_mesh", "write_mode_vtu", "top_deflection",
+           "ModeLabel", "LowestPhysical", "corner_radius", "physical_modes",
+           "lowest_physical", "MESH_SCALE_LIMIT", "CORNER_LIMIT"]
 
 #: a mode with a larger mesh-scale indicator is under-resolved (fewer than two elements
 #: per half-wave): a discretisation artefact until a finer mesh shows otherwise
@@ -201,25 +205,157 @@ def top_deflection(problem: PlateProblem, w_full: np.ndarray,
     return X1, X3, u2
 
 
-def lowest_physical_eigenvalue(problem: PlateProblem, x: np.ndarray, load: Any, *,
-                               k: int = 4, grad_div: float | None = None,
-                               radius: float | None = None) -> tuple[float, dict]:
-    """The lowest eigenvalue over every symmetry class whose mode is classified
-    ``"physical"`` (:func:`classify_mode`), and that mode's labels.
+@dataclass
+class ModeLabel:
+    """One classified mode of the whole plate at a state.
 
-    The ``k`` lowest modes of each class (at least all negative ones) are classified in
-    ascending order.  If none of them is physical, the largest computed eigenvalue is
-    returned (a lower bound of the lowest physical one) with ``kind = "none found"``.
-    The indicator of :func:`~skfem_dielectric.solvers.critical.critical_load` for a plate.
+    Attributes
+    ----------
+    eigenvalue
+        Eigenvalue of the reduced stiffness (metric of the full plate's nodal displacements).
+    symmetry
+        Name of its symmetry class (e.g. ``"x1 S, x2 A, x3 S"``).
+    increments
+        The class's parities, axis -> ``"symmetric"`` / ``"antisymmetric"``.
+    corner_share, mesh_scale, kind
+        As :func:`classify_mode` (radius :func:`corner_radius`).
+    mode
+        Full dof vector of the mode.
     """
-    cs = class_stability(problem, x, load, k=k, grad_div=grad_div, all_negative=True)
+
+    eigenvalue: float
+    symmetry: str
+    increments: dict
+    corner_share: float
+    mesh_scale: float
+    kind: str
+    mode: np.ndarray = field(repr=False)
+
+
+@dataclass
+class LowestPhysical:
+    """The lowest physical mode of the whole plate at a state (:func:`lowest_physical`).
+
+    Attributes
+    ----------
+    label
+        Its :class:`ModeLabel`; ``None`` if no computed mode is physical.
+    labels
+        Every classified mode up to it, ascending (:func:`physical_modes`).
+    n_negative
+        Negative eigenvalues of the whole plate's reduced stiffness (of the classes
+        analysed).
+    """
+
+    label: ModeLabel | None
+    labels: list[ModeLabel]
+    n_negative: int
+
+    @property
+    def eigenvalue(self) -> float:
+        """The lowest physical eigenvalue (``nan`` if no computed mode is physical): the
+        indicator of :func:`~skfem_dielectric.solvers.critical.critical_load` for a plate."""
+        return self.label.eigenvalue if self.label is not None else float("nan")
+
+
+def corner_radius(problem: PlateProblem) -> float:
+    """Radius of the clamp/free-edge corner zone: ``max(2 H, d)`` with ``d`` the in-plane
+    diagonal of the element at the corner.
+
+    :func:`corner_elements` selects elements by their centroid within the radius of a
+    corner line.  On a mesh whose elements are larger than ``2 H`` in the plane the
+    element *at* the corner has its centroid farther away than that and would not count
+    (10 x 1 x 5 eighth model of the 100 x 1 x 50 plate: 96 % of a mode's energy in that
+    element, corner share 0.00 with the radius ``2 H``); with at least the diagonal, the
+    element touching the corner always belongs to the corner zone.
+    """
+    if not isinstance(problem, PlateProblem):
+        raise ValueError(f"problem must be a PlateProblem, got {type(problem).__name__}")
+    g1, _, g3 = problem.plate.grids
+    d = float(np.hypot(g1[-1] - g1[-2], g3[-1] - g3[-2]))
+    return max(2.0 * problem.plate.H, d)
+
+
+def physical_modes(problem: PlateProblem, x: np.ndarray, load: Any, *, extra: int = 2,
+                   grad_div: float | None = None, method: str = "auto",
+                   radius: float | None = None, stop_at_physical: bool = True,
+                   only: Sequence[str] | None = None) -> tuple[list[ModeLabel], int]:
+    """Classified modes of the whole plate at a state, ascending.
+
+    Every negative eigenpair of each symmetry class and ``extra`` more above them
+    (:func:`~skfem_dielectric.models.plate.symmetry_classes.class_stability` with
+    ``all_negative``) are classified (:func:`classify_mode`) in ascending order of the
+    eigenvalue over all classes.
+
+    Parameters
+    ----------
+    problem, x, load
+        A symmetric-coupling plate and a converged state of it.
+    extra
+        Eigenpairs above the negative ones, per class (at least 1).
+    grad_div, method
+        Grad-div stabilisation of the analysed tangent (units of ``mu``; default the
+        model's own: the Hessian of the state's energy) and inertia method, as
+        :func:`~skfem_dielectric.models.plate.symmetry_classes.class_stability`.
+    radius
+        Corner radius (default :func:`corner_radius`).
+    stop_at_physical
+        Stop classifying after the first physical mode.
+    only
+        Names of the classes to analyse (default all, the whole plate).
+
+    Returns
+    -------
+    labels : list of ModeLabel
+        The classified modes, ascending.
+    n_negative : int
+        Negative eigenvalues of the whole plate's reduced stiffness (of the classes
+        ``only``).
+    """
+    extra = check_count("extra", extra)
+    r = corner_radius(problem) if radius is None else check_positive("radius", radius)
+    cs = class_stability(problem, x, load, k=0, grad_div=grad_div, method=method,
+                         all_negative=True, extra=extra, only=only)
     xf = problem.full(x, load)
-    names = [c.name for c in cs.classes]
-    vals = cs.lowest()
-    for v, name, j in vals:
-        i = names.index(name)
-        w = class_mode_full(cs.classes[i], cs.results[i].modes[:, j])
-        lab = classify_mode(problem, xf, w, symmetry=name, radius=radius)
-        if lab["kind"] == "physical":
-            return float(v), lab
-    return float(vals[-1][0]), {"kind": "none found", "symmetry": ""}
+    order = sorted((float(v), i, j) for i, res in enumerate(cs.results)
+                   for j, v in enumerate(res.eigenvalues))
+    out = []
+    for v, i, j in order:
+        c = cs.classes[i]
+        w = class_mode_full(c, cs.results[i].modes[:, j])
+        lab = classify_mode(problem, xf, w, symmetry=c.name, radius=r)
+        out.append(ModeLabel(v, c.name, dict(c.increments), lab["corner_share"],
+                             lab["mesh_scale"], lab["kind"], w))
+        if stop_at_physical and lab["kind"] == "physical":
+            break
+    return out, cs.n_negative
+
+
+def lowest_physical(problem: PlateProblem, x: np.ndarray, load: Any, *, extra: int = 2,
+                    grad_div: float | None = None, method: str = "auto",
+                    radius: float | None = None,
+                    only: Sequence[str] | None = None) -> LowestPhysical:
+    """The lowest mode of the whole plate at a state whose energy is neither at a clamp
+    corner nor at the mesh scale.
+
+    A negative eigenvalue of the discrete plate is physics only when its mode is
+    (module docstring); the lowest physical eigenvalue is therefore the indicator whose
+    zero crossing is the first buckling load
+    (:func:`~skfem_dielectric.solvers.critical.critical_load`), the discrete counterpart of
+    the bifurcation that the paper's breakdown criterion (Sec. 6, compressive ``P33`` near
+    the clamps) anticipates.
+
+    Parameters
+    ----------
+    problem, x, load, extra, grad_div, method, radius, only
+        As :func:`physical_modes`.
+
+    Returns
+    -------
+    LowestPhysical
+        ``label`` is ``None`` (``eigenvalue`` ``nan``) if no computed mode is physical.
+    """
+    labels, n_neg = physical_modes(problem, x, load, extra=extra, grad_div=grad_div,
+                                   method=method, radius=radius, only=only)
+    phys = [m for m in labels if m.kind == "physical"]
+    return LowestPhysical(phys[0] if phys else None, labels, n_neg)

@@ -16,14 +16,18 @@ some class) and restricted by sparse prolongations ``K_c = P_c^T K P_c``.
 
 from __future__ import annotations
 
+import os
 import weakref
+from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass, field
-from typing import Any
+from typing import Any, Sequence
 
 import numpy as np
 import scipy.sparse as sp
 
+from ...checks import check_count
 from ...fem.assembly import DofReduction
+from ...linalg.linear import pardiso_available
 from ...problem import Layout
 from ...stability.analysis import StabilityResult, tangent_stability
 from .problem import PlateProblem, increment_classes, plate_reduction
@@ -77,7 +81,8 @@ class SymmetryClass:
 
 @dataclass
 class ClassStability:
-    """Stability of one state over every symmetry class.
+    """Stability of one state over the symmetry classes (every class, or those asked for:
+    ``only`` of :func:`class_stability`).
 
     Attributes
     ----------
@@ -91,7 +96,8 @@ class ClassStability:
 
     @property
     def n_negative(self) -> int:
-        """Negative eigenvalues of the full plate's reduced stiffness (sum over classes)."""
+        """Negative eigenvalues of the full plate's reduced stiffness (sum over the
+        classes; of the classes analysed)."""
         return sum(r.n_negative for r in self.results)
 
     @property
@@ -161,10 +167,25 @@ def symmetry_classes(problem: PlateProblem) -> list[SymmetryClass]:
     return _union(problem)[1]
 
 
+def _class_threads(method: str) -> int:
+    """Worker threads of :func:`class_stability`: two (at most the cores) where SuperLU or a
+    dense count factorises the classes (single-threaded, and they release the GIL: two
+    classes at once use both cores), one where PARDISO does (its MKL threads already use
+    them)."""
+    uses_pardiso = method == "pardiso" or (method == "auto" and pardiso_available())
+    return 1 if uses_pardiso else max(1, min(2, os.cpu_count() or 1))
+
+
 def class_stability(problem: PlateProblem, x: np.ndarray, load: Any, *, k: int = 1,
                     method: str = "auto", grad_div: float | None = None,
-                    all_negative: bool = False, tol: float = 1e-10) -> ClassStability:
+                    all_negative: bool = False, extra: int = 0, tol: float = 1e-10,
+                    only: Sequence[str] | None = None,
+                    threads: int | None = None) -> ClassStability:
     """Negative-eigenvalue count and lowest modes of every symmetry class at a state.
+
+    The tangent of the full plate is block diagonal in the classes, so its count is the
+    sum of theirs and its spectrum the union of theirs (module docstring).  Each class is
+    counted by its own factorisation, which also serves its modes.
 
     Parameters
     ----------
@@ -176,32 +197,49 @@ def class_stability(problem: PlateProblem, x: np.ndarray, load: Any, *, k: int =
     k
         Lowest eigenpairs per class (0: counts only).
     method
-        Inertia method (:func:`~skfem_dielectric.stability.analysis.tangent_inertia`).
+        Inertia method (:func:`~skfem_dielectric.linalg.inertia.tangent_inertia`).
     grad_div
         Grad-div stabilisation of the analysed tangent in units of ``mu`` (default: the
         model's own,
         :meth:`~skfem_dielectric.models.plate.problem.PlateProblem.stabilised_tangent`).
-    all_negative, tol
-        As in :func:`~skfem_dielectric.stability.analysis.tangent_stability`.
+    all_negative, extra, tol
+        As in :func:`~skfem_dielectric.stability.analysis.tangent_stability`, per class:
+        with ``all_negative`` each class gets its own number of modes, its negative ones
+        and ``extra`` more (asking every class for the same ``k`` would let a class with
+        many negative modes hide its lowest positive one).
+    only
+        Names of the classes to analyse (default all, the whole plate).
+    threads
+        Classes analysed at once (default two where SuperLU or a dense count factorises,
+        one with PARDISO, whose own threads use the cores).  The classes are independent:
+        the result is the same bit for bit whatever the number.
 
     Returns
     -------
     ClassStability
-        Modes are vectors of each class's unknowns; :func:`class_mode_full` expands them.
+        The classes analysed (those named in ``only``, in the order of
+        :func:`symmetry_classes`) and their results; modes are vectors of each class's
+        unknowns (unit in the class metric), :func:`class_mode_full` expands them.
 
     Raises
     ------
     ValueError
-        A non-symmetric (Maxwell) coupling, or ``x`` of the wrong size.
+        A non-symmetric (Maxwell) coupling, ``x`` of the wrong size, ``threads`` below 1,
+        or a negative ``extra``.
     """
+    threads = _class_threads(method) if threads is None else check_count("threads", threads)
     classes, K = union_tangent(problem, x, load, grad_div)
-    out = ClassStability(classes)
-    for c in classes:
-        Kc = class_tangent(c, K)
-        out.results.append(tangent_stability(c, Kc, k=k, method=method,
-                                             all_negative=all_negative, tol=tol,
-                                             metric=c.metric))
-    return out
+
+    def analyse(c):
+        return tangent_stability(c, class_tangent(c, K), k=k, method=method,
+                                 all_negative=all_negative, extra=extra, tol=tol,
+                                 metric=c.metric)
+
+    todo = [c for c in classes if only is None or c.name in only]
+    if threads == 1 or len(todo) < 2:
+        return ClassStability(todo, [analyse(c) for c in todo])
+    with ThreadPoolExecutor(min(threads, len(todo))) as pool:
+        return ClassStability(todo, list(pool.map(analyse, todo)))
 
 
 def union_tangent(problem: PlateProblem, x: np.ndarray, load: Any,
