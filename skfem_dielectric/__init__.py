@@ -36,8 +36,8 @@ from .models import (ClassStability, CrossSection, MembranePlate, PlateProblem,
                      symmetry_classes, write_mode_vtu)
 from .problem import Layout, Problem
 from .solvers import (ContinuationEvent, ContinuationPoint, ContinuationResult, CriticalLoad,
-                      NewtonResult, RampResult, StepResult, continuation, critical_load, newton,
-                      ramp)
+                      NewtonResult, NewtonSettings, RampResult, RampSettings, StepResult,
+                      continuation, critical_load, newton, ramp)
 from .stability import (StabilityMonitor, StabilityResult, stability_analysis, tangent_inertia,
                         tangent_stability)
 from .studies import (SnapThrough, homogeneous_plate, section_critical_load,
@@ -45,7 +45,8 @@ from .studies import (SnapThrough, homogeneous_plate, section_critical_load,
 
 __all__ = [
     # the contract and the machinery
-    "Problem", "Layout", "newton", "NewtonResult", "segment_det_limit", "ramp", "RampResult",
+    "Problem", "Layout", "newton", "NewtonSettings", "NewtonResult", "segment_det_limit",
+    "ramp", "RampSettings", "RampResult",
     "StepResult", "continuation", "ContinuationResult", "ContinuationPoint", "ContinuationEvent",
     "LinearSolver", "SuperLUSolver", "PardisoSolver", "PardisoLUSolver", "get_linear_solver",
     "nonsymmetric_solver", "pardiso_available", "DofReduction", "ScatterMap",
