@@ -261,12 +261,35 @@ def test_secant_predictor_ramp_matches_cardano_with_fewer_iterations():
 
 def test_chord_and_predictor_bad_input():
     prob = Cubic()
+    with pytest.raises(ValueError, match="chord must be in"):
+        NewtonSettings(chord=1.0)
     with pytest.raises(ValueError, match="chord"):
-        newton(lambda x: prob.assemble(x, 1.0), np.zeros(3), settings=NewtonSettings(chord=1.0))
-    with pytest.raises(ValueError, match="chord"):
-        ramp(prob, [1.0], settings=RampSettings(chord=-0.1))
+        RampSettings(chord=-0.1)
     with pytest.raises(ValueError, match="predictor"):
-        ramp(prob, [1.0], settings=RampSettings(predictor="cubic"))
+        RampSettings(predictor="cubic")
+    # a ramp needs its cut-back and predictor rules: plain Newton settings are not enough
+    with pytest.raises(ValueError, match="settings must be a RampSettings"):
+        ramp(prob, [1.0], settings=NewtonSettings())
+    with pytest.raises(ValueError, match="settings must be a NewtonSettings"):
+        newton(lambda x: prob.assemble(x, 1.0), np.zeros(3), settings={"rtol": 1e-9})
+
+
+def test_ramp_settings_reach_every_newton_solve():
+    # From x = 0 the Cubic root at load 20 needs more than two Newton iterations, so with
+    # max_iter = 2 and no cut-back the first target fails, with the Newton reason; with the
+    # default budget the same ramp reaches Cardano's root to the absolute tolerance.
+    prob, c = Cubic(), Cubic.c
+    tight = RampSettings(atol=1e-12, rtol=0, max_iter=2, max_cutbacks=0)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", RuntimeWarning)
+        short = ramp(prob, [20.0], settings=tight)
+    assert not short.converged and short.iterations_total == 2
+    assert "no convergence in 2 iterations" in short.reason
+    assert "after 0 cut-backs" in short.reason
+    full = ramp(prob, [20.0], settings=RampSettings(atol=1e-12, rtol=0, max_cutbacks=0))
+    assert full.converged and full.steps[0].substeps == 1
+    # ||r|| <= 1e-12 and |dr/dx| = 3x^2 + 1 >= 1: the root to 1e-12
+    np.testing.assert_allclose(full.steps[0].x, cardano(20.0 * c), rtol=0, atol=1e-12)
 
 
 @pytest.mark.parametrize("solver", ["superlu"] + (["pardiso"] if pardiso_available() else []))
