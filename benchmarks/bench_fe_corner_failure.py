@@ -31,7 +31,8 @@ def main(argv=None) -> int:
     from skfem_dielectric.gallery.loads import preload_then_charge
     from skfem_dielectric.linalg.linear import get_linear_solver
     from skfem_dielectric.models.plate.failure import plate_failure_cause
-    from skfem_dielectric.solvers.newton import newton
+    from skfem_dielectric.solvers.newton import NewtonSettings, newton
+    from skfem_dielectric.solvers.ramp import RampSettings
     from skfem_dielectric.stability.analysis import tangent_stability
 
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
@@ -79,8 +80,9 @@ def main(argv=None) -> int:
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", RuntimeWarning)
         res = run_ramp(prob, preload_then_charge(s, a.D0, 3), linear_solver="pardiso",
-                       on_step=lambda st: st.load[1] > 0 and report(st), atol=0.0, rtol=1e-9,
-                       max_cutbacks=a.cutbacks, max_iter=a.max_iter)
+                       on_step=lambda st: st.load[1] > 0 and report(st),
+                       settings=RampSettings(atol=0.0, rtol=1e-9, max_cutbacks=a.cutbacks,
+                                                    max_iter=a.max_iter))
     print("converged:", res.converged, "| reason:", res.reason)
     if res.failed_at is not None:
         lims = []
@@ -91,8 +93,9 @@ def main(argv=None) -> int:
 
         nr = newton(lambda xx: prob.assemble(xx, res.failed_at), res.steps[-1].x,
                     residual=lambda xx: prob.residual(xx, res.failed_at),
-                    linear_solver=get_linear_solver("pardiso"), atol=0.0, rtol=1e-9,
-                    scale=prob.residual_scale(res.failed_at), max_iter=a.max_iter,
+                    linear_solver=get_linear_solver("pardiso"),
+                    settings=NewtonSettings(atol=0.0, rtol=1e-9, max_iter=a.max_iter),
+                    scale=prob.residual_scale(res.failed_at),
                     step_limit=limit,
                     admissible=lambda xx: plate_admissible(prob, xx, res.failed_at))
         print(f"replay at D0 = {res.failed_at[1]:.5f}: {nr.reason or 'converged'}")

@@ -21,6 +21,7 @@ Usage::
 from __future__ import annotations
 
 import argparse
+from dataclasses import replace
 import json
 import resource
 import subprocess
@@ -33,6 +34,7 @@ def run(solver: str, n1: int, n3: int, threads: int | None, stop_unstable: bool)
     import numpy as np
 
     from skfem_dielectric import keplinger_plate
+    from skfem_dielectric.gallery import KEPLINGER_SETTINGS
 
     t0 = time.perf_counter()
     wall_ok = [0.0]
@@ -45,7 +47,8 @@ def run(solver: str, n1: int, n3: int, threads: int | None, stop_unstable: bool)
         warnings.simplefilter("ignore")
         res = keplinger_plate(1.0, D0=[1, 2, 3, 4, 5, 6], elements=(n1, 1, n3),
                               linear_solver=solver, threads=threads, on_step=on_step,
-                              stop_on_instability=stop_unstable)
+                              settings=replace(KEPLINGER_SETTINGS,
+                                               stop_on_instability=stop_unstable))
     wall = time.perf_counter() - t0
     prob = res.problem
     its = [st.iterations for st in res.steps if st.target_reached]

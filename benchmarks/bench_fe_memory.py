@@ -25,6 +25,7 @@ Usage::
 from __future__ import annotations
 
 import argparse
+from dataclasses import replace
 import json
 import os
 import subprocess
@@ -97,6 +98,7 @@ def run(a) -> dict:
     import numpy as np
 
     from skfem_dielectric import get_linear_solver, keplinger_plate
+    from skfem_dielectric.gallery import KEPLINGER_SETTINGS
     from skfem_dielectric.forms.mixed_upphi import MixedUPPhiForm
     from skfem_dielectric.linalg.linear import PardisoSolver
 
@@ -128,7 +130,8 @@ def run(a) -> dict:
             res = keplinger_plate(1.0, D0=np.arange(a.D0_step, a.D0_max + 1e-9, a.D0_step),
                                   elements=tuple(a.elements), symmetry="full",
                                   preload_steps=a.preload_steps, linear_solver=solver,
-                                  chord=a.chord, predictor=a.predictor)
+                                  settings=replace(KEPLINGER_SETTINGS, chord=a.chord,
+                                                             predictor=a.predictor))
         wall = time.perf_counter() - t0
     f = res.problem.form
     held = {}

@@ -28,6 +28,7 @@ iteration (assembly + factorisation + solve medians) against the unknowns ``n``.
 from __future__ import annotations
 
 import argparse
+from dataclasses import replace
 import json
 import os
 import resource
@@ -41,6 +42,7 @@ def run(a) -> dict:
     import numpy as np
 
     from skfem_dielectric import get_linear_solver, keplinger_plate
+    from skfem_dielectric.gallery import KEPLINGER_SETTINGS
 
     load0 = os.getloadavg()
     solver = get_linear_solver(a.solver)
@@ -50,8 +52,9 @@ def run(a) -> dict:
         res = keplinger_plate(1.0, D0=np.arange(a.D0_step, a.D0_max + 1e-9, a.D0_step),
                               elements=tuple(a.elements), symmetry=a.symmetry,
                               preload_steps=a.preload_steps, linear_solver=solver,
-                              chord=0.0 if a.plain else a.chord,
-                              predictor="none" if a.plain else a.predictor)
+                              settings=replace(
+                                  KEPLINGER_SETTINGS, chord=0.0 if a.plain else a.chord,
+                                  predictor="none" if a.plain else a.predictor))
     wall = time.perf_counter() - t0
 
     def med(v):

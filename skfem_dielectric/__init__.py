@@ -36,15 +36,16 @@ from .models import (ClassStability, CrossSection, MembraneMesh, MembranePlate, 
                      membrane_mesh, mode_mesh, section_mesh, symmetry_classes, write_mode_vtu)
 from .problem import Layout, Problem
 from .solvers import (ContinuationEvent, ContinuationPoint, ContinuationResult, CriticalLoad,
-                      NewtonResult, RampResult, StepResult, continuation, critical_load, newton,
-                      ramp)
+                      NewtonResult, NewtonSettings, RampResult, RampSettings, StepResult,
+                      continuation, critical_load, newton, ramp)
 from .stability import StabilityMonitor, StabilityResult, stability_analysis, tangent_stability
 from .studies import (SnapThrough, homogeneous_plate, section_critical_load,
                       section_critical_stretch, voltage_snap_through, wrinkling_section)
 
 __all__ = [
     # the contract and the machinery
-    "Problem", "Layout", "newton", "NewtonResult", "segment_det_limit", "ramp", "RampResult",
+    "Problem", "Layout", "newton", "NewtonSettings", "NewtonResult", "segment_det_limit",
+    "ramp", "RampSettings", "RampResult",
     "StepResult", "continuation", "ContinuationResult", "ContinuationPoint", "ContinuationEvent",
     "LinearSolver", "SuperLUSolver", "PardisoSolver", "PardisoLUSolver", "get_linear_solver",
     "nonsymmetric_solver", "pardiso_available", "DofReduction", "ScatterMap",

@@ -8,6 +8,7 @@ backend, in a temporary working directory so that nothing lands in the repositor
 from __future__ import annotations
 
 import runpy
+from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
@@ -149,7 +150,8 @@ def _eighth_class_crossing() -> float:
     from skfem_dielectric.models.plate.symmetry_classes import class_stability
 
     res = fe.keplinger_plate(0.05, D0=[0.75, 0.8], elements=(10, 1, 5), grad_div=10.0,
-                             rtol=1e-9, max_cutbacks=6, max_iter=25)
+                             settings=replace(fe.gallery.KEPLINGER_SETTINGS, max_cutbacks=6,
+                                              max_iter=25))
     pb, a, b = res.problem, res.steps[-2], res.steps[-1]
 
     def eig(x, ld):
@@ -157,8 +159,8 @@ def _eighth_class_crossing() -> float:
                              only=["x1 S, x2 A, x3 S"])
         return float(cs.results[0].eigenvalues.min())
 
-    crit = fe.critical_load(pb, a.x, a.load, b.load, eig, tol=1e-5, rtol=1e-9, atol=0.0,
-                            **newton_guards(pb))
+    crit = fe.critical_load(pb, a.x, a.load, b.load, eig, tol=1e-5,
+                            settings=fe.RampSettings(rtol=1e-9, atol=0.0), **newton_guards(pb))
     return float(crit.load[1])
 
 

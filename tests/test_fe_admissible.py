@@ -8,7 +8,8 @@ import pytest
 
 import analytic
 import skfem_dielectric as sd
-from skfem_dielectric import newton, plate_admissible, preload_then_charge, ramp
+from skfem_dielectric import (NewtonSettings, RampSettings, newton, plate_admissible,
+                              preload_then_charge, ramp)
 from skfem_dielectric.kinematics import segment_det_limit
 
 GENT = analytic.Gent(97.2)
@@ -39,14 +40,16 @@ def test_plain_ramp_finds_the_inverted_state_and_plate_admissible_names_it():
     prob = sd.equibiaxial_problem(model="Gent")
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", RuntimeWarning)
-        res = ramp(prob, preload_then_charge(1.0, [2, 4, 500], 4), atol=0.0, rtol=1e-11)
+        res = ramp(prob, preload_then_charge(1.0, [2, 4, 500], 4),
+                   settings=RampSettings(atol=0.0, rtol=1e-11))
     st = res.steps[-1]
     F = prob.evaluate(st.x, st.load, np.zeros((3, 1)))["F"][:, :, 0]
     assert F[0, 0] < 0 and F[2, 2] < 0 and abs(np.linalg.det(F) - 1) < 1e-9
     why = plate_admissible(prob, st.x, st.load)
     assert "inverted" in why and "F11" in why
     # the guarded ramp from the same state rejects it: a solve started on it is no success
-    nr = newton(lambda xx: prob.assemble(xx, st.load), st.x, atol=0.0, rtol=1e-11,
+    nr = newton(lambda xx: prob.assemble(xx, st.load), st.x,
+                settings=NewtonSettings(atol=0.0, rtol=1e-11),
                 scale=prob.residual_scale(st.load),
                 admissible=lambda xx: plate_admissible(prob, xx, st.load))
     assert not nr.converged and "inverted" in nr.reason

@@ -8,6 +8,7 @@ import numpy as np
 import pytest
 from scipy.optimize import brentq
 
+from skfem_dielectric import RampSettings
 from skfem_dielectric.gallery.drivers import equibiaxial_problem, run_ramp
 from skfem_dielectric.models.plate.failure import StepLimitCounter, plate_failure_cause
 
@@ -33,7 +34,7 @@ def test_failed_plate_ramp_reports_the_state_it_stopped_at():
         # a charge jump to D0 = 50 in one step with no cut-back cannot converge in 4
         # iterations: the ramp stops with the pre-loaded state as its last step
         res = run_ramp(pb, [np.array([s, 0.0]), np.array([s, 50.0])], linear_solver="superlu",
-                       max_cutbacks=0, max_iter=4, atol=0.0, rtol=1e-11)
+                       settings=RampSettings(max_cutbacks=0, max_iter=4, atol=0.0, rtol=1e-11))
     assert not res.converged and len(res.steps) == 1
     f = res.failure
     # the pre-loaded state is homogeneous: equi-biaxial lam - lam^-5 = s (Eq. (loading_gent)

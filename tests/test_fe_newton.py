@@ -6,7 +6,8 @@ import numpy as np
 import pytest
 import scipy.sparse as sp
 
-from skfem_dielectric import Layout, Problem, RampResult, StepResult, newton, ramp
+from skfem_dielectric import (Layout, NewtonSettings, Problem, RampResult, RampSettings,
+                              StepResult, newton, ramp)
 from skfem_dielectric.linalg.linear import get_linear_solver, pardiso_available
 
 
@@ -37,7 +38,8 @@ def cardano(q):
 
 def test_newton_quadratic_convergence_to_cardano_root():
     prob = Cubic()
-    res = newton(lambda x: prob.assemble(x, 2.0), np.full(3, 0.5), atol=1e-14, rtol=0)
+    res = newton(lambda x: prob.assemble(x, 2.0), np.full(3, 0.5),
+                 settings=NewtonSettings(atol=1e-14, rtol=0))
     assert res.converged
     # Root to round-off: Newton stops at ||r|| <= 1e-14, |dx| ~ |r| / (3x^2+1).
     np.testing.assert_allclose(res.x, cardano(2.0 * prob.c), rtol=1e-13)
@@ -51,11 +53,11 @@ def test_newton_quadratic_convergence_to_cardano_root():
 def test_ramp_resume_is_bitwise_identical(solver):
     prob = Cubic()
     loads = [1.0, 4.0, 9.0, 20.0]
-    full = ramp(prob, loads, linear_solver=solver, atol=1e-12, rtol=0)
+    full = ramp(prob, loads, linear_solver=solver, settings=RampSettings(atol=1e-12, rtol=0))
     assert full.converged
     np.testing.assert_allclose(full.column("x2"), cardano(5.0 * np.array(loads)), rtol=1e-11)
     part = ramp(prob, loads[2:], x0=full.steps[1].x, start=full.steps[1].load,
-                linear_solver=solver, atol=1e-12, rtol=0)
+                linear_solver=solver, settings=RampSettings(atol=1e-12, rtol=0))
     if solver == "superlu":  # deterministic; PARDISO (threads) may differ in the last bit
         assert np.array_equal(part.steps[-1].x, full.steps[-1].x)
     np.testing.assert_allclose(part.steps[-1].x, full.steps[-1].x, rtol=1e-14)
@@ -80,7 +82,7 @@ def test_ramp_failure_keeps_converged_steps_and_warns():
     seen = []
     with pytest.warns(RuntimeWarning, match="not reached"):
         out = ramp(NoRootBeyondOne(), [0.5, 0.9, 1.5, 2.0], on_step=seen.append,
-                   max_cutbacks=4, atol=1e-12, rtol=0)
+                   settings=RampSettings(max_cutbacks=4, atol=1e-12, rtol=0))
     assert not out.converged
     reached = [st for st in out.steps if st.target_reached]
     assert [st.load for st in reached] == [0.5, 0.9] and len(seen) == len(out.steps)
@@ -158,8 +160,8 @@ class SoftensAt(Problem):
 def test_ramp_stops_at_the_first_unstable_step():
     loads = [1.0, 2.0, 3.0, 4.0]
     with pytest.warns(RuntimeWarning, match="stability lost"):
-        res = ramp(SoftensAt(), loads, linear_solver=DenseInertiaSolver(), atol=1e-13,
-                   rtol=0, stop_on_instability=True)
+        res = ramp(SoftensAt(), loads, linear_solver=DenseInertiaSolver(),
+                   settings=RampSettings(atol=1e-13, rtol=0, stop_on_instability=True))
     assert not res.converged and res.unstable_at == 3.0 and res.failed_at is None
     assert [st.load for st in res.steps] == [1.0, 2.0, 3.0]
     assert [st["stable"] for st in res.steps] == [True, True, False]
@@ -171,15 +173,16 @@ def test_ramp_stops_at_the_first_unstable_step():
     # without the option the ramp goes on through the unstable states
     with warnings.catch_warnings():
         warnings.simplefilter("error")
-        res = ramp(SoftensAt(), loads, linear_solver=DenseInertiaSolver(), atol=1e-13, rtol=0)
+        res = ramp(SoftensAt(), loads, linear_solver=DenseInertiaSolver(),
+                   settings=RampSettings(atol=1e-13, rtol=0))
     assert res.converged and [st["stable"] for st in res.steps] == [True, True, False, False]
 
 
 def test_stop_on_instability_without_inertia_warns_and_goes_on():
     # SuperLU reports no inertia: no verdict, the option cannot act and says so
     with pytest.warns(RuntimeWarning, match="no effect"):
-        res = ramp(SoftensAt(), [1.0, 2.0, 3.0], linear_solver="superlu", atol=1e-13, rtol=0,
-                   stop_on_instability=True)
+        res = ramp(SoftensAt(), [1.0, 2.0, 3.0], linear_solver="superlu",
+                   settings=RampSettings(atol=1e-13, rtol=0, stop_on_instability=True))
     assert res.converged and res.unstable_at is None
     np.testing.assert_allclose(res.column("x1"), cardano(np.array([1.0, 2.0, 3.0])),
                                rtol=1e-12)
@@ -189,34 +192,41 @@ def test_newton_step_limit_and_admissible_state():
     """A step limit caps the first trial at alpha_max / 2; a converged state that the
     admissibility check rejects is not reported as converged."""
     prob = Cubic()
-    free = newton(lambda x: prob.assemble(x, 2.0), np.zeros(3), atol=1e-12, rtol=0)
+    free = newton(lambda x: prob.assemble(x, 2.0), np.zeros(3),
+                  settings=NewtonSettings(atol=1e-12, rtol=0))
     seen = []
 
     def limit(x, dx):
         seen.append(float(np.max(np.abs(dx))))
         return 0.5 if len(seen) == 1 else 1.0
 
-    capped = newton(lambda x: prob.assemble(x, 2.0), np.zeros(3), atol=1e-12, rtol=0,
+    capped = newton(lambda x: prob.assemble(x, 2.0), np.zeros(3),
+                    settings=NewtonSettings(atol=1e-12, rtol=0),
                     step_limit=limit)
     assert capped.converged and np.allclose(capped.x, free.x, atol=1e-11)
     assert capped.step_norms[0] == pytest.approx(0.25 * np.linalg.norm(2.0 * prob.c))
-    stuck = newton(lambda x: prob.assemble(x, 2.0), np.zeros(3), atol=1e-12, rtol=0,
+    stuck = newton(lambda x: prob.assemble(x, 2.0), np.zeros(3),
+                   settings=NewtonSettings(atol=1e-12, rtol=0),
                    step_limit=lambda x, dx: 0.0)
     assert not stuck.converged and "inadmissible Newton step" in stuck.reason
-    rejected = newton(lambda x: prob.assemble(x, 2.0), np.zeros(3), atol=1e-12, rtol=0,
+    rejected = newton(lambda x: prob.assemble(x, 2.0), np.zeros(3),
+                      settings=NewtonSettings(atol=1e-12, rtol=0),
                       admissible=lambda x: "x2 too large" if x[2] > 1 else "")
     assert not rejected.converged and rejected.reason.endswith("x2 too large")
     with pytest.raises(ValueError, match="atol and rtol must not both be 0"):
-        newton(lambda x: prob.assemble(x, 2.0), np.zeros(3), atol=0.0, rtol=0.0)
+        newton(lambda x: prob.assemble(x, 2.0), np.zeros(3),
+               settings=NewtonSettings(atol=0.0, rtol=0.0))
 
 
 @pytest.mark.parametrize("solver", ["superlu"] + (["pardiso"] if pardiso_available() else []))
 def test_chord_steps_reach_the_same_root_with_fewer_factorisations(solver):
     prob = Cubic()
     x0 = np.full(3, 0.5)
-    plain = newton(lambda x: prob.assemble(x, 2.0), x0, atol=1e-13, rtol=0,
+    plain = newton(lambda x: prob.assemble(x, 2.0), x0,
+                   settings=NewtonSettings(atol=1e-13, rtol=0),
                    linear_solver=solver)
-    chord = newton(lambda x: prob.assemble(x, 2.0), x0, atol=1e-13, rtol=0, chord=0.3,
+    chord = newton(lambda x: prob.assemble(x, 2.0), x0,
+                   settings=NewtonSettings(atol=1e-13, rtol=0, chord=0.3),
                    residual=lambda x: prob.assemble(x, 2.0)[1], linear_solver=solver)
     ref = cardano(2.0 * prob.c)
     for res in (plain, chord):
@@ -237,8 +247,9 @@ def test_chord_steps_reach_the_same_root_with_fewer_factorisations(solver):
 def test_secant_predictor_ramp_matches_cardano_with_fewer_iterations():
     prob = Cubic()
     loads = np.linspace(1.0, 8.0, 8)
-    plain = ramp(prob, loads, atol=1e-12, rtol=0)
-    pred = ramp(prob, loads, atol=1e-12, rtol=0, predictor="secant", chord=0.1)
+    plain = ramp(prob, loads, settings=RampSettings(atol=1e-12, rtol=0))
+    pred = ramp(prob, loads,
+                settings=RampSettings(atol=1e-12, rtol=0, predictor="secant", chord=0.1))
     ref = cardano(5.0 * loads)
     for res in (plain, pred):
         assert res.converged
@@ -250,12 +261,35 @@ def test_secant_predictor_ramp_matches_cardano_with_fewer_iterations():
 
 def test_chord_and_predictor_bad_input():
     prob = Cubic()
+    with pytest.raises(ValueError, match="chord must be in"):
+        NewtonSettings(chord=1.0)
     with pytest.raises(ValueError, match="chord"):
-        newton(lambda x: prob.assemble(x, 1.0), np.zeros(3), chord=1.0)
-    with pytest.raises(ValueError, match="chord"):
-        ramp(prob, [1.0], chord=-0.1)
+        RampSettings(chord=-0.1)
     with pytest.raises(ValueError, match="predictor"):
-        ramp(prob, [1.0], predictor="cubic")
+        RampSettings(predictor="cubic")
+    # a ramp needs its cut-back and predictor rules: plain Newton settings are not enough
+    with pytest.raises(ValueError, match="settings must be a RampSettings"):
+        ramp(prob, [1.0], settings=NewtonSettings())
+    with pytest.raises(ValueError, match="settings must be a NewtonSettings"):
+        newton(lambda x: prob.assemble(x, 1.0), np.zeros(3), settings={"rtol": 1e-9})
+
+
+def test_ramp_settings_reach_every_newton_solve():
+    # From x = 0 the Cubic root at load 20 needs more than two Newton iterations, so with
+    # max_iter = 2 and no cut-back the first target fails, with the Newton reason; with the
+    # default budget the same ramp reaches Cardano's root to the absolute tolerance.
+    prob, c = Cubic(), Cubic.c
+    tight = RampSettings(atol=1e-12, rtol=0, max_iter=2, max_cutbacks=0)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", RuntimeWarning)
+        short = ramp(prob, [20.0], settings=tight)
+    assert not short.converged and short.iterations_total == 2
+    assert "no convergence in 2 iterations" in short.reason
+    assert "after 0 cut-backs" in short.reason
+    full = ramp(prob, [20.0], settings=RampSettings(atol=1e-12, rtol=0, max_cutbacks=0))
+    assert full.converged and full.steps[0].substeps == 1
+    # ||r|| <= 1e-12 and |dr/dx| = 3x^2 + 1 >= 1: the root to 1e-12
+    np.testing.assert_allclose(full.steps[0].x, cardano(20.0 * c), rtol=0, atol=1e-12)
 
 
 @pytest.mark.parametrize("solver", ["superlu"] + (["pardiso"] if pardiso_available() else []))
@@ -284,7 +318,8 @@ def test_old_factors_are_discarded_before_a_tangent_to_factorise(solver):
         events.append("assemble")
         return prob.assemble(x, 2.0)
 
-    kw = dict(atol=1e-13, rtol=0, chord=0.3, residual=lambda x: prob.assemble(x, 2.0)[1])
+    kw = dict(settings=NewtonSettings(atol=1e-13, rtol=0, chord=0.3),
+              residual=lambda x: prob.assemble(x, 2.0)[1])
     res = newton(assemble, np.full(3, 0.5), linear_solver=Watched(), **kw)
     ref = newton(lambda x: prob.assemble(x, 2.0), np.full(3, 0.5),
                  linear_solver=get_linear_solver(solver), **kw)

@@ -15,7 +15,7 @@ from skfem_dielectric import (CrossSection, MembranePlate, PlateProblem, cross_s
                               membrane_keplinger, membrane_mesh, membrane_ramp,
                               nonsymmetric_solver, pardiso_available, section_mesh,
                               write_vtu_series)
-from skfem_dielectric import ramp
+from skfem_dielectric import RampSettings, ramp
 from skfem_dielectric.fem.mesh import plate_mesh
 from skfem_dielectric.materials import GentDielectric, NeoHookeanDielectric
 
@@ -59,8 +59,8 @@ def test_maxwell_3d_uniaxial_matches_closed_form(field):
     s = 2.5
     pb = maxwell_plate(plate_mesh(4.0, 1.0, 4.0, 1, 1, 1), NeoHookeanDielectric(MU, EPS),
                       loading="uniaxial-free", field=field)
-    res = ramp(pb, [(s / 2, 0.0), (s, 0.0), (s, 2.0), (s, 4.0), (s, 6.0)], atol=0.0,
-               rtol=1e-11)
+    res = ramp(pb, [(s / 2, 0.0), (s, 0.0), (s, 2.0), (s, 4.0), (s, 6.0)],
+               settings=RampSettings(atol=0.0, rtol=1e-11))
     assert res.converged
     for st in res.steps[1:]:
         lam1 = _lam1_uniaxial(st.load[1], s)

@@ -8,6 +8,7 @@ random ones (huge magnitudes, random strings, random lengths).
 """
 
 import math
+from dataclasses import replace
 import warnings
 
 import numpy as np
@@ -154,14 +155,20 @@ def _cases():
     add("charge_targets", "D0", [[NAN], [INF], [], "x", [[1.0, 2.0]]],
         lambda v: sd.charge_targets(v))
     add("equibiaxial_plate", "s", FINITE, lambda v: sd.equibiaxial_plate(v, [1.0]))
-    add("equibiaxial_plate", "rtol", TOL, lambda v: sd.equibiaxial_plate(1.0, [1.0], rtol=v))
-    add("equibiaxial_plate", "max_cutbacks", NONNEG_INT,
-        lambda v: sd.equibiaxial_plate(1.0, [1.0], max_cutbacks=v))
+    add("equibiaxial_plate", "settings", CHOICE + [sd.NewtonSettings()],
+        lambda v: sd.equibiaxial_plate(1.0, [1.0], settings=v))
+    add("EQUIBIAXIAL_SETTINGS", "rtol", TOL,
+        lambda v: replace(sd.gallery.EQUIBIAXIAL_SETTINGS, rtol=v))
 
     # ---- skfem_dielectric: Newton, ramp, solvers, export
     targets = [np.array([0.5, 0.0])]
     for name, values in (("max_cutbacks", NONNEG_INT), ("atol", TOL), ("rtol", TOL),
-                         ("max_iter", COUNT), ("on_step", CALLABLE),
+                         ("xtol", TOL), ("max_iter", COUNT), ("max_backtracks", NONNEG_INT),
+                         ("chord", [-0.1, 1.0, NAN, INF, "0.1", None]),
+                         ("line_search", [None, "yes", 1]), ("predictor", CHOICE),
+                         ("stop_on_instability", [None, "no", 0])):
+        add("RampSettings", name, values, lambda v, name=name: sd.RampSettings(**{name: v}))
+    for name, values in (("settings", CHOICE + [sd.NewtonSettings()]), ("on_step", CALLABLE),
                          ("step_limit", CALLABLE), ("admissible", CALLABLE),
                          ("linear_solver", CHOICE + [1.5]),
                          ("x0", [np.zeros(3), np.zeros(NX + int(RNG.integers(1, 9))), "abc",
@@ -169,10 +176,14 @@ def _cases():
         add("ramp", name, values, lambda v, name=name: sd.ramp(PB, targets, **{name: v}))
     add("ramp", "loads", [[NAN], [[INF, 0.0]], ["x"], 5.0, [np.zeros((2, 2))]],
         lambda v: sd.ramp(PB, v))
-    out.append(("ramp atol=rtol=0", lambda: sd.ramp(PB, targets, atol=0.0, rtol=0.0), "rtol"))
-    for name, values in (("atol", TOL), ("rtol", TOL), ("xtol", TOL), ("scale", TOL[:3]),
-                         ("max_iter", COUNT), ("max_backtracks", NONNEG_INT),
-                         ("residual", CALLABLE), ("step_limit", CALLABLE),
+    out.append(("RampSettings atol=rtol=0", lambda: sd.RampSettings(atol=0.0, rtol=0.0),
+                "rtol"))
+    for name, values in (("atol", TOL), ("rtol", TOL), ("xtol", TOL), ("max_iter", COUNT),
+                         ("max_backtracks", NONNEG_INT)):
+        add("NewtonSettings", name, values,
+            lambda v, name=name: sd.NewtonSettings(**{name: v}))
+    for name, values in (("settings", CHOICE + [sd.RampResult(steps=[], converged=True)]),
+                         ("scale", TOL[:3]), ("residual", CALLABLE), ("step_limit", CALLABLE),
                          ("admissible", CALLABLE)):
         add("newton", name, values,
             lambda v, name=name: sd.newton(_assemble, PB.initial_state(), **{name: v}))

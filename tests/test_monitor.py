@@ -42,7 +42,7 @@ def _quarter_ramp(solver, state_analysis=None):
                                                                np.array([s, 2.0])]
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", RuntimeWarning)
-        res = fe.ramp(pb, loads, atol=1e-10, rtol=1e-11, chord=0.1,
+        res = fe.ramp(pb, loads, settings=fe.RampSettings(atol=1e-10, rtol=1e-11, chord=0.1),
                       linear_solver=solver, state_analysis=state_analysis)
     assert res.converged, res.reason
     return pb, res
@@ -112,14 +112,16 @@ def test_reuse_factors_starts_with_a_chord_step():
     pb = fe.keplinger_problem(elements=(4, 1, 2))
     s = fe.keplinger_s(1.0, g=9.81)
     a, b = np.array([s, 0.0]), np.array([s, 0.5])
-    x_a = fe.ramp(pb, [a / 2, a], atol=1e-10, rtol=1e-11).x
-    ref = fe.newton(lambda x: pb.assemble(x, b), x_a, atol=1e-10, rtol=1e-11,
+    x_a = fe.ramp(pb, [a / 2, a], settings=fe.RampSettings(atol=1e-10, rtol=1e-11)).x
+    ref = fe.newton(lambda x: pb.assemble(x, b), x_a,
+                    settings=fe.NewtonSettings(atol=1e-10, rtol=1e-11),
                     scale=pb.residual_scale(b))
     solver = get_linear_solver("superlu")
     K, _ = pb.assemble(x_a, a)
     solver.solve(K, np.zeros(pb.ndofs))
     nr = fe.newton(lambda x: pb.assemble(x, b), x_a, residual=lambda x: pb.residual(x, b),
-                   linear_solver=solver, atol=1e-10, rtol=1e-11, chord=0.1,
+                   linear_solver=solver,
+                   settings=fe.NewtonSettings(atol=1e-10, rtol=1e-11, chord=0.1),
                    scale=pb.residual_scale(b), reuse_factors=True)
     assert nr.converged and ref.converged
     assert nr.chord_steps >= 1 and nr.factorisations < ref.factorisations

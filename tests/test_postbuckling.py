@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from dataclasses import replace
+
 import numpy as np
 import pytest
 
@@ -14,7 +16,7 @@ from skfem_dielectric.studies.postbuckling import (critical_mode, midplane_defle
 from validation.buckling import read_rows
 from validation.cli import main
 
-NEWTON = dict(rtol=1e-9, atol=0.0)
+NEWTON = dict(settings=fe.RampSettings(rtol=1e-9, atol=0.0))
 
 
 @pytest.fixture(scope="module")
@@ -24,7 +26,9 @@ def lightly_loaded():
     fundamental states at D0 = 0.75 (stable) and 0.8 (past the buckling load 0.7785 of
     docs/validation.md), and the own class's eigenvalue crossing between them."""
     res = fe.keplinger_plate(0.05, D0=[0.75, 0.8], elements=(10, 2, 5), symmetry="quarter",
-                             grad_div=10.0, max_cutbacks=6, max_iter=25, rtol=1e-9)
+                             grad_div=10.0,
+                             settings=replace(fe.gallery.KEPLINGER_SETTINGS, max_cutbacks=6,
+                                              max_iter=25))
     assert res.converged
     pb, a, b = res.problem, res.steps[-2], res.steps[-1]
     crit = critical_load(pb, a.x, a.load, b.load,
@@ -38,7 +42,7 @@ def branch(lightly_loaded):
     pb, _, b, d_crit = lightly_loaded
     d = float(b.load[1])
     back = [d_crit + f * (d - d_crit) for f in (0.5, 0.25, 0.12, 0.06)]
-    return post_buckled_branch(pb, b.x, b.load, [0.85], back, **NEWTON)
+    return post_buckled_branch(pb, b.x, b.load, [0.85], back)
 
 
 def test_critical_load_is_the_eighth_models_class_crossing(lightly_loaded):
@@ -50,7 +54,8 @@ def test_critical_load_is_the_eighth_models_class_crossing(lightly_loaded):
     assert critical_mode(pb, a.x, a.load).eigenvalue > 0
     assert critical_mode(pb, b.x, b.load).eigenvalue < 0
     res = fe.keplinger_plate(0.05, D0=[0.75, 0.8], elements=(10, 1, 5), grad_div=10.0,
-                             max_cutbacks=6, max_iter=25, rtol=1e-9)
+                             settings=replace(fe.gallery.KEPLINGER_SETTINGS, max_cutbacks=6,
+                                              max_iter=25))
     pe, ea, eb = res.problem, res.steps[-2], res.steps[-1]
 
     def eig(x, ld):
@@ -75,7 +80,7 @@ def test_branch_switch_reaches_one_buckled_state_from_two_perturbations(lightly_
     equilibrium of the perfect plate: a distinct solution, not the perturbation."""
     pb, _, b, _ = lightly_loaded
     mode = critical_mode(pb, b.x, b.load).mode
-    other = switch_branch(pb, b.x, b.load, mode, amplitudes=[1.5 * pb.plate.H], **NEWTON)
+    other = switch_branch(pb, b.x, b.load, mode, amplitudes=[1.5 * pb.plate.H])
     assert branch.switch.found and other.found
     assert branch.switch.deflection > 0.1 * pb.plate.H
     # Newton tolerance 1e-9 of the residual: the two states agree far below the mode size

@@ -25,7 +25,8 @@ METHODS = ["superlu", "dense"] + (["pardiso"] if fe.pardiso_available() else [])
 def _converged(pb, loads, **kw):
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", RuntimeWarning)
-        res = fe.ramp(pb, loads, x0=pb.initial_state(), atol=1e-10, rtol=1e-11, **kw)
+        res = fe.ramp(pb, loads, x0=pb.initial_state(),
+                      settings=fe.RampSettings(atol=1e-10, rtol=1e-11), **kw)
     assert res.converged, res.reason
     return res
 
@@ -121,7 +122,7 @@ def test_grad_div_leaves_homogeneous_states_and_keeps_the_tangent_consistent(
     ref = fe.equibiaxial_plate(s, [D0], linear_solver="superlu").column("lam1")[-1]
     pb = fe.equibiaxial_problem(grad_div=10.0)
     res = fe.run_ramp(pb, fe.preload_then_charge(s, [D0], 4), linear_solver="superlu",
-                      atol=0.0, rtol=1e-11)
+                      settings=fe.RampSettings(atol=0.0, rtol=1e-11))
     # J = 1 exactly on the homogeneous state: the stabilisation changes nothing (Newton
     # tolerance 1e-11)
     assert res.column("lam1")[-1] == pytest.approx(ref, rel=1e-10)

@@ -96,7 +96,8 @@ def test_the_mode_near_zero_is_the_mode_of_the_full_search():
     x = pb.initial_state()
     for f in (0.999, 1.001):
         load = np.array([0.0, 0.0, f * crit.load])
-        res = fe.ramp(pb, [load], x0=x, start=np.zeros(3), atol=1e-10, rtol=1e-11)
+        res = fe.ramp(pb, [load], x0=x, start=np.zeros(3),
+                      settings=fe.RampSettings(atol=1e-10, rtol=1e-11))
         x = res.x
         near = _mode_near_zero(pb, x, load, "symmetric")
         full, n_neg, _ = section_mode_eigenvalue(pb, x, load, "symmetric")

@@ -19,6 +19,7 @@ from __future__ import annotations
 
 import csv
 import time
+from dataclasses import replace
 from pathlib import Path
 
 import matplotlib.pyplot as plt
@@ -95,9 +96,12 @@ def run_one(alpha: float, elements, *, D0_step: float, D0_max: float,
     """One alpha x mesh: ramp, P33 onsets, buckling load.  Returns the row and the scan."""
     t0 = time.time()
     D0 = np.round(np.arange(D0_step, D0_max + 1e-9, D0_step), 10)
-    newton = dict(linear_solver=solver, max_cutbacks=6, max_iter=25, rtol=1e-9)
     res = fe.keplinger_plate(alpha, D0=D0, elements=tuple(elements), symmetry="eighth",
-                             grad_div=10.0, **newton)
+                             grad_div=10.0, linear_solver=solver,
+                             settings=replace(fe.gallery.KEPLINGER_SETTINGS, max_cutbacks=6,
+                                              max_iter=25))
+    newton = dict(linear_solver=solver,
+                  settings=fe.RampSettings(rtol=1e-9, max_cutbacks=6, max_iter=25))
     pb = res.problem
     charge = [st for st in res.steps if np.asarray(st.load)[1] > 0]
     states = [res.steps[len(res.steps) - len(charge) - 1]] + charge
@@ -143,7 +147,9 @@ def run_plain(alpha: float, elements, *, D0_step: float, D0_max: float,
     t0 = time.time()
     D0 = np.round(np.arange(D0_step, D0_max + 1e-9, D0_step), 10)
     res = fe.keplinger_plate(alpha, D0=D0, elements=tuple(elements), symmetry="eighth",
-                             linear_solver=solver, max_cutbacks=6, max_iter=25, rtol=1e-9)
+                             linear_solver=solver,
+                             settings=replace(fe.gallery.KEPLINGER_SETTINGS, max_cutbacks=6,
+                                              max_iter=25))
     pb = res.problem
     states = [st for st in res.steps if np.asarray(st.load)[1] > 0]
     ms = [p33_measures(pb, st.x, st.load, st.quantities) for st in states]

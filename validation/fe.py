@@ -184,15 +184,17 @@ def ramp_settings(spec: RunSpec, linear_solver="superlu") -> dict:
     Returns
     -------
     dict
-        ``atol``, ``rtol`` (:data:`RTOL` with ``atol = 0`` in 3D,
-        :data:`MEMBRANE_TOL` for the membrane), ``max_cutbacks``, ``max_iter``,
-        ``chord`` (:data:`CHORD`) and ``linear_solver``.
+        ``settings``: a :class:`skfem_dielectric.RampSettings` with ``atol``, ``rtol``
+        (:data:`RTOL` with ``atol = 0`` in 3D, :data:`MEMBRANE_TOL` for the membrane),
+        ``max_cutbacks``, ``max_iter`` and ``chord`` (:data:`CHORD`); and
+        ``linear_solver``.
     """
     if "maxwell" in spec.variant:
         linear_solver = fe.nonsymmetric_solver(linear_solver)
     tol = MEMBRANE_TOL if _is_membrane(spec) else {"atol": 0.0, "rtol": RTOL[spec.geometry]}
-    return {**tol, "max_cutbacks": MAX_CUTBACKS, "max_iter": MAX_ITER, "chord": CHORD,
-            "linear_solver": linear_solver}
+    settings = fe.RampSettings(**tol, max_cutbacks=MAX_CUTBACKS, max_iter=MAX_ITER,
+                               chord=CHORD)
+    return {"settings": settings, "linear_solver": linear_solver}
 
 
 def pardiso_installed() -> bool:

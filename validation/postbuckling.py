@@ -22,6 +22,7 @@ of the last buckled state) and ``post-buckling.png``.
 from __future__ import annotations
 
 import time
+from dataclasses import replace
 from pathlib import Path
 
 import matplotlib.pyplot as plt
@@ -66,9 +67,12 @@ def _mesh_name(el) -> str:
 
 
 def _fundamental(alpha, elements, D0, solver, model):
-    newton = dict(linear_solver=solver, max_cutbacks=6, max_iter=25, rtol=1e-9)
     res = fe.keplinger_plate(alpha, D0=D0, elements=tuple(elements), symmetry=MODELS[model],
-                             grad_div=10.0, **newton)
+                             grad_div=10.0, linear_solver=solver,
+                             settings=replace(fe.gallery.KEPLINGER_SETTINGS, max_cutbacks=6,
+                                              max_iter=25))
+    newton = dict(linear_solver=solver,
+                  settings=fe.RampSettings(atol=0.0, rtol=1e-9, max_cutbacks=6, max_iter=25))
     return res, newton
 
 
@@ -84,7 +88,7 @@ def _locate(pb, states, method, newton):
             crit = critical_load(pb, a.x, a.load, st.load,
                                  lambda x, ld: critical_mode(pb, x, ld,
                                                              method=method).eigenvalue,
-                                 tol=1e-4, atol=0.0, **newton, **newton_guards(pb))
+                                 tol=1e-4, **newton, **newton_guards(pb))
             return float(crit.load[1]), i, eig
     return float("nan"), None, eig
 
@@ -146,7 +150,7 @@ def run_one(alpha: float, elements, *, D0_step: float, D0_max: float,
     back = [d_b + f * (d_sw - d_b) for f in BACK_FRACTIONS]
     fwd = [float(st.load[1]) for st in charge[i_sw + 1:]]
     br = post_buckled_branch(pb, sw.x, sw.load, fwd, back, method=method,
-                             linear_solver=solver, rtol=1e-9)
+                             linear_solver=solver)
     summary.update(switch_D0=d_sw, switch_amplitude=br.switch.amplitude)
     if not br.switch.found:
         summary["reason"] = br.switch.reason

@@ -26,7 +26,7 @@ plugs into the same contract as the 3D plate.
 import numpy as np
 import scipy.sparse as sp
 
-from skfem_dielectric import Layout, Problem, ramp
+from skfem_dielectric import Layout, Problem, RampSettings, ramp
 
 
 class MooneyRivlinPlate(Problem):
@@ -67,7 +67,7 @@ plate = MooneyRivlinPlate(c2=0.1)
 s = 1.0
 loads = [np.array([s * k / 4, 0.0]) for k in range(1, 5)]      # pre-load in 4 steps
 loads += [np.array([s, D0]) for D0 in np.arange(0.5, 4.01, 0.5)]  # then the charge
-result = ramp(plate, loads, atol=1e-13, rtol=0.0)
+result = ramp(plate, loads, settings=RampSettings(atol=1e-13, rtol=0.0))
 lam = result.column("lam")
 lam_final = float(lam[-1])          # (s, D0) = (1, 4)
 # the contract's default load vector (central differences) equals the closed form here

@@ -17,20 +17,24 @@ independently of the eigenvalues
 (:meth:`~skfem_dielectric.studies.postbuckling.PostBuckledBranch.pitchfork`).
 """
 
+from dataclasses import replace
+
 import numpy as np
 
 import skfem_dielectric as fe
 from skfem_dielectric.studies.postbuckling import critical_mode, midplane_nodes, post_buckled_branch
 
 res = fe.keplinger_plate(0.05, D0=[0.75, 0.8], elements=(10, 2, 5), symmetry="quarter",
-                         grad_div=10.0, rtol=1e-9, max_cutbacks=6, max_iter=25)
+                         grad_div=10.0,
+                         settings=replace(fe.gallery.KEPLINGER_SETTINGS, max_cutbacks=6,
+                                          max_iter=25))
 pb, before, after = res.problem, res.steps[-2], res.steps[-1]
 for st in (before, after):
     print(f"fundamental D0 = {st.load[1]:.2f}: lowest physical eigenvalue "
           f"{critical_mode(pb, st.x, st.load).eigenvalue: .3e}")
 
 br = post_buckled_branch(pb, after.x, after.load, forward=[0.9, 1.0, 1.1, 1.2],
-                         backward=[0.79, 0.785, 0.782, 0.78], stability=False, rtol=1e-9)
+                         backward=[0.79, 0.785, 0.782, 0.78], stability=False)
 print(f"switched with a = {br.switch.amplitude:g} mm: deflection {br.switch.deflection:.3f} mm")
 for d, w, _ in br.states():
     print(f"  D0 = {d:.4f}: mid-plane deflection {w:.4f} mm")

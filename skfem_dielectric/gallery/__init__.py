@@ -1,16 +1,19 @@
 """The paper's plates ready to run: builders and drivers of the equibiaxial and Keplinger
-plates and of the membrane and cross-section models with their default settings
+plates and of the membrane and cross-section models with their default settings (the
+drivers' :class:`~skfem_dielectric.solvers.ramp.RampSettings` are public constants)
 (:mod:`~skfem_dielectric.gallery.drivers`), and their load paths, a pre-load followed by the
 charge targets (:mod:`~skfem_dielectric.gallery.loads`).
 """
 
-from .drivers import (plate_admissible, newton_guards, equibiaxial_problem,
+from .drivers import (EQUIBIAXIAL_SETTINGS, KEPLINGER_SETTINGS, MAXWELL_KEPLINGER_SETTINGS,
+                      plate_admissible, newton_guards, equibiaxial_problem,
                       keplinger_problem, run_ramp, equibiaxial_plate, keplinger_plate,
                       maxwell_equibiaxial, maxwell_keplinger, membrane_ramp,
                       membrane_keplinger, cross_section_ramp)
 from .loads import keplinger_s, charge_targets, preload_then_charge, remaining_targets
 
 __all__ = [
+    "EQUIBIAXIAL_SETTINGS", "KEPLINGER_SETTINGS", "MAXWELL_KEPLINGER_SETTINGS",
     "plate_admissible", "newton_guards", "equibiaxial_problem", "keplinger_problem",
     "run_ramp", "equibiaxial_plate", "keplinger_plate", "maxwell_equibiaxial",
     "maxwell_keplinger", "membrane_ramp", "membrane_keplinger", "cross_section_ramp",

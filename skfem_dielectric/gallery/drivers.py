@@ -18,6 +18,7 @@ are bit-for-bit those of the uninterrupted run (deterministic linear solver).
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 from functools import partial
 from typing import Any, Callable, Sequence
 
@@ -32,13 +33,27 @@ from ..models.membrane import MembranePlate, membrane_mesh
 from ..models.plate.failure import StepLimitCounter, describe_failure, plate_failure_cause
 from ..models.plate.problem import PlateProblem
 from ..problem import Problem
-from ..solvers.ramp import RampResult, StepResult, ramp
+from ..solvers.newton import check_settings
+from ..solvers.ramp import RampResult, RampSettings, StepResult, ramp
 from .loads import charge_targets, keplinger_s, preload_then_charge, remaining_targets
 
-__all__ = ["plate_admissible", "newton_guards", "equibiaxial_problem", "keplinger_problem", "run_ramp",
-           "equibiaxial_plate",
-           "keplinger_plate", "maxwell_equibiaxial", "maxwell_keplinger", "membrane_ramp",
-           "membrane_keplinger", "cross_section_ramp"]
+__all__ = ["EQUIBIAXIAL_SETTINGS", "KEPLINGER_SETTINGS", "MAXWELL_KEPLINGER_SETTINGS",
+           "plate_admissible", "newton_guards", "equibiaxial_problem", "keplinger_problem",
+           "run_ramp", "equibiaxial_plate", "keplinger_plate", "maxwell_equibiaxial",
+           "maxwell_keplinger", "membrane_ramp", "membrane_keplinger", "cross_section_ramp"]
+
+#: How :func:`equibiaxial_plate` solves its load steps: the homogeneous state converges to
+#: round-off, so a tight ``rtol`` relative to the external load alone (``atol = 0``).
+EQUIBIAXIAL_SETTINGS = RampSettings(atol=0.0, rtol=1e-11, max_cutbacks=6)
+#: How :func:`keplinger_plate` solves its load steps: ``rtol`` relative to the external
+#: load alone, chord steps while the residual contracts tenfold, and a small Newton budget
+#: (converged steps need <= 6 iterations on the 40 x 20 eighth model up to ``D0 = 5``, up
+#: to 9 right before the breakdown; a low limit makes the attempts beyond it cheap).
+KEPLINGER_SETTINGS = RampSettings(atol=0.0, rtol=1e-9, max_iter=12, max_cutbacks=4,
+                                  chord=0.1)
+#: How :func:`maxwell_keplinger` solves its load steps: :data:`KEPLINGER_SETTINGS` with
+#: the ramp's default Newton budget (6 cut-backs, 25 iterations).
+MAXWELL_KEPLINGER_SETTINGS = replace(KEPLINGER_SETTINGS, max_iter=25, max_cutbacks=6)
 
 
 def _phase(load) -> str:
@@ -111,8 +126,10 @@ def run_ramp(problem: Problem, targets: Sequence[Any], *,
     extra
         Quantities added to every step (e.g. ``alpha``); each step also gets ``phase``.
     **ramp_options
-        Newton and cut-back settings of :func:`~skfem_dielectric.solvers.ramp.ramp`.  For a
-        :class:`~skfem_dielectric.models.plate.problem.PlateProblem` they default to
+        ``settings`` (:class:`~skfem_dielectric.solvers.ramp.RampSettings`),
+        ``state_analysis``, ``step_limit`` and ``admissible`` of
+        :func:`~skfem_dielectric.solvers.ramp.ramp`.  For a
+        :class:`~skfem_dielectric.models.plate.problem.PlateProblem` the last two default to
         ``step_limit=problem.max_step`` (``det F > 0`` along every Newton step) and
         ``admissible``: :func:`plate_admissible` (no converged inverted state).
 
@@ -218,7 +235,7 @@ def equibiaxial_plate(s: float, D0: Sequence[float], *, model: Any = "neo-Hookea
                       phi_element: str = "Q2", linear_solver: str = "auto",
                       on_step: Callable[[StepResult], Any] | None = None,
                       x0: np.ndarray | None = None, start: Any = None,
-                      rtol: float = 1e-11, max_cutbacks: int = 6) -> RampResult:
+                      settings: RampSettings = EQUIBIAXIAL_SETTINGS) -> RampResult:
     """Equi-biaxial dead-load plate: pre-load ``s``, then the charge ramp ``D0``.
 
     Parameters
@@ -239,8 +256,10 @@ def equibiaxial_plate(s: float, D0: Sequence[float], *, model: Any = "neo-Hookea
         its general LU).
     on_step, x0, start
         Callback and resume state, see the module docstring.
-    rtol, max_cutbacks
-        Newton tolerance (relative to the external load norm) and cut-back limit.
+    settings
+        How the load steps are solved (:class:`~skfem_dielectric.solvers.ramp.RampSettings`;
+        default :data:`EQUIBIAXIAL_SETTINGS`: ``rtol = 1e-11`` relative to the external load
+        norm, ``atol = 0``, 6 cut-backs).
 
     Returns
     -------
@@ -249,6 +268,7 @@ def equibiaxial_plate(s: float, D0: Sequence[float], *, model: Any = "neo-Hookea
         ``lam3``); compare with Eq. (loading_gent).
     """
     s = check_finite("s", s)
+    check_settings("settings", settings, RampSettings)
     prob = equibiaxial_problem(model=model, Jm=Jm, size=size, elements=elements,
                                symmetry=symmetry, control=control, coupling=coupling,
                                field=field, formulation=formulation, kappa=kappa,
@@ -257,8 +277,7 @@ def equibiaxial_plate(s: float, D0: Sequence[float], *, model: Any = "neo-Hookea
     if coupling == "maxwell":
         extra["variant"] = f"maxwell-{field}"
     return run_ramp(prob, preload_then_charge(s, D0, preload_steps), on_step=on_step, x0=x0,
-                    start=start, linear_solver=linear_solver, extra=extra, atol=0.0,
-                    rtol=rtol, max_cutbacks=max_cutbacks)
+                    start=start, linear_solver=linear_solver, extra=extra, settings=settings)
 
 
 def keplinger_plate(alpha: float | None = 1.0, D0: Sequence[float] = (1, 2, 3, 4, 5, 6), *,
@@ -271,11 +290,9 @@ def keplinger_plate(alpha: float | None = 1.0, D0: Sequence[float] = (1, 2, 3, 4
                     formulation: str = "mixed", kappa: float = math.inf,
                     phi_element: str = "Q2", linear_solver: str = "auto",
                     on_step: Callable[[StepResult], Any] | None = None,
-                    x0: np.ndarray | None = None, start: Any = None, rtol: float = 1e-9,
-                    max_cutbacks: int = 4, max_iter: int = 12,
-                    threads: int | None = None,
-                    stop_on_instability: bool = False, chord: float = 0.1,
-                    predictor: str = "none", grad_div: float = 0.0,
+                    x0: np.ndarray | None = None, start: Any = None,
+                    settings: RampSettings = KEPLINGER_SETTINGS, threads: int | None = None,
+                    grad_div: float = 0.0,
                     state_analysis: Callable[..., dict] | None = None) -> RampResult:
     """The uni-axial Keplinger plate: weight on a rigid clamp, then the charge ramp.
 
@@ -300,23 +317,19 @@ def keplinger_plate(alpha: float | None = 1.0, D0: Sequence[float] = (1, 2, 3, 4
         Linear solver name and assembly threads.
     on_step, x0, start
         Callback and resume state (see the module docstring).
-    stop_on_instability
-        Stop at the first step whose tangent inertia says unstable (PARDISO only; see
-        :func:`~skfem_dielectric.solvers.ramp.ramp`): the discrete breakdown near the clamps.
+    settings
+        How the load steps are solved (:class:`~skfem_dielectric.solvers.ramp.RampSettings`;
+        default :data:`KEPLINGER_SETTINGS`: ``rtol = 1e-9``, ``atol = 0``, 4 cut-backs, 12
+        Newton iterations per attempt, chord steps at ``chord = 0.1``, no predictor).
+        ``replace(KEPLINGER_SETTINGS, stop_on_instability=True)`` stops at the first step
+        whose tangent inertia says unstable (PARDISO only): the discrete breakdown near the
+        clamps; ``predictor="secant"`` starts each Newton solve from the secant (a resumed
+        ramp then repeats the uninterrupted one only within the Newton tolerance).
     grad_div
         Grad-div stabilisation of the mixed form (units of ``mu``, see
         :class:`~skfem_dielectric.models.plate.problem.PlateProblem`); ``10`` lets Newton pass the
         clamp/free-edge corner where the plain form stalls on fine meshes
         (docs/validation.md, the corner failure).  Default 0.
-    rtol, max_cutbacks, max_iter
-        Newton tolerance, cut-back limit and Newton iterations per attempt (converged
-        steps need <= 6 on the 40 x 20 eighth model up to D0 = 5, up to 9 right before the
-        breakdown; a low limit makes the attempts beyond the breakdown cheap).
-    chord, predictor
-        Reuse of the factorisation while the residual contracts by this factor per step
-        (0: factorise in every iteration) and the start of each Newton solve (``"none"``
-        or ``"secant"``; a resumed ramp then repeats the uninterrupted one only within the
-        Newton tolerance); see :func:`~skfem_dielectric.solvers.ramp.ramp`.
     state_analysis
         Analysis of every converged state on the factorisation of its tangent, e.g.
         ``StabilityMonitor(k=5)`` (:mod:`skfem_dielectric.stability.monitor`); see
@@ -334,6 +347,7 @@ def keplinger_plate(alpha: float | None = 1.0, D0: Sequence[float] = (1, 2, 3, 4
             raise ValueError("give alpha or s")
         s = keplinger_s(alpha, g=g, m=m, mu=mu, A=A)
     s = check_finite("s", s)
+    check_settings("settings", settings, RampSettings)
     prob = keplinger_problem(model=model, Jm=Jm, size=size, elements=elements,
                              symmetry=symmetry, grading=grading, control=control,
                              coupling=coupling, field=field, formulation=formulation,
@@ -343,10 +357,8 @@ def keplinger_plate(alpha: float | None = 1.0, D0: Sequence[float] = (1, 2, 3, 4
     if coupling == "maxwell":
         extra["variant"] = f"maxwell-{field}"
     return run_ramp(prob, preload_then_charge(s, D0, preload_steps), on_step=on_step, x0=x0,
-                    start=start, linear_solver=linear_solver, extra=extra, atol=0.0,
-                    rtol=rtol, max_cutbacks=max_cutbacks, max_iter=max_iter,
-                    stop_on_instability=stop_on_instability, chord=chord,
-                    predictor=predictor, state_analysis=state_analysis)
+                    start=start, linear_solver=linear_solver, extra=extra, settings=settings,
+                    state_analysis=state_analysis)
 
 
 def maxwell_equibiaxial(s: float, D0, *, field: str = "electrostatic", **options) -> RampResult:
@@ -361,10 +373,12 @@ def maxwell_equibiaxial(s: float, D0, *, field: str = "electrostatic", **options
 
 
 def maxwell_keplinger(alpha: float | None = 1.0, D0=(1, 2, 3, 4, 5, 6), *,
-                      field: str = "electrostatic", max_cutbacks: int = 6,
-                      max_iter: int = 25, **options) -> RampResult:
-    """:func:`keplinger_plate` with ``coupling="maxwell"`` (charge control), with the
-    ramp's default Newton budget (6 cut-backs, 25 iterations).
+                      field: str = "electrostatic",
+                      settings: RampSettings = MAXWELL_KEPLINGER_SETTINGS,
+                      **options) -> RampResult:
+    """:func:`keplinger_plate` with ``coupling="maxwell"`` (charge control), by default
+    with the ramp's Newton budget (:data:`MAXWELL_KEPLINGER_SETTINGS`: 6 cut-backs, 25
+    iterations).
 
     Returns
     -------
@@ -372,8 +386,8 @@ def maxwell_keplinger(alpha: float | None = 1.0, D0=(1, 2, 3, 4, 5, 6), *,
         Per step ``lam1`` at the centre, ``min_P33`` (total stress) on the centre line,
         ``min_P33_clamp``, ``phase``, ``alpha``.
     """
-    return keplinger_plate(alpha, D0, coupling="maxwell", field=field,
-                           max_cutbacks=max_cutbacks, max_iter=max_iter, **options)
+    return keplinger_plate(alpha, D0, coupling="maxwell", field=field, settings=settings,
+                           **options)
 
 
 def membrane_ramp(problem: MembranePlate, s: float, D0, **ramp_options) -> RampResult:
@@ -391,7 +405,7 @@ def membrane_ramp(problem: MembranePlate, s: float, D0, **ramp_options) -> RampR
         ``D0[0] = 0``), then through the others in order.
     **ramp_options
         Passed to :func:`skfem_dielectric.solvers.ramp.ramp` (``linear_solver``,
-        ``on_step``, ``x0``/``start`` to resume, tolerances, ...).
+        ``on_step``, ``x0``/``start`` to resume, ``settings``, ...).
 
     Returns
     -------

@@ -3,17 +3,18 @@
 (:mod:`~skfem_dielectric.solvers.newton`), the load ramp with step cut-back
 (:mod:`~skfem_dielectric.solvers.ramp`), pseudo-arclength continuation through limit points
 (:mod:`~skfem_dielectric.solvers.continuation`), and the location of a critical load along a
-load path (:mod:`~skfem_dielectric.solvers.critical`).
+load path (:mod:`~skfem_dielectric.solvers.critical`).  How Newton iterates is one
+:class:`NewtonSettings`; how a ramp solves its load steps is one :class:`RampSettings`.
 """
 
-from .newton import NewtonResult, newton
-from .ramp import StepResult, RampResult, ramp
+from .newton import NewtonSettings, NewtonResult, newton
+from .ramp import RampSettings, StepResult, RampResult, ramp
 from .continuation import (ContinuationPoint, ContinuationEvent, ContinuationResult,
                            continuation)
 from .critical import CriticalLoad, critical_load, illinois
 
 __all__ = [
-    "NewtonResult", "newton", "StepResult", "RampResult", "ramp", "ContinuationPoint",
-    "ContinuationEvent", "ContinuationResult", "continuation", "CriticalLoad",
-    "critical_load", "illinois",
+    "NewtonSettings", "NewtonResult", "newton", "RampSettings", "StepResult", "RampResult",
+    "ramp", "ContinuationPoint", "ContinuationEvent", "ContinuationResult", "continuation",
+    "CriticalLoad", "critical_load", "illinois",
 ]

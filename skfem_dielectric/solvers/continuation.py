@@ -53,7 +53,7 @@ from ..linalg.linear import nonsymmetric_solver
 from ..linalg.solver_base import LinearSolver
 from ..problem import Problem
 from ..stability.analysis import metric_matrix, tangent_stability
-from .newton import newton
+from .newton import NewtonSettings, check_settings, newton
 
 __all__ = ["ContinuationPoint", "ContinuationEvent", "ContinuationResult", "continuation"]
 
@@ -249,6 +249,159 @@ def _check_inputs(problem, load0, direction, path, ds):
     return ds, load0, direction
 
 
+class _Continuation:
+    """The state of a continuation between two points.
+
+    The load path (:class:`_Path`), the solver of the bordered systems, the corrector's
+    Newton settings and the model's guards lifted to the augmented unknowns ``z = (x,
+    t)``, the step control, and the :class:`ContinuationResult` that collects the points.
+    Its methods are the parts of :func:`continuation`: correct the start, make a point,
+    correct a predicted point onto the arclength hyperplane, take one step with
+    cut-backs, locate a limit point.
+    """
+
+    def __init__(self, problem: Problem, path: _Path, solver, corrector: NewtonSettings,
+                 count, step_limit, admissible, *, max_cutbacks: int, ds_min: float,
+                 max_angle: float, locate_tol: float) -> None:
+        self.problem, self.P, self.solver, self.corrector = problem, path, solver, corrector
+        self.count, self.step_limit, self.admissible = count, step_limit, admissible
+        self.max_cutbacks, self.ds_min = max_cutbacks, ds_min
+        self.max_angle, self.locate_tol = max_angle, locate_tol
+        self.guards = {}    # the model's guards on the state part of the augmented unknowns
+        if step_limit is not None:
+            self.guards["step_limit"] = lambda z, dz: step_limit(z[:-1], dz[:-1],
+                                                                 path.load(z[-1]))
+        if admissible is not None:
+            self.guards["admissible"] = lambda z: admissible(z[:-1], path.load(z[-1]))
+        self.out = ContinuationResult(points=[], problem=problem)
+
+    def count_negative(self, x: np.ndarray, t: float, K) -> int | None:
+        """Negative eigenvalues of the reduced stiffness at ``(x, t)`` (``None`` without
+        a count, or at a singular tangent)."""
+        count, problem = self.count, self.problem
+        if count is False or (count is True and not problem.symmetric):
+            return None
+        if callable(count):
+            return int(count(x, self.P.load(t)))
+        try:
+            return int(tangent_stability(problem, K).n_negative)
+        except (ValueError, RuntimeError):     # a singular tangent (at a limit point)
+            return None
+
+    def point(self, x, t, tau, iterations, step, arc, kind, K) -> ContinuationPoint:
+        """The converged ``(x, t)`` with unit tangent ``tau`` as a post-processed point."""
+        load = self.P.load(t)
+        p = ContinuationPoint(t=float(t), load=load, x=x.copy(), tangent_t=float(tau[1]),
+                              arclength=float(arc), iterations=iterations, ds=float(step),
+                              n_negative=self.count_negative(x, t, K), kind=kind)
+        p.quantities = dict(self.problem.postprocess(x, load))
+        p.quantities.setdefault("stable", p.stable)
+        return p
+
+    def start(self, x: np.ndarray, t0: float, increase: bool) -> tuple | None:
+        """Correct ``x`` at the fixed load ``load(t0)`` and add the start point; returns
+        its unit tangent (oriented by ``increase``), or ``None`` with the reason set."""
+        problem, P, step_limit, admissible = self.problem, self.P, self.step_limit, \
+            self.admissible
+        ld = P.load(float(t0))
+        nr = newton(lambda xx: problem.assemble(xx, ld), x,
+                    residual=lambda xx: problem.residual(xx, ld),
+                    scale=problem.residual_scale(ld), linear_solver=self.solver,
+                    settings=self.corrector,
+                    step_limit=None if step_limit is None else
+                    (lambda a, b: step_limit(a, b, ld)),
+                    admissible=None if admissible is None else (lambda a: admissible(a, ld)))
+        self.out.iterations_total += nr.iterations
+        if not nr.converged:
+            self.out.converged, self.out.reason = False, f"start not converged: {nr.reason}"
+            return None
+        x, t = nr.x, float(t0)
+        K, _ = problem.assemble(x, ld)
+        tx = self.solver.solve(sp.csr_matrix(K), -P.r_t(x, t))
+        tau = P.unit(tx, 1.0) if increase else P.unit(-tx, -1.0)
+        self.out.points.append(self.point(x, t, tau, 0, 0.0, 0.0, "start", K))
+        return tau
+
+    def correct(self, xa, ta, taua, pred_x, pred_t, h):
+        """Corrector on the hyperplane ``taua . W (z - z_a) = h`` from ``(pred_x, pred_t)``;
+        returns ``(x, t, tau, iterations, K)`` or ``None`` and the reason."""
+        problem, P = self.problem, self.P
+        rx, rt_ = P.w * taua[0], taua[1]
+
+        def g(z):
+            return float(np.dot(rx, z[:-1] - xa) + rt_ * (z[-1] - ta) - h)
+
+        def aug(z):
+            _, r, A = P.bordered(z[:-1], z[-1], rx, rt_)
+            return A, np.append(r, g(z))
+
+        def aug_res(z):
+            return np.append(problem.residual(z[:-1], P.load(z[-1])), g(z))
+
+        res = newton(aug, np.append(pred_x, pred_t), residual=aug_res,
+                     scale=problem.residual_scale(P.load(pred_t)), linear_solver=self.solver,
+                     settings=self.corrector, **self.guards)
+        self.out.iterations_total += res.iterations
+        if not res.converged:
+            return None, res.reason
+        xx, tt = res.x[:-1], float(res.x[-1])
+        K_, _, A = P.bordered(xx, tt, rx, rt_)
+        sol = self.solver.solve(A, np.append(np.zeros(problem.ndofs), 1.0))
+        new = P.unit(sol[:-1], float(sol[-1]))
+        return (xx, tt, new, res.iterations, K_), ""
+
+    def advance(self, a: ContinuationPoint, tau, secant, h: float):
+        """One step of length ``h`` from point ``a`` (tangent ``tau``; ``secant`` the
+        unit secant through the last two points with the secant predictor, else
+        ``None``), halved while the corrector
+        fails or the tangent turns by more than ``max_angle``; returns ``(solution, h,
+        cut-backs, reason)``, the solution ``None`` if the smallest step failed."""
+        cuts, sol, why = 0, None, ""
+        while True:
+            sx, st = tau if secant is None else secant
+            sol, why = self.correct(a.x, a.t, tau, a.x + h * sx, a.t + h * st, h)
+            if sol is not None:
+                cosang = float(np.dot(self.P.w * tau[0], sol[2][0]) + tau[1] * sol[2][1])
+                if cosang >= math.cos(self.max_angle):
+                    return sol, h, cuts, why
+                why = f"the tangent turned by {math.acos(min(1.0, cosang)):.3g} rad"
+                sol = None
+            cuts += 1
+            if cuts > self.max_cutbacks or h * 0.5 < self.ds_min:
+                return sol, h, cuts, why
+            h *= 0.5
+
+    def locate_limit(self, a: ContinuationPoint, taua, b: ContinuationPoint):
+        """Regula falsi on ``tau_t`` over the arclength from point ``a`` to ``b``, with the
+        Illinois halving of the retained end.  It differs from
+        :func:`~skfem_dielectric.solvers.critical.illinois` in what it stops on (the value
+        ``|tau_t| <= locate_tol``; a failed corrector ends it with the last converged
+        point) and in how it rounds (the secant point as ``(lo fhi - hi flo) / (fhi -
+        flo)``): with ``illinois`` the located limit points differ in their last bits."""
+        P = self.P
+        lo, flo = 0.0, taua[1]
+        hi = float(np.dot(P.w * taua[0], b.x - a.x) + taua[1] * (b.t - a.t))
+        fhi, side, best = b.tangent_t, 0, None
+        for _ in range(60):
+            h = (lo * fhi - hi * flo) / (fhi - flo)
+            sol, _ = self.correct(a.x, a.t, taua, a.x + h * taua[0], a.t + h * taua[1], h)
+            if sol is None:
+                return best
+            best = (sol, h)
+            f = sol[2][1]
+            if abs(f) <= self.locate_tol or abs(hi - lo) <= 1e-15 * (1.0 + abs(hi)):
+                return best
+            if (f > 0) == (flo > 0):
+                lo, flo = h, f
+                fhi = fhi / 2 if side == -1 else fhi
+                side = -1
+            else:
+                hi, fhi = h, f
+                flo = flo / 2 if side == 1 else flo
+                side = 1
+        return best
+
+
 def continuation(problem: Problem, load0: Any = None, direction: Any = None, *,
                  path: Callable[[float], Any] | None = None, x0: np.ndarray | None = None,
                  t0: float = 0.0, ds: float = 0.05, ds_min: float | None = None,
@@ -259,8 +412,8 @@ def continuation(problem: Problem, load0: Any = None, direction: Any = None, *,
                  target_iterations: int = 4, max_cutbacks: int = 10,
                  max_angle: float = 0.5, count: bool | Callable = True,
                  locate: bool = True, locate_tol: float = 1e-9,
-                 linear_solver: str | LinearSolver = "superlu", atol: float = 1e-10,
-                 rtol: float = 1e-10, max_iter: int = 15,
+                 linear_solver: str | LinearSolver = "superlu",
+                 corrector: NewtonSettings = NewtonSettings(max_iter=15),
                  step_limit: Callable | None = None,
                  admissible: Callable | None = None) -> ContinuationResult:
     """Follow the equilibrium path of ``problem`` through limit points.
@@ -304,10 +457,13 @@ def continuation(problem: Problem, load0: Any = None, direction: Any = None, *,
         Locate limit points to ``|tau_t| <= locate_tol``.
     linear_solver
         Solver for the (non-symmetric) bordered system.
-    atol, rtol, max_iter, step_limit, admissible
-        Newton settings of the correctors (:func:`~skfem_dielectric.solvers.newton.newton`);
-        ``rtol`` is relative to ``problem.residual_scale``; ``step_limit(x, dx, load)``
-        and ``admissible(x, load)`` as in :func:`~skfem_dielectric.solvers.ramp.ramp`.
+    corrector
+        Newton settings of the correctors and of the start
+        (:class:`~skfem_dielectric.solvers.newton.NewtonSettings`, default 15 iterations);
+        ``rtol`` is relative to ``problem.residual_scale``.
+    step_limit, admissible
+        ``step_limit(x, dx, load)`` and ``admissible(x, load)`` of the admissible states, as
+        in :func:`~skfem_dielectric.solvers.ramp.ramp`.
 
     Returns
     -------
@@ -321,7 +477,7 @@ def continuation(problem: Problem, load0: Any = None, direction: Any = None, *,
         ``problem`` not a ``Problem``; ``ds`` (or ``ds_min``, ``ds_max``) not positive;
         neither ``load0, direction`` nor ``path``; a zero or mis-shaped ``direction``; a
         ``load_vector`` of the wrong shape; ``x0`` of the wrong length; unknown
-        ``predictor``; invalid counts.
+        ``predictor``; invalid counts; ``corrector`` not a ``NewtonSettings``.
     """
     ds, load0, direction = _check_inputs(problem, load0, direction, path, ds)
     ds_min = check_positive("ds_min", ds * 1e-4 if ds_min is None else ds_min)
@@ -334,6 +490,7 @@ def continuation(problem: Problem, load0: Any = None, direction: Any = None, *,
     max_angle = check_positive("max_angle", max_angle)
     for name, f in (("stop", stop), ("step_limit", step_limit), ("admissible", admissible)):
         check_callable(name, f)
+    check_settings("corrector", corrector, NewtonSettings)
     t_start = time.perf_counter()
     n = problem.ndofs
     x = problem.initial_state() if x0 is None else np.asarray(x0, dtype=float)
@@ -343,129 +500,22 @@ def continuation(problem: Problem, load0: Any = None, direction: Any = None, *,
     wdiag = metric_matrix(problem).diagonal()
     weight = wdiag / max(1.0, float(wdiag.sum()))
     P = _Path(problem, load0, direction, path, weight, n_load)
-    solver = nonsymmetric_solver(linear_solver)
-    out = ContinuationResult(points=[], problem=problem)
-    news = dict(linear_solver=solver, atol=atol, rtol=rtol, max_iter=max_iter)
-
-    def counter(xx, tt, K):
-        if count is False or (count is True and not problem.symmetric):
-            return None
-        if callable(count):
-            return int(count(xx, P.load(tt)))
-        try:
-            return int(tangent_stability(problem, K).n_negative)
-        except (ValueError, RuntimeError):     # a singular tangent (at a limit point)
-            return None
-
-    guards = {}     # the model's guards on the state part of the augmented unknowns
-    if step_limit is not None:
-        guards["step_limit"] = lambda z, dz: step_limit(z[:-1], dz[:-1], P.load(z[-1]))
-    if admissible is not None:
-        guards["admissible"] = lambda z: admissible(z[:-1], P.load(z[-1]))
-
-    # --- the start: correct at fixed load, first tangent
-    ld = P.load(float(t0))
-    nr = newton(lambda xx: problem.assemble(xx, ld), x,
-                residual=lambda xx: problem.residual(xx, ld),
-                scale=problem.residual_scale(ld), **news,
-                step_limit=None if step_limit is None else (lambda a, b: step_limit(a, b, ld)),
-                admissible=None if admissible is None else (lambda a: admissible(a, ld)))
-    out.iterations_total += nr.iterations
-    if not nr.converged:
-        out.converged, out.reason = False, f"start not converged: {nr.reason}"
+    run = _Continuation(problem, P, nonsymmetric_solver(linear_solver), corrector, count,
+                        step_limit, admissible, max_cutbacks=max_cutbacks, ds_min=ds_min,
+                        max_angle=max_angle, locate_tol=locate_tol)
+    out = run.out
+    tau = run.start(x, t0, increase)
+    if tau is None:
         warnings.warn(out.reason, RuntimeWarning, stacklevel=2)
         return out
-    x, t = nr.x, float(t0)
-    K, _ = problem.assemble(x, ld)
-    tx = solver.solve(sp.csr_matrix(K), -P.r_t(x, t))
-    tau = P.unit(tx, 1.0) if increase else P.unit(-tx, -1.0)
-
-    def point(xx, tt, tau_, it, step, arc, kind, K_):
-        ldp = P.load(tt)
-        p = ContinuationPoint(t=float(tt), load=ldp, x=xx.copy(), tangent_t=float(tau_[1]),
-                              arclength=float(arc), iterations=it, ds=float(step),
-                              n_negative=counter(xx, tt, K_), kind=kind)
-        p.quantities = dict(problem.postprocess(xx, ldp))
-        p.quantities.setdefault("stable", p.stable)
-        return p
-
-    out.points.append(point(x, t, tau, 0, 0.0, 0.0, "start", K))
-
-    def correct(xa, ta, taua, pred_x, pred_t, h):
-        """Corrector on the hyperplane ``taua . W (z - z_a) = h`` from ``(pred_x, pred_t)``;
-        returns ``(x, t, tau, iterations, K)`` or ``None`` and the reason."""
-        rx, rt_ = P.w * taua[0], taua[1]
-
-        def g(z):
-            return float(np.dot(rx, z[:-1] - xa) + rt_ * (z[-1] - ta) - h)
-
-        def aug(z):
-            _, r, A = P.bordered(z[:-1], z[-1], rx, rt_)
-            return A, np.append(r, g(z))
-
-        def aug_res(z):
-            return np.append(problem.residual(z[:-1], P.load(z[-1])), g(z))
-
-        res = newton(aug, np.append(pred_x, pred_t), residual=aug_res, scale=problem.residual_scale(P.load(pred_t)),
-                     **news, **guards)
-        out.iterations_total += res.iterations
-        if not res.converged:
-            return None, res.reason
-        xx, tt = res.x[:-1], float(res.x[-1])
-        K_, _, A = P.bordered(xx, tt, rx, rt_)
-        sol = solver.solve(A, np.append(np.zeros(n), 1.0))
-        new = P.unit(sol[:-1], float(sol[-1]))
-        return (xx, tt, new, res.iterations, K_), ""
-
-    def locate_limit(a, taua, b):
-        """Regula falsi on ``tau_t`` over the arclength from point ``a`` to ``b``, with the
-        Illinois halving of the retained end.  It differs from
-        :func:`~skfem_dielectric.solvers.critical.illinois` in what it stops on (the value
-        ``|tau_t| <= locate_tol``; a failed corrector ends it with the last converged
-        point) and in how it rounds (the secant point as ``(lo fhi - hi flo) / (fhi -
-        flo)``): with ``illinois`` the located limit points differ in their last bits."""
-        lo, flo = 0.0, taua[1]
-        hi = float(np.dot(P.w * taua[0], b.x - a.x) + taua[1] * (b.t - a.t))
-        fhi, side, best = b.tangent_t, 0, None
-        for _ in range(60):
-            h = (lo * fhi - hi * flo) / (fhi - flo)
-            sol, _ = correct(a.x, a.t, taua, a.x + h * taua[0], a.t + h * taua[1], h)
-            if sol is None:
-                return best
-            best = (sol, h)
-            f = sol[2][1]
-            if abs(f) <= locate_tol or abs(hi - lo) <= 1e-15 * (1.0 + abs(hi)):
-                return best
-            if (f > 0) == (flo > 0):
-                lo, flo = h, f
-                fhi = fhi / 2 if side == -1 else fhi
-                side = -1
-            else:
-                hi, fhi = h, f
-                flo = flo / 2 if side == 1 else flo
-                side = 1
-        return best
-
     x_prev = t_prev = None
     h, arc = ds, 0.0
     reason = f"max_steps = {max_steps} reached"
     for _ in range(max_steps):
         a = out.points[-1]
-        cuts, sol = 0, None
-        while True:
-            sx, st = (P.unit(a.x - x_prev, a.t - t_prev)
-                      if predictor == "secant" and x_prev is not None else tau)
-            sol, why = correct(a.x, a.t, tau, a.x + h * sx, a.t + h * st, h)
-            if sol is not None:
-                cosang = float(np.dot(P.w * tau[0], sol[2][0]) + tau[1] * sol[2][1])
-                if cosang >= math.cos(max_angle):
-                    break
-                why = f"the tangent turned by {math.acos(min(1.0, cosang)):.3g} rad"
-                sol = None
-            cuts += 1
-            if cuts > max_cutbacks or h * 0.5 < ds_min:
-                break
-            h *= 0.5
+        secant = (P.unit(a.x - x_prev, a.t - t_prev)
+                  if predictor == "secant" and x_prev is not None else None)
+        sol, h, cuts, why = run.advance(a, tau, secant, h)
         if sol is None:
             out.converged = False
             out.reason = (f"corrector failed at t = {a.t:.10g} with ds = {h:.3g} after "
@@ -474,12 +524,12 @@ def continuation(problem: Problem, load0: Any = None, direction: Any = None, *,
             break
         xb, tb, taub, it, Kb = sol
         arc += h
-        b = point(xb, tb, taub, it, h, arc, "regular", Kb)
+        b = run.point(xb, tb, taub, it, h, arc, "regular", Kb)
         if (b.tangent_t > 0) != (tau[1] > 0) and tau[1] != 0:
-            found = locate_limit(a, tau, b) if locate else None
+            found = run.locate_limit(a, tau, b) if locate else None
             if found is not None:
                 (xl, tl, taul, itl, Kl), hl = found
-                out.points.append(point(xl, tl, taul, itl, hl, arc - h + hl, "limit", Kl))
+                out.points.append(run.point(xl, tl, taul, itl, hl, arc - h + hl, "limit", Kl))
             out.events.append(ContinuationEvent(
                 "limit", len(out.points) - 1 if found is not None else len(out.points),
                 float(found[0][1]) if found is not None else b.t, a.n_negative,

@@ -113,8 +113,8 @@ def critical_load(problem: Problem, x_a: np.ndarray, load_a: Any, load_b: Any,
     maxiter
         Maximum number of trial states.
     ramp_options
-        Passed to :func:`~skfem_dielectric.solvers.ramp.ramp` (``linear_solver``, ``step_limit``,
-        ...).
+        Passed to :func:`~skfem_dielectric.solvers.ramp.ramp` (``linear_solver``,
+        ``settings``, ``step_limit``, ...).
 
     Returns
     -------

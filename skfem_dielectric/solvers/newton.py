@@ -25,7 +25,7 @@ from __future__ import annotations
 
 import time
 from dataclasses import dataclass, field
-from typing import Callable
+from typing import Any, Callable, NamedTuple
 
 import numpy as np
 import scipy.sparse as sp
@@ -35,7 +35,7 @@ from ..checks import (check_callable, check_count, check_nonnegative, check_nonn
 from ..linalg.linear import get_linear_solver
 from ..linalg.solver_base import LinearSolver
 
-__all__ = ["NewtonResult", "newton"]
+__all__ = ["NewtonSettings", "NewtonResult", "newton"]
 
 
 @dataclass
@@ -85,18 +85,304 @@ class NewtonResult:
     chord_seconds: list[float] = field(default_factory=list)
 
 
+@dataclass(frozen=True)
+class NewtonSettings:
+    """How :func:`newton` iterates towards ``r(x) = 0`` at one load.
+
+    The options that travel together from a driver through a ramp or a continuation down
+    to every Newton solve; one frozen object, checked once where it is made, so that a
+    driver is told "solve like this" instead of forwarding each option by hand.  Change
+    one field of a given object with :func:`dataclasses.replace`.
+
+    Attributes
+    ----------
+    atol, rtol
+        Converged when ``||r|| <= atol + rtol * scale`` (``scale``: see :func:`newton`);
+        both ``>= 0`` and not both zero (a test that can never be met).
+    xtol
+        Also converged when the increment is at round-off, ``||dx|| <= xtol (1 + ||x||)``,
+        and ``||r|| <= 1e3 (atol + rtol scale)``.
+    max_iter
+        Maximum number of iterations (Newton and chord steps), ``>= 1``.
+    line_search
+        Backtrack (halve) a step that does not reduce ``||r||`` (and fails the natural
+        monotonicity test); otherwise take full steps.
+    max_backtracks
+        Maximum halvings per iteration, ``>= 0``; if none is accepted the solve fails.
+    chord
+        Contraction below which the factorisation is reused, in ``[0, 1)``; 0 factorises
+        the tangent in every iteration (see :func:`newton`).
+
+    Raises
+    ------
+    ValueError
+        A field out of its range, naming the field and the value.
+    """
+
+    atol: float = 1e-10
+    rtol: float = 1e-10
+    xtol: float = 1e-13
+    max_iter: int = 25
+    line_search: bool = True
+    max_backtracks: int = 8
+    chord: float = 0.0
+
+    def __post_init__(self) -> None:
+        atol, rtol = check_tolerances(self.atol, self.rtol)
+        chord = check_nonnegative("chord", self.chord)
+        if not chord < 1.0:
+            raise ValueError(f"chord must be in [0, 1), got {self.chord!r}")
+        if not isinstance(self.line_search, (bool, np.bool_)):
+            raise ValueError(f"line_search must be True or False, got {self.line_search!r}")
+        checked = dict(atol=atol, rtol=rtol, xtol=check_nonnegative("xtol", self.xtol),
+                       max_iter=check_count("max_iter", self.max_iter),
+                       line_search=bool(self.line_search),
+                       max_backtracks=check_nonnegative_int("max_backtracks",
+                                                            self.max_backtracks),
+                       chord=chord)
+        for name, value in checked.items():     # the checked values, as the solver uses them
+            object.__setattr__(self, name, value)
+
+
+def check_settings(name: str, value: Any, kind: type) -> Any:
+    """``value`` if it is a ``kind`` (a settings object), else ``ValueError`` naming
+    ``name``."""
+    if not isinstance(value, kind):
+        raise ValueError(f"{name} must be a {kind.__name__}, got {value!r}")
+    return value
+
+
 def _norm(r: np.ndarray) -> float:
     return float(np.linalg.norm(r))
 
 
+class _Failed(Exception):
+    """Ends a Newton solve; the message becomes :attr:`NewtonResult.reason`."""
+
+
+class _Point(NamedTuple):
+    """An evaluated state: tangent (``None`` where only the residual was evaluated),
+    residual, its norm (``inf`` on error) and the error (empty if none)."""
+
+    K: Any
+    r: Any
+    rn: float
+    error: str
+
+
+class _NewtonIteration:
+    """The state of one Newton solve between two iterations.
+
+    It holds the iterate ``x``, its residual ``r`` and norm ``rn``, the tangent ``K`` at
+    ``x`` until it is factorised (``None`` afterwards, or where only the residual was
+    evaluated), whether the next step is a chord step on the factors the linear solver
+    holds, and the :class:`NewtonResult` that collects iterations, norms and timings.  Its
+    methods are the steps of :func:`newton` (start, increment, line search, accept); a
+    failure raises :class:`_Failed` with the reason, so that :func:`newton` reads as the
+    algorithm.
+    """
+
+    def __init__(self, assemble, residual, solver, settings: NewtonSettings, step_limit,
+                 admissible, x: np.ndarray) -> None:
+        self.assemble, self.residual, self.solver = assemble, residual, solver
+        self.settings, self.step_limit, self.admissible = settings, step_limit, admissible
+        # with chord steps and a residual-only evaluation, the tangent is assembled only
+        # where it is factorised
+        self.lazy = settings.chord > 0 and residual is not None
+        self.discard = getattr(solver, "discard", None)
+        self.x = x
+        self.K = self.r = None
+        self.rn = self.tol = np.inf
+        self.chord_step = False
+        self.result = NewtonResult(x=x, converged=False, iterations=0, residual_norms=[])
+
+    # --- evaluations, timed into the result
+    def evaluate(self, x: np.ndarray) -> _Point:
+        """Tangent and residual at ``x``."""
+        t = time.perf_counter()
+        try:
+            K, r = self.assemble(x)
+        except (FloatingPointError, ValueError, ZeroDivisionError) as exc:
+            self.result.assembly_seconds.append(time.perf_counter() - t)
+            return _Point(None, None, np.inf, f"assembly failed: {exc}")
+        self.result.assembly_seconds.append(time.perf_counter() - t)
+        if not np.all(np.isfinite(r)):
+            return _Point(None, None, np.inf, "non-finite residual")
+        return _Point(K, r, _norm(r), "")
+
+    def trial(self, x: np.ndarray) -> _Point:
+        """A trial point: only its residual where the tangent is assembled lazily."""
+        if not self.lazy:
+            return self.evaluate(x)
+        t = time.perf_counter()
+        try:
+            r = self.residual(x)
+        except (FloatingPointError, ValueError, ZeroDivisionError) as exc:
+            return _Point(None, None, np.inf, f"residual failed: {exc}")
+        finally:
+            self.result.residual_seconds.append(time.perf_counter() - t)
+        if not np.all(np.isfinite(r)):
+            return _Point(None, None, np.inf, "non-finite residual")
+        return _Point(None, r, _norm(r), "")
+
+    def tangent_to_factorise(self, x: np.ndarray) -> _Point:
+        """The tangent at ``x`` that is factorised next: the old factors (of no more use)
+        are freed first, so that they and the new tangent are not held together."""
+        if self.discard is not None:
+            self.discard()
+        return self.evaluate(x)
+
+    def inadmissible(self) -> str:
+        """Why the iterate is not an admissible state (empty if it is)."""
+        return self.admissible(self.x) if self.admissible is not None else ""
+
+    # --- the steps of the algorithm
+    def start(self, reuse_factors: bool, scale: float | None) -> bool:
+        """Evaluate the initial guess and fix the tolerance; True if it already meets it.
+        With ``reuse_factors`` the first step is a chord step on the factors at hand."""
+        if reuse_factors and self.lazy:
+            p = self.trial(self.x)
+        elif reuse_factors:
+            p = self.evaluate(self.x)
+        else:
+            p = self.tangent_to_factorise(self.x)
+        if p.error:
+            raise _Failed(p.error)
+        self.K, self.r, self.rn = p.K, p.r, p.rn
+        self.result.residual_norms.append(self.rn)
+        self.tol = self.settings.atol + self.settings.rtol * (self.rn if scale is None
+                                                              else scale)
+        self.chord_step = bool(reuse_factors)
+        return self.rn <= self.tol
+
+    def increment(self, it: int) -> np.ndarray:
+        """The increment ``dx`` of iteration ``it``: a chord step ``-K_old^-1 r`` when the
+        factors are to be reused and the back-substitution succeeds, else a Newton step
+        on the tangent at ``x``, factorised now."""
+        res = self.result
+        dx = None
+        if self.chord_step:
+            t = time.perf_counter()
+            dxc = self.solver.resolve(self.r)
+            res.chord_seconds.append(time.perf_counter() - t)
+            if dxc is not None and np.all(np.isfinite(dxc)):
+                dx = -dxc
+                res.chord_steps += 1
+                res.iterations = it
+        if dx is None:
+            self.chord_step = False
+            dx = self.newton_step(it)
+        if not np.all(np.isfinite(dx)):
+            raise _Failed("non-finite Newton increment (singular tangent?)")
+        return dx
+
+    def newton_step(self, it: int) -> np.ndarray:
+        """Factorise the tangent at ``x`` (assembled now if a chord step came here) and
+        solve for the Newton increment."""
+        res = self.result
+        if self.K is None:
+            p = self.tangent_to_factorise(self.x)
+            if p.error:
+                raise _Failed(p.error)
+            self.K, self.r = p.K, p.r
+        t = time.perf_counter()
+        try:
+            dx = -self.solver.solve(self.K, self.r)
+        except Exception as exc:  # singular matrix, PARDISO error, ...
+            res.solve_seconds.append(time.perf_counter() - t)
+            raise _Failed(f"linear solve failed: {exc}") from None
+        res.solve_seconds.append(time.perf_counter() - t)
+        self.K = None           # factorised: free its data before the next assembly
+        res.factorisations += 1
+        res.inertia = getattr(self.solver, "inertia", None)
+        res.iterations = it
+        return dx
+
+    def first_fraction(self, dx: np.ndarray, it: int) -> float:
+        """The step fraction tried first: 1, or half the largest admissible one."""
+        if self.step_limit is None:
+            return 1.0
+        amax = float(self.step_limit(self.x, dx))
+        if not amax > 0:
+            raise _Failed(f"inadmissible Newton step at iteration {it}: no positive step "
+                          f"fraction keeps the state admissible")
+        return 0.5 * amax if amax < 1.0 else 1.0
+
+    def acceptable(self, r_trial, rn_trial: float, alpha: float, dxn: float) -> bool:
+        """Residual decrease, or Deuflhard's natural monotonicity test: the simplified
+        Newton correction with the current factorisation shrinks (affine invariant; it
+        accepts the full steps that penalty / saddle-point problems need although their
+        residual norm grows on the first iterations)."""
+        if rn_trial < self.rn:
+            return True
+        if not np.isfinite(rn_trial):
+            return False
+        dxbar = self.solver.resolve(r_trial)
+        return dxbar is not None and _norm(dxbar) <= (1.0 - 0.5 * alpha) * dxn
+
+    def line_search(self, dx: np.ndarray, alpha: float, trial: _Point,
+                    it: int) -> tuple[float, _Point]:
+        """The accepted fraction of the Newton step ``dx`` tried at ``alpha`` (reaching
+        ``trial``) and the point it reaches: halve it until :meth:`acceptable`, at most
+        ``max_backtracks`` times."""
+        s = self.settings
+        dxn = _norm(dx)
+        if not s.line_search or self.acceptable(trial.r, trial.rn, alpha, dxn):
+            if trial.error:
+                raise _Failed(trial.error)
+            return alpha, trial
+        for _ in range(s.max_backtracks):
+            alpha *= 0.5
+            xt = self.x + alpha * dx
+            if self.residual is not None:
+                try:
+                    rt = self.residual(xt)
+                except (FloatingPointError, ValueError, ZeroDivisionError):
+                    continue
+                rnt = _norm(rt) if np.all(np.isfinite(rt)) else np.inf
+            else:
+                _, rt, rnt, _ = self.evaluate(xt)
+            if self.acceptable(rt, rnt, alpha, dxn):
+                break
+        else:
+            raise _Failed(f"line search failed at iteration {it}: no decrease of "
+                          f"||r|| = {self.rn:.3e} after {s.max_backtracks} halvings")
+        if self.lazy:
+            return alpha, _Point(None, rt, rnt, "")
+        p = self.evaluate(self.x + alpha * dx)      # the tangent at the accepted point
+        if p.error:
+            raise _Failed(p.error)
+        return alpha, p
+
+    def accept(self, dx: np.ndarray, alpha: float, new: _Point) -> bool:
+        """Move to ``x + alpha dx`` (the point ``new``); the next step reuses the factors
+        if this was a full step that contracted ``||r||`` by ``chord``.  True when
+        converged."""
+        s, res = self.settings, self.result
+        self.x = self.x + alpha * dx
+        res.x = self.x
+        self.chord_step = s.chord > 0 and alpha == 1.0 and new.rn <= s.chord * self.rn
+        self.K, self.r, self.rn = new.K, new.r, new.rn
+        res.residual_norms.append(self.rn)
+        dn = alpha * _norm(dx)
+        res.step_norms.append(dn)
+        if self.rn <= self.tol or (dn <= s.xtol * (1.0 + _norm(self.x))
+                                   and self.rn <= 1e3 * self.tol):
+            why = self.inadmissible()
+            if why:
+                raise _Failed(f"converged to an inadmissible state: {why}")
+            res.converged = True
+            return True
+        return False
+
+
 def newton(assemble: Callable[[np.ndarray], tuple[sp.spmatrix, np.ndarray]],
            x0: np.ndarray, *, residual: Callable[[np.ndarray], np.ndarray] | None = None,
-           linear_solver: str | LinearSolver = "superlu", atol: float = 1e-10,
-           rtol: float = 1e-10, xtol: float = 1e-13, scale: float | None = None,
-           max_iter: int = 25, line_search: bool = True, max_backtracks: int = 8,
+           linear_solver: str | LinearSolver = "superlu",
+           settings: NewtonSettings = NewtonSettings(), scale: float | None = None,
            step_limit: Callable[[np.ndarray, np.ndarray], float] | None = None,
            admissible: Callable[[np.ndarray], str] | None = None,
-           chord: float = 0.0, reuse_factors: bool = False) -> NewtonResult:
+           reuse_factors: bool = False) -> NewtonResult:
     """Solve ``r(x) = 0`` by Newton's method with a backtracking line search.
 
     Parameters
@@ -112,18 +398,19 @@ def newton(assemble: Callable[[np.ndarray], tuple[sp.spmatrix, np.ndarray]],
         Name for :func:`get_linear_solver` or a solver instance (reused across calls, which
         lets PARDISO keep its symbolic factorisation); its ``discard()``, if it has one,
         frees the old factors before a tangent that is factorised next is assembled.
-    atol, rtol, scale
-        Converged when ``||r|| <= atol + rtol * scale``; ``scale`` defaults to the initial
-        residual norm.
-    xtol
-        Also converged when ``||dx|| <= xtol (1 + ||x||)`` and
-        ``||r|| <= 1e3 (atol + rtol scale)`` (stagnation at round-off).
-    max_iter
-        Maximum number of iterations (Newton and chord steps).
-    line_search
-        Backtrack (halve) a step that does not reduce ``||r||``; otherwise take full steps.
-    max_backtracks
-        Maximum halvings per iteration; if none reduces ``||r||`` the solve fails.
+    settings
+        Tolerances, iteration and backtracking limits, chord steps
+        (:class:`NewtonSettings`).  With ``chord > 0``: after a full step that reduced
+        ``||r||`` by at least this factor the next step is a chord step ``dx = -K_old^-1
+        r`` with the factors at hand (a back-substitution, no new tangent), and so on
+        while each chord step contracts as much; a chord step that contracts less is kept
+        if it reduces ``||r||`` (the next step factorises again), else it is discarded.
+        With ``residual`` given, the trial points are then evaluated by ``residual`` and
+        the tangent is assembled only where it is factorised.  The converged state
+        satisfies the same test, so the solution changes only within the tolerance.
+    scale
+        The ``scale`` of the convergence test ``||r|| <= atol + rtol * scale``; defaults
+        to the initial residual norm.
     step_limit
         Optional ``step_limit(x, dx) -> alpha_max`` in ``[0, 1]``: the largest admissible
         fraction of the increment ``dx`` (e.g. ``det F > 0`` along the step,
@@ -134,16 +421,6 @@ def newton(assemble: Callable[[np.ndarray], tuple[sp.spmatrix, np.ndarray]],
         Optional ``admissible(x) -> reason``: empty for an admissible state; a converged
         state it rejects gives ``converged=False`` with ``reason`` (e.g. an inverted
         deformation).
-    chord
-        Contraction below which the factorisation is reused, in ``[0, 1)``; 0 (default)
-        factorises the tangent in every iteration.  After a full step that reduced
-        ``||r||`` by at least this factor the next step is a chord step ``dx = -K_old^-1
-        r`` with the factors at hand (a back-substitution, no new tangent), and so on while
-        each chord step contracts as much; a chord step that contracts less is kept if it
-        reduces ``||r||`` (the next step factorises again), else it is discarded.  With
-        ``residual`` given, the trial points are then evaluated by ``residual`` and the
-        tangent is assembled only where it is factorised.  The converged state satisfies
-        the same test, so the solution changes only within the tolerance.
     reuse_factors
         Start with a chord step on the factorisation ``linear_solver`` already holds (e.g.
         the tangent of the converged state before a load step, which a stability analysis
@@ -162,21 +439,24 @@ def newton(assemble: Callable[[np.ndarray], tuple[sp.spmatrix, np.ndarray]],
     ------
     ValueError
         Invalid arguments, each named: a callable that is not, ``x0`` not a finite 1-D
-        vector, negative or non-finite tolerances (or ``atol = rtol = 0``, which can never
-        be met), ``max_iter < 1``, ``max_backtracks < 0``, ``chord`` outside ``[0, 1)``.
+        vector, ``settings`` not a :class:`NewtonSettings`, a negative ``scale``.
+
+    Examples
+    --------
+    The cube root of 2 as the root of ``x^3 - 2``:
+
+    >>> import numpy as np, scipy.sparse as sp
+    >>> res = newton(lambda x: (sp.csr_matrix([[3 * x[0] ** 2]]), x ** 3 - 2), np.ones(1),
+    ...              settings=NewtonSettings(atol=1e-14, rtol=0.0))
+    >>> res.converged, round(float(res.x[0]), 12)
+    (True, 1.259921049895)
     """
     check_callable("assemble", assemble, optional=False)
     for name, f in (("residual", residual), ("step_limit", step_limit),
                     ("admissible", admissible)):
         check_callable(name, f)
-    atol, rtol = check_tolerances(atol, rtol)
-    xtol = check_nonnegative("xtol", xtol)
+    check_settings("settings", settings, NewtonSettings)
     scale = None if scale is None else check_nonnegative("scale", scale)
-    max_iter = check_count("max_iter", max_iter)
-    max_backtracks = check_nonnegative_int("max_backtracks", max_backtracks)
-    chord = check_nonnegative("chord", chord)
-    if not chord < 1.0:
-        raise ValueError(f"chord must be in [0, 1), got {chord!r}")
     solver = get_linear_solver(linear_solver)
     try:
         x = np.array(x0, dtype=float, copy=True)
@@ -184,172 +464,28 @@ def newton(assemble: Callable[[np.ndarray], tuple[sp.spmatrix, np.ndarray]],
         raise ValueError(f"x0 must be a real vector, got {x0!r}") from None
     if x.ndim != 1 or not np.all(np.isfinite(x)):
         raise ValueError(f"x0 must be a finite 1-D vector, got shape {x.shape}")
-    res = NewtonResult(x=x, converged=False, iterations=0, residual_norms=[])
-    lazy = chord > 0 and residual is not None   # tangent only where it is factorised
-
-    def _assemble(xx):
-        t = time.perf_counter()
-        try:
-            K, r = assemble(xx)
-        except (FloatingPointError, ValueError, ZeroDivisionError) as exc:
-            res.assembly_seconds.append(time.perf_counter() - t)
-            return None, None, f"assembly failed: {exc}"
-        res.assembly_seconds.append(time.perf_counter() - t)
-        if not np.all(np.isfinite(r)):
-            return None, None, "non-finite residual"
-        return K, r, ""
-
-    def _trial(xx):
-        """``(K or None, r, ||r||, error)`` at a trial point (``||r|| = inf`` on error)."""
-        if lazy:
-            t = time.perf_counter()
-            try:
-                rt = residual(xx)
-            except (FloatingPointError, ValueError, ZeroDivisionError) as exc:
-                return None, None, np.inf, f"residual failed: {exc}"
-            finally:
-                res.residual_seconds.append(time.perf_counter() - t)
-            if not np.all(np.isfinite(rt)):
-                return None, None, np.inf, "non-finite residual"
-            return None, rt, _norm(rt), ""
-        Kt, rt, e = _assemble(xx)
-        return Kt, rt, (_norm(rt) if not e else np.inf), e
-
-    discard = getattr(solver, "discard", None)
-
-    def _to_factorise(xx):
-        """The tangent at ``xx`` that is factorised next: the old factors (of no more use)
-        are freed first, so that they and the new tangent are not held together."""
-        if discard is not None:
-            discard()
-        return _assemble(xx)
-
-    if reuse_factors and lazy:          # the first (chord) step needs no tangent
-        K, r, _, err = _trial(x)
-    elif reuse_factors:                 # the first (chord) step uses the old factors
-        K, r, err = _assemble(x)
-    else:
-        K, r, err = _to_factorise(x)
-    if err:
-        res.reason = err
-        return res
-    rn = _norm(r)
-    res.residual_norms.append(rn)
-    if scale is None:
-        scale = rn
-    tol = atol + rtol * scale
-    if rn <= tol:
-        why = admissible(x) if admissible is not None else ""
-        res.converged = not why
-        res.reason = f"inadmissible state: {why}" if why else ""
-        return res
-    use_chord = bool(reuse_factors)
-    for it in range(1, max_iter + 1):
-        dx = None
-        if use_chord:
-            t = time.perf_counter()
-            dxc = solver.resolve(r)
-            res.chord_seconds.append(time.perf_counter() - t)
-            if dxc is not None and np.all(np.isfinite(dxc)):
-                dx = -dxc
-                res.chord_steps += 1
-                res.iterations = it
-        if dx is None:
-            use_chord = False
-            if K is None:                   # a chord step came here: the tangent at x
-                K, r, err = _to_factorise(x)
-                if err:
-                    res.reason = err
-                    return res
-            t = time.perf_counter()
-            try:
-                dx = -solver.solve(K, r)
-            except Exception as exc:  # singular matrix, PARDISO error, ...
-                res.solve_seconds.append(time.perf_counter() - t)
-                res.reason = f"linear solve failed: {exc}"
-                return res
-            res.solve_seconds.append(time.perf_counter() - t)
-            K = None            # factorised: free its data before the next assembly
-            res.factorisations += 1
-            res.inertia = getattr(solver, "inertia", None)
-            res.iterations = it
-        if not np.all(np.isfinite(dx)):
-            res.reason = "non-finite Newton increment (singular tangent?)"
+    state = _NewtonIteration(assemble, residual, solver, settings, step_limit, admissible, x)
+    res = state.result
+    try:
+        if state.start(reuse_factors, scale):
+            why = state.inadmissible()
+            res.converged = not why
+            res.reason = f"inadmissible state: {why}" if why else ""
             return res
-        alpha = 1.0
-        if step_limit is not None:
-            amax = float(step_limit(x, dx))
-            if not amax > 0:
-                res.reason = (f"inadmissible Newton step at iteration {it}: no positive step "
-                              f"fraction keeps the state admissible")
+        for it in range(1, settings.max_iter + 1):
+            dx = state.increment(it)
+            alpha = state.first_fraction(dx, it)
+            trial = state.trial(state.x + alpha * dx)
+            if state.chord_step:
+                if not trial.rn < state.rn:     # discard the chord step: factorise at x
+                    state.chord_step = False
+                    continue
+            else:
+                alpha, trial = state.line_search(dx, alpha, trial, it)
+            if state.accept(dx, alpha, trial):
                 return res
-            if amax < 1.0:
-                alpha = 0.5 * amax
-        K1, r1, rn1, err = _trial(x + alpha * dx)
-        if use_chord:
-            if not rn1 < rn:        # discard the chord step: factorise at x instead
-                use_chord = False
-                continue
-        else:
-            dxn = _norm(dx)
-
-            def acceptable(r_trial, rn_trial, a):
-                # residual decrease, or Deuflhard's natural monotonicity test: the
-                # simplified Newton correction with the current factorisation shrinks
-                # (affine invariant; it accepts the full steps that penalty / saddle-point
-                # problems need although their residual norm grows on the first iterations)
-                if rn_trial < rn:
-                    return True
-                if not np.isfinite(rn_trial):
-                    return False
-                dxbar = solver.resolve(r_trial)
-                return dxbar is not None and _norm(dxbar) <= (1.0 - 0.5 * a) * dxn
-
-            if line_search and not acceptable(r1, rn1, alpha):
-                accepted = False
-                for _ in range(max_backtracks):
-                    alpha *= 0.5
-                    xt = x + alpha * dx
-                    if residual is not None:
-                        try:
-                            rt = residual(xt)
-                        except (FloatingPointError, ValueError, ZeroDivisionError):
-                            continue
-                        rnt = _norm(rt) if np.all(np.isfinite(rt)) else np.inf
-                    else:
-                        _, rt, e2 = _assemble(xt)
-                        rnt = _norm(rt) if not e2 else np.inf
-                    if acceptable(rt, rnt, alpha):
-                        accepted = True
-                        break
-                if not accepted:
-                    res.reason = (f"line search failed at iteration {it}: no decrease of "
-                                  f"||r|| = {rn:.3e} after {max_backtracks} halvings")
-                    return res
-                if lazy:
-                    K1, r1, rn1 = None, rt, rnt
-                else:   # the tangent at the accepted point
-                    K1, r1, err = _assemble(x + alpha * dx)
-                    if err:
-                        res.reason = err
-                        return res
-                    rn1 = _norm(r1)
-            elif err:
-                res.reason = err
-                return res
-        x = x + alpha * dx
-        res.x = x
-        use_chord = chord > 0 and alpha == 1.0 and rn1 <= chord * rn
-        K, r, rn = K1, r1, rn1
-        res.residual_norms.append(rn)
-        dn = alpha * _norm(dx)
-        res.step_norms.append(dn)
-        if rn <= tol or (dn <= xtol * (1.0 + _norm(x)) and rn <= 1e3 * tol):
-            why = admissible(x) if admissible is not None else ""
-            if why:
-                res.reason = f"converged to an inadmissible state: {why}"
-                return res
-            res.converged = True
-            return res
-    res.reason = f"no convergence in {max_iter} iterations (||r|| = {rn:.3e}, tol {tol:.1e})"
+        res.reason = (f"no convergence in {settings.max_iter} iterations "
+                      f"(||r|| = {state.rn:.3e}, tol {state.tol:.1e})")
+    except _Failed as stop:
+        res.reason = str(stop)
     return res

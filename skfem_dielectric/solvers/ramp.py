@@ -35,14 +35,68 @@ from typing import Any, Callable, Sequence
 
 import numpy as np
 
-from ..checks import (check_callable, check_choice, check_count, check_nonnegative,
-                     check_nonnegative_int, check_tolerances, check_vector)
+from ..checks import check_callable, check_choice, check_nonnegative_int, check_vector
 from ..linalg.linear import get_linear_solver
 from ..linalg.solver_base import LinearSolver
 from ..problem import Problem
-from .newton import newton
+from .newton import NewtonResult, NewtonSettings, check_settings, newton
 
-__all__ = ["StepResult", "RampResult", "ramp"]
+__all__ = ["RampSettings", "StepResult", "RampResult", "ramp"]
+
+PREDICTORS = ("none", "secant")
+
+
+@dataclass(frozen=True)
+class RampSettings(NewtonSettings):
+    """How :func:`ramp` solves each load step: the Newton settings plus what the ramp does
+    around the Newton solves.
+
+    A :class:`~skfem_dielectric.solvers.newton.NewtonSettings` (the ramp hands it to every
+    Newton solve, which reads only its Newton fields) with the ramp's own retry, start and
+    stop rules, so that a driver takes one object for its whole nonlinear solve.  Change one
+    field with :func:`dataclasses.replace`, e.g. ``replace(KEPLINGER_SETTINGS,
+    stop_on_instability=True)``.
+
+    Attributes
+    ----------
+    atol, rtol, xtol, max_iter, line_search, max_backtracks, chord
+        Newton settings (:class:`~skfem_dielectric.solvers.newton.NewtonSettings`);
+        ``rtol`` is relative to ``problem.residual_scale(load)``, or to the first residual
+        of each sub-step where that is ``None``.
+    max_cutbacks
+        How many times a failing sub-step may be halved before the ramp stops, ``>= 0``.
+    predictor
+        Start of each Newton solve: ``"none"`` (the last converged state) or ``"secant"``
+        (extrapolated through the last two converged states when the load keeps its
+        direction and the extrapolation lowers the residual).  The secant start depends on
+        the state before the last one, so a resumed ramp repeats the uninterrupted one only
+        within the Newton tolerance.
+    stop_on_instability
+        Stop at the first converged sub-step that ``problem.stability(inertia)`` judges
+        unstable (needs a solver that reports the inertia, i.e. PARDISO; otherwise the
+        verdict is ``None`` and the ramp goes on, with one ``RuntimeWarning``).  A
+        load-controlled Newton cannot follow the path through such a point, so without
+        this option the ramp spends its cut-backs trying (see ``docs/fe.md``, breakdown).
+
+    Raises
+    ------
+    ValueError
+        A field out of its range, naming the field and the value.
+    """
+
+    max_cutbacks: int = 6
+    predictor: str = "none"
+    stop_on_instability: bool = False
+
+    def __post_init__(self) -> None:
+        super().__post_init__()
+        check_choice("predictor", self.predictor, PREDICTORS)
+        if not isinstance(self.stop_on_instability, (bool, np.bool_)):
+            raise ValueError(f"stop_on_instability must be True or False, "
+                             f"got {self.stop_on_instability!r}")
+        object.__setattr__(self, "max_cutbacks",
+                           check_nonnegative_int("max_cutbacks", self.max_cutbacks))
+        object.__setattr__(self, "stop_on_instability", bool(self.stop_on_instability))
 
 
 @dataclass
@@ -209,14 +263,184 @@ def _secant_guess(problem: Problem, x: np.ndarray, at: Any, back: tuple | None,
     return x
 
 
+@dataclass
+class _Approach:
+    """The sub-steps from the last converged load ``start`` towards one ``target``: the
+    fraction of the interval reached, the sub-step size, the counters that the target's
+    :class:`StepResult` keeps, and how it ended (``failed``: the last Newton failure;
+    ``unstable``: the load judged unstable under ``stop_on_instability``)."""
+
+    start: np.ndarray
+    target: np.ndarray
+    fraction: float = 0.0
+    step: float = 1.0
+    iterations: int = 0
+    substeps: int = 0
+    cutbacks: int = 0
+    factorisations: int = 0
+    inertia: tuple[int, int, int] | None = None
+    residual_norms: list[list[float]] = field(default_factory=list)
+    assembly_seconds: float = 0.0
+    solve_seconds: float = 0.0
+    failed: str = ""
+    unstable: Any = None
+
+    def load_at(self, fraction: float) -> Any:
+        """The load at ``fraction`` of the interval (the target itself at 1)."""
+        a, b = self.start, self.target
+        return _as_load(b if fraction >= 1.0 else a + fraction * (b - a))
+
+
+class _Ramp:
+    """The state of a ramp between two Newton solves.
+
+    The converged state ``x`` at load ``load`` and the one before it (``back``, for the
+    secant predictor), whether the linear solver holds the factors of the tangent at ``x``
+    (``reuse``: a ``state_analysis`` factorised it), the :class:`RampResult` that collects
+    steps and totals, and the :class:`_Approach` to the current target.  Its methods are
+    the parts of :func:`ramp`: approach a target by sub-steps, solve one sub-step, keep a
+    converged state as a step.
+    """
+
+    def __init__(self, problem: Problem, solver, settings: RampSettings, step_limit,
+                 admissible, state_analysis, on_step, x: np.ndarray, load: Any) -> None:
+        self.problem, self.solver, self.settings = problem, solver, settings
+        self.step_limit, self.admissible = step_limit, admissible
+        self.state_analysis, self.on_step = state_analysis, on_step
+        # a solver that reads only the upper triangle gets it assembled directly
+        self.tangent = (problem.assemble_upper if problem.symmetric
+                        and getattr(solver, "reads_upper", False) else problem.assemble)
+        self.x, self.load = x, load
+        self.back = None     # the converged state before x and its load (secant predictor)
+        self.reuse = False   # the solver holds the factors of the converged state's tangent
+        self.no_verdict_warned = False
+        self.out = RampResult(steps=[], converged=True)
+        self.approach: _Approach | None = None
+
+    def approach_target(self, target: Any) -> _Approach:
+        """Sub-step from ``load`` towards ``target``: a sub-step whose Newton solve fails
+        is halved (at most ``max_cutbacks`` times), after a success the sub-step doubles
+        (never beyond the target).  Every target starts from the whole interval."""
+        ap = self.approach = _Approach(np.asarray(self.load, dtype=float),
+                                       np.asarray(target, dtype=float))
+        while ap.fraction < 1.0:
+            f_new = min(1.0, ap.fraction + ap.step)
+            load = ap.load_at(f_new)
+            scale = self.problem.residual_scale(load)
+            at = ap.load_at(ap.fraction) if ap.fraction > 0 else self.load
+            x_start = (_secant_guess(self.problem, self.x, at, self.back, load)
+                       if self.settings.predictor == "secant" else self.x)
+            nr = self.solve(load, x_start, scale)
+            if nr.converged:
+                self.back = (self.x, at)
+                self.x = nr.x
+                ap.inertia = nr.inertia
+                ap.fraction = f_new
+                ap.substeps += 1
+                ap.residual_norms.append(nr.residual_norms)
+                ap.step = min(2.0 * ap.step, 1.0)
+                if self.settings.stop_on_instability and self.unstable(load):
+                    ap.unstable = load
+                    break
+            else:
+                ap.cutbacks += 1
+                if ap.cutbacks > self.settings.max_cutbacks:
+                    ap.failed = nr.reason
+                    self.out.failed_at = load
+                    break
+                ap.step *= 0.5
+        return ap
+
+    def solve(self, load: Any, x_start: np.ndarray, scale: float | None) -> NewtonResult:
+        """One Newton solve at ``load`` from ``x_start``, its counts added to the approach
+        and to the ramp's totals."""
+        problem, step_limit, admissible = self.problem, self.step_limit, self.admissible
+        nr = newton(lambda xx: self.tangent(xx, load), x_start,
+                    residual=lambda xx: problem.residual(xx, load),
+                    linear_solver=self.solver, settings=self.settings, scale=scale,
+                    step_limit=None if step_limit is None else
+                    (lambda xx, dd: step_limit(xx, dd, load)),
+                    admissible=None if admissible is None else
+                    (lambda xx: admissible(xx, load)),
+                    reuse_factors=self.reuse)
+        self.reuse = False
+        ap, out = self.approach, self.out
+        ap.iterations += nr.iterations
+        ap.factorisations += nr.factorisations
+        out.factorisations += nr.factorisations
+        out.chord_steps += nr.chord_steps
+        out.residual_times.extend(nr.residual_seconds)
+        out.chord_times.extend(nr.chord_seconds)
+        ap.assembly_seconds += sum(nr.assembly_seconds)
+        ap.solve_seconds += sum(nr.solve_seconds)
+        out.iterations_total += nr.iterations
+        out.assembly_calls += len(nr.assembly_seconds)
+        out.assembly_seconds += sum(nr.assembly_seconds)
+        out.solve_seconds += sum(nr.solve_seconds)
+        out.assembly_times.extend(nr.assembly_seconds)
+        out.solve_times.extend(nr.solve_seconds)
+        return nr
+
+    def unstable(self, load: Any) -> bool:
+        """Whether the converged state at ``load`` is judged unstable by the inertia of
+        its last tangent (warns once when the solver gives no verdict)."""
+        verdict = self.problem.stability(self.approach.inertia)
+        if verdict is None and not self.no_verdict_warned:
+            self.no_verdict_warned = True
+            warnings.warn("stop_on_instability has no effect: the linear solver "
+                          "reports no inertia, so there is no stability verdict "
+                          "(use linear_solver='pardiso')", RuntimeWarning, stacklevel=4)
+        return verdict is False
+
+    def analyse(self, load: Any) -> tuple[dict, tuple[int, int, int] | None]:
+        """``state_analysis`` of the converged ``x``: its tangent factorised by the ramp's
+        solver (counted with the step); returns ``(quantities, inertia)``."""
+        ap, solver = self.approach, self.solver
+        if callable(getattr(solver, "discard", None)):
+            solver.discard()        # the old factors: not held beside the new tangent
+        t = time.perf_counter()
+        K, _ = self.problem.assemble(self.x, load)
+        ap.assembly_seconds += time.perf_counter() - t
+        t = time.perf_counter()
+        try:
+            solver.solve(K, np.zeros(K.shape[0]))
+        except Exception as exc:  # a singular tangent: an exactly critical state
+            self.reuse = False
+            return {"state_analysis_error": f"factorisation failed: {exc}"}, None
+        ap.solve_seconds += time.perf_counter() - t
+        ap.factorisations += 1
+        self.out.factorisations += 1
+        self.reuse = True
+        return (dict(self.state_analysis(self.problem, self.x, load, K, solver)),
+                solver.factor_inertia())
+
+    def record(self, load: Any, target_reached: bool) -> None:
+        """Keep the converged state ``x`` at ``load`` as a step (post-processed, with the
+        stability verdict of its last tangent) and report it to ``on_step``."""
+        ap = self.approach
+        extra = {}
+        if self.state_analysis is not None:
+            extra, ap.inertia = self.analyse(load)
+        step = StepResult(load=load, converged=True, iterations=ap.iterations,
+                          substeps=ap.substeps, cutbacks=ap.cutbacks,
+                          residual_norms=ap.residual_norms, x=self.x.copy(),
+                          assembly_seconds=ap.assembly_seconds,
+                          solve_seconds=ap.solve_seconds, inertia=ap.inertia,
+                          target_reached=target_reached, factorisations=ap.factorisations)
+        step.quantities = dict(self.problem.postprocess(self.x, load))
+        step.quantities.update(extra)
+        step.quantities.setdefault("stable", self.problem.stability(ap.inertia))
+        self.out.steps.append(step)
+        if self.on_step is not None:
+            self.on_step(step)
+
+
 def ramp(problem: Problem, loads: Sequence[Any], *, x0: np.ndarray | None = None,
          start: Any = None, on_step: Callable[[StepResult], Any] | None = None,
-         linear_solver: str | LinearSolver = "superlu", max_cutbacks: int = 6,
-         atol: float = 1e-10, rtol: float = 1e-10, max_iter: int = 25,
-         line_search: bool = True, stop_on_instability: bool = False,
+         linear_solver: str | LinearSolver = "superlu",
+         settings: RampSettings = RampSettings(),
          step_limit: Callable[[np.ndarray, np.ndarray, Any], float] | None = None,
          admissible: Callable[[np.ndarray, Any], str] | None = None,
-         chord: float = 0.0, predictor: str = "none",
          state_analysis: Callable[..., dict] | None = None) -> RampResult:
     """Run ``problem`` through the target ``loads`` with adaptive sub-stepping.
 
@@ -239,26 +463,11 @@ def ramp(problem: Problem, loads: Sequence[Any], *, x0: np.ndarray | None = None
         instance is used for the whole ramp.  A solver that ``reads_upper`` (the symmetric
         PARDISO) gets the tangents of the Newton iterations from
         :meth:`~skfem_dielectric.problem.Problem.assemble_upper`.
-    max_cutbacks
-        How many times a failing sub-step may be halved before the ramp stops.
-    atol, rtol, max_iter, line_search, chord
-        Newton settings (see :func:`newton`; ``chord > 0`` reuses a factorisation while
-        the residual contracts at least that much per step); ``rtol`` is relative to
-        ``problem.residual_scale(load)``, or to the first residual of each sub-step
-        where that is ``None``.
-    predictor
-        Start of each Newton solve: ``"none"`` (default; the last converged state) or
-        ``"secant"`` (extrapolated through the last two converged states when the load
-        keeps its direction and the extrapolation lowers the residual).  The secant
-        start depends on the state before the last one, so a resumed ramp repeats the
-        uninterrupted one only within the Newton tolerance.
-    stop_on_instability
-        Stop at the first converged sub-step that ``problem.stability(inertia)`` judges
-        unstable (needs a solver that reports the inertia, i.e. PARDISO; otherwise the
-        verdict is ``None`` and the ramp goes on, with one ``RuntimeWarning``).  That step is kept (``target_reached``
-        False if it is intermediate) and its load is ``unstable_at``.  A load-controlled
-        Newton cannot follow the path through such a point, so without this option the
-        ramp spends its cut-backs trying (see ``docs/fe.md``, breakdown).
+    settings
+        Newton tolerances and limits, cut-backs, predictor and ``stop_on_instability``
+        (:class:`RampSettings`).  A step judged unstable under ``stop_on_instability`` is
+        kept (``target_reached`` False if it is intermediate) and its load is
+        ``unstable_at``.
     step_limit, admissible
         Optional ``step_limit(x, dx, load) -> alpha_max`` and ``admissible(x, load) ->
         reason`` of the admissible states (see the module docstring and :func:`newton`);
@@ -283,167 +492,50 @@ def ramp(problem: Problem, loads: Sequence[Any], *, x0: np.ndarray | None = None
     ValueError
         Invalid arguments, each named: ``problem`` not a ``Problem``, non-finite loads,
         ``x0`` not a finite vector of the problem's length, a callable that is not,
-        ``max_cutbacks < 0``, ``max_iter < 1``, negative tolerances or
-        ``atol = rtol = 0``, ``chord`` outside ``[0, 1)``.
+        ``settings`` not a :class:`RampSettings`.
     """
     if not isinstance(problem, Problem):
         raise ValueError("problem must be a skfem_dielectric.Problem (see "
                          f"skfem_dielectric.problem), got {type(problem).__name__}")
     for name, f in (("on_step", on_step), ("step_limit", step_limit),
-                    ("admissible", admissible)):
+                    ("admissible", admissible), ("state_analysis", state_analysis)):
         check_callable(name, f)
-    check_callable("state_analysis", state_analysis)
-    atol, rtol = check_tolerances(atol, rtol)
-    max_iter = check_count("max_iter", max_iter)
-    max_cutbacks = check_nonnegative_int("max_cutbacks", max_cutbacks)
-    check_choice("predictor", predictor, ("none", "secant"))
-    chord = check_nonnegative("chord", chord)
-    if not chord < 1.0:
-        raise ValueError(f"chord must be in [0, 1), got {chord!r}")
+    check_settings("settings", settings, RampSettings)
     t_start = time.perf_counter()
     solver = get_linear_solver(linear_solver, symmetric=problem.symmetric)
-    # a solver that reads only the upper triangle gets it assembled directly
-    tangent = (problem.assemble_upper if problem.symmetric
-               and getattr(solver, "reads_upper", False) else problem.assemble)
     try:
         loads = list(loads)
     except TypeError:
         raise ValueError(f"loads must be a sequence of loads, got {loads!r}") from None
     targets = [_as_load(ld) for ld in loads]
-    x0_ = problem.initial_state()
-    x = np.array(x0_ if x0 is None else check_vector("x0", x0, len(x0_)), dtype=float,
-                 copy=True)
+    x_init = problem.initial_state()
+    x = np.array(x_init if x0 is None else check_vector("x0", x0, len(x_init)),
+                 dtype=float, copy=True)
     if start is None:
-        cur = 0.0 * np.asarray(targets[0], dtype=float) if targets else 0.0
-        cur = _as_load(cur)
-    else:
-        cur = _as_load(start)
-    no_verdict_warned = False
-    back = None          # the converged state before x and its load (secant predictor)
-    out = RampResult(steps=[], converged=True)
-    reuse = False        # the solver holds the factors of the converged state's tangent
-
-    def analyse(load):
-        """``state_analysis`` of the converged ``x``: its tangent factorised by the ramp's
-        solver (counted with the step); returns ``(quantities, inertia)``."""
-        nonlocal reuse, facts, t_asm, t_sol
-        if callable(getattr(solver, "discard", None)):
-            solver.discard()        # the old factors: not held beside the new tangent
-        t = time.perf_counter()
-        K, _ = problem.assemble(x, load)
-        t_asm += time.perf_counter() - t
-        t = time.perf_counter()
-        try:
-            solver.solve(K, np.zeros(K.shape[0]))
-        except Exception as exc:  # a singular tangent: an exactly critical state
-            reuse = False
-            return {"state_analysis_error": f"factorisation failed: {exc}"}, None
-        t_sol += time.perf_counter() - t
-        facts += 1
-        out.factorisations += 1
-        reuse = True
-        return dict(state_analysis(problem, x, load, K, solver)), solver.factor_inertia()
-
-    def record(load, target_reached):
-        """Keep the converged state ``x`` at ``load`` as a step (post-processed, with the
-        stability verdict of its last tangent) and report it to ``on_step``."""
-        nonlocal inertia
-        extra = {}
-        if state_analysis is not None:
-            extra, inertia = analyse(load)
-        step = StepResult(load=load, converged=True, iterations=iters, substeps=subs,
-                          cutbacks=cuts, residual_norms=hist, x=x.copy(),
-                          assembly_seconds=t_asm, solve_seconds=t_sol, inertia=inertia,
-                          target_reached=target_reached, factorisations=facts)
-        step.quantities = dict(problem.postprocess(x, load))
-        step.quantities.update(extra)
-        step.quantities.setdefault("stable", problem.stability(inertia))
-        out.steps.append(step)
-        if on_step is not None:
-            on_step(step)
-
+        start = 0.0 * np.asarray(targets[0], dtype=float) if targets else 0.0
+    run = _Ramp(problem, solver, settings, step_limit, admissible, state_analysis, on_step,
+                x, _as_load(start))
+    out = run.out
     for target in targets:
-        a, b = np.asarray(cur, dtype=float), np.asarray(target, dtype=float)
-        frac, dfrac = 0.0, 1.0
-        iters = subs = cuts = facts = 0
-        inertia = None
-        hist: list[list[float]] = []
-        t_asm = t_sol = 0.0
-        failed = ""
-        unstable = None
-        while frac < 1.0:
-            f_new = min(1.0, frac + dfrac)
-            load = _as_load(b if f_new >= 1.0 else a + f_new * (b - a))
-            scale = problem.residual_scale(load)
-            at = _as_load(a + frac * (b - a)) if frac > 0 else cur
-            x_start = _secant_guess(problem, x, at, back, load) if predictor == "secant" else x
-            nr = newton(lambda xx: tangent(xx, load), x_start,
-                        residual=lambda xx: problem.residual(xx, load),
-                        linear_solver=solver, atol=atol, rtol=rtol, scale=scale,
-                        max_iter=max_iter, line_search=line_search,
-                        step_limit=None if step_limit is None else
-                        (lambda xx, dd: step_limit(xx, dd, load)),
-                        admissible=None if admissible is None else
-                        (lambda xx: admissible(xx, load)), chord=chord,
-                        reuse_factors=reuse)
-            reuse = False
-            iters += nr.iterations
-            facts += nr.factorisations
-            out.factorisations += nr.factorisations
-            out.chord_steps += nr.chord_steps
-            out.residual_times.extend(nr.residual_seconds)
-            out.chord_times.extend(nr.chord_seconds)
-            t_asm += sum(nr.assembly_seconds)
-            t_sol += sum(nr.solve_seconds)
-            out.iterations_total += nr.iterations
-            out.assembly_calls += len(nr.assembly_seconds)
-            out.assembly_seconds += sum(nr.assembly_seconds)
-            out.solve_seconds += sum(nr.solve_seconds)
-            out.assembly_times.extend(nr.assembly_seconds)
-            out.solve_times.extend(nr.solve_seconds)
-            if nr.converged:
-                back = (x, at)
-                x = nr.x
-                inertia = nr.inertia
-                frac = f_new
-                subs += 1
-                hist.append(nr.residual_norms)
-                dfrac = min(2.0 * dfrac, 1.0)
-                if stop_on_instability:
-                    verdict = problem.stability(inertia)
-                    if verdict is False:
-                        unstable = load
-                        break
-                    if verdict is None and not no_verdict_warned:
-                        no_verdict_warned = True
-                        warnings.warn("stop_on_instability has no effect: the linear solver "
-                                      "reports no inertia, so there is no stability verdict "
-                                      "(use linear_solver='pardiso')", RuntimeWarning,
-                                      stacklevel=2)
-            else:
-                cuts += 1
-                if cuts > max_cutbacks:
-                    failed = nr.reason
-                    out.failed_at = load
-                    break
-                dfrac *= 0.5
-        if unstable is not None:
-            record(unstable, frac >= 1.0)
+        ap = run.approach_target(target)
+        if ap.unstable is not None:
+            run.record(ap.unstable, ap.fraction >= 1.0)
             out.converged = False
-            out.unstable_at = unstable
-            out.reason = (f"stability lost at load {unstable!r} (inertia of the tangent: "
-                          f"{inertia}); stopped on request (stop_on_instability)")
+            out.unstable_at = ap.unstable
+            out.reason = (f"stability lost at load {ap.unstable!r} (inertia of the tangent: "
+                          f"{ap.inertia}); stopped on request (stop_on_instability)")
             warnings.warn(out.reason, RuntimeWarning, stacklevel=2)
             break
-        if failed:
-            if frac > 0.0:   # keep the furthest converged sub-step towards the target
-                record(_as_load(b if frac >= 1.0 else a + frac * (b - a)), False)
+        if ap.failed:
+            if ap.fraction > 0.0:   # keep the furthest converged sub-step towards the target
+                run.record(ap.load_at(ap.fraction), False)
             out.converged = False
-            out.reason = (f"target load {target!r} not reached after {max_cutbacks} "
-                          f"cut-backs; last Newton failure: {failed}")
+            out.reason = (f"target load {target!r} not reached after "
+                          f"{settings.max_cutbacks} cut-backs; last Newton failure: "
+                          f"{ap.failed}")
             warnings.warn(out.reason, RuntimeWarning, stacklevel=2)
             break
-        cur = target
-        record(target, True)
+        run.load = target
+        run.record(target, True)
     out.wall_seconds = time.perf_counter() - t_start
     return out

@@ -27,7 +27,7 @@ eigenvalue crossing (:meth:`PostBuckledBranch.pitchfork`); ``b > 0`` is a superc
 from __future__ import annotations
 
 import warnings
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Any, Sequence
 
 import numpy as np
@@ -37,9 +37,9 @@ from ..gallery.drivers import newton_guards, run_ramp
 from ..models.plate.modes import ModeLabel, lowest_physical
 from ..models.plate.problem import PlateProblem
 from ..models.plate.symmetry_classes import class_stability, symmetry_classes
-from ..solvers.ramp import RampResult, ramp
+from ..solvers.ramp import RampResult, RampSettings, ramp
 
-__all__ = ["midplane_nodes", "midplane_deflection", "critical_mode", "BranchSwitch",
+__all__ = ["BRANCH_SETTINGS", "midplane_nodes", "midplane_deflection", "critical_mode", "BranchSwitch",
            "switch_branch", "follow_branch", "PostBuckledBranch", "post_buckled_branch"]
 
 
@@ -155,8 +155,15 @@ class BranchSwitch:
         return self.x is not None
 
 
-def _newton_options(problem, ramp_options: dict) -> dict:
-    opts = dict(linear_solver="auto", max_cutbacks=8, max_iter=40, rtol=1e-9, atol=0.0)
+#: How :func:`switch_branch` and :func:`follow_branch` solve their load steps: ``rtol``
+#: relative to the external load alone, a large Newton budget (40 iterations, 8 cut-backs)
+#: for the first steps off the fundamental branch; :func:`follow_branch` adds the secant
+#: predictor.
+BRANCH_SETTINGS = RampSettings(atol=0.0, rtol=1e-9, max_iter=40, max_cutbacks=8)
+
+
+def _newton_options(problem, ramp_options: dict, settings: RampSettings) -> dict:
+    opts = dict(linear_solver="auto", settings=settings)
     opts.update(ramp_options)
     for key, value in newton_guards(problem).items():
         opts.setdefault(key, value)
@@ -185,8 +192,9 @@ def switch_branch(problem: PlateProblem, x: np.ndarray, load: Any, mode: np.ndar
         Deflection above which a converged state counts as buckled (default ``1e-3 H``;
         the fundamental state's is round-off).
     **ramp_options
-        Newton settings (:func:`~skfem_dielectric.solvers.ramp.ramp`; default ``rtol=1e-9``,
-        ``max_iter=40``, the plate's ``det F > 0`` guards).
+        Options of :func:`~skfem_dielectric.solvers.ramp.ramp`: ``linear_solver`` (default
+        ``"auto"``), ``settings`` (default :data:`BRANCH_SETTINGS`), the plate's ``det F >
+        0`` guards by default.
 
     Returns
     -------
@@ -214,7 +222,7 @@ def switch_branch(problem: PlateProblem, x: np.ndarray, load: Any, mode: np.ndar
         raise ValueError("amplitudes must not be empty")
     wmin = 1e-3 * H if min_deflection is None else check_positive("min_deflection",
                                                                   min_deflection)
-    opts = _newton_options(problem, ramp_options)
+    opts = _newton_options(problem, ramp_options, BRANCH_SETTINGS)
     out = BranchSwitch(None, load, float("nan"), float("nan"))
     for a in amplitudes:
         with warnings.catch_warnings():
@@ -255,7 +263,8 @@ def follow_branch(problem: PlateProblem, x: np.ndarray, load: Any, targets: Sequ
     method
         Inertia method of that count.
     **ramp_options
-        Newton settings (defaults as :func:`switch_branch`; the secant predictor).
+        Options of the ramp (defaults as :func:`switch_branch`, with the secant
+        predictor: ``replace(BRANCH_SETTINGS, predictor="secant")``).
 
     Returns
     -------
@@ -269,8 +278,8 @@ def follow_branch(problem: PlateProblem, x: np.ndarray, load: Any, targets: Sequ
     targets = [np.asarray(t, dtype=float) for t in targets]
     if not targets:
         raise ValueError("targets must not be empty")
-    opts = _newton_options(problem, ramp_options)
-    opts.setdefault("predictor", "secant")
+    opts = _newton_options(problem, ramp_options,
+                           replace(BRANCH_SETTINGS, predictor="secant"))
     if stability:
         symmetry_classes(problem)        # build the classes once, outside the steps
 
@@ -370,7 +379,8 @@ def post_buckled_branch(problem: PlateProblem, x: np.ndarray, load: Any,
     stability, method
         As :func:`follow_branch`.
     **ramp_options
-        Newton settings of every solve.
+        Options of every ramp (``linear_solver``, ``settings``, ...; defaults as
+        :func:`switch_branch` and :func:`follow_branch`).
 
     Returns
     -------

@@ -29,7 +29,7 @@ from ..checks import check_choice, check_positive
 from ..materials import NeoHookeanDielectric
 from ..models.cross_section import CrossSection, section_mesh
 from ..solvers.critical import illinois
-from ..solvers.ramp import ramp
+from ..solvers.ramp import RampSettings, ramp
 from ..stability.analysis import lowest_modes, metric_matrix, tangent_stability
 
 __all__ = ["wrinkling_section", "section_mode_eigenvalue", "section_critical_load",
@@ -42,6 +42,8 @@ CONTROLS = ("charge", "voltage")
 #: 10 970 unknowns: 11.9 M entries; the cost against PARDISO: docs/performance.md); the
 #: critical loads are located to 1e-6, far above the last bits that PARDISO's threads move.
 SOLVER = "auto"
+#: Newton settings of the sections' solves: the states converge to round-off.
+SETTINGS = RampSettings(atol=1e-10, rtol=1e-11)
 
 
 def wrinkling_section(lam: float, kh: float, mode: str = "symmetric",
@@ -228,15 +230,15 @@ def section_critical_load(pb: CrossSection, mode: str, lo: float, hi: float, *,
         if not base:
             v0 = lo / 64
             res = ramp(pb, [np.array([0.0, 0.0, v0])], x0=pb.initial_state(),
-                       start=np.zeros(3), atol=1e-10, rtol=1e-11, linear_solver=SOLVER)
+                       start=np.zeros(3), settings=SETTINGS, linear_solver=SOLVER)
             if not res.converged:
                 raise ValueError(f"no equilibrium at load {v0}: {res.reason}")
             base.update(x=res.x, v=v0)
         x0 = base["x"].copy()
         x0[phi] *= v / base["v"]
         tgt = np.array([0.0, 0.0, v])
-        res = ramp(pb, [tgt], x0=x0, start=np.array([0.0, 0.0, base["v"]]), atol=1e-10,
-                   rtol=1e-11, linear_solver=SOLVER)
+        res = ramp(pb, [tgt], x0=x0, start=np.array([0.0, 0.0, base["v"]]), settings=SETTINGS,
+                   linear_solver=SOLVER)
         if not res.converged:
             raise ValueError(f"no equilibrium at load {v}: {res.reason}")
         state.update(x=res.x, load=tgt)
@@ -290,7 +292,7 @@ def section_critical_stretch(kh: float, mode: str, lo: float, hi: float, *, n1: 
         pb = wrinkling_section(lam, kh, mode, "charge", material=material, n1=n1, n2=n2,
                                grad_div=grad_div)
         res = ramp(pb, [np.zeros(3)], x0=pb.initial_state(), start=np.zeros(3),
-                   atol=1e-10, rtol=1e-11, linear_solver=SOLVER)
+                   settings=SETTINGS, linear_solver=SOLVER)
         if not res.converged:
             raise ValueError(f"no equilibrium at lam = {lam}: {res.reason}")
         eig = _tracked_eigenvalue(pb, res.x, np.zeros(3), mode)[0]
