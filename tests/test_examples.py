@@ -243,7 +243,7 @@ def test_add_a_model_tends_to_the_incompressible_curve():
                      rtol=1e-15)
     stiff = ns["PlaneStrainDielectric"](kappa=1000.0, n1=1, n2=1)
     res = ns["ramp"](stiff, [np.array([s, 0.0]), np.array([s, 1.0]), np.array([s, D0])],
-                     atol=1e-12, rtol=1e-12)
+                     settings=ns["RampSettings"](atol=1e-12, rtol=1e-12))
     assert res.converged
     err_100 = ns["lam1_final"] - lam_inc
     err_1000 = float(res.column("lam1")[-1]) - lam_inc

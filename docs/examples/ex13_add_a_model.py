@@ -35,8 +35,8 @@ import numpy as np
 import skfem as fe
 from skfem.helpers import ddot, det, dot, grad, inv, mul, trace, transpose
 
-from skfem_dielectric import (DofReduction, Layout, Problem, newton, ramp,
-                              stability_analysis)
+from skfem_dielectric import (DofReduction, Layout, NewtonSettings, Problem, RampSettings,
+                              newton, ramp, stability_analysis)
 from skfem_dielectric.fem.mesh2d import quarter_quad_mesh
 
 
@@ -167,7 +167,7 @@ model = PlaneStrainDielectric(kappa=100.0)
 s = 0.5
 loads = [np.array([s * k / 2, 0.0]) for k in (1, 2)]               # pre-stretch
 loads += [np.array([s, D0]) for D0 in np.linspace(0.5, 2.0, 4)]     # then the charge
-result = ramp(model, loads, atol=1e-12, rtol=1e-12)
+result = ramp(model, loads, settings=RampSettings(atol=1e-12, rtol=1e-12))
 lam1_final = float(result.column("lam1")[-1])                       # (s, D0) = (0.5, 2)
 lam2_final = float(result.column("lam2")[-1])
 verdict = stability_analysis(model, result.x, loads[-1], k=2)
@@ -175,7 +175,8 @@ verdict = stability_analysis(model, result.x, loads[-1], k=2)
 # one more load by Newton alone, from the last converged state
 load_next = np.array([s, 2.25])
 sol = newton(lambda x: model.assemble(x, load_next), result.x,
-             residual=lambda x: model.residual(x, load_next), atol=1e-12, rtol=1e-12,
+             residual=lambda x: model.residual(x, load_next),
+             settings=NewtonSettings(atol=1e-12, rtol=1e-12),
              scale=model.residual_scale(load_next))
 lam1_next = model.postprocess(sol.x, load_next)["lam1"]
 
