@@ -1,0 +1,169 @@
+"""The FE problem of a :class:`~validation.specs.RunSpec` and the settings of its ramp.
+
+* :func:`build_problem` -- the FE problem of a spec (3D plate, 3D Maxwell-traction
+  plate or 2D membrane);
+* :func:`ramp_targets` and :func:`ramp_settings` -- the ramp's loads ``(s, D0)`` and
+  its Newton tolerances, cut-back limit and linear solver;
+* :func:`keplinger_s` -- the Keplinger plate's dead load.
+
+Geometry in SI-like units of millimetres (the Keplinger plate 100 x 50 x 1 mm)
+with ``mu = eps = 1``: every reported quantity is dimensionless.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+import skfem_dielectric as fe
+
+from ..specs import GENT_JM, KEPLINGER, RunSpec
+
+__all__ = ["keplinger_s", "is_membrane", "build_problem", "ramp_targets", "ramp_settings",
+           "pardiso_installed"]
+
+L1, L3, H = 100.0, 50.0, 1.0     # mm
+MEMBRANE_VARIANTS = ("membrane", "membrane-maxwell")
+#: Loading of the membrane per geometry: the Keplinger plate is clamped.
+MEMBRANE_LOADING = {"equibiaxial": "equibiaxial", "uniaxial": "clamped",
+                    "uniaxial-free": "uniaxial"}
+#: 3D pre-load sub-steps, as the drivers equibiaxial_plate (4) and keplinger_plate (3).
+PRELOAD_STEPS = {"equibiaxial": 4, "uniaxial": 3}
+#: 3D Newton tolerance relative to the external load: as equibiaxial_plate (1e-11) and
+#: keplinger_plate (1e-9); the membrane keeps the tolerance of the plain ramp.
+RTOL = {"equibiaxial": 1e-11, "uniaxial": 1e-9}
+MEMBRANE_TOL = {"atol": 1e-10, "rtol": 1e-10}
+#: Cut-backs per target and Newton iterations per attempt, every variant.
+MAX_CUTBACKS, MAX_ITER = 6, 25
+#: chord factor of the ramps' Newton solves (:func:`skfem_dielectric.solvers.newton.newton`): a
+#: factorisation is reused while the residual contracts at least tenfold per step.  No
+#: secant predictor: it depends on the state before the last one, so a resumed ramp would
+#: not repeat the uninterrupted one bit for bit (and past the breakdown it can jump to
+#: another branch of the clamped plate).  On the full 40 x 1 x 20 plate, alpha = 1, the
+#: first six targets: fully coupled 23.9 -> 15.3 s, Maxwell traction 31.3 -> 18.6 s
+#: (PARDISO); the FE dots move within the Newton tolerance.
+CHORD = 0.1
+#: grad-div stabilisation (units of mu) of the uni-axial runs analysed for buckling
+#: (``RunSpec.buckling``), as in ``skfem-dielectric buckling``
+BUCKLING_GRAD_DIV = 10.0
+
+
+def keplinger_s(alpha: float) -> float:
+    """Dimensionless dead load ``s = alpha m g/(mu A)`` of the Keplinger plate.
+
+    :func:`skfem_dielectric.keplinger_s` with ``g = KEPLINGER["g"] = 9.81 m/s^2``
+    (paper caption of Fig. uni-axial-ideal).
+
+    Parameters
+    ----------
+    alpha : float
+        Fraction of the 150 g weight, ``alpha >= 0``.
+
+    Returns
+    -------
+    float
+
+    Examples
+    --------
+    >>> round(keplinger_s(1.0), 5)
+    2.99296
+    """
+    return fe.keplinger_s(alpha, g=KEPLINGER["g"])
+
+
+def is_membrane(spec: RunSpec) -> bool:
+    return spec.variant in MEMBRANE_VARIANTS
+
+
+# --------------------------------------------------------------------------- the FE model
+def build_problem(spec: RunSpec):
+    """The FE problem of ``spec``, a ramp problem of :mod:`skfem_dielectric`.
+
+    The 3D plates are eighth models: of a 4 x 1 x 4 plate with one element per
+    direction by default for the homogeneous equi-biaxial state (as
+    :func:`skfem_dielectric.equibiaxial_plate`), of the 100 x 1 x 50 mm Keplinger plate
+    (as :func:`skfem_dielectric.keplinger_plate`). The membrane is the quarter of the
+    100 x 50 mm plate of thickness 1 mm.
+
+    Parameters
+    ----------
+    spec : RunSpec
+
+    Returns
+    -------
+    PlateProblem or MembranePlate
+        For ``variant="maxwell"`` the plate with ``coupling="maxwell"`` and the field of
+        the potential solved on the deformed body.
+    """
+    m = spec.mesh_dict
+    if is_membrane(spec):
+        coupling = "maxwell" if spec.variant == "membrane-maxwell" else "full"
+        return fe.MembranePlate(fe.make_material(spec.model, Jm=GENT_JM), L1=L1, L3=L3, H=H,
+                                n1=m.get("n1", 1), n3=m.get("n3", 1),
+                                loading=MEMBRANE_LOADING[spec.geometry], coupling=coupling)
+    el = (m.get("n1", 1), m.get("n2", 1), m.get("n3", 1))
+    # the variant that discretises the fully coupled equations (docs/fe_variants.md)
+    coupling = {"coupling": "maxwell", "field": "electrostatic"} \
+        if spec.variant == "maxwell" else {}
+    if spec.geometry == "equibiaxial":
+        return fe.equibiaxial_problem(model=spec.model, Jm=GENT_JM, elements=el, **coupling)
+    if spec.geometry == "uniaxial":
+        # the run analysed for buckling is the grad-div form of the buckling study
+        # (docs/validation.md): its tangent is the Hessian of its own state, and Newton
+        # passes the clamp/free-edge corner
+        return fe.keplinger_problem(model=spec.model, Jm=GENT_JM, size=(L1, H, L3),
+                                    elements=el, grad_div=BUCKLING_GRAD_DIV if spec.buckling
+                                    else 0.0, **coupling)
+    raise ValueError(f"the 3D plate has no geometry {spec.geometry!r}")
+
+
+def ramp_targets(spec: RunSpec) -> list:
+    """The ramp's loads ``(s, D0)`` for ``spec``, the pre-load first.
+
+    3D: the pre-load in equal steps ``(s k/n, 0)``, ``n`` from :data:`PRELOAD_STEPS`
+    (a single ``(0, 0)`` target when ``s = 0``), then ``(s, D0)`` for the charge
+    targets. Membrane: straight to ``(s, D0)`` for every target, as
+    :func:`skfem_dielectric.membrane_ramp`.
+
+    Parameters
+    ----------
+    spec : RunSpec
+
+    Returns
+    -------
+    list of ndarray
+    """
+    if is_membrane(spec):
+        return [np.array([spec.s, d]) for d in spec.D0]
+    n = PRELOAD_STEPS[spec.geometry] if spec.s > 0 else 1
+    return fe.preload_then_charge(spec.s, spec.D0, n)
+
+
+def ramp_settings(spec: RunSpec, linear_solver="superlu") -> dict:
+    """Keyword arguments of :func:`skfem_dielectric.solvers.ramp.ramp` for ``spec``.
+
+    Parameters
+    ----------
+    spec : RunSpec
+    linear_solver : str
+        Requested solver. The Maxwell-traction variants have a non-symmetric tangent
+        (follower load), which the symmetric-indefinite PARDISO set-up (upper triangle
+        only) cannot factorise: they get :func:`skfem_dielectric.nonsymmetric_solver`
+        of it (SuperLU, or PARDISO as a general LU when PARDISO is asked for).
+
+    Returns
+    -------
+    dict
+        ``atol``, ``rtol`` (:data:`RTOL` with ``atol = 0`` in 3D,
+        :data:`MEMBRANE_TOL` for the membrane), ``max_cutbacks``, ``max_iter``,
+        ``chord`` (:data:`CHORD`) and ``linear_solver``.
+    """
+    if "maxwell" in spec.variant:
+        linear_solver = fe.nonsymmetric_solver(linear_solver)
+    tol = MEMBRANE_TOL if is_membrane(spec) else {"atol": 0.0, "rtol": RTOL[spec.geometry]}
+    return {**tol, "max_cutbacks": MAX_CUTBACKS, "max_iter": MAX_ITER, "chord": CHORD,
+            "linear_solver": linear_solver}
+
+
+def pardiso_installed() -> bool:
+    """Whether PARDISO (pypardiso, the ``fast`` extra) can be used."""
+    return fe.pardiso_available()
