@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 from validation.cli import build_parser, main
-from validation.sweep import read_table
+from validation.table import read_table
 
 CONTRACT = ["case", "model", "variant", "s", "D0", "lam1_fe", "lam1_analytic", "lam3_fe",
             "min_P33", "converged", "stable"]

@@ -15,7 +15,7 @@ import re
 import pytest
 
 from validation import cases as vc
-from validation import sweep
+from validation.store import case_files
 from validation.cli import EXIT_CODES, build_parser, main
 from validation.fe import pardiso_installed
 from validation.store import FolderLock
@@ -82,11 +82,11 @@ def test_unwritable_folder(tmp_path, capsys, tiny, monkeypatch):
     if os.geteuid() != 0:
         out.chmod(0o500)
     else:                         # root writes anywhere: the OS's answer, simulated
-        real = sweep.FolderLock.__enter__
+        real = FolderLock.__enter__
 
         def denied(self):
             raise PermissionError(errno.EACCES, os.strerror(errno.EACCES), str(self.path))
-        monkeypatch.setattr(sweep.FolderLock, "__enter__", denied)
+        monkeypatch.setattr(FolderLock, "__enter__", denied)
     try:
         code, _, err = run_cli(tiny + ["--out", str(out)], capsys)
     finally:
@@ -94,14 +94,14 @@ def test_unwritable_folder(tmp_path, capsys, tiny, monkeypatch):
     assert_one_line_error(code, err, 3)
     assert str(out) in err and "Permission denied" in err
     if os.geteuid() == 0:
-        monkeypatch.setattr(sweep.FolderLock, "__enter__", real)
+        monkeypatch.setattr(FolderLock, "__enter__", real)
 
 
 def test_full_disk(tmp_path, capsys, tiny, monkeypatch):
     def full(path, header, rows):
         raise OSError(errno.ENOSPC, os.strerror(errno.ENOSPC), str(path))
 
-    monkeypatch.setattr(sweep, "_append", full)
+    monkeypatch.setattr(case_files, "append_csv_rows", full)
     code, _, err = run_cli(tiny + ["--out", str(tmp_path)], capsys)
     assert_one_line_error(code, err, 3)
     assert str(tmp_path / "nh-d-e.csv") in err and "No space left on device" in err

@@ -18,7 +18,8 @@ import pytest
 from validation import cases as vc
 from validation.fe import keplinger_s
 from validation.records import RunOutcome, StepRecord
-from validation.sweep import BREAKDOWN_TOL, csv_columns, read_table, run_case, run_cases, validate
+from validation.sweep import run_case, run_cases, validate
+from validation.table import BREAKDOWN_TOL, csv_columns, read_table
 
 CONTRACT = ["case", "model", "variant", "s", "D0", "lam1_fe", "lam1_analytic", "lam3_fe",
             "min_P33", "converged", "stable"]
@@ -326,7 +327,7 @@ def test_progress_bar_quiet_unless_terminal():
 def test_read_table_verdict_columns_are_bool_even_when_empty(tmp_path):
     # Without PARDISO no stability verdict is computed: an all-empty ``stable`` column must
     # still read as None (not NaN), so code comparing with None works on every machine.
-    from validation.sweep import read_table
+    from validation.table import read_table
 
     p = tmp_path / "t.csv"
     p.write_text("D0,stable,converged\n0.5,,True\n1.0,,False\n")

@@ -11,7 +11,8 @@ from validation import cases as vc
 from validation.fe import (build_problem, keplinger_s, pardiso_installed, run_fe,
                            stability_columns, whole_plate_verdict)
 from validation.records import StepRecord
-from validation.sweep import read_table, run_case
+from validation.sweep import run_case
+from validation.table import read_table
 
 
 class Interrupted(Exception):

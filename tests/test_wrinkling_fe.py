@@ -6,7 +6,7 @@ import math
 
 import analytic as an
 from validation.cli import main
-from validation.sweep import read_table
+from validation.table import read_table
 import validation.wrinkling as wr
 from validation.wrinkling import ELASTIC_COLUMNS, WRINKLING_COLUMNS
 

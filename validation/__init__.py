@@ -17,8 +17,9 @@ from .cases import CASES, get_case  # noqa: E402
 from .fe import keplinger_s
 from .records import RunOutcome, StepRecord
 from .specs import ALPHAS, KEPLINGER, Case, RunSpec
-from .sweep import (BREAKDOWN_TOL, CaseResult, make_figure, read_table, run_case, run_cases,
-                    validate)
+from .results import CaseResult
+from .sweep import make_figure, run_case, run_cases, validate
+from .table import BREAKDOWN_TOL, read_table
 
 __all__ = [
     "ALPHAS", "CASES", "KEPLINGER", "Case", "RunSpec", "get_case", "keplinger_s",

@@ -29,7 +29,7 @@ from skfem_dielectric.models.plate.modes import top_deflection
 from skfem_dielectric.studies.buckling import buckling_load
 
 from .figures import save_figure
-from .sweep import BREAKDOWN_TOL
+from .table import BREAKDOWN_TOL
 
 __all__ = ["COLUMNS", "SCAN_COLUMNS", "PLAIN_COLUMNS", "P33_SETS", "p33_measures", "onset",
            "run_one", "run_plain", "run_buckling", "read_rows", "append_rows", "richardson", "buckling_figure"]

@@ -137,7 +137,7 @@ def write_report(results, folder, *, quick: bool) -> Path:
     Parameters
     ----------
     results : sequence of CaseResult
-        Every case to report (:func:`validation.sweep.folder_results`).
+        Every case to report (:func:`validation.results.folder_results`).
     folder : path-like
         Output folder.
     quick : bool
