@@ -12,7 +12,7 @@ from skfem_dielectric.solvers.critical import critical_load
 from skfem_dielectric.studies.buckling import class_spectra
 from skfem_dielectric.studies.postbuckling import (critical_mode, midplane_deflection,
                                            post_buckled_branch, switch_branch)
-from validation.buckling import read_rows
+from validation.store import read_rows
 from validation.cli import main
 
 NEWTON = dict(rtol=1e-9, atol=0.0)

@@ -11,7 +11,7 @@ from pathlib import Path
 import numpy as np
 
 from .cases import CASES
-from .extra_cases import EXTRA_CASES
+from .studies.extra_cases import EXTRA_CASES
 from .records import buckling_crossing
 from .specs import Case
 from .store import case_manifest

@@ -43,10 +43,10 @@ from .progress import Progress, notice
 from .records import StepRecord
 from .report import write_report, write_summary
 from .results import CaseResult, folder_results, summarise_case
-from .store import (CaseFiles, FolderLock, RowDigest, case_manifest, resume_plan,
-                    save_state, spec_sig, state_path, write_text_atomic)
+from .store import (CaseFiles, FolderLock, RowDigest, case_manifest, command_lock,
+                    resume_plan, save_state, spec_sig, state_path, write_text_atomic)
 from .table import FIELD_KEYS, case_row, format_cell, is_breakdown, read_table
-from .extra_cases import EXTRA_CASES
+from .studies.extra_cases import EXTRA_CASES
 
 __all__ = ["run_case", "run_cases", "validate", "make_figure", "extra_case_result"]
 
@@ -335,14 +335,12 @@ def validate(cases: Iterable[Case | str] | None, out, *, quick: bool = False,
 
 
 def extra_case_result(name: str, out, *, quick: bool = False) -> CaseResult:
-    """Run the case ``name`` of :data:`~validation.extra_cases.EXTRA_CASES` (not a charge
+    """Run the case ``name`` of :data:`~validation.studies.extra_cases.EXTRA_CASES` (not a charge
     ramp: the continuation through the snap-through, the FE wrinkling against Stroh) into
     ``out`` and summarise it with its own error measure.  The case is locked like a
     registered one (``out/.state/<name>.lock``): a second process writing it is refused."""
     case = EXTRA_CASES[name]
-    state_root = Path(out) / ".state"
-    state_root.mkdir(parents=True, exist_ok=True)
-    with FolderLock(state_root / f"{name}.lock", f"case {name!r} in {out}"):
+    with command_lock(out, name, f"case {name!r} in {out}"):
         paths, summ = case.run(out, quick=quick)
     return CaseResult(name, case.figure, str(paths[0]), summ["n_runs"], summ["n_points"],
                       summ["max_rel_error"], max_rel_error_by_run=summ["max_rel_error_by_run"],

@@ -20,7 +20,7 @@ away than that and would not count (10 x 1 x 5 eighth model of the 100 x 1 x 50 
 element, so that the element touching the corner always belongs to the corner zone.
 
 The verdict of a single mesh is a flag, not a proof: a negative eigenvalue is physics
-only if its onset converges under refinement (``validation.buckling`` compares meshes).
+only if its onset converges under refinement (``validation.studies.buckling`` compares meshes).
 """
 
 from __future__ import annotations

@@ -34,12 +34,12 @@ from matplotlib.lines import Line2D
 import analytic as an
 import skfem_dielectric as fe
 
-from .cases import analytic_model
-from .fe import keplinger_s
-from .figures import (LIMIT_NAME, MODEL_NAME, PAPER_FIGURE, add_caption, mesh_caption,
+from ..cases import analytic_model
+from ..fe import keplinger_s
+from ..figures import (LIMIT_NAME, MODEL_NAME, PAPER_FIGURE, add_caption, mesh_caption,
                       run_caption, save_figure, tag_panels)
-from .specs import ALPHAS
-from .store import write_csv_atomic
+from ..specs import ALPHAS
+from ..store import write_csv_atomic
 
 __all__ = ["VOLTAGE_CONTROL", "VOLTAGE_COLUMNS", "LIMIT_TOL", "voltage_runs", "voltage_rows",
            "voltage_figure", "voltage_caption", "run_voltage_control"]
