@@ -37,7 +37,7 @@ from typing import Callable, Iterable
 import numpy as np
 
 from .cases import CASES, Case, get_case
-from .fe import run_fe
+from .fe import run_fe, with_dead_load
 from .figures import case_figure, save_figure
 from .progress import Progress, notice
 from .records import StepRecord
@@ -100,7 +100,7 @@ def run_case(case: Case | str, out, *, quick: bool = False, force: bool = False,
     csv_path = out / f"{case.name}.csv"
     fields_path = out / f"{case.name}_fields.csv"
     state_dir = state_root / case.name
-    runs = case.runs(quick)
+    runs = tuple(with_dead_load(r) for r in case.runs(quick))
     manifest = case_manifest(case, runs)
     man_path = state_dir / "manifest.json"
     notes: list[str] = []

@@ -4,7 +4,7 @@
   plate or 2D membrane);
 * :func:`ramp_targets` and :func:`ramp_settings` -- the ramp's loads ``(s, D0)`` and
   its Newton tolerances, cut-back limit and linear solver;
-* :func:`keplinger_s` -- the Keplinger plate's dead load.
+* :func:`with_dead_load` -- the dead load of a Keplinger run given by its weight fraction.
 
 Geometry in SI-like units of millimetres (the Keplinger plate 100 x 50 x 1 mm)
 with ``mu = eps = 1``: every reported quantity is dimensionless.
@@ -12,13 +12,16 @@ with ``mu = eps = 1``: every reported quantity is dimensionless.
 
 from __future__ import annotations
 
+from dataclasses import replace
+
 import numpy as np
 
 import skfem_dielectric as fe
+from skfem_dielectric.gallery.loads import keplinger_s
 
 from ..specs import GENT_JM, KEPLINGER, RunSpec
 
-__all__ = ["keplinger_s", "is_membrane", "build_problem", "ramp_targets", "ramp_settings",
+__all__ = ["with_dead_load", "is_membrane", "build_problem", "ramp_targets", "ramp_settings",
            "pardiso_installed"]
 
 L1, L3, H = 100.0, 50.0, 1.0     # mm
@@ -47,27 +50,29 @@ CHORD = 0.1
 BUCKLING_GRAD_DIV = 10.0
 
 
-def keplinger_s(alpha: float) -> float:
-    """Dimensionless dead load ``s = alpha m g/(mu A)`` of the Keplinger plate.
-
-    :func:`skfem_dielectric.keplinger_s` with ``g = KEPLINGER["g"] = 9.81 m/s^2``
-    (paper caption of Fig. uni-axial-ideal).
+def with_dead_load(spec: RunSpec) -> RunSpec:
+    """``spec`` with its dead load ``s`` set: a Keplinger run given by its weight fraction
+    (``s=None``, ``alpha`` given) gets the FE package's ``s = alpha m g/(mu A)``,
+    :func:`skfem_dielectric.gallery.loads.keplinger_s` with ``g = KEPLINGER["g"] = 9.81
+    m/s^2`` (paper caption of Fig. uni-axial-ideal); any other spec is returned as it is.
 
     Parameters
     ----------
-    alpha : float
-        Fraction of the 150 g weight, ``alpha >= 0``.
+    spec : RunSpec
 
     Returns
     -------
-    float
+    RunSpec
 
     Examples
     --------
-    >>> round(keplinger_s(1.0), 5)
+    >>> spec = RunSpec("uniaxial", "neo-Hookean", "coupled", None, (0.0,), alpha=1.0)
+    >>> round(with_dead_load(spec).s, 5)
     2.99296
     """
-    return fe.keplinger_s(alpha, g=KEPLINGER["g"])
+    if spec.s is not None:
+        return spec
+    return replace(spec, s=keplinger_s(spec.alpha, g=KEPLINGER["g"]))
 
 
 def is_membrane(spec: RunSpec) -> bool:

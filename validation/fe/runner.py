@@ -18,7 +18,7 @@ import skfem_dielectric as fe
 
 from ..records import RunOutcome
 from .columns import step_record, stability_monitor
-from .model import build_problem, ramp_settings, ramp_targets
+from .model import build_problem, ramp_settings, ramp_targets, with_dead_load
 
 __all__ = ["run_fe"]
 
@@ -42,6 +42,8 @@ def run_fe(spec, start, state, on_step, linear_solver="superlu"):
     Parameters
     ----------
     spec : RunSpec
+        A Keplinger run without its dead load (``s=None``) gets it from
+        :func:`~validation.fe.model.with_dead_load`.
     start : int
         First target to compute; ``state`` holds ``x`` and ``load`` of target
         ``start - 1`` (``None`` when ``start == 0``).
@@ -56,6 +58,7 @@ def run_fe(spec, start, state, on_step, linear_solver="superlu"):
     -------
     RunOutcome
     """
+    spec = with_dead_load(spec)
     problem = build_problem(spec)
     targets = ramp_targets(spec)
     x0 = None if state is None else np.asarray(state["x"], dtype=float)

@@ -11,10 +11,11 @@ import meshio
 import numpy as np
 
 import skfem_dielectric as fe
+from skfem_dielectric.gallery.loads import keplinger_s
 
-from ..specs import RunSpec
+from ..specs import KEPLINGER, RunSpec
 from .columns import membrane_stretch_maps
-from .model import build_problem, is_membrane, keplinger_s
+from .model import build_problem, is_membrane
 from .runner import run_fe
 
 __all__ = ["export_mesh", "simulate", "bench"]
@@ -79,7 +80,7 @@ def simulate(*, geometry="uniaxial", model="neo-Hookean", variant="coupled", s=N
         raise ValueError(f"fmt must be 'vtu' or 'xdmf', got {fmt!r}")
     if geometry == "uniaxial":
         alpha = 1.0 if alpha is None else alpha
-        s = keplinger_s(alpha)
+        s = keplinger_s(alpha, g=KEPLINGER["g"])
     else:
         s = 1.0 if s is None else s
     spec = _ramp_spec(geometry, model, variant, s, alpha, np.linspace(0, D0_max, steps + 1),
@@ -141,7 +142,8 @@ def bench(*, mesh=(20, 1, 10), alpha=1.0, D0_max=6.0, steps=6, variant="coupled"
     """
     if steps < 1:
         raise ValueError(f"steps must be >= 1, got {steps}")
-    spec = _ramp_spec("uniaxial", "neo-Hookean", variant, keplinger_s(alpha), alpha,
+    spec = _ramp_spec("uniaxial", "neo-Hookean", variant, keplinger_s(alpha, g=KEPLINGER["g"]),
+                      alpha,
                       np.linspace(0, D0_max, steps + 1), mesh)
     t_build = time.perf_counter()
     problem = build_problem(spec)

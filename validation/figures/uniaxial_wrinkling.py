@@ -8,9 +8,10 @@ import numpy as np
 from matplotlib.lines import Line2D
 
 import analytic as an
+from analytic.units import keplinger_s
 
 from ..cases import ALPHAS, analytic_model
-from ..fe import keplinger_s
+from ..specs import KEPLINGER
 from ..records import buckling_crossing
 from .common import (BREAKDOWN_MARKER, BREAKDOWN_NAME, BUCKLING_NAME, MODEL_NAME,
                      VARIANT_MARKER, colors, new_axes, refine_start, uniaxial_curve,
@@ -86,7 +87,7 @@ def plot_uniaxial_wrinkling(fe=None, alphas=ALPHAS, ax=None, D0max=7.0):
     broken = set()
     buckled = []
     for a, c in zip(alphas, colors(len(alphas))):
-        s = keplinger_s(a)
+        s = float(keplinger_s(a, g=KEPLINGER["g"]))   # the analytic curve's own load
         l1, D0c, _ = uniaxial_curve(s, m, 6.0)
         ax.plot(l1, D0c, color=c, label=rf"$\alpha = {a:g}$, $s = {s:.3g}$")
         if fe is None or not len(fe.get("run", [])):
