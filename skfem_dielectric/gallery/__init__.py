@@ -1,13 +1,16 @@
 """The paper's plates ready to run: builders and drivers of the equibiaxial and Keplinger
 plates and of the membrane and cross-section models with their default settings
-(:mod:`~skfem_dielectric.gallery.drivers`), and their load paths, a pre-load followed by the
-charge targets (:mod:`~skfem_dielectric.gallery.loads`).
+(:mod:`~skfem_dielectric.gallery.drivers`), their load paths, a pre-load followed by the
+charge targets (:mod:`~skfem_dielectric.gallery.loads`), and the default settings of the
+plates, named once (:mod:`~skfem_dielectric.gallery.defaults`).
 """
 
 from .drivers import (plate_admissible, newton_guards, equibiaxial_problem,
                       keplinger_problem, run_ramp, equibiaxial_plate, keplinger_plate,
                       maxwell_equibiaxial, maxwell_keplinger, membrane_ramp,
                       membrane_keplinger, cross_section_ramp)
+from .defaults import (EQUIBIAXIAL_PRELOAD_STEPS, EQUIBIAXIAL_RTOL, EQUIBIAXIAL_SIZE, GENT_JM,
+                       KEPLINGER_CHORD, KEPLINGER_PRELOAD_STEPS, KEPLINGER_RTOL, KEPLINGER_SIZE)
 from .loads import keplinger_s, charge_targets, preload_then_charge, remaining_targets
 
 __all__ = [
@@ -15,4 +18,6 @@ __all__ = [
     "run_ramp", "equibiaxial_plate", "keplinger_plate", "maxwell_equibiaxial",
     "maxwell_keplinger", "membrane_ramp", "membrane_keplinger", "cross_section_ramp",
     "keplinger_s", "charge_targets", "preload_then_charge", "remaining_targets",
+    "GENT_JM", "EQUIBIAXIAL_SIZE", "KEPLINGER_SIZE", "EQUIBIAXIAL_PRELOAD_STEPS",
+    "KEPLINGER_PRELOAD_STEPS", "EQUIBIAXIAL_RTOL", "KEPLINGER_RTOL", "KEPLINGER_CHORD",
 ]

@@ -33,6 +33,8 @@ from ..models.plate.failure import StepLimitCounter, describe_failure, plate_fai
 from ..models.plate.problem import PlateProblem
 from ..problem import Problem
 from ..solvers.ramp import RampResult, StepResult, ramp
+from .defaults import (EQUIBIAXIAL_PRELOAD_STEPS, EQUIBIAXIAL_RTOL, EQUIBIAXIAL_SIZE, GENT_JM,
+                       KEPLINGER_CHORD, KEPLINGER_PRELOAD_STEPS, KEPLINGER_RTOL, KEPLINGER_SIZE)
 from .loads import charge_targets, keplinger_s, preload_then_charge, remaining_targets
 
 __all__ = ["plate_admissible", "newton_guards", "equibiaxial_problem", "keplinger_problem", "run_ramp",
@@ -158,8 +160,8 @@ def run_ramp(problem: Problem, targets: Sequence[Any], *,
     return out
 
 
-def equibiaxial_problem(*, model: Any = "neo-Hookean", Jm: float = 97.2,
-                        size: tuple[float, float, float] = (4.0, 1.0, 4.0),
+def equibiaxial_problem(*, model: Any = "neo-Hookean", Jm: float = GENT_JM,
+                        size: tuple[float, float, float] = EQUIBIAXIAL_SIZE,
                         elements: tuple[int, int, int] = (1, 1, 1), symmetry: str = "eighth",
                         **options) -> PlateProblem:
     """The equi-biaxial dead-load plate (dimensionless ``mu = eps = 1``).
@@ -181,8 +183,8 @@ def equibiaxial_problem(*, model: Any = "neo-Hookean", Jm: float = 97.2,
     return PlateProblem(pm, make_material(model, Jm), loading="equibiaxial", **options)
 
 
-def keplinger_problem(*, model: Any = "neo-Hookean", Jm: float = 97.2,
-                      size: tuple[float, float, float] = (100.0, 1.0, 50.0),
+def keplinger_problem(*, model: Any = "neo-Hookean", Jm: float = GENT_JM,
+                      size: tuple[float, float, float] = KEPLINGER_SIZE,
                       elements: tuple[int, int, int] = (40, 1, 20), symmetry: str = "eighth",
                       grading: float = 1.0, **options) -> PlateProblem:
     """The clamped uni-axial Keplinger plate (dimensionless ``mu = eps = 1``, mm).
@@ -210,15 +212,15 @@ def keplinger_problem(*, model: Any = "neo-Hookean", Jm: float = 97.2,
 
 
 def equibiaxial_plate(s: float, D0: Sequence[float], *, model: Any = "neo-Hookean",
-                      Jm: float = 97.2, size: tuple[float, float, float] = (4.0, 1.0, 4.0),
+                      Jm: float = GENT_JM, size: tuple[float, float, float] = EQUIBIAXIAL_SIZE,
                       elements: tuple[int, int, int] = (1, 1, 1), symmetry: str = "eighth",
-                      preload_steps: int = 4, control: str = "charge",
+                      preload_steps: int = EQUIBIAXIAL_PRELOAD_STEPS, control: str = "charge",
                       coupling: str = "full", field: str = "electrostatic",
                       formulation: str = "mixed", kappa: float = math.inf,
                       phi_element: str = "Q2", linear_solver: str = "auto",
                       on_step: Callable[[StepResult], Any] | None = None,
                       x0: np.ndarray | None = None, start: Any = None,
-                      rtol: float = 1e-11, max_cutbacks: int = 6) -> RampResult:
+                      rtol: float = EQUIBIAXIAL_RTOL, max_cutbacks: int = 6) -> RampResult:
     """Equi-biaxial dead-load plate: pre-load ``s``, then the charge ramp ``D0``.
 
     Parameters
@@ -264,17 +266,19 @@ def equibiaxial_plate(s: float, D0: Sequence[float], *, model: Any = "neo-Hookea
 def keplinger_plate(alpha: float | None = 1.0, D0: Sequence[float] = (1, 2, 3, 4, 5, 6), *,
                     s: float | None = None, g: float = 9.81, m: float = 0.150,
                     mu: float = 9833.07, A: float = 50e-6, model: Any = "neo-Hookean",
-                    Jm: float = 97.2, size: tuple[float, float, float] = (100.0, 1.0, 50.0),
+                    Jm: float = GENT_JM, size: tuple[float, float, float] = KEPLINGER_SIZE,
                     elements: tuple[int, int, int] = (40, 1, 20), symmetry: str = "eighth",
-                    grading: float = 1.0, preload_steps: int = 3, control: str = "charge",
+                    grading: float = 1.0, preload_steps: int = KEPLINGER_PRELOAD_STEPS,
+                    control: str = "charge",
                     coupling: str = "full", field: str = "electrostatic",
                     formulation: str = "mixed", kappa: float = math.inf,
                     phi_element: str = "Q2", linear_solver: str = "auto",
                     on_step: Callable[[StepResult], Any] | None = None,
-                    x0: np.ndarray | None = None, start: Any = None, rtol: float = 1e-9,
+                    x0: np.ndarray | None = None, start: Any = None,
+                    rtol: float = KEPLINGER_RTOL,
                     max_cutbacks: int = 4, max_iter: int = 12,
                     threads: int | None = None,
-                    stop_on_instability: bool = False, chord: float = 0.1,
+                    stop_on_instability: bool = False, chord: float = KEPLINGER_CHORD,
                     predictor: str = "none", grad_div: float = 0.0,
                     state_analysis: Callable[..., dict] | None = None) -> RampResult:
     """The uni-axial Keplinger plate: weight on a rigid clamp, then the charge ramp.
@@ -407,8 +411,9 @@ def membrane_ramp(problem: MembranePlate, s: float, D0, **ramp_options) -> RampR
 
 
 def membrane_keplinger(alpha: float = 1.0, D0=np.arange(0.0, 6.01, 0.5), material=None,
-                       n1: int = 40, n3: int = 20, L1: float = 100.0, L3: float = 50.0,
-                       H: float = 1.0, g: float = 9.81, **ramp_options) -> RampResult:
+                       n1: int = 40, n3: int = 20, L1: float = KEPLINGER_SIZE[0],
+                       L3: float = KEPLINGER_SIZE[2], H: float = KEPLINGER_SIZE[1],
+                       g: float = 9.81, **ramp_options) -> RampResult:
     """Membrane model of the clamped uni-axial Keplinger plate under charge control.
 
     Parameters

@@ -17,6 +17,9 @@ from dataclasses import replace
 import numpy as np
 
 import skfem_dielectric as fe
+from skfem_dielectric.gallery.defaults import (EQUIBIAXIAL_PRELOAD_STEPS, EQUIBIAXIAL_RTOL,
+                                               KEPLINGER_CHORD, KEPLINGER_PRELOAD_STEPS,
+                                               KEPLINGER_RTOL, KEPLINGER_SIZE)
 from skfem_dielectric.gallery.loads import keplinger_s
 
 from ..specs import GENT_JM, KEPLINGER, RunSpec
@@ -24,29 +27,29 @@ from ..specs import GENT_JM, KEPLINGER, RunSpec
 __all__ = ["with_dead_load", "is_membrane", "build_problem", "ramp_targets", "ramp_settings",
            "pardiso_installed"]
 
-L1, L3, H = 100.0, 50.0, 1.0     # mm
+#: the Keplinger plate, mm: the gallery's plate
+L1, H, L3 = KEPLINGER_SIZE
 MEMBRANE_VARIANTS = ("membrane", "membrane-maxwell")
 #: Loading of the membrane per geometry: the Keplinger plate is clamped.
 MEMBRANE_LOADING = {"equibiaxial": "equibiaxial", "uniaxial": "clamped",
                     "uniaxial-free": "uniaxial"}
-#: 3D pre-load sub-steps, as the drivers equibiaxial_plate (4) and keplinger_plate (3).
-PRELOAD_STEPS = {"equibiaxial": 4, "uniaxial": 3}
-#: 3D Newton tolerance relative to the external load: as equibiaxial_plate (1e-11) and
-#: keplinger_plate (1e-9); the membrane keeps the tolerance of the plain ramp.
-RTOL = {"equibiaxial": 1e-11, "uniaxial": 1e-9}
+#: 3D pre-load sub-steps: those of the drivers equibiaxial_plate and keplinger_plate.
+PRELOAD_STEPS = {"equibiaxial": EQUIBIAXIAL_PRELOAD_STEPS, "uniaxial": KEPLINGER_PRELOAD_STEPS}
+#: 3D Newton tolerance relative to the external load: that of equibiaxial_plate and of
+#: keplinger_plate; the membrane keeps the tolerance of the plain ramp.
+RTOL = {"equibiaxial": EQUIBIAXIAL_RTOL, "uniaxial": KEPLINGER_RTOL}
 MEMBRANE_TOL = {"atol": 1e-10, "rtol": 1e-10}
 #: Cut-backs per target and Newton iterations per attempt, every variant.
 MAX_CUTBACKS, MAX_ITER = 6, 25
-#: chord factor of the ramps' Newton solves (:func:`skfem_dielectric.solvers.newton.newton`): a
-#: factorisation is reused while the residual contracts at least tenfold per step.  No
-#: secant predictor: it depends on the state before the last one, so a resumed ramp would
-#: not repeat the uninterrupted one bit for bit (and past the breakdown it can jump to
-#: another branch of the clamped plate).  On the full 40 x 1 x 20 plate, alpha = 1, the
-#: first six targets: fully coupled 23.9 -> 15.3 s, Maxwell traction 31.3 -> 18.6 s
-#: (PARDISO); the FE dots move within the Newton tolerance.
-CHORD = 0.1
+#: chord factor of the ramps' Newton solves (:func:`skfem_dielectric.solvers.newton.newton`),
+#: that of keplinger_plate: a factorisation is reused while the residual contracts at least
+#: tenfold per step.  No secant predictor: it depends on the state before the last one, so
+#: a resumed ramp would not repeat the uninterrupted one bit for bit (and past the
+#: breakdown it can jump to another branch of the clamped plate).  The FE dots move within
+#: the Newton tolerance (timings: docs/performance.md).
+CHORD = KEPLINGER_CHORD
 #: grad-div stabilisation (units of mu) of the uni-axial runs analysed for buckling
-#: (``RunSpec.buckling``), as in ``skfem-dielectric buckling``
+#: (``RunSpec.buckling``) and of the studies ``buckling`` and ``post-buckling``
 BUCKLING_GRAD_DIV = 10.0
 
 

@@ -27,6 +27,7 @@ import skfem_dielectric as fe
 from skfem_dielectric.models.plate.modes import top_deflection
 from skfem_dielectric.studies.buckling import buckling_load
 
+from ..fe.model import BUCKLING_GRAD_DIV
 from ..figures import save_figure
 from ..store import append_rows, read_rows
 from ..table import BREAKDOWN_TOL
@@ -97,7 +98,7 @@ def run_one(alpha: float, elements, *, D0_step: float, D0_max: float,
     D0 = np.round(np.arange(D0_step, D0_max + 1e-9, D0_step), 10)
     newton = dict(linear_solver=solver, max_cutbacks=6, max_iter=25, rtol=1e-9)
     res = fe.keplinger_plate(alpha, D0=D0, elements=tuple(elements), symmetry="eighth",
-                             grad_div=10.0, **newton)
+                             grad_div=BUCKLING_GRAD_DIV, **newton)
     pb = res.problem
     charge = [st for st in res.steps if np.asarray(st.load)[1] > 0]
     states = [res.steps[len(res.steps) - len(charge) - 1]] + charge

@@ -36,6 +36,7 @@ from skfem_dielectric.studies.postbuckling import (critical_mode, midplane_defle
                                            midplane_nodes, post_buckled_branch)
 
 from ..store import append_rows, read_rows
+from ..fe.model import BUCKLING_GRAD_DIV
 from ..figures import save_figure
 
 __all__ = ["COLUMNS", "SUMMARY_COLUMNS", "QUICK", "FULL", "WINDOW", "MODELS", "run_one", "run_post_buckling",
@@ -68,7 +69,7 @@ def _mesh_name(el) -> str:
 def _fundamental(alpha, elements, D0, solver, model):
     newton = dict(linear_solver=solver, max_cutbacks=6, max_iter=25, rtol=1e-9)
     res = fe.keplinger_plate(alpha, D0=D0, elements=tuple(elements), symmetry=MODELS[model],
-                             grad_div=10.0, **newton)
+                             grad_div=BUCKLING_GRAD_DIV, **newton)
     return res, newton
 
 
