@@ -29,7 +29,7 @@ import analytic as an
 __all__ = [
     "PAPER_FIGURE", "MODEL_NAME", "BREAKDOWN_NAME", "BUCKLING_NAME", "LIMIT_NAME",
     "VARIANT_MARKER", "BREAKDOWN_MARKER", "new_axes", "colors", "fe_rows", "fe_dots", "fe_E0",
-    "variant_legend", "refine_start", "equibiaxial_curve", "uniaxial_curve", "plate_mesh_text",
+    "variant_legend", "wrinkling_zone", "finish_loading_axes", "refine_start", "equibiaxial_curve", "uniaxial_curve", "plate_mesh_text",
     "mesh_caption", "mesh_text", "run_caption", "add_caption", "shared_legend", "tag_panels",
     "save_figure",
 ]
@@ -112,6 +112,32 @@ def variant_legend(ax, fe):
         return []
     return [Line2D([], [], ls="none", color="k", label=MODEL_NAME[v], **VARIANT_MARKER[v])
             for v in VARIANT_MARKER if v in set(fe["variant"])]
+
+
+def wrinkling_zone(ax, lk, thick, ln, thin, D0max):
+    """Shade the wrinkling zone between the thick-plate limit ``(lk, thick)`` and the
+    thin-plate limit ``(ln, thin)`` up to ``D0max`` and draw the thick-plate limit (paper
+    Figs. gent-equi-biaxial and uni-axial-ideal)."""
+    ok_k = np.isfinite(thick) & (thick <= D0max)
+    ok_n = np.isfinite(thin) & (thin <= D0max)
+    if ok_k.any() and ok_n.any():
+        xs = np.concatenate([lk[ok_k], ln[ok_n][::-1]])
+        ys = np.concatenate([thick[ok_k], thin[ok_n][::-1]])
+        ax.fill(xs, ys, color="0.85", zorder=0, label="wrinkling zone")
+    ax.plot(lk, thick, "--", color="tab:blue", label="thick-plate limit")
+
+
+def finish_loading_axes(ax, fe, quantity, xlabel, xlim, title):
+    """Labels, limits (``D0`` up to 8, ``E0`` up to 0.8), the legend with the FE markers
+    drawn (:func:`variant_legend`) and the title of a loading-curve panel."""
+    ax.set_xlabel(xlabel)
+    ax.set_ylabel(r"$D_0$" if quantity == "D0" else r"$E_0$")
+    ax.set_xlim(*xlim)
+    ax.set_ylim(0, 8.0 if quantity == "D0" else 0.8)
+    handles, _ = ax.get_legend_handles_labels()
+    ax.legend(handles=handles + variant_legend(ax, fe), fontsize=8,
+              loc="lower right" if quantity == "D0" else "upper right")
+    ax.set_title(title, fontsize=10)
 
 
 def refine_start(x, f, n=80):

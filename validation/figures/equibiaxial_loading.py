@@ -10,7 +10,7 @@ import analytic as an
 
 from ..cases import analytic_model
 from .common import (VARIANT_MARKER, colors, equibiaxial_curve, fe_E0, fe_dots, fe_rows,
-                     new_axes, variant_legend)
+                     finish_loading_axes, new_axes)
 
 __all__ = ["plot_equibiaxial_loading"]
 
@@ -65,12 +65,6 @@ def plot_equibiaxial_loading(model="neo-Hookean", s_values=(0, 1, 2, 3), quantit
         ok = np.isfinite(lm)
         ax.plot(lm[ok], (lm**4 * E0m)[ok] if quantity == "D0" else E0m[ok], "k^", ms=5,
                 label=r"max of $E_0$ at fixed $s$")
-    ax.set_xlabel(r"$\lambda$")
-    ax.set_ylabel(r"$D_0$" if quantity == "D0" else r"$E_0$")
-    ax.set_xlim(1.0, lam_max)
-    ax.set_ylim(0, 8.0 if quantity == "D0" else 0.8)
-    handles, _ = ax.get_legend_handles_labels()
-    ax.legend(handles=handles + variant_legend(ax, fe), fontsize=8,
-              loc="lower right" if quantity == "D0" else "upper right")
-    ax.set_title(f"{model}, equi-biaxial: ${quantity[0]}_0$ vs stretch", fontsize=10)
+    finish_loading_axes(ax, fe, quantity, r"$\lambda$", (1.0, lam_max),
+                        f"{model}, equi-biaxial: ${quantity[0]}_0$ vs stretch")
     return ax

@@ -9,7 +9,7 @@ import analytic as an
 
 from ..cases import analytic_model
 from .common import (VARIANT_MARKER, colors, equibiaxial_curve, fe_dots, fe_rows, new_axes,
-                     refine_start, variant_legend)
+                     refine_start, variant_legend, wrinkling_zone)
 
 __all__ = ["plot_equibiaxial_wrinkling"]
 
@@ -31,13 +31,7 @@ def plot_equibiaxial_wrinkling(model="neo-Hookean", s_values=(0, 0.8, 1.5, 2.5, 
     lam = np.linspace(0.5, 5.0, 2000)
     lk, thick = refine_start(lam, lambda x: an.thick_limit_D0(x, m))
     ln, thin = refine_start(lam, lambda x: an.thin_limit_D0(x, m))
-    ok_k = np.isfinite(thick) & (thick <= D0max)
-    ok_n = np.isfinite(thin) & (thin <= D0max)
-    if ok_k.any() and ok_n.any():
-        xs = np.concatenate([lk[ok_k], ln[ok_n][::-1]])
-        ys = np.concatenate([thick[ok_k], thin[ok_n][::-1]])
-        ax.fill(xs, ys, color="0.85", zorder=0, label="wrinkling zone")
-    ax.plot(lk, thick, "--", color="tab:blue", label="thick-plate limit")
+    wrinkling_zone(ax, lk, thick, ln, thin, D0max)
     for s, c in zip(s_values, colors(len(s_values))):
         l, D0 = equibiaxial_curve(s, m, 5.0)
         ax.plot(l, D0, color=c, label=f"$s = {s:g}$")

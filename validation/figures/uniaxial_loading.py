@@ -9,8 +9,8 @@ import numpy as np
 import analytic as an
 
 from ..cases import analytic_model
-from .common import (VARIANT_MARKER, colors, fe_E0, fe_dots, fe_rows, new_axes, uniaxial_curve,
-                     variant_legend)
+from .common import (VARIANT_MARKER, colors, fe_E0, fe_dots, fe_rows, finish_loading_axes,
+                     new_axes, uniaxial_curve)
 
 __all__ = ["uniaxial_voltage_locus", "plot_uniaxial_loading"]
 
@@ -59,12 +59,6 @@ def plot_uniaxial_loading(model="neo-Hookean", s_values=(0, 1, 2, 3, 4), quantit
         l1, D0, E0 = uniaxial_voltage_locus(model)
         ax.plot(l1, D0 if quantity == "D0" else E0, "k--", lw=1.2,
                 label=r"$\det\mathcal{H}^* = 0$")
-    ax.set_xlabel(r"$\lambda_1$")
-    ax.set_ylabel(r"$D_0$" if quantity == "D0" else r"$E_0$")
-    ax.set_xlim(0.5, lam1_max)
-    ax.set_ylim(0, 8.0 if quantity == "D0" else 0.8)
-    handles, _ = ax.get_legend_handles_labels()
-    ax.legend(handles=handles + variant_legend(ax, fe), fontsize=8,
-              loc="lower right" if quantity == "D0" else "upper right")
-    ax.set_title(f"{model}, uni-axial dead load: ${quantity[0]}_0$ vs $\\lambda_1$", fontsize=10)
+    finish_loading_axes(ax, fe, quantity, r"$\lambda_1$", (0.5, lam1_max),
+                        f"{model}, uni-axial dead load: ${quantity[0]}_0$ vs $\\lambda_1$")
     return ax

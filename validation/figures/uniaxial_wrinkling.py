@@ -15,7 +15,7 @@ from ..specs import KEPLINGER
 from ..records import buckling_crossing
 from .common import (BREAKDOWN_MARKER, BREAKDOWN_NAME, BUCKLING_NAME, MODEL_NAME,
                      VARIANT_MARKER, colors, new_axes, refine_start, uniaxial_curve,
-                     variant_legend)
+                     variant_legend, wrinkling_zone)
 
 __all__ = ["uniaxial_thick_limit_curve", "plot_uniaxial_wrinkling"]
 
@@ -76,13 +76,7 @@ def plot_uniaxial_wrinkling(fe=None, alphas=ALPHAS, ax=None, D0max=7.0):
     lam1 = np.linspace(0.4, 6.0, 1500)
     ln, thin, _ = uniaxial_curve(0.0, m, 6.0)          # Eq. (thin-uni-axial) = s = 0
     lk, thick = refine_start(lam1, uniaxial_thick_limit_curve)
-    ok_k = np.isfinite(thick) & (thick <= D0max)
-    ok_n = np.isfinite(thin) & (thin <= D0max)
-    if ok_k.any() and ok_n.any():
-        xs = np.concatenate([lk[ok_k], ln[ok_n][::-1]])
-        ys = np.concatenate([thick[ok_k], thin[ok_n][::-1]])
-        ax.fill(xs, ys, color="0.85", zorder=0, label="wrinkling zone")
-    ax.plot(lk, thick, "--", color="tab:blue", label="thick-plate limit")
+    wrinkling_zone(ax, lk, thick, ln, thin, D0max)
     ax.plot(ln, thin, "--", color="k", label="thin-plate limit ($s = 0$)")
     broken = set()
     buckled = []
