@@ -1,6 +1,7 @@
 """Run the FE ramps of a case, write its tidy CSV step by step, resume after interruption.
 
-Data flow: for every :class:`~validation.cases.RunSpec` of a case a
+Data flow: for every :class:`~validation.specs.RunSpec` of a case (its dead load set by
+:func:`validation.fe.model.with_dead_load`) a
 *runner* (by default :func:`validation.fe.run_fe`, the real FE solver) ramps
 ``D0`` through the targets and calls back after each converged target. The
 callback appends one CSV row to ``DIR/<case>.csv`` (and field rows to
@@ -8,7 +9,8 @@ callback appends one CSV row to ``DIR/<case>.csv`` (and field rows to
 ``DIR/.state/<case>/<run>.npz``. A rerun with the same ``DIR`` keeps the rows
 up to the last saved state and resumes the ramp from it, so an interrupted
 sweep produces the same files as an uninterrupted one; ``force=True`` starts
-afresh.
+afresh.  The rows are those of :mod:`validation.table`, the files, their checksums and
+the resume plan those of :mod:`validation.store`.
 
 The runner protocol (any callable, picklable for process pools)::
 
@@ -20,8 +22,6 @@ converged target with a :class:`StepRecord` and a ``dict`` of arrays that
 lets it continue from there; ``on_step`` returns ``True`` to end the ramp
 (breakdown reached).
 """
-
-from __future__ import annotations
 
 from __future__ import annotations
 
