@@ -116,6 +116,19 @@ def test_empty_out_is_an_error(tmp_path, capsys, monkeypatch):
     assert list(tmp_path.iterdir()) == []
 
 
+@pytest.mark.parametrize("command", ["buckling", "post-buckling", "wrinkling-fe"])
+def test_a_study_is_locked_like_a_case(tmp_path, capsys, command):
+    # the lock is taken before any FE work: the refused command writes no table
+    (tmp_path / ".state").mkdir()
+    with FolderLock(tmp_path / ".state" / f"{command}.lock", "test"):
+        code, _, err = run_cli([command, "--quick", "--out", str(tmp_path)]
+                               + (["--solver", "superlu"] if command != "wrinkling-fe" else []),
+                               capsys)
+    assert_one_line_error(code, err, 2)
+    assert f"being written by another process (pid {os.getpid()}:" in err
+    assert sorted(p.name for p in tmp_path.iterdir()) == [".state"]
+
+
 def test_another_writer_is_named(tmp_path, capsys, tiny):
     (tmp_path / ".state").mkdir()
     with FolderLock(tmp_path / ".state" / "nh-d-e.lock", "test"):
