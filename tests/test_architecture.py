@@ -15,7 +15,12 @@ The rules (docs/architecture.md):
   module's private attribute through its name (``module._x``);
 * imports at module level only, except for optional dependencies (the ``fast`` and
   ``cluster`` extras), which are imported where they are used;
-* every module file of ``skfem_dielectric`` is named in docs/architecture.md.
+* every module file of ``skfem_dielectric`` is named in docs/architecture.md;
+* in ``validation`` the same layer rule with :data:`VALIDATION_LAYERS`: the specs, cases,
+  tables and the result store import neither the FE runner, the figures nor the studies,
+  and importing them loads no finite elements (neither ``skfem_dielectric`` nor
+  scikit-fem); every module file of ``validation`` is named in the validation section of
+  docs/architecture.md.
 
 Each rule reports every offending place, so that a failure says what to change.
 """
@@ -23,6 +28,9 @@ Each rule reports every offending place, so that a failure says what to change.
 from __future__ import annotations
 
 import ast
+import os
+import subprocess
+import sys
 from pathlib import Path
 
 import pytest
@@ -45,6 +53,23 @@ LAYERS = (
     ("studies",),                    # the paper's analyses: model + solver + stability
     ("skfem_dielectric",),           # the package namespace
 )
+#: the layers of ``validation``, bottom up, in the same sense as :data:`LAYERS`; the groups
+#: below ``fe`` import no finite elements
+VALIDATION_LAYERS = (
+    ("clash", "progress", "specs", "records"),   # package guard, progress; run data, records
+    ("cases",),                      # the validation cases, one per paper figure
+    ("table",),                      # the tidy CSV of a case
+    ("store",),                      # lock, atomic files, checksums, resume
+    ("fe", "figures"),               # the FE runner; the paper's figures
+    ("options",),                    # checks of the command-line options
+    ("studies",),                    # buckling, post-buckling, wrinkling, snap-through
+    ("results", "report"),           # case summaries; summary.json and report.md
+    ("sweep",),                      # the harness: run_case, run_cases, validate
+    ("cli",),                        # the command line
+    ("validation",),                 # the package namespace
+)
+#: the groups of ``validation`` that import no finite elements
+VALIDATION_NO_FE = tuple(g for groups in VALIDATION_LAYERS[:4] for g in groups)
 
 
 def _modules(package: str) -> dict[str, Path]:
@@ -210,40 +235,40 @@ def test_imports_at_module_level_except_optional_dependencies():
 
 
 def _group(module: str) -> str | None:
-    """Layer group of a module of ``skfem_dielectric``: its top-level module or subpackage."""
+    """Layer group of a module of a package: its top-level module or subpackage."""
     parts = module.split(".")
     return parts[1] if len(parts) > 1 else parts[0]
 
 
-def _layer(group: str) -> int | None:
-    for i, groups in enumerate(LAYERS):
+def _layer(group: str, layers=LAYERS) -> int | None:
+    for i, groups in enumerate(layers):
         if group in groups:
             return i
     return None
 
 
-def _layer_violations() -> list[str]:
-    """Every import of ``skfem_dielectric`` that goes sideways or up the layers."""
+def _layer_violations(package: str = "skfem_dielectric", layers=LAYERS) -> list[str]:
+    """Every import of ``package`` that goes sideways or up its ``layers``."""
     bad = []
     for module in ALL:
-        if module.split(".")[0] != "skfem_dielectric":
+        if module.split(".")[0] != package:
             continue
         group = _group(module)
-        layer = _layer(group)
+        layer = _layer(group, layers)
         if layer is None:
             bad.append(f"{ALL[module].relative_to(ROOT)}: {module} is in no layer "
-                       f"(group {group!r}); add it to LAYERS and docs/architecture.md")
+                       f"(group {group!r}); add it to the layers and docs/architecture.md")
             continue
-        allowed = {g for groups in LAYERS[:layer] for g in groups} | {group}
+        allowed = {g for groups in layers[:layer] for g in groups} | {group}
         for node, target, names in _imports(module):
-            if target.split(".")[0] != "skfem_dielectric":
+            if target.split(".")[0] != package:
                 continue
             for name in names or [None]:
                 sub = f"{target}.{name}" if name else None
                 dest = sub if sub in ALL else target
                 if dest == module or _group(dest) in allowed:
                     continue
-                where = "up" if (_layer(_group(dest)) or 0) > layer else "sideways"
+                where = "up" if (_layer(_group(dest), layers) or 0) > layer else "sideways"
                 bad.append(f"{_where(module, node)}: {module} ({group}) imports {dest} "
                            f"({_group(dest)}), {where} the layers; {group} may import "
                            f"{', '.join(sorted(allowed - {group}))} and itself")
@@ -255,17 +280,52 @@ def test_imports_follow_the_layers():
     assert not bad, "\n".join(bad)
 
 
-def test_every_module_is_in_docs_architecture():
-    text = (ROOT / "docs" / "architecture.md").read_text()
+def test_validation_imports_follow_its_layers():
+    bad = _layer_violations("validation", VALIDATION_LAYERS)
+    assert not bad, "\n".join(bad)
+
+
+def test_validation_cases_import_no_finite_elements():
+    """Importing the specs, cases, tables and the store loads neither ``skfem_dielectric``
+    nor scikit-fem (``skfem-dielectric list`` and the tables need no FE)."""
+    modules = sorted(m for m in ALL if m.split(".")[0] == "validation"
+                     and _group(m) in VALIDATION_NO_FE)
+    assert "validation.cases" in modules and "validation.specs" in modules
+    code = ("import sys\n" + "".join(f"import {m}\n" for m in modules)
+            + "print(sorted(m for m in sys.modules if m.split('.')[0] in "
+              "('skfem_dielectric', 'skfem')))")
+    env = {**os.environ, "PYTHONPATH": str(ROOT) + os.pathsep + os.environ.get("PYTHONPATH", "")}
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                         cwd=ROOT, env=env, check=True).stdout
+    assert out.strip() == "[]", f"importing {', '.join(modules)} loads {out.strip()}"
+
+
+def _undocumented(package: str, text: str) -> list[str]:
+    """The module files of ``package`` that ``text`` does not name."""
     missing = []
     for module, path in ALL.items():
-        if module.split(".")[0] != "skfem_dielectric":
+        if module.split(".")[0] != package:
             continue
-        rel = path.relative_to(ROOT / "skfem_dielectric")
+        rel = path.relative_to(ROOT / package)
         name = f"{rel.parent.as_posix()}/" if rel.name == "__init__.py" else rel.as_posix()
-        if name != "./" and name not in text:
+        if name != "./" and f"`{name}`" not in text:
             missing.append(name)
+    return missing
+
+
+def test_every_module_is_in_docs_architecture():
+    text = (ROOT / "docs" / "architecture.md").read_text()
+    missing = _undocumented("skfem_dielectric", text)
     assert not missing, "docs/architecture.md does not name: " + ", ".join(missing)
+
+
+def test_every_validation_module_is_in_its_docs_section():
+    text = (ROOT / "docs" / "architecture.md").read_text()
+    head = "## The layers of `validation`"
+    assert head in text, f"docs/architecture.md has no section {head!r}"
+    section = text.split(head, 1)[1].split("\n## ", 1)[0]
+    missing = _undocumented("validation", section)
+    assert not missing, f"{head} in docs/architecture.md does not name: " + ", ".join(missing)
 
 
 def test_the_checker_sees_a_layer_violation(monkeypatch):
@@ -302,3 +362,18 @@ def test_the_checker_sees_a_loop_and_a_private_import(tmp_path, monkeypatch):
     assert _cycles("pkg") == [["pkg.a", "pkg.b"]]
     names = [n for _, _, ns in _imports("pkg.a") for n in ns]
     assert [n for n in names if _private(n)] == ["_g"]
+
+
+def test_the_checker_sees_cases_importing_the_fe_runner(monkeypatch):
+    """``validation.cases`` importing the FE runner is reported as going up the layers."""
+    pkg = ROOT / "validation"             # paths only named in the messages, never read
+    fake = {"validation": pkg / "__init__.py", "validation.cases": pkg / "cases.py",
+            "validation.fe": pkg / "fe" / "__init__.py",
+            "validation.fe.model": pkg / "fe" / "model.py"}
+    trees = {name: ast.parse("") for name in fake}
+    trees["validation.cases"] = ast.parse("from .fe.model import with_dead_load\n")
+    monkeypatch.setitem(globals(), "ALL", fake)
+    monkeypatch.setitem(globals(), "TREES", trees)
+    bad = _layer_violations("validation", VALIDATION_LAYERS)
+    assert len(bad) == 1, bad
+    assert "validation.cases (cases) imports validation.fe.model (fe), up the layers" in bad[0]

@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 from validation.cli import build_parser, main
-from validation.sweep import read_table
+from validation.table import read_table
 
 CONTRACT = ["case", "model", "variant", "s", "D0", "lam1_fe", "lam1_analytic", "lam3_fe",
             "min_P33", "converged", "stable"]
@@ -58,9 +58,9 @@ def test_validate_quick_homogeneous_case(tmp_path):
 def test_validate_keplinger_3d_and_membrane(tmp_path, monkeypatch):
     # the quick Keplinger case thinned to three weights and D0 steps of 1 (~20 s)
     from validation import cases as vc
-    from validation.fe import keplinger_s
+    from skfem_dielectric.gallery.loads import keplinger_s
 
-    runs = tuple(vc.RunSpec("uniaxial", "neo-Hookean", v, keplinger_s(a),
+    runs = tuple(vc.RunSpec("uniaxial", "neo-Hookean", v, keplinger_s(a, g=9.81),
                             tuple(np.arange(0.0, 6.01, 1.0)), alpha=a, mesh=vc._mesh(vc.QUICK_PLATE, v))
                  for v in ("coupled", "membrane") for a in (0.3, 1.0, 1.5))
     case = vc.Case("uni-axial-ideal", "uni-axial-ideal", "test", "uniaxial", quick=runs, full=runs)

@@ -15,7 +15,7 @@ import re
 import pytest
 
 from validation import cases as vc
-from validation import sweep
+from validation.store import case_files
 from validation.cli import EXIT_CODES, build_parser, main
 from validation.fe import pardiso_installed
 from validation.store import FolderLock
@@ -82,11 +82,11 @@ def test_unwritable_folder(tmp_path, capsys, tiny, monkeypatch):
     if os.geteuid() != 0:
         out.chmod(0o500)
     else:                         # root writes anywhere: the OS's answer, simulated
-        real = sweep.FolderLock.__enter__
+        real = FolderLock.__enter__
 
         def denied(self):
             raise PermissionError(errno.EACCES, os.strerror(errno.EACCES), str(self.path))
-        monkeypatch.setattr(sweep.FolderLock, "__enter__", denied)
+        monkeypatch.setattr(FolderLock, "__enter__", denied)
     try:
         code, _, err = run_cli(tiny + ["--out", str(out)], capsys)
     finally:
@@ -94,14 +94,14 @@ def test_unwritable_folder(tmp_path, capsys, tiny, monkeypatch):
     assert_one_line_error(code, err, 3)
     assert str(out) in err and "Permission denied" in err
     if os.geteuid() == 0:
-        monkeypatch.setattr(sweep.FolderLock, "__enter__", real)
+        monkeypatch.setattr(FolderLock, "__enter__", real)
 
 
 def test_full_disk(tmp_path, capsys, tiny, monkeypatch):
     def full(path, header, rows):
         raise OSError(errno.ENOSPC, os.strerror(errno.ENOSPC), str(path))
 
-    monkeypatch.setattr(sweep, "_append", full)
+    monkeypatch.setattr(case_files, "append_csv_rows", full)
     code, _, err = run_cli(tiny + ["--out", str(tmp_path)], capsys)
     assert_one_line_error(code, err, 3)
     assert str(tmp_path / "nh-d-e.csv") in err and "No space left on device" in err
@@ -114,6 +114,19 @@ def test_empty_out_is_an_error(tmp_path, capsys, monkeypatch):
         assert_one_line_error(code, err, 2)
         assert "--out" in err
     assert list(tmp_path.iterdir()) == []
+
+
+@pytest.mark.parametrize("command", ["buckling", "post-buckling", "wrinkling-fe"])
+def test_a_study_is_locked_like_a_case(tmp_path, capsys, command):
+    # the lock is taken before any FE work: the refused command writes no table
+    (tmp_path / ".state").mkdir()
+    with FolderLock(tmp_path / ".state" / f"{command}.lock", "test"):
+        code, _, err = run_cli([command, "--quick", "--out", str(tmp_path)]
+                               + (["--solver", "superlu"] if command != "wrinkling-fe" else []),
+                               capsys)
+    assert_one_line_error(code, err, 2)
+    assert f"being written by another process (pid {os.getpid()}:" in err
+    assert sorted(p.name for p in tmp_path.iterdir()) == [".state"]
 
 
 def test_another_writer_is_named(tmp_path, capsys, tiny):

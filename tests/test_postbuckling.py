@@ -13,7 +13,7 @@ from skfem_dielectric.models.plate.symmetry_classes import class_stability
 from skfem_dielectric.solvers.critical import critical_load
 from skfem_dielectric.studies.postbuckling import (critical_mode, midplane_deflection,
                                            post_buckled_branch, switch_branch)
-from validation.buckling import read_rows
+from validation.store import read_rows
 from validation.cli import main
 
 NEWTON = dict(settings=fe.RampSettings(rtol=1e-9, atol=0.0))

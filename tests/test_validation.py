@@ -16,9 +16,11 @@ import numpy as np
 import pytest
 
 from validation import cases as vc
-from validation.fe import keplinger_s
+from skfem_dielectric.gallery.loads import keplinger_s
+from validation.fe import with_dead_load
 from validation.records import RunOutcome, StepRecord
-from validation.sweep import BREAKDOWN_TOL, csv_columns, read_table, run_case, run_cases, validate
+from validation.sweep import run_case, run_cases, validate
+from validation.table import BREAKDOWN_TOL, csv_columns, read_table
 
 CONTRACT = ["case", "model", "variant", "s", "D0", "lam1_fe", "lam1_analytic", "lam3_fe",
             "min_P33", "converged", "stable"]
@@ -92,19 +94,26 @@ def eq_case(n_s=2, n=4, name="nh-d-e"):
 
 
 def uni_case(alphas=(0.3, 1.0), fields=False, name="uni-axial-ideal"):
-    runs = tuple(vc.RunSpec("uniaxial", "neo-Hookean", v, keplinger_s(a),
+    runs = tuple(vc.RunSpec("uniaxial", "neo-Hookean", v, keplinger_s(a, g=9.81),
                             tuple(np.linspace(0, 6, 13)), alpha=a, record_fields=fields)
                  for v in ("coupled", "maxwell") for a in alphas)
     return vc.Case(name, name, "test", "uniaxial", quick=runs, full=runs)
 
 
-def test_keplinger_s():
-    # s = alpha m g/(mu A) = 0.15 * 9.81 / (9833.07 * 50e-6), paper Sec. 5 caption
-    assert keplinger_s(1.0) == pytest.approx(0.15 * 9.81 / (9833.07 * 50e-6), rel=1e-15)
-    assert keplinger_s(1.0) == pytest.approx(2.99296, abs=5e-6)
-    # the weights of Fig. uni-axial-ideal: bit for bit the formula alpha m g/(mu A)
-    for a in vc.ALPHAS:
-        assert keplinger_s(a) == a * 0.15 * 9.81 / (9833.07 * 50e-6)
+def test_keplinger_runs_get_the_dead_load_of_their_weight():
+    # the cases give the Keplinger runs by alpha; the runner's dead load is
+    # s = alpha m g/(mu A) = alpha 0.15 * 9.81 / (9833.07 * 50e-6) (paper Sec. 6 caption),
+    # bit for bit that formula for the weights of Fig. uni-axial-ideal
+    runs = vc.CASES["uni-axial-ideal"].quick
+    assert {r.alpha for r in runs} == set(vc.ALPHAS) and all(r.s is None for r in runs)
+    for r in runs:
+        assert with_dead_load(r).s == r.alpha * 0.15 * 9.81 / (9833.07 * 50e-6)
+    one = next(r for r in runs if r.alpha == 1.0)
+    assert with_dead_load(one).s == pytest.approx(2.99296, abs=5e-6)   # 6 digits, paper
+    homogeneous = vc.CASES["nh-d-e"].quick[0]
+    assert with_dead_load(homogeneous) is homogeneous                  # s given: kept
+    with pytest.raises(ValueError, match="s may be None only for a uniaxial run"):
+        vc.RunSpec("equibiaxial", "neo-Hookean", "coupled", None, (0.0,))
 
 
 def test_csv_contract_and_error(tmp_path):
@@ -326,7 +335,7 @@ def test_progress_bar_quiet_unless_terminal():
 def test_read_table_verdict_columns_are_bool_even_when_empty(tmp_path):
     # Without PARDISO no stability verdict is computed: an all-empty ``stable`` column must
     # still read as None (not NaN), so code comparing with None works on every machine.
-    from validation.sweep import read_table
+    from validation.table import read_table
 
     p = tmp_path / "t.csv"
     p.write_text("D0,stable,converged\n0.5,,True\n1.0,,False\n")

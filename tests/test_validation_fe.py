@@ -8,10 +8,12 @@ import numpy as np
 import pytest
 
 from validation import cases as vc
-from validation.fe import (build_problem, keplinger_s, pardiso_installed, run_fe,
+from skfem_dielectric.gallery.loads import keplinger_s
+from validation.fe import (build_problem, pardiso_installed, run_fe,
                            stability_columns, whole_plate_verdict)
 from validation.records import StepRecord
-from validation.sweep import read_table, run_case
+from validation.sweep import run_case
+from validation.table import read_table
 
 
 class Interrupted(Exception):
@@ -39,10 +41,10 @@ def small_case():
     runs = (
         # 3D: pre-load in sub-steps, then charge; resumes from (x, load) of a target
         vc.RunSpec("equibiaxial", "Gent", "coupled", 1.5, (0.0, 1.0, 2.0, 3.0)),
-        vc.RunSpec("uniaxial", "neo-Hookean", "coupled", keplinger_s(1.0), (0.0, 1.5, 3.0),
+        vc.RunSpec("uniaxial", "neo-Hookean", "coupled", keplinger_s(1.0, g=9.81), (0.0, 1.5, 3.0),
                    alpha=1.0, mesh=(("n1", 4), ("n2", 1), ("n3", 2)), record_fields=True,
                    record_maps=True),
-        vc.RunSpec("uniaxial", "neo-Hookean", "membrane", keplinger_s(1.0),
+        vc.RunSpec("uniaxial", "neo-Hookean", "membrane", keplinger_s(1.0, g=9.81),
                    (0.0, 1.0, 2.0, 3.0, 4.0), alpha=1.0, mesh=(("n1", 8), ("n2", 1), ("n3", 4)),
                    record_fields=True),
         # s = 0: the pre-load is the unloaded state itself (a single target)
@@ -96,7 +98,7 @@ def test_process_pool_matches_serial(tmp_path, monkeypatch):
 def test_maxwell_keplinger_against_coupled_and_resume(tmp_path):
     # the quick Keplinger plate (eighth model, 10 x 1 x 5 Q2), alpha = 1, D0 steps of 0.5
     # up to the breakdown: 3D fully coupled vs 3D Maxwell traction (electrostatic field)
-    s = keplinger_s(1.0)
+    s = keplinger_s(1.0, g=9.81)
     mesh = vc._mesh(vc.QUICK_PLATE, "maxwell")
     runs = tuple(vc.RunSpec("uniaxial", "neo-Hookean", v, s, tuple(np.arange(0.0, 6.01, 0.5)),
                             alpha=1.0, mesh=mesh) for v in ("coupled", "maxwell"))
@@ -134,7 +136,7 @@ def test_pardiso_columns_come_from_the_ramps_factors():
     # with PARDISO the clamped 3D plate's stability columns are read from the ramp's own
     # factorisations (validation.fe.stability_monitor): the counts of a fresh analysis of
     # each state, its lowest eigenvalue within the Lanczos tolerance 1e-6
-    spec = vc.RunSpec("uniaxial", "neo-Hookean", "coupled", keplinger_s(1.0),
+    spec = vc.RunSpec("uniaxial", "neo-Hookean", "coupled", keplinger_s(1.0, g=9.81),
                       (0.0, 1.0, 2.0, 3.0), alpha=1.0, mesh=(("n1", 8), ("n2", 1), ("n3", 4)),
                       stop_at_breakdown=False)
     seen = []
@@ -157,7 +159,7 @@ def test_a_target_the_ramp_cannot_reach_ends_the_run_with_its_reason():
     # (sub-steps converge past D0 = 3), then fails after its cut-backs.  The furthest
     # converged sub-step is no target: the runner reports the three targets only and
     # returns the failure (the harness records it as a row), instead of raising.
-    spec = vc.RunSpec("uniaxial", "neo-Hookean", "coupled", keplinger_s(1.0),
+    spec = vc.RunSpec("uniaxial", "neo-Hookean", "coupled", keplinger_s(1.0, g=9.81),
                       (0.0, 1.5, 3.0, 60.0), alpha=1.0, mesh=(("n1", 4), ("n2", 1), ("n3", 2)),
                       stop_at_breakdown=False)
     seen = []
@@ -212,7 +214,7 @@ def test_stable_column_never_true_on_a_buckled_state(tmp_path, monkeypatch):
 def test_whole_plate_verdict_rule(variant, symmetry, own, plate, expected):
     from types import SimpleNamespace
 
-    spec = vc.RunSpec("uniaxial", "neo-Hookean", variant, keplinger_s(1.0), (0.0,), alpha=1.0)
+    spec = vc.RunSpec("uniaxial", "neo-Hookean", variant, keplinger_s(1.0, g=9.81), (0.0,), alpha=1.0)
     problem = SimpleNamespace(plate=SimpleNamespace(symmetry=symmetry))
     rec = StepRecord(0.0, 1.0, 1.0, 0.0, stable=own)
     if plate is not None:

@@ -21,7 +21,8 @@ from test_validation import FakeRunner, Interrupted, eq_case, uni_case
 from validation import cases as vc
 from validation.fe import run_fe
 from validation.store import LockedError
-from validation.sweep import read_table, run_case, validate
+from validation.sweep import run_case, validate
+from validation.table import read_table
 
 NAME = "uni-axial-ideal"
 FILES = (f"{NAME}.csv", f"{NAME}_fields.csv")

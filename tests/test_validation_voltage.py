@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 import analytic as an
-import validation.voltage_control as vvc
+import validation.studies.voltage_control as vvc
 from validation.cli import main
 
 CONTRACT = ["model", "loading", "s", "alpha", "lam1_fe", "E0", "D0", "n_unstable", "stable",

@@ -6,9 +6,9 @@ import math
 
 import analytic as an
 from validation.cli import main
-from validation.sweep import read_table
-import validation.wrinkling as wr
-from validation.wrinkling import ELASTIC_COLUMNS, WRINKLING_COLUMNS
+from validation.table import read_table
+import validation.studies.wrinkling as wr
+from validation.studies.wrinkling import ELASTIC_COLUMNS, WRINKLING_COLUMNS
 
 
 def test_quick_grid_matches_the_dispersion_relation(tmp_path, capsys):

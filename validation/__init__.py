@@ -3,10 +3,14 @@
 The paper: Conroy Broderick, Righi, Destrade, Ogden, "Stability analysis of
 charge-controlled soft dielectric plates", Int. J. Eng. Sci., 2020.
 
-The main job is :func:`validate` (``skfem-dielectric validate``): it runs the FE
-ramps of every :data:`CASES` entry (one per figure of the paper), writes tidy
+The main job is :func:`validation.sweep.validate` (``skfem-dielectric validate``): it runs
+the FE ramps of every :data:`CASES` entry (one per figure of the paper), writes tidy
 CSVs step by step (resumable), draws the figures and writes ``summary.json``
-and ``report.md``.
+and ``report.md``.  This namespace holds what describes the cases and reads their tables
+and imports no finite elements (:mod:`validation.specs`, :mod:`validation.cases`,
+:mod:`validation.records`, :mod:`validation.table`); the FE runner (:mod:`validation.fe`),
+the harness (:mod:`validation.sweep`), the figures, the studies and the CLI are imported
+from their modules (docs/architecture.md).
 """
 
 from .clash import PackageClash, check_packages
@@ -14,14 +18,11 @@ from .clash import PackageClash, check_packages
 check_packages()       # before anything imports analytic / skfem_dielectric
 
 from .cases import CASES, get_case  # noqa: E402
-from .fe import keplinger_s
-from .records import RunOutcome, StepRecord
-from .specs import ALPHAS, KEPLINGER, Case, RunSpec
-from .sweep import (BREAKDOWN_TOL, CaseResult, make_figure, read_table, run_case, run_cases,
-                    validate)
+from .records import RunOutcome, StepRecord  # noqa: E402
+from .specs import ALPHAS, KEPLINGER, Case, RunSpec  # noqa: E402
+from .table import BREAKDOWN_TOL, read_table  # noqa: E402
 
 __all__ = [
-    "ALPHAS", "CASES", "KEPLINGER", "Case", "RunSpec", "get_case", "keplinger_s",
-    "BREAKDOWN_TOL", "CaseResult", "RunOutcome", "StepRecord", "make_figure", "read_table",
-    "run_case", "run_cases", "validate", "PackageClash", "check_packages",
+    "ALPHAS", "CASES", "KEPLINGER", "Case", "RunSpec", "get_case", "BREAKDOWN_TOL",
+    "RunOutcome", "StepRecord", "read_table", "PackageClash", "check_packages",
 ]

@@ -6,9 +6,11 @@ Each ramp is a mechanical pre-load (the first target, ``D0 = 0``) followed by a
 charge ramp through the listed ``D0`` targets. ``quick`` runs use coarse meshes and
 few charge steps (the README's main job), full runs the paper's resolution.
 
-The Keplinger runs take their dead load ``s`` from :func:`validation.fe.keplinger_s`
-(the FE package's ``s = alpha m g/(mu A)`` with ``g = 9.81``); the analytic side of
-every case is the :mod:`analytic` model of :func:`analytic_model`.
+The Keplinger runs are given by their weight fraction ``alpha`` (``s=None``): the FE
+runner sets their dead load, the FE package's ``s = alpha m g/(mu A)`` with ``g = 9.81``
+(:func:`validation.fe.model.with_dead_load`), so that this module imports no finite
+elements; the analytic side of every case is the :mod:`analytic` model of
+:func:`analytic_model`.
 """
 
 from __future__ import annotations
@@ -17,7 +19,6 @@ import numpy as np
 
 import analytic as an
 
-from .fe import keplinger_s
 from .specs import ALPHAS, GENT_JM, KEPLINGER, MODELS, Case, RunSpec
 
 __all__ = [
@@ -77,7 +78,7 @@ def _keplinger(alphas, D0max, n, meshes, variants=KEPLINGER_VARIANTS, record_fie
         return tuple(d for d in D0 if d <= BUCKLING_D0_MAX) if a in buckling and \
             v == "coupled" else D0
 
-    return tuple(RunSpec("uniaxial", "neo-Hookean", v, keplinger_s(a), targets(v, a), alpha=a,
+    return tuple(RunSpec("uniaxial", "neo-Hookean", v, None, targets(v, a), alpha=a,
                          mesh=_mesh(meshes, v), record_fields=record_fields,
                          record_maps=record_maps, buckling=v == "coupled" and a in buckling,
                          stop_at_breakdown=not (v == "coupled" and a in buckling))

@@ -10,7 +10,6 @@ from __future__ import annotations
 import argparse
 import csv
 import functools
-import math
 import os
 import sys
 import time
@@ -19,17 +18,16 @@ from pathlib import Path
 
 import numpy as np
 
-from .buckling import FULL as BUCKLING_FULL, QUICK as BUCKLING_QUICK, run_buckling
 from .cases import CASES
-from .fe import bench, pardiso_installed, run_fe, simulate
-from .postbuckling import FULL as POST_FULL, QUICK as POST_QUICK, run_post_buckling
+from .fe import bench, run_fe, simulate
 from .figures import case_figure, save_figure
-from .wrinkling import run_wrinkling_fe
 from .specs import MODELS, VARIANTS
 from .report import verdict_lines
 from .store import write_text_atomic
 from .sweep import validate
-from .extra_cases import EXTRA_CASES
+from .studies.commands import STUDY_COMMANDS, add_study_commands
+from .studies.extra_cases import EXTRA_CASES
+from .options import check_mesh, out_dir, positive, solver_name
 
 __all__ = ["main", "build_parser", "EXIT_CODES"]
 
@@ -81,12 +79,6 @@ class _Parser(argparse.ArgumentParser):
                      f"(see {self.prog} --help)\n")
 
 
-def _out_dir(text: str) -> Path:
-    if not text.strip():
-        raise argparse.ArgumentTypeError(f"must be a folder path, got {text!r}")
-    return Path(text)
-
-
 def build_parser() -> argparse.ArgumentParser:
     """The argument parser (exposed for the docs and the tests).
 
@@ -117,53 +109,9 @@ def build_parser() -> argparse.ArgumentParser:
             "and PDF into --out.")
     c.add_argument("--case", nargs="+", choices=list(CASES), metavar="NAME",
                    help="cases to draw (default: those that need no FE fields)")
-    c.add_argument("--out", required=True, type=_out_dir, help="output folder")
+    c.add_argument("--out", required=True, type=out_dir, help="output folder")
 
-    w = add("wrinkling-fe", "FE wrinkling of a homogeneous plate against the Stroh analysis",
-            "The critical charge of one Fourier mode of the cross-section with sliding ends "
-            "(symmetric and antisymmetric, charge and voltage control) on a grid of lam and "
-            "kh, against the finite-thickness dispersion relation: DIR/wrinkling-fe.csv and "
-            "DIR/wrinkling-fe.png (full grid: several minutes).")
-    w.add_argument("--quick", action="store_true", help="only lam = 1.5 and kh in {0.5, 2}")
-    w.add_argument("--out", required=True, type=_out_dir, help="output folder")
-
-    k = add("buckling", "first physical buckling load of the clamped plate per weight",
-            "Ramp the clamped Keplinger plate (eighth model, grad-div 10) for each --alpha on "
-            "each mesh, scan its states with the whole plate's spectrum (every symmetry "
-            "class), locate the first physical buckling load D0_b to 1e-4 and compare it with "
-            "the onsets of compressive P33 and the Newton limit: DIR/buckling.csv (one row "
-            "per alpha x mesh, written as each is done; a rerun skips the rows present), "
-            "DIR/buckling-scan.csv and DIR/buckling.png|pdf (redrawn after each row). "
-            "Default: alpha = 1, 0.3, 1.5, 0.7, "
-            "0.05 on 10x1x5, 20x1x10, 40x1x20, D0 step 0.25 (hours on 2 cores); --quick: "
-            "alpha = 1 on 10x1x5 (the quick validate run's mesh), D0 step 0.5 (about a "
-            "minute).")
-    _study_arguments(k, "alpha = 1 on the coarse mesh 10x1x5",
-                     "eighth-model meshes, e.g. 10x1x5 20x1x10", "charge step of the scan",
-                     "last charge target", "auto",
-                     "linear solver and inertia method (auto: PARDISO if installed)")
-
-    pb = add("post-buckling", "follow the clamped plate onto its buckled branch",
-             "Ramp the clamped Keplinger plate's quarter model (the whole thickness, "
-             "grad-div 10) for each --alpha on each mesh, locate the buckling load D0_b of "
-             "its own symmetry class, switch onto the buckled branch along the critical "
-             "mode and follow it forward and back towards D0_b: DIR/post-buckling.csv (every "
-             "state, both branches: mid-plane deflection, lam1 at the centre against the "
-             "homogeneous closed form, stability counts), DIR/post-buckling-summary.csv "
-             "(one row per alpha x mesh, written as each is done; a rerun skips the rows "
-             "present) and DIR/post-buckling.png|pdf. Default: alpha = 0.05 and 1 on the "
-             "quarter meshes 10x2x5, 14x2x7, 20x2x10 (about an hour on 2 cores); --quick: "
-             "alpha = 0.05 on 10x2x5 up to D0 = 1 (about a minute).")
-    _study_arguments(pb, "alpha = 0.05, one coarse mesh",
-                     "quarter-model meshes with an even N2, e.g. 10x2x5 20x2x10",
-                     "charge step of the scan and the branch (default 0.05)",
-                     "last charge target (default: 1.5 for alpha = 0.05, 3.3 for alpha = 1; "
-                     "see validation.postbuckling.WINDOW)", "auto",
-                     "linear solver and inertia method (auto: PARDISO if installed)")
-    pb.add_argument("--model", choices=["quarter", "x1"], default="quarter",
-                    help="quarter: symmetry planes x1 = 0 and x3 = 0 (modes symmetric in x3); "
-                         "x1: the plane x1 = 0 only, the whole width (modes of either "
-                         "parity in x3; N3 then counts the whole width)")
+    add_study_commands(add)
 
     v = add("validate", "run FE sweeps, overlay them on the theory (main job)",
             "Run the FE ramps of the cases, write DIR/<case>.csv step by step, the figures "
@@ -175,7 +123,7 @@ def build_parser() -> argparse.ArgumentParser:
                    metavar="NAME",
                    help=f"cases to run (default: all of {', '.join(CASES)}, "
                         f"{', '.join(EXTRA_CASES)})")
-    v.add_argument("--out", required=True, type=_out_dir, help="output folder")
+    v.add_argument("--out", required=True, type=out_dir, help="output folder")
     v.add_argument("--jobs", type=int, default=1,
                    help="worker processes (a process pool, or the workers of "
                         "--scheduler local)")
@@ -214,7 +162,7 @@ def build_parser() -> argparse.ArgumentParser:
                         "(default 20 1 10; the membrane uses N1 and N3)")
     s.add_argument("--format", dest="fmt", choices=["vtu", "xdmf"], default="vtu",
                    help="one .vtu per step with a .pvd index, or one XDMF time series")
-    s.add_argument("--out", required=True, type=_out_dir, help="output folder")
+    s.add_argument("--out", required=True, type=out_dir, help="output folder")
 
     b = add("bench", "time one Keplinger ramp (DOFs, iterations, seconds)",
             "Time the Keplinger plate ramp on a given mesh and solver; prints the linear "
@@ -232,95 +180,6 @@ def build_parser() -> argparse.ArgumentParser:
     return p
 
 
-def _positive(name: str, value, *, integer: bool = False, zero: bool = False) -> None:
-    """``ValueError`` naming the option unless ``value`` is finite and > 0 (``zero``: >= 0)."""
-    if math.isfinite(value) and (value >= 0 if zero else value > 0):
-        return
-    bound = ">= 0" if zero else (">= 1" if integer else "> 0")
-    raise ValueError(f"{name} must be {bound}{'' if integer else ' and finite'}, got {value}")
-
-
-def _check_mesh(name: str, mesh) -> None:
-    if mesh is not None and any(n < 1 for n in mesh):
-        raise ValueError(f"{name} must be three element counts >= 1, got "
-                         f"{' '.join(map(str, mesh))}")
-
-
-def _study_arguments(p, quick: str, meshes: str, step: str, top: str, solver: str,
-                     solver_help: str) -> None:
-    """The options shared by the ``buckling`` and ``post-buckling`` studies."""
-    p.add_argument("--quick", action="store_true", help=quick)
-    p.add_argument("--alpha", nargs="+", type=float, metavar="A", help="weight fractions")
-    p.add_argument("--meshes", nargs="+", type=_mesh_triple, metavar="N1xN2xN3", help=meshes)
-    p.add_argument("--D0-step", dest="D0_step", type=float, help=step)
-    p.add_argument("--D0-max", dest="D0_max", type=float, help=top)
-    p.add_argument("--solver", choices=["auto", "superlu", "pardiso"], default=solver,
-                   help=solver_help)
-    p.add_argument("--out", required=True, type=_out_dir, help="output folder")
-
-
-def _study_options(args, quick: dict, full: dict) -> dict:
-    """The study's settings: the ``--quick`` or default ones, overridden by the options
-    given, each checked (``ValueError`` naming the option)."""
-    opts = dict(quick if args.quick else full)
-    for key in ("alpha", "meshes", "D0_step", "D0_max"):
-        value = getattr(args, key)
-        if value is not None:
-            opts["alphas" if key == "alpha" else key] = value
-    _positive("--D0-step", opts["D0_step"])
-    if opts["D0_max"] is not None:
-        _positive("--D0-max", opts["D0_max"])
-    for a in opts["alphas"]:
-        _positive("--alpha", a)
-    args.solver = _solver(args.solver)
-    return opts
-
-
-def _mesh_triple(text: str) -> tuple[int, int, int]:
-    """``"20x1x10"`` -> ``(20, 1, 10)`` (argparse type of ``--meshes``)."""
-    try:
-        el = tuple(int(v) for v in text.lower().split("x"))
-    except ValueError:
-        el = ()
-    if len(el) != 3 or min(el) < 1:
-        raise argparse.ArgumentTypeError(f"a mesh is N1xN2xN3 with counts >= 1, got {text!r}")
-    return el
-
-
-def _cmd_post_buckling(args) -> int:
-    opts = _study_options(args, POST_QUICK, POST_FULL)
-    for m in opts["meshes"]:
-        if m[1] % 2:
-            raise ValueError(f"--meshes: N2 must be even (nodes on the mid-plane), got "
-                             f"{'x'.join(map(str, m))}")
-
-    def show(row):
-        print(f"alpha = {row['alpha']:g} {row['model']} {row['mesh']}: "
-              f"D0_b = {row['D0_b']:.4f}, from the "
-              f"branch {row['D0_b_pitchfork']:.4f}; deflection {row['deflection_last']:.3f} "
-              f"mm at D0 = {row['D0_last']:.3g}; {row['seconds']:.0f} s"
-              + (f" ({row['reason']})" if row["reason"] else ""), flush=True)
-
-    run_post_buckling(args.out, **opts, solver=args.solver, model=args.model,
-                      progress=show)
-    print(f"wrote {args.out / 'post-buckling.csv'}, {args.out / 'post-buckling.png'} (and .pdf)")
-    return 0
-
-
-def _cmd_buckling(args) -> int:
-    opts = _study_options(args, BUCKLING_QUICK, BUCKLING_FULL)
-
-    def show(row):
-        print(f"alpha = {row['alpha']:g} {row['mesh']}: D0_b = {row['D0_b']:.4f} "
-              f"({row['class'] or 'none found'}), P33 onset (interior) "
-              f"{row['P33_onset_interior']:.3f}, Newton limit {row['newton_limit']:.3f}, "
-              f"{row['seconds']:.0f} s", flush=True)
-
-    run_buckling(args.out, **opts, solver=args.solver, progress=show)
-    print(f"wrote {args.out / 'buckling.csv'}, {args.out / 'buckling.png'} (and .pdf)")
-    return 0
-
-
 def _cmd_list(args) -> int:
     rows = [(c.name, c.figure, f"{len(c.quick)}/{len(c.full)}", c.title)
             for c in CASES.values()]
@@ -331,23 +190,6 @@ def _cmd_list(args) -> int:
     w = [max(len(r[i]) for r in rows + [head]) for i in range(3)]
     for r in [head] + rows:
         print("  ".join(f"{v:<{n}}" for v, n in zip(r, w)) + "  " + r[3])
-    return 0
-
-
-def _cmd_wrinkling(args) -> int:
-    def show(row):
-        err = "" if row[6] is None else f"  rel. error {row[6]:+.2e}"
-        print(f"{row[0]:>7} {row[1]:>13} lam = {row[2]:g} kh = {row[3]:g}: "
-              + (f"D0_fe = {row[4]:.6g}, D0_stroh = {row[5]:.6g}{err}" if row[4] is not None
-                 else (row[10] or "no FE root")), flush=True)
-
-    def show_elastic(row):
-        print(f"{'D0 = 0':>7} {row[0]:>13} kh = {row[1]:g}: "
-              + (f"lam_fe = {row[2]:.6g}, lam_stroh = {row[3]:.6g}  rel. error {row[4]:+.2e}"
-                 if row[2] is not None else (row[6] or "no FE root")), flush=True)
-
-    paths = run_wrinkling_fe(args.out, quick=args.quick, on_row=show, on_elastic_row=show_elastic)
-    print("wrote " + ", ".join(str(p) for p in paths))
     return 0
 
 
@@ -381,17 +223,6 @@ def _dask_executor(address: str, jobs: int):
                          f"'local', got {address!r} ({exc})") from None
 
 
-def _solver(name: str) -> str:
-    """The linear solver a command uses: ``auto`` is PARDISO when pypardiso (the ``fast``
-    extra) is installed, else SuperLU; ``pardiso`` without it is a ``ValueError``."""
-    if name == "pardiso" and not pardiso_installed():
-        raise ValueError("--solver pardiso needs pypardiso (pip install -e '.[fast]'); "
-                         "use --solver auto or superlu")
-    if name == "auto":
-        return "pardiso" if pardiso_installed() else "superlu"
-    return name
-
-
 def _cpu_seconds() -> float:
     """CPU seconds of this process and its finished worker processes (user + system)."""
     t = os.times()
@@ -399,7 +230,7 @@ def _cpu_seconds() -> float:
 
 
 def _cmd_validate(args) -> int:
-    solver = _solver(args.solver)
+    solver = solver_name(args.solver)
     if args.scheduler is not None and not args.scheduler.strip():
         raise ValueError("--scheduler must be a scheduler address or 'local', got ''")
     t0, cpu0 = time.perf_counter(), _cpu_seconds()
@@ -445,13 +276,13 @@ def _cmd_simulate(args) -> int:
         raise ValueError(f"--s applies to --geometry equibiaxial only (the Keplinger plate's "
                          f"load follows from --alpha), got --s {args.s:g} with --geometry "
                          f"uniaxial")
-    _positive("--steps", args.steps, integer=True)
-    _positive("--D0-max", args.D0_max)
+    positive("--steps", args.steps, integer=True)
+    positive("--D0-max", args.D0_max)
     if args.alpha is not None:
-        _positive("--alpha", args.alpha)
+        positive("--alpha", args.alpha)
     if args.s is not None:
-        _positive("--s", args.s, zero=True)
-    _check_mesh("--mesh", args.mesh)
+        positive("--s", args.s, zero=True)
+    check_mesh("--mesh", args.mesh)
     out = simulate(geometry=args.geometry, model=args.model, variant=args.variant, s=args.s,
                    alpha=args.alpha, D0_max=args.D0_max, steps=args.steps,
                    mesh=args.mesh, fmt=args.fmt, out=args.out)
@@ -479,11 +310,11 @@ def _cmd_simulate(args) -> int:
 
 
 def _cmd_bench(args) -> int:
-    _positive("--steps", args.steps, integer=True)
-    _positive("--D0-max", args.D0_max)
-    _positive("--alpha", args.alpha)
-    _check_mesh("--mesh", args.mesh)
-    used = _solver(args.solver)
+    positive("--steps", args.steps, integer=True)
+    positive("--D0-max", args.D0_max)
+    positive("--alpha", args.alpha)
+    check_mesh("--mesh", args.mesh)
+    used = solver_name(args.solver)
     print(f"linear solver: {used}" + (" (chosen by 'auto': PARDISO if pypardiso is installed, "
                                       "else SuperLU)" if args.solver == "auto" else ""))
     for line in bench(mesh=tuple(args.mesh), alpha=args.alpha, D0_max=args.D0_max,
@@ -524,8 +355,7 @@ def main(argv: list[str] | None = None) -> int:
     args = parser.parse_args(argv)
     cmd = {"list": _cmd_list, "curves": _cmd_curves, "validate": _cmd_validate,
            "simulate": _cmd_simulate, "bench": _cmd_bench,
-           "wrinkling-fe": _cmd_wrinkling, "buckling": _cmd_buckling,
-           "post-buckling": _cmd_post_buckling}[args.command]
+           **STUDY_COMMANDS}[args.command]
     prefix = f"skfem-dielectric {args.command}: error:"
     try:
         if getattr(args, "jobs", 1) < 1:

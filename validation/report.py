@@ -9,7 +9,7 @@ from pathlib import Path
 from .cases import get_case
 from .figures import PAPER_FIGURE
 from .store import write_text_atomic
-from .extra_cases import EXTRA_CASES
+from .studies.extra_cases import EXTRA_CASES
 
 __all__ = ["summary_dict", "write_summary", "write_report", "verdict_lines", "HOMOGENEOUS_TOL", "CLAMPED_TOL"]
 
@@ -137,7 +137,7 @@ def write_report(results, folder, *, quick: bool) -> Path:
     Parameters
     ----------
     results : sequence of CaseResult
-        Every case to report (:func:`validation.sweep.folder_results`).
+        Every case to report (:func:`validation.results.folder_results`).
     folder : path-like
         Output folder.
     quick : bool

@@ -50,8 +50,11 @@ class RunSpec:
         electric energy in the total energy (``"membrane"``) or with the
         Maxwell traction of the local field as a follower load
         (``"membrane-maxwell"``; exact on homogeneous states only).
-    s : float
-        Dimensionless dead load (equi-biaxial traction, or weight/(mu A)).
+    s : float or None
+        Dimensionless dead load (equi-biaxial traction, or weight/(mu A)).  ``None`` for
+        a Keplinger run given by its weight fraction ``alpha``: the FE runner sets it,
+        :func:`validation.fe.model.with_dead_load` (the FE package's dead load, so that
+        the cases need no finite elements).
     D0 : tuple of float
         Charge targets, increasing, the first one ``0`` (the pre-load).
     alpha : float or None
@@ -79,7 +82,7 @@ class RunSpec:
     geometry: str
     model: str
     variant: str
-    s: float
+    s: float | None
     D0: tuple
     alpha: float | None = None
     mesh: tuple = (("n1", 1), ("n2", 1), ("n3", 1))
@@ -95,7 +98,11 @@ class RunSpec:
             raise ValueError(f"model must be one of {MODELS}, got {self.model!r}")
         if self.variant not in VARIANTS:
             raise ValueError(f"variant must be one of {VARIANTS}, got {self.variant!r}")
-        if not np.isfinite(self.s) or self.s < 0:
+        if self.s is None:
+            if self.geometry != "uniaxial" or self.alpha is None:
+                raise ValueError(f"s may be None only for a uniaxial run given by its alpha, "
+                                 f"got geometry {self.geometry!r} and alpha {self.alpha!r}")
+        elif not np.isfinite(self.s) or self.s < 0:
             raise ValueError(f"s must be >= 0 and finite, got {self.s!r}")
         D0 = np.asarray(self.D0, dtype=float)
         if D0.ndim != 1 or D0.size < 1 or np.any(~np.isfinite(D0)) or np.any(D0 < 0) \

@@ -35,6 +35,8 @@ from ..models.plate.problem import PlateProblem
 from ..problem import Problem
 from ..solvers.newton import check_settings
 from ..solvers.ramp import RampResult, RampSettings, StepResult, ramp
+from .defaults import (EQUIBIAXIAL_PRELOAD_STEPS, EQUIBIAXIAL_RTOL, EQUIBIAXIAL_SIZE, GENT_JM,
+                       KEPLINGER_CHORD, KEPLINGER_PRELOAD_STEPS, KEPLINGER_RTOL, KEPLINGER_SIZE)
 from .loads import charge_targets, keplinger_s, preload_then_charge, remaining_targets
 
 __all__ = ["EQUIBIAXIAL_SETTINGS", "KEPLINGER_SETTINGS", "MAXWELL_KEPLINGER_SETTINGS",
@@ -44,13 +46,13 @@ __all__ = ["EQUIBIAXIAL_SETTINGS", "KEPLINGER_SETTINGS", "MAXWELL_KEPLINGER_SETT
 
 #: How :func:`equibiaxial_plate` solves its load steps: the homogeneous state converges to
 #: round-off, so a tight ``rtol`` relative to the external load alone (``atol = 0``).
-EQUIBIAXIAL_SETTINGS = RampSettings(atol=0.0, rtol=1e-11, max_cutbacks=6)
+EQUIBIAXIAL_SETTINGS = RampSettings(atol=0.0, rtol=EQUIBIAXIAL_RTOL, max_cutbacks=6)
 #: How :func:`keplinger_plate` solves its load steps: ``rtol`` relative to the external
 #: load alone, chord steps while the residual contracts tenfold, and a small Newton budget
 #: (converged steps need <= 6 iterations on the 40 x 20 eighth model up to ``D0 = 5``, up
 #: to 9 right before the breakdown; a low limit makes the attempts beyond it cheap).
-KEPLINGER_SETTINGS = RampSettings(atol=0.0, rtol=1e-9, max_iter=12, max_cutbacks=4,
-                                  chord=0.1)
+KEPLINGER_SETTINGS = RampSettings(atol=0.0, rtol=KEPLINGER_RTOL, max_iter=12, max_cutbacks=4,
+                                  chord=KEPLINGER_CHORD)
 #: How :func:`maxwell_keplinger` solves its load steps: :data:`KEPLINGER_SETTINGS` with
 #: the ramp's default Newton budget (6 cut-backs, 25 iterations).
 MAXWELL_KEPLINGER_SETTINGS = replace(KEPLINGER_SETTINGS, max_iter=25, max_cutbacks=6)
@@ -175,8 +177,8 @@ def run_ramp(problem: Problem, targets: Sequence[Any], *,
     return out
 
 
-def equibiaxial_problem(*, model: Any = "neo-Hookean", Jm: float = 97.2,
-                        size: tuple[float, float, float] = (4.0, 1.0, 4.0),
+def equibiaxial_problem(*, model: Any = "neo-Hookean", Jm: float = GENT_JM,
+                        size: tuple[float, float, float] = EQUIBIAXIAL_SIZE,
                         elements: tuple[int, int, int] = (1, 1, 1), symmetry: str = "eighth",
                         **options) -> PlateProblem:
     """The equi-biaxial dead-load plate (dimensionless ``mu = eps = 1``).
@@ -198,8 +200,8 @@ def equibiaxial_problem(*, model: Any = "neo-Hookean", Jm: float = 97.2,
     return PlateProblem(pm, make_material(model, Jm), loading="equibiaxial", **options)
 
 
-def keplinger_problem(*, model: Any = "neo-Hookean", Jm: float = 97.2,
-                      size: tuple[float, float, float] = (100.0, 1.0, 50.0),
+def keplinger_problem(*, model: Any = "neo-Hookean", Jm: float = GENT_JM,
+                      size: tuple[float, float, float] = KEPLINGER_SIZE,
                       elements: tuple[int, int, int] = (40, 1, 20), symmetry: str = "eighth",
                       grading: float = 1.0, **options) -> PlateProblem:
     """The clamped uni-axial Keplinger plate (dimensionless ``mu = eps = 1``, mm).
@@ -227,9 +229,9 @@ def keplinger_problem(*, model: Any = "neo-Hookean", Jm: float = 97.2,
 
 
 def equibiaxial_plate(s: float, D0: Sequence[float], *, model: Any = "neo-Hookean",
-                      Jm: float = 97.2, size: tuple[float, float, float] = (4.0, 1.0, 4.0),
+                      Jm: float = GENT_JM, size: tuple[float, float, float] = EQUIBIAXIAL_SIZE,
                       elements: tuple[int, int, int] = (1, 1, 1), symmetry: str = "eighth",
-                      preload_steps: int = 4, control: str = "charge",
+                      preload_steps: int = EQUIBIAXIAL_PRELOAD_STEPS, control: str = "charge",
                       coupling: str = "full", field: str = "electrostatic",
                       formulation: str = "mixed", kappa: float = math.inf,
                       phi_element: str = "Q2", linear_solver: str = "auto",
@@ -283,9 +285,10 @@ def equibiaxial_plate(s: float, D0: Sequence[float], *, model: Any = "neo-Hookea
 def keplinger_plate(alpha: float | None = 1.0, D0: Sequence[float] = (1, 2, 3, 4, 5, 6), *,
                     s: float | None = None, g: float = 9.81, m: float = 0.150,
                     mu: float = 9833.07, A: float = 50e-6, model: Any = "neo-Hookean",
-                    Jm: float = 97.2, size: tuple[float, float, float] = (100.0, 1.0, 50.0),
+                    Jm: float = GENT_JM, size: tuple[float, float, float] = KEPLINGER_SIZE,
                     elements: tuple[int, int, int] = (40, 1, 20), symmetry: str = "eighth",
-                    grading: float = 1.0, preload_steps: int = 3, control: str = "charge",
+                    grading: float = 1.0, preload_steps: int = KEPLINGER_PRELOAD_STEPS,
+                    control: str = "charge",
                     coupling: str = "full", field: str = "electrostatic",
                     formulation: str = "mixed", kappa: float = math.inf,
                     phi_element: str = "Q2", linear_solver: str = "auto",
@@ -421,8 +424,9 @@ def membrane_ramp(problem: MembranePlate, s: float, D0, **ramp_options) -> RampR
 
 
 def membrane_keplinger(alpha: float = 1.0, D0=np.arange(0.0, 6.01, 0.5), material=None,
-                       n1: int = 40, n3: int = 20, L1: float = 100.0, L3: float = 50.0,
-                       H: float = 1.0, g: float = 9.81, **ramp_options) -> RampResult:
+                       n1: int = 40, n3: int = 20, L1: float = KEPLINGER_SIZE[0],
+                       L3: float = KEPLINGER_SIZE[2], H: float = KEPLINGER_SIZE[1],
+                       g: float = 9.81, **ramp_options) -> RampResult:
     """Membrane model of the clamped uni-axial Keplinger plate under charge control.
 
     Parameters

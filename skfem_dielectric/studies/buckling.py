@@ -13,7 +13,7 @@ indicator whose zero crossing :func:`~skfem_dielectric.solvers.critical.critical
 locates.
 
 The verdict of a single mesh is a flag, not a proof: a negative eigenvalue is physics
-only if its onset converges under refinement (``validation.buckling`` compares meshes).
+only if its onset converges under refinement (``validation.studies.buckling`` compares meshes).
 """
 
 from __future__ import annotations

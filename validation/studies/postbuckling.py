@@ -1,7 +1,7 @@
 """The clamped Keplinger plate past its buckling load: the post-buckled branch per weight.
 
 For each weight ``alpha`` and mesh the *quarter* model (symmetry planes ``x1 = 0`` and
-``x3 = 0``, the whole thickness: it can bend; grad-div 10 as in :mod:`validation.buckling`)
+``x3 = 0``, the whole thickness: it can bend; grad-div 10 as in :mod:`validation.studies.buckling`)
 is ramped in ``D0`` on its fundamental (symmetric) branch; the lowest physical eigenvalue of
 its own class (:func:`skfem_dielectric.studies.postbuckling.critical_mode`) locates the buckling
 load ``D0_b`` to ``1e-4``; at the first scanned state past it Newton is started from the
@@ -36,8 +36,9 @@ from skfem_dielectric.solvers.critical import critical_load
 from skfem_dielectric.studies.postbuckling import (critical_mode, midplane_deflection,
                                            midplane_nodes, post_buckled_branch)
 
-from .buckling import append_rows, read_rows
-from .figures import save_figure
+from ..store import append_rows, read_rows
+from ..fe.model import BUCKLING_GRAD_DIV
+from ..figures import save_figure
 
 __all__ = ["COLUMNS", "SUMMARY_COLUMNS", "QUICK", "FULL", "WINDOW", "MODELS", "run_one", "run_post_buckling",
            "post_buckling_figure"]
@@ -68,7 +69,7 @@ def _mesh_name(el) -> str:
 
 def _fundamental(alpha, elements, D0, solver, model):
     res = fe.keplinger_plate(alpha, D0=D0, elements=tuple(elements), symmetry=MODELS[model],
-                             grad_div=10.0, linear_solver=solver,
+                             grad_div=BUCKLING_GRAD_DIV, linear_solver=solver,
                              settings=replace(fe.gallery.KEPLINGER_SETTINGS, max_cutbacks=6,
                                               max_iter=25))
     newton = dict(linear_solver=solver,

@@ -2,8 +2,8 @@
 
 The registered :data:`~validation.cases.CASES` are FE charge ramps drawn over a paper
 figure.  The cases here compute other things -- the continuation through the voltage-
-controlled snap-through (:mod:`validation.voltage_control`) and the FE wrinkling of the
-cross-section against the Stroh analysis (:mod:`validation.wrinkling`) -- and report one
+controlled snap-through (:mod:`validation.studies.voltage_control`) and the FE wrinkling of the
+cross-section against the Stroh analysis (:mod:`validation.studies.wrinkling`) -- and report one
 error measure with its own tolerance.  Each writes ``DIR/<name>.csv`` and the figure
 ``DIR/<name>.png|pdf``, with the caption line of the case figures
 (:func:`validation.figures.run_caption`).
@@ -14,7 +14,6 @@ from __future__ import annotations
 import math
 import time
 from dataclasses import dataclass
-from pathlib import Path
 from typing import Callable
 
 from .voltage_control import (LIMIT_TOL, VOLTAGE_CONTROL, VOLTAGE_TITLE, run_voltage_control,

@@ -33,13 +33,13 @@ from matplotlib.lines import Line2D
 
 import analytic as an
 import skfem_dielectric as fe
+from skfem_dielectric.gallery.loads import keplinger_s
 
-from .cases import analytic_model
-from .fe import keplinger_s
-from .figures import (LIMIT_NAME, MODEL_NAME, PAPER_FIGURE, add_caption, mesh_caption,
+from ..cases import analytic_model
+from ..figures import (LIMIT_NAME, MODEL_NAME, PAPER_FIGURE, add_caption, mesh_caption,
                       run_caption, save_figure, tag_panels)
-from .specs import ALPHAS
-from .store import write_csv_atomic
+from ..specs import ALPHAS, KEPLINGER
+from ..store import write_csv_atomic
 
 __all__ = ["VOLTAGE_CONTROL", "VOLTAGE_COLUMNS", "LIMIT_TOL", "voltage_runs", "voltage_rows",
            "voltage_figure", "voltage_caption", "run_voltage_control"]
@@ -70,7 +70,8 @@ def voltage_runs(quick: bool = False) -> list[dict]:
              for s in (0, 1, 2.3, 3)]
     runs += [dict(model="neo-Hookean", loading="uniaxial-free", s=float(s), alpha=None)
              for s in (0, 1, 2, 3)]
-    runs += [dict(model="neo-Hookean", loading="uniaxial", s=keplinger_s(a), alpha=a)
+    runs += [dict(model="neo-Hookean", loading="uniaxial", s=keplinger_s(a, g=KEPLINGER["g"]),
+                  alpha=a)
              for a in ALPHAS]
     return runs
 

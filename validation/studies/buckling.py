@@ -17,7 +17,6 @@ limit), ``.modes/<alpha>_<mesh>.npz`` (the critical mode's top-face deflection) 
 
 from __future__ import annotations
 
-import csv
 import time
 from dataclasses import replace
 from pathlib import Path
@@ -29,11 +28,13 @@ import skfem_dielectric as fe
 from skfem_dielectric.models.plate.modes import top_deflection
 from skfem_dielectric.studies.buckling import buckling_load
 
-from .figures import save_figure
-from .sweep import BREAKDOWN_TOL
+from ..fe.model import BUCKLING_GRAD_DIV
+from ..figures import save_figure
+from ..store import append_rows, read_rows
+from ..table import BREAKDOWN_TOL
 
 __all__ = ["COLUMNS", "SCAN_COLUMNS", "PLAIN_COLUMNS", "P33_SETS", "p33_measures", "onset",
-           "run_one", "run_plain", "run_buckling", "read_rows", "append_rows", "richardson", "buckling_figure"]
+           "run_one", "run_plain", "run_buckling", "richardson", "buckling_figure"]
 
 #: where min P33/mu is taken: centre line, clamp line (one element inside the clamp),
 #: centre line outside the clamps' 2H layer, all quadrature points outside it, centre
@@ -97,7 +98,7 @@ def run_one(alpha: float, elements, *, D0_step: float, D0_max: float,
     t0 = time.time()
     D0 = np.round(np.arange(D0_step, D0_max + 1e-9, D0_step), 10)
     res = fe.keplinger_plate(alpha, D0=D0, elements=tuple(elements), symmetry="eighth",
-                             grad_div=10.0, linear_solver=solver,
+                             grad_div=BUCKLING_GRAD_DIV, linear_solver=solver,
                              settings=replace(fe.gallery.KEPLINGER_SETTINGS, max_cutbacks=6,
                                               max_iter=25))
     newton = dict(linear_solver=solver,
@@ -159,30 +160,6 @@ def run_plain(alpha: float, elements, *, D0_step: float, D0_max: float,
             "newton_limit": (float(np.asarray(res.steps[-1].load)[1]) if not res.converged
                              else np.nan),
             "D0_max": D0_max, "seconds": round(time.time() - t0, 1)}
-
-
-def read_rows(path: Path) -> list[dict]:
-    """Rows of a CSV written by :func:`run_buckling` (numbers as floats)."""
-    if not path.exists():
-        return []
-    with open(path, newline="") as f:
-        rows = list(csv.DictReader(f))
-    for r in rows:
-        for k, v in r.items():
-            if k not in ("mesh", "class", "physical_class", "branch", "reason", "model"):
-                r[k] = float(v) if v not in ("", None) else float("nan")
-    return rows
-
-
-def append_rows(path: Path, columns, rows) -> None:
-    """Append ``rows`` (dicts) to the CSV ``path``, writing its header first if new."""
-    new = not path.exists()
-    with open(path, "a", newline="") as f:
-        w = csv.DictWriter(f, fieldnames=columns)
-        if new:
-            w.writeheader()
-        for r in rows:
-            w.writerow({k: (f"{v:.10g}" if isinstance(v, float) else v) for k, v in r.items()})
 
 
 def run_buckling(out: Path, *, alphas, meshes, D0_step: float, D0_max: float,

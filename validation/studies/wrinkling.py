@@ -16,7 +16,6 @@ resumes.
 
 from __future__ import annotations
 
-import csv
 import math
 from pathlib import Path
 
@@ -29,8 +28,8 @@ from scipy.optimize import brentq
 import analytic as an
 import skfem_dielectric as fe
 
-from .figures import MODEL_NAME, add_caption, mesh_caption, run_caption, save_figure, tag_panels
-from .store import write_csv_atomic
+from ..figures import MODEL_NAME, add_caption, mesh_caption, run_caption, save_figure, tag_panels
+from ..store import KeyedRows, write_csv_atomic
 
 __all__ = ["WRINKLING_COLUMNS", "ELASTIC_COLUMNS", "wrinkling_grid", "wrinkling_rows",
            "elastic_grid", "elastic_rows", "stroh_critical_stretch", "run_wrinkling_fe",
@@ -85,52 +84,11 @@ def _row(control, mode, lam, kh, n1) -> list:
     return base + [d0, ref, d0 / ref - 1.0, f"{n1}x{n2}", r.n_negative_below, n_ref, ""]
 
 
-def _cell(text: str):
-    """A CSV cell back as the row value: ``None`` (empty), a float, or the text."""
-    if text == "":
-        return None
-    try:
-        return float(text)
-    except ValueError:
-        return text
-
-
-class _RowFile:
-    """Rows of one CSV, kept by key (the first ``nkey`` cells as written), rewritten
-    atomically after every new row.  Rows of an existing file with the same header are
-    reused; a file with other columns is ignored (and replaced)."""
-
-    def __init__(self, path: Path | None, columns: list[str], nkey: int):
-        self.path, self.columns, self.nkey = path, columns, nkey
-        self.known: dict[tuple, list[str]] = {}
-        if path is not None and path.is_file():
-            with open(path, newline="") as fh:
-                lines = list(csv.reader(fh))
-            if lines and lines[0] == columns:
-                self.known = {tuple(r[:nkey]): r for r in lines[1:] if len(r) == len(columns)}
-        self.rows: list[list[str]] = []
-
-    def get(self, key: tuple, compute) -> list:
-        """The row of ``key`` (cells formatted as the CSV's): reused, or computed and
-        written."""
-        k = tuple(_fmt(v) for v in key)
-        row = self.known.get(k)
-        if row is None:
-            row = [_fmt(v) for v in compute()]
-            self.known[k] = row
-            self.rows.append(row)
-            if self.path is not None:
-                write_csv_atomic(self.path, self.columns, self.rows)
-        else:
-            self.rows.append(row)
-        return [_cell(c) for c in row]
-
-
 def wrinkling_rows(quick: bool = False, on_row=None, path: Path | None = None) -> list[list]:
     """Every row of the grid (``on_row(row)`` after each, e.g. for progress); with
     ``path`` the CSV is written after every row and the rows already in it are reused."""
     g = wrinkling_grid(quick)
-    store = _RowFile(path, WRINKLING_COLUMNS, 4)
+    store = KeyedRows(path, WRINKLING_COLUMNS, 4, _fmt)
     rows = []
     for control in CONTROLS:
         for mode in MODES:
@@ -191,7 +149,7 @@ def elastic_rows(quick: bool = False, on_row=None, path: Path | None = None) -> 
     """The rows of :func:`elastic_grid` (``on_row(row)`` after each; ``path`` as in
     :func:`wrinkling_rows`)."""
     g = elastic_grid(quick)
-    store = _RowFile(path, ELASTIC_COLUMNS, 2)
+    store = KeyedRows(path, ELASTIC_COLUMNS, 2, _fmt)
     rows = []
     for mode, kh in g["rows"]:
         rows.append(store.get((mode, kh), lambda: _elastic_row(mode, kh, g["n1"])))

@@ -1,0 +1,177 @@
+"""The FE problem of a :class:`~validation.specs.RunSpec` and the settings of its ramp.
+
+* :func:`build_problem` -- the FE problem of a spec (3D plate, 3D Maxwell-traction
+  plate or 2D membrane);
+* :func:`ramp_targets` and :func:`ramp_settings` -- the ramp's loads ``(s, D0)`` and
+  its Newton tolerances, cut-back limit and linear solver;
+* :func:`with_dead_load` -- the dead load of a Keplinger run given by its weight fraction.
+
+Geometry in SI-like units of millimetres (the Keplinger plate 100 x 50 x 1 mm)
+with ``mu = eps = 1``: every reported quantity is dimensionless.
+"""
+
+from __future__ import annotations
+
+from dataclasses import replace
+
+import numpy as np
+
+import skfem_dielectric as fe
+from skfem_dielectric.gallery.defaults import (EQUIBIAXIAL_PRELOAD_STEPS, EQUIBIAXIAL_RTOL,
+                                               KEPLINGER_CHORD, KEPLINGER_PRELOAD_STEPS,
+                                               KEPLINGER_RTOL, KEPLINGER_SIZE)
+from skfem_dielectric.gallery.loads import keplinger_s
+
+from ..specs import GENT_JM, KEPLINGER, RunSpec
+
+__all__ = ["with_dead_load", "is_membrane", "build_problem", "ramp_targets", "ramp_settings",
+           "pardiso_installed"]
+
+#: the Keplinger plate, mm: the gallery's plate
+L1, H, L3 = KEPLINGER_SIZE
+MEMBRANE_VARIANTS = ("membrane", "membrane-maxwell")
+#: 3D pre-load sub-steps: those of the drivers equibiaxial_plate and keplinger_plate.
+PRELOAD_STEPS = {"equibiaxial": EQUIBIAXIAL_PRELOAD_STEPS, "uniaxial": KEPLINGER_PRELOAD_STEPS}
+#: 3D Newton tolerance relative to the external load: that of equibiaxial_plate and of
+#: keplinger_plate; the membrane keeps the tolerance of the plain ramp.
+RTOL = {"equibiaxial": EQUIBIAXIAL_RTOL, "uniaxial": KEPLINGER_RTOL}
+MEMBRANE_TOL = {"atol": 1e-10, "rtol": 1e-10}
+#: Cut-backs per target and Newton iterations per attempt, every variant.
+MAX_CUTBACKS, MAX_ITER = 6, 25
+#: chord factor of the ramps' Newton solves (:func:`skfem_dielectric.solvers.newton.newton`),
+#: that of keplinger_plate: a factorisation is reused while the residual contracts at least
+#: tenfold per step.  No secant predictor: it depends on the state before the last one, so
+#: a resumed ramp would not repeat the uninterrupted one bit for bit (and past the
+#: breakdown it can jump to another branch of the clamped plate).  The FE dots move within
+#: the Newton tolerance (timings: docs/performance.md).
+CHORD = KEPLINGER_CHORD
+#: grad-div stabilisation (units of mu) of the uni-axial runs analysed for buckling
+#: (``RunSpec.buckling``) and of the studies ``buckling`` and ``post-buckling``
+BUCKLING_GRAD_DIV = 10.0
+
+
+def with_dead_load(spec: RunSpec) -> RunSpec:
+    """``spec`` with its dead load ``s`` set: a Keplinger run given by its weight fraction
+    (``s=None``, ``alpha`` given) gets the FE package's ``s = alpha m g/(mu A)``,
+    :func:`skfem_dielectric.gallery.loads.keplinger_s` with ``g = KEPLINGER["g"] = 9.81
+    m/s^2`` (paper caption of Fig. uni-axial-ideal); any other spec is returned as it is.
+
+    Parameters
+    ----------
+    spec : RunSpec
+
+    Returns
+    -------
+    RunSpec
+
+    Examples
+    --------
+    >>> spec = RunSpec("uniaxial", "neo-Hookean", "coupled", None, (0.0,), alpha=1.0)
+    >>> round(with_dead_load(spec).s, 5)
+    2.99296
+    """
+    if spec.s is not None:
+        return spec
+    return replace(spec, s=keplinger_s(spec.alpha, g=KEPLINGER["g"]))
+
+
+def is_membrane(spec: RunSpec) -> bool:
+    return spec.variant in MEMBRANE_VARIANTS
+
+
+# --------------------------------------------------------------------------- the FE model
+def build_problem(spec: RunSpec):
+    """The FE problem of ``spec``, a ramp problem of :mod:`skfem_dielectric`.
+
+    The 3D plates are eighth models: of a 4 x 1 x 4 plate with one element per
+    direction by default for the homogeneous equi-biaxial state (as
+    :func:`skfem_dielectric.equibiaxial_plate`), of the 100 x 1 x 50 mm Keplinger plate
+    (as :func:`skfem_dielectric.keplinger_plate`). The membrane is the quarter of the
+    100 x 50 mm plate of thickness 1 mm.
+
+    Parameters
+    ----------
+    spec : RunSpec
+
+    Returns
+    -------
+    PlateProblem or MembranePlate
+        For ``variant="maxwell"`` the plate with ``coupling="maxwell"`` and the field of
+        the potential solved on the deformed body.
+    """
+    m = spec.mesh_dict
+    if is_membrane(spec):
+        coupling = "maxwell" if spec.variant == "membrane-maxwell" else "full"
+        # the geometry names are the models' loadings (the Keplinger plate is "uniaxial")
+        return fe.MembranePlate(fe.membrane_mesh(L1, H, L3, m.get("n1", 1), m.get("n3", 1)),
+                                fe.make_material(spec.model, Jm=GENT_JM),
+                                loading=spec.geometry, coupling=coupling)
+    el = (m.get("n1", 1), m.get("n2", 1), m.get("n3", 1))
+    # the variant that discretises the fully coupled equations (docs/fe_variants.md)
+    coupling = {"coupling": "maxwell", "field": "electrostatic"} \
+        if spec.variant == "maxwell" else {}
+    if spec.geometry == "equibiaxial":
+        return fe.equibiaxial_problem(model=spec.model, Jm=GENT_JM, elements=el, **coupling)
+    if spec.geometry == "uniaxial":
+        # the run analysed for buckling is the grad-div form of the buckling study
+        # (docs/validation.md): its tangent is the Hessian of its own state, and Newton
+        # passes the clamp/free-edge corner
+        return fe.keplinger_problem(model=spec.model, Jm=GENT_JM, size=(L1, H, L3),
+                                    elements=el, grad_div=BUCKLING_GRAD_DIV if spec.buckling
+                                    else 0.0, **coupling)
+    raise ValueError(f"the 3D plate has no geometry {spec.geometry!r}")
+
+
+def ramp_targets(spec: RunSpec) -> list:
+    """The ramp's loads ``(s, D0)`` for ``spec``, the pre-load first.
+
+    3D: the pre-load in equal steps ``(s k/n, 0)``, ``n`` from :data:`PRELOAD_STEPS`
+    (a single ``(0, 0)`` target when ``s = 0``), then ``(s, D0)`` for the charge
+    targets. Membrane: straight to ``(s, D0)`` for every target, as
+    :func:`skfem_dielectric.membrane_ramp`.
+
+    Parameters
+    ----------
+    spec : RunSpec
+
+    Returns
+    -------
+    list of ndarray
+    """
+    if is_membrane(spec):
+        return [np.array([spec.s, d]) for d in spec.D0]
+    n = PRELOAD_STEPS[spec.geometry] if spec.s > 0 else 1
+    return fe.preload_then_charge(spec.s, spec.D0, n)
+
+
+def ramp_settings(spec: RunSpec, linear_solver="superlu") -> dict:
+    """Keyword arguments of :func:`skfem_dielectric.solvers.ramp.ramp` for ``spec``.
+
+    Parameters
+    ----------
+    spec : RunSpec
+    linear_solver : str
+        Requested solver. The Maxwell-traction variants have a non-symmetric tangent
+        (follower load), which the symmetric-indefinite PARDISO set-up (upper triangle
+        only) cannot factorise: they get :func:`skfem_dielectric.nonsymmetric_solver`
+        of it (SuperLU, or PARDISO as a general LU when PARDISO is asked for).
+
+    Returns
+    -------
+    dict
+        ``settings``: a :class:`skfem_dielectric.RampSettings` with ``atol``, ``rtol``
+        (:data:`RTOL` with ``atol = 0`` in 3D, :data:`MEMBRANE_TOL` for the membrane),
+        ``max_cutbacks``, ``max_iter`` and ``chord`` (:data:`CHORD`); and
+        ``linear_solver``.
+    """
+    if "maxwell" in spec.variant:
+        linear_solver = fe.nonsymmetric_solver(linear_solver)
+    tol = MEMBRANE_TOL if is_membrane(spec) else {"atol": 0.0, "rtol": RTOL[spec.geometry]}
+    settings = fe.RampSettings(**tol, max_cutbacks=MAX_CUTBACKS, max_iter=MAX_ITER,
+                               chord=CHORD)
+    return {"settings": settings, "linear_solver": linear_solver}
+
+
+def pardiso_installed() -> bool:
+    """Whether PARDISO (pypardiso, the ``fast`` extra) can be used."""
+    return fe.pardiso_available()

@@ -1,0 +1,43 @@
+"""The paper's figures: analytic curves from :mod:`analytic` with the FE dots on top.
+
+One module per paper figure (:mod:`.equibiaxial_loading`: Figs. 1 and 2,
+:mod:`.equibiaxial_wrinkling`: Fig. 3, :mod:`.uniaxial_loading`: Fig. 4,
+:mod:`.uniaxial_wrinkling`: Fig. 5, :mod:`.stretch_maps`: Fig. 6, :mod:`.p33_profiles`:
+Fig. 7), the drawing they share (:mod:`.common`: markers, model names, caption line,
+:func:`save_figure`) and the figure of each case with its caption (:mod:`.case`).
+"""
+
+from .case import case_figure, figure_caption
+from .common import (BREAKDOWN_NAME, BUCKLING_NAME, LIMIT_NAME, MODEL_NAME, PAPER_FIGURE,
+                     add_caption, mesh_caption, plate_mesh_text, run_caption, save_figure,
+                     tag_panels)
+from .equibiaxial_loading import plot_equibiaxial_loading
+from .equibiaxial_wrinkling import plot_equibiaxial_wrinkling
+from .p33_profiles import plot_p33_profiles
+from .stretch_maps import plot_stretch_maps
+from .uniaxial_loading import plot_uniaxial_loading, uniaxial_voltage_locus
+from .uniaxial_wrinkling import plot_uniaxial_wrinkling, uniaxial_thick_limit_curve
+
+__all__ = [
+    "plot_equibiaxial_loading",
+    "plot_equibiaxial_wrinkling",
+    "plot_uniaxial_loading",
+    "plot_uniaxial_wrinkling",
+    "plot_stretch_maps",
+    "plot_p33_profiles",
+    "uniaxial_thick_limit_curve",
+    "uniaxial_voltage_locus",
+    "case_figure",
+    "figure_caption",
+    "run_caption",
+    "mesh_caption",
+    "plate_mesh_text",
+    "add_caption",
+    "tag_panels",
+    "save_figure",
+    "PAPER_FIGURE",
+    "MODEL_NAME",
+    "BREAKDOWN_NAME",
+    "BUCKLING_NAME",
+    "LIMIT_NAME",
+]

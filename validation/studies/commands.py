@@ -1,0 +1,169 @@
+"""The studies' commands of ``skfem-dielectric``: ``wrinkling-fe``, ``buckling`` and
+``post-buckling``, their options and what they print.  Each command holds the lock
+``--out/.state/<command>.lock`` (:func:`validation.store.command_lock`) while it writes,
+so that a second process writing the same study into the same folder is refused.
+"""
+
+from __future__ import annotations
+
+from ..options import mesh_triple, out_dir, positive, solver_name
+from ..store import command_lock
+from .buckling import FULL as BUCKLING_FULL, QUICK as BUCKLING_QUICK, run_buckling
+from .postbuckling import FULL as POST_FULL, QUICK as POST_QUICK, run_post_buckling
+from .wrinkling import run_wrinkling_fe
+
+__all__ = ["add_study_commands", "STUDY_COMMANDS", "cmd_wrinkling", "cmd_buckling",
+           "cmd_post_buckling"]
+
+
+def add_study_commands(add) -> None:
+    """Add the parsers of ``wrinkling-fe``, ``buckling`` and ``post-buckling``.
+
+    Parameters
+    ----------
+    add : callable
+        ``add(name, help, description) -> ArgumentParser``, the sub-parser factory of
+        :func:`validation.cli.build_parser`.
+    """
+    w = add("wrinkling-fe", "FE wrinkling of a homogeneous plate against the Stroh analysis",
+            "The critical charge of one Fourier mode of the cross-section with sliding ends "
+            "(symmetric and antisymmetric, charge and voltage control) on a grid of lam and "
+            "kh, against the finite-thickness dispersion relation: DIR/wrinkling-fe.csv and "
+            "DIR/wrinkling-fe.png (full grid: several minutes).")
+    w.add_argument("--quick", action="store_true", help="only lam = 1.5 and kh in {0.5, 2}")
+    w.add_argument("--out", required=True, type=out_dir, help="output folder")
+
+    k = add("buckling", "first physical buckling load of the clamped plate per weight",
+            "Ramp the clamped Keplinger plate (eighth model, grad-div 10) for each --alpha on "
+            "each mesh, scan its states with the whole plate's spectrum (every symmetry "
+            "class), locate the first physical buckling load D0_b to 1e-4 and compare it with "
+            "the onsets of compressive P33 and the Newton limit: DIR/buckling.csv (one row "
+            "per alpha x mesh, written as each is done; a rerun skips the rows present), "
+            "DIR/buckling-scan.csv and DIR/buckling.png|pdf (redrawn after each row). "
+            "Default: alpha = 1, 0.3, 1.5, 0.7, "
+            "0.05 on 10x1x5, 20x1x10, 40x1x20, D0 step 0.25 (hours on 2 cores); --quick: "
+            "alpha = 1 on 10x1x5 (the quick validate run's mesh), D0 step 0.5 (about a "
+            "minute).")
+    _study_arguments(k, "alpha = 1 on the coarse mesh 10x1x5",
+                     "eighth-model meshes, e.g. 10x1x5 20x1x10", "charge step of the scan",
+                     "last charge target", "auto",
+                     "linear solver and inertia method (auto: PARDISO if installed)")
+
+    pb = add("post-buckling", "follow the clamped plate onto its buckled branch",
+             "Ramp the clamped Keplinger plate's quarter model (the whole thickness, "
+             "grad-div 10) for each --alpha on each mesh, locate the buckling load D0_b of "
+             "its own symmetry class, switch onto the buckled branch along the critical "
+             "mode and follow it forward and back towards D0_b: DIR/post-buckling.csv (every "
+             "state, both branches: mid-plane deflection, lam1 at the centre against the "
+             "homogeneous closed form, stability counts), DIR/post-buckling-summary.csv "
+             "(one row per alpha x mesh, written as each is done; a rerun skips the rows "
+             "present) and DIR/post-buckling.png|pdf. Default: alpha = 0.05 and 1 on the "
+             "quarter meshes 10x2x5, 14x2x7, 20x2x10 (about an hour on 2 cores); --quick: "
+             "alpha = 0.05 on 10x2x5 up to D0 = 1 (about a minute).")
+    _study_arguments(pb, "alpha = 0.05, one coarse mesh",
+                     "quarter-model meshes with an even N2, e.g. 10x2x5 20x2x10",
+                     "charge step of the scan and the branch (default 0.05)",
+                     "last charge target (default: 1.5 for alpha = 0.05, 3.3 for alpha = 1; "
+                     "see validation.studies.postbuckling.WINDOW)", "auto",
+                     "linear solver and inertia method (auto: PARDISO if installed)")
+    pb.add_argument("--model", choices=["quarter", "x1"], default="quarter",
+                    help="quarter: symmetry planes x1 = 0 and x3 = 0 (modes symmetric in x3); "
+                         "x1: the plane x1 = 0 only, the whole width (modes of either "
+                         "parity in x3; N3 then counts the whole width)")
+
+
+def _study_arguments(p, quick: str, meshes: str, step: str, top: str, solver: str,
+                     solver_help: str) -> None:
+    """The options shared by the ``buckling`` and ``post-buckling`` studies."""
+    p.add_argument("--quick", action="store_true", help=quick)
+    p.add_argument("--alpha", nargs="+", type=float, metavar="A", help="weight fractions")
+    p.add_argument("--meshes", nargs="+", type=mesh_triple, metavar="N1xN2xN3", help=meshes)
+    p.add_argument("--D0-step", dest="D0_step", type=float, help=step)
+    p.add_argument("--D0-max", dest="D0_max", type=float, help=top)
+    p.add_argument("--solver", choices=["auto", "superlu", "pardiso"], default=solver,
+                   help=solver_help)
+    p.add_argument("--out", required=True, type=out_dir, help="output folder")
+
+
+def _study_options(args, quick: dict, full: dict) -> dict:
+    """The study's settings: the ``--quick`` or default ones, overridden by the options
+    given, each checked (``ValueError`` naming the option)."""
+    opts = dict(quick if args.quick else full)
+    for key in ("alpha", "meshes", "D0_step", "D0_max"):
+        value = getattr(args, key)
+        if value is not None:
+            opts["alphas" if key == "alpha" else key] = value
+    positive("--D0-step", opts["D0_step"])
+    if opts["D0_max"] is not None:
+        positive("--D0-max", opts["D0_max"])
+    for a in opts["alphas"]:
+        positive("--alpha", a)
+    args.solver = solver_name(args.solver)
+    return opts
+
+
+def cmd_post_buckling(args) -> int:
+    """``skfem-dielectric post-buckling``: :func:`~.postbuckling.run_post_buckling` with the
+    options of ``args``, one line per finished alpha x mesh; returns the exit code 0."""
+    opts = _study_options(args, POST_QUICK, POST_FULL)
+    for m in opts["meshes"]:
+        if m[1] % 2:
+            raise ValueError(f"--meshes: N2 must be even (nodes on the mid-plane), got "
+                             f"{'x'.join(map(str, m))}")
+
+    def show(row):
+        print(f"alpha = {row['alpha']:g} {row['model']} {row['mesh']}: "
+              f"D0_b = {row['D0_b']:.4f}, from the "
+              f"branch {row['D0_b_pitchfork']:.4f}; deflection {row['deflection_last']:.3f} "
+              f"mm at D0 = {row['D0_last']:.3g}; {row['seconds']:.0f} s"
+              + (f" ({row['reason']})" if row["reason"] else ""), flush=True)
+
+    with command_lock(args.out, "post-buckling", f"the post-buckling study in {args.out}"):
+        run_post_buckling(args.out, **opts, solver=args.solver, model=args.model,
+                          progress=show)
+    print(f"wrote {args.out / 'post-buckling.csv'}, {args.out / 'post-buckling.png'} (and .pdf)")
+    return 0
+
+
+def cmd_buckling(args) -> int:
+    """``skfem-dielectric buckling``: :func:`~.buckling.run_buckling` with the options of
+    ``args``, one line per finished alpha x mesh; returns the exit code 0."""
+    opts = _study_options(args, BUCKLING_QUICK, BUCKLING_FULL)
+
+    def show(row):
+        print(f"alpha = {row['alpha']:g} {row['mesh']}: D0_b = {row['D0_b']:.4f} "
+              f"({row['class'] or 'none found'}), P33 onset (interior) "
+              f"{row['P33_onset_interior']:.3f}, Newton limit {row['newton_limit']:.3f}, "
+              f"{row['seconds']:.0f} s", flush=True)
+
+    with command_lock(args.out, "buckling", f"the buckling study in {args.out}"):
+        run_buckling(args.out, **opts, solver=args.solver, progress=show)
+    print(f"wrote {args.out / 'buckling.csv'}, {args.out / 'buckling.png'} (and .pdf)")
+    return 0
+
+
+def cmd_wrinkling(args) -> int:
+    """``skfem-dielectric wrinkling-fe``: :func:`~.wrinkling.run_wrinkling_fe`, one line
+    per grid point; returns the exit code 0."""
+
+    def show(row):
+        err = "" if row[6] is None else f"  rel. error {row[6]:+.2e}"
+        print(f"{row[0]:>7} {row[1]:>13} lam = {row[2]:g} kh = {row[3]:g}: "
+              + (f"D0_fe = {row[4]:.6g}, D0_stroh = {row[5]:.6g}{err}" if row[4] is not None
+                 else (row[10] or "no FE root")), flush=True)
+
+    def show_elastic(row):
+        print(f"{'D0 = 0':>7} {row[0]:>13} kh = {row[1]:g}: "
+              + (f"lam_fe = {row[2]:.6g}, lam_stroh = {row[3]:.6g}  rel. error {row[4]:+.2e}"
+                 if row[2] is not None else (row[6] or "no FE root")), flush=True)
+
+    with command_lock(args.out, "wrinkling-fe", f"case 'wrinkling-fe' in {args.out}"):
+        paths = run_wrinkling_fe(args.out, quick=args.quick, on_row=show,
+                                 on_elastic_row=show_elastic)
+    print("wrote " + ", ".join(str(p) for p in paths))
+    return 0
+
+
+#: The handler of each study command: ``handler(args) -> exit code``.
+STUDY_COMMANDS = {"wrinkling-fe": cmd_wrinkling, "buckling": cmd_buckling,
+                  "post-buckling": cmd_post_buckling}
