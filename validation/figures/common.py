@@ -28,7 +28,7 @@ import analytic as an
 
 __all__ = [
     "PAPER_FIGURE", "MODEL_NAME", "BREAKDOWN_NAME", "BUCKLING_NAME", "LIMIT_NAME",
-    "VARIANT_MARKER", "BREAKDOWN_MARKER", "new_axes", "colors", "fe_rows", "fe_dots", "fe_E0",
+    "VARIANT_MARKER", "BREAKDOWN_MARKER", "new_axes", "colors", "fe_rows", "fe_dots", "fe_E0", "loading_fe_dots",
     "variant_legend", "wrinkling_zone", "finish_loading_axes", "refine_start", "equibiaxial_curve", "uniaxial_curve", "plate_mesh_text",
     "mesh_caption", "mesh_text", "run_caption", "add_caption", "shared_legend", "tag_panels",
     "save_figure",
@@ -104,6 +104,17 @@ def fe_dots(ax, fe, x, y, mask, variant, color, label=None):
 def fe_E0(fe):
     """FE ``E0 = D0/(lam1 lam3)^2`` of an ideal dielectric from the centre stretches."""
     return fe["D0"] / (fe["lam1_fe"] * fe["lam3_fe"]) ** 2
+
+
+def loading_fe_dots(ax, fe, *, s, model, quantity, color):
+    """The FE dots of one loading curve: ``(lam1_fe, D0)`` or ``(lam1_fe, E0_fe)`` of the
+    converged rows with this ``s`` and ``model``, one marker per variant."""
+    mask = fe_rows(fe, s=s, model=model)
+    if mask is None:
+        return
+    y = fe["D0"] if quantity == "D0" else fe_E0(fe)
+    for v in VARIANT_MARKER:
+        fe_dots(ax, fe, fe["lam1_fe"], y, mask & (fe["variant"] == v), v, color)
 
 
 def variant_legend(ax, fe):

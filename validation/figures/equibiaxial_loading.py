@@ -9,8 +9,7 @@ import numpy as np
 import analytic as an
 
 from ..cases import analytic_model
-from .common import (VARIANT_MARKER, colors, equibiaxial_curve, fe_E0, fe_dots, fe_rows,
-                     finish_loading_axes, new_axes)
+from .common import colors, equibiaxial_curve, finish_loading_axes, loading_fe_dots, new_axes
 
 __all__ = ["plot_equibiaxial_loading"]
 
@@ -50,11 +49,7 @@ def plot_equibiaxial_loading(model="neo-Hookean", s_values=(0, 1, 2, 3), quantit
     for s, c in zip(s_values, colors(len(s_values))):
         lam, D0 = equibiaxial_curve(s, m, lam_max)
         ax.plot(lam, D0 if quantity == "D0" else D0 / lam**4, color=c, label=f"$s = {s:g}$")
-        mask = fe_rows(fe, s=s, model=model)
-        if mask is not None:
-            yfe = fe["D0"] if quantity == "D0" else fe_E0(fe)
-            for v in VARIANT_MARKER:
-                fe_dots(ax, fe, fe["lam1_fe"], yfe, mask & (fe["variant"] == v), v, c)
+        loading_fe_dots(ax, fe, s=s, model=model, quantity=quantity, color=c)
     if locus:
         lam = np.linspace(1.0, lam_max, 800)
         D0l = np.asarray(an.voltage_limit_D0(lam, m), dtype=float)

@@ -9,8 +9,7 @@ import numpy as np
 import analytic as an
 
 from ..cases import analytic_model
-from .common import (VARIANT_MARKER, colors, fe_E0, fe_dots, fe_rows, finish_loading_axes,
-                     new_axes, uniaxial_curve)
+from .common import colors, finish_loading_axes, loading_fe_dots, new_axes, uniaxial_curve
 
 __all__ = ["uniaxial_voltage_locus", "plot_uniaxial_loading"]
 
@@ -50,11 +49,7 @@ def plot_uniaxial_loading(model="neo-Hookean", s_values=(0, 1, 2, 3, 4), quantit
     for s, c in zip(s_values, colors(len(s_values), s_values, palette)):
         lam1, D0, E0 = uniaxial_curve(s, m, lam1_max)
         ax.plot(lam1, D0 if quantity == "D0" else E0, color=c, label=f"$s = {s:g}$")
-        mask = fe_rows(fe, s=s, model=model)
-        if mask is not None:
-            yv = fe["D0"] if quantity == "D0" else fe_E0(fe)
-            for v in VARIANT_MARKER:
-                fe_dots(ax, fe, fe["lam1_fe"], yv, mask & (fe["variant"] == v), v, c)
+        loading_fe_dots(ax, fe, s=s, model=model, quantity=quantity, color=c)
     if locus:
         l1, D0, E0 = uniaxial_voltage_locus(model)
         ax.plot(l1, D0 if quantity == "D0" else E0, "k--", lw=1.2,
