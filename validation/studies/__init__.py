@@ -1,9 +1,9 @@
 """The paper's studies beyond the charge ramps of the cases, each with its table, figure
-and command: the buckling load of the clamped plate (:mod:`.buckling`), its post-buckled
-branch (:mod:`.postbuckling`), the FE wrinkling of the cross-section against Stroh
-(:mod:`.wrinkling`), the voltage-controlled snap-through (:mod:`.voltage_control`); the
-two of them that ``validate`` runs as cases (:mod:`.extra_cases`) and the commands
-``wrinkling-fe``, ``buckling``, ``post-buckling`` (:mod:`.commands`).
+and command: the buckling load of the clamped plate (:mod:`~validation.studies.buckling`), its post-buckled
+branch (:mod:`~validation.studies.postbuckling`), the FE wrinkling of the cross-section against Stroh
+(:mod:`~validation.studies.wrinkling`), the voltage-controlled snap-through (:mod:`~validation.studies.voltage_control`); the
+two of them that ``validate`` runs as cases (:mod:`~validation.studies.extra_cases`) and the commands
+``wrinkling-fe``, ``buckling``, ``post-buckling`` (:mod:`~validation.studies.commands`).
 """
 
 from .buckling import run_buckling
