@@ -4,8 +4,8 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["as_array", "check_finite", "check_positive", "check_nonnegative", "check_choice", "check_count",
-           "broadcast"]
+__all__ = ["as_array", "check_finite", "check_positive", "check_nonnegative", "check_choice",
+           "check_count", "broadcast"]
 
 
 def as_array(name: str, value) -> np.ndarray:

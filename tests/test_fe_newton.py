@@ -370,3 +370,12 @@ def test_newton_names_a_residual_of_the_wrong_shape():
                        r"array of shape \(3,\)"):
         newton(lambda x: prob.assemble(x, 2.0), np.full(3, 0.5), residual=lambda x: None,
                settings=NewtonSettings(chord=0.3))
+
+
+def test_newton_accepts_a_list_pair_from_assemble():
+    # [K, r] is a pair too: the same iterates as the tuple, root to round-off as in
+    # test_newton_quadratic_convergence_to_cardano_root
+    prob = Cubic()
+    res = newton(lambda x: list(prob.assemble(x, 2.0)), np.full(3, 0.5),
+                 settings=NewtonSettings(atol=1e-14, rtol=0))
+    np.testing.assert_allclose(res.x, cardano(2.0 * prob.c), rtol=1e-13)

@@ -184,7 +184,7 @@ def _check_assembled(out: Any, n: int) -> None:
     """``ValueError`` unless ``out`` (what ``assemble(x)`` returned for a state of ``n``
     unknowns) is a ``(K, r)`` pair: a tangent of shape ``(n, n)`` and a residual of shape
     ``(n,)``."""
-    if not (isinstance(out, tuple) and len(out) == 2):
+    if not (isinstance(out, (tuple, list)) and len(out) == 2):
         raise ValueError(f"assemble(x) must return a (K, r) pair (sparse tangent dr/dx of "
                          f"shape ({n}, {n}) and residual of shape ({n},)), got "
                          f"{repr(out)[:80]}")
@@ -467,7 +467,10 @@ def newton(assemble: Callable[[np.ndarray], tuple[sp.spmatrix, np.ndarray]],
     ------
     ValueError
         Invalid arguments, each named: a callable that is not, ``x0`` not a finite 1-D
-        vector, ``settings`` not a :class:`NewtonSettings`, a negative ``scale``.
+        vector, ``settings`` not a :class:`NewtonSettings`, a negative ``scale``; and, at
+        the first evaluation, an ``assemble(x)`` that does not return a ``(K, r)`` pair of
+        shapes ``(n, n)`` and ``(n,)`` (``n = len(x0)``) or a ``residual(x)`` that does
+        not return a real array of shape ``(n,)``.
 
     Examples
     --------

@@ -1,18 +1,18 @@
 """Why a ramp of the 3D plate stopped: the state where Newton failed, read at its
 quadrature points, and how often the ``det F > 0`` guard shortened the Newton steps.
 
-On the clamped plate (loading ``"uniaxial"``, the paper's Sec. 6) the clamp face ``x1 = +-L1/2`` meets the free
-edge ``x3 = +-L3/2`` at a re-entrant corner of the boundary conditions, where the stresses
-of the continuum are singular.  A load-controlled Newton iteration can stall there while
-the tangent is still positive definite (no stability signal): the quadrature point next to
-the corner carries a large compressive ``S33`` and a ``det F`` well below one, and the
-Newton increments would invert it, so the step limit
+On the clamped plate (loading ``"uniaxial"``, the paper's Sec. 6) the clamp face
+``x1 = +-L1/2`` meets the free edge ``x3 = +-L3/2`` at a re-entrant corner of the boundary
+conditions, where the stresses of the continuum are singular. A load-controlled Newton
+iteration can stall there while the tangent is still positive definite (no stability
+signal): the quadrature point next to the corner carries a large compressive ``S33`` and a
+``det F`` well below one, and the Newton increments would invert it, so the step limit
 (:meth:`~skfem_dielectric.models.plate.problem.PlateProblem.max_step`) cuts them short.
 :func:`plate_failure_cause` measures exactly these quantities; :class:`StepLimitCounter`
-counts the shortened steps.  :func:`~skfem_dielectric.gallery.drivers.run_ramp` uses both to fill
-``RampResult.failure`` and to extend ``RampResult.reason``.  The other plates (dead tractions
-on their lateral faces) have no clamp and so no such corner: their diagnosis gives the
-positions of the extremes only.
+counts the shortened steps. :func:`~skfem_dielectric.gallery.drivers.run_ramp` uses both to
+fill ``RampResult.failure`` and to extend ``RampResult.reason``. The other plates (dead
+tractions on their lateral faces) have no clamp and so no such corner: their diagnosis gives
+the positions of the extremes only.
 """
 
 from __future__ import annotations
