@@ -4,7 +4,8 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["as_array", "check_finite", "check_positive", "check_nonnegative", "check_choice", "broadcast"]
+__all__ = ["as_array", "check_finite", "check_positive", "check_nonnegative", "check_choice",
+           "check_count", "broadcast"]
 
 
 def as_array(name: str, value) -> np.ndarray:
@@ -50,6 +51,15 @@ def check_choice(name: str, value, choices) -> str:
     if value not in choices:
         raise ValueError(f"{name} must be one of {sorted(choices)}, got {value!r}")
     return value
+
+
+def check_count(name: str, value) -> int:
+    """``int(value)`` of an integer ``>= 1`` (``bool`` is not a count), else ``ValueError``
+    naming ``name`` and the value."""
+    if (isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, np.integer))
+            or value < 1):
+        raise ValueError(f"{name} must be an integer >= 1, got {value!r}")
+    return int(value)
 
 
 def broadcast(**arrays) -> tuple[np.ndarray, ...]:

@@ -72,14 +72,20 @@ def _culprit(func, args, kwargs) -> tuple[str, object]:
     return name, numbers[name]
 
 
+class _Unrepresentable(ValueError):
+    """The ``ValueError`` of :func:`representable`, so that an enclosing public function
+    can name its own argument instead of the one of the function it calls."""
+
+
 def representable(func):
     """Decorator: a computation that overflows double precision raises ``ValueError``.
 
     ``func`` runs under ``numpy.errstate(over="raise")`` (code that expects an overflow
     says so with a local ``errstate``); a ``FloatingPointError`` (or a singular matrix,
     ``numpy.linalg.LinAlgError``, of such inputs) becomes a ``ValueError`` that names the
-    argument of the most extreme magnitude.  Results that do not overflow
-    are unchanged.
+    argument of the most extreme magnitude.  When a decorated function calls another
+    one, the message names the argument of the outermost (the user's) call.  Results
+    that do not overflow are unchanged.
     """
 
     @functools.wraps(func)
@@ -87,13 +93,13 @@ def representable(func):
         try:
             with np.errstate(over="raise"):
                 return func(*args, **kwargs)
-        except (FloatingPointError, np.linalg.LinAlgError):
+        except (FloatingPointError, np.linalg.LinAlgError, _Unrepresentable):
             pass
         name, value = _culprit(func, args, kwargs)
         if isinstance(value, np.ndarray) and value.ndim == 0:
             value = value.item()
-        raise ValueError(f"{name} must be of a size for which {func.__name__} is "
-                         f"representable in double precision (a step of the computation "
-                         f"overflows), got {value!r}")
+        raise _Unrepresentable(f"{name} must be of a size for which {func.__name__} is "
+                               f"representable in double precision (a step of the "
+                               f"computation overflows), got {value!r}")
 
     return wrapper

@@ -32,7 +32,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ._checks import as_array, broadcast, check_finite, check_positive
+from ._checks import as_array, broadcast, check_count, check_finite, check_positive
 from ._loading import equibiaxial_limits, model_derivs, sqrt_branch, uniaxial_x
 from ._output import representable, scalar_or_array
 from ._roots import expand_bracket, rtsafe
@@ -222,13 +222,13 @@ def biaxial_stretches(s1, s3, D0, model=None, *, maxiter: int = 100):
     model : Model, optional
         Strain-energy model (default :class:`NeoHookean`).
     maxiter : int
-        Newton iterations allowed.
+        Newton iterations allowed (an integer ``>= 1``).
 
     Returns
     -------
     lam1, lam3 : ndarray
         The equilibrium stretches; ``nan`` where none was found (no minimiser,
-        e.g. a user model that softens too much).
+        e.g. a user model that softens too much, or not within ``maxiter`` iterations).
 
     Notes
     -----
@@ -250,6 +250,7 @@ def biaxial_stretches(s1, s3, D0, model=None, *, maxiter: int = 100):
     >>> round(float(l1**2 * (l1 - 1.0)), 12), round(float(l3**2 - l1 * (l1 - 1.0)), 12)
     (2.2360679775, 0.0)
     """
+    maxiter = check_count("maxiter", maxiter)
     model = as_model(model)
     s1 = as_array("s1", s1)
     s3 = as_array("s3", s3)

@@ -154,7 +154,8 @@ class UserModel(Model):
     Raises
     ------
     ValueError
-        On construction, a callable that fails, returns non-finite values or an array of
+        On construction, an ``I1_limit`` that is not a real number ``> 3``; a callable that
+        fails, returns complex or non-finite values or an array of
         another shape than ``I1`` (a scalar is broadcast) on the probe ``I1`` = 3, 3.05,
         3.2, 3.5, 4 (those below ``I1_limit``; else points between 3 and the limit), or a
         model with ``W'(3) != 1/2`` (the energies are normalised by the shear modulus,
@@ -182,8 +183,10 @@ class UserModel(Model):
         for label, f in (("W", W), ("dW", dW), ("d2W", d2W)):
             if not callable(f):
                 raise ValueError(f"{label} must be callable, got {f!r}")
-        if not float(I1_limit) > 3.0:
-            raise ValueError(f"I1_limit must be > 3, got {I1_limit}")
+        if (isinstance(I1_limit, (bool, np.bool_))
+                or not isinstance(I1_limit, (int, float, np.integer, np.floating))
+                or not I1_limit > 3.0):
+            raise ValueError(f"I1_limit must be a real number > 3 (or inf), got {I1_limit!r}")
         object.__setattr__(self, "W_fun", W)
         object.__setattr__(self, "dW_fun", dW)
         object.__setattr__(self, "d2W_fun", d2W)
@@ -228,10 +231,14 @@ def _probe_energy(model: "UserModel") -> None:
             raw = f(I1.copy())
             if raw is None:
                 raise TypeError("it returned None")
-            v = np.asarray(raw, dtype=float)
+            complex_out = np.iscomplexobj(raw)
+            v = np.asarray(raw, dtype=float) if not complex_out else None
         except Exception as exc:  # noqa: BLE001 - any failure of user code is reported
             raise ValueError(f"{who}: {label}(I1) must return numbers for I1 = {I1.tolist()}, "
                              f"it raised {type(exc).__name__}: {exc}") from None
+        if complex_out:
+            raise ValueError(f"{who}: {label}(I1) must return real numbers, got "
+                             f"{label}({float(I1[0])!r}) = {complex(np.ravel(raw)[0])!r}")
         if v.shape not in ((), I1.shape):
             raise ValueError(f"{who}: {label}(I1) must return an array of the shape of I1 "
                              f"{I1.shape} (or a scalar), got shape {v.shape}")

@@ -746,7 +746,11 @@ def critical_D0(
     Parameters
     ----------
     lam : array_like
-        Equi-biaxial stretch (``> 0``).
+        Equi-biaxial stretch (``> 0``; Gent: below the locking stretch). The
+        computation stays in double precision for ``0.05 <= lam <= 10`` at every
+        ``kh`` (neo-Hookean; thickness stretch ``lam^-2`` from 400 down to 1/100),
+        which holds every stretch an elastomer plate reaches; a stretch whose
+        computation overflows raises ``ValueError`` naming ``lam``.
     kh : array_like
         Wavenumber ``k = 2 pi / wavelength`` times the *deformed* thickness
         ``h`` (``> 0``; ``inf`` gives the thick-plate limit).

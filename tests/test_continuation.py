@@ -124,3 +124,18 @@ def test_problem_without_the_contract():
 
     with pytest.raises(ValueError, match="problem must be a skfem_dielectric.Problem"):
         continuation(NotAProblem(), 0.0, 1.0)
+
+
+@pytest.mark.parametrize("count", [42, "yes", None])
+def test_continuation_names_a_count_that_is_neither_a_bool_nor_callable(count):
+    calls = []
+
+    class Watched(Truss):
+        def assemble(self, x, load):
+            calls.append(load)
+            return super().assemble(x, load)
+
+    with pytest.raises(ValueError, match=r"^count must be True, False or a callable "
+                       r"count\(x, load\), got " + repr(count).replace("(", r"\(") + "$"):
+        continuation(Watched(), 0.0, 1.0, count=count)
+    assert calls == []    # rejected before the first assembly

@@ -335,3 +335,47 @@ def test_old_factors_are_discarded_before_a_tangent_to_factorise(solver):
     s.discard()                                            # nothing to free: no error
     np.testing.assert_allclose(s.solve(2 * sp.identity(3, format="csr"), np.ones(3)), 0.5)
     np.testing.assert_allclose(s.resolve(np.ones(3)), 0.5)
+
+
+@pytest.mark.parametrize("returned, what", [
+    (None, "None"),
+    (np.zeros(3), "array"),
+    ((sp.identity(3, format="csr"),), r"\(<"),
+])
+def test_newton_says_what_assemble_must_return(returned, what):
+    calls = []
+
+    def assemble(x):
+        calls.append(x)
+        return returned
+
+    with pytest.raises(ValueError, match=r"^assemble\(x\) must return a \(K, r\) pair "
+                       r"\(sparse tangent dr/dx of shape \(3, 3\) and residual of shape "
+                       r"\(3,\)\), got " + what):
+        newton(assemble, np.full(3, 0.5))
+    assert len(calls) == 1    # reported at the first evaluation, no Newton step taken
+
+
+def test_newton_names_a_residual_of_the_wrong_shape():
+    prob = Cubic()
+    with pytest.raises(ValueError, match=r"^assemble\(x\) must return the residual as a "
+                       r"real array of shape \(3,\) \(one entry per unknown of x\), got "
+                       r"ndarray of shape \(2,\)"):
+        newton(lambda x: (prob.assemble(x, 2.0)[0], np.ones(2)), np.full(3, 0.5))
+    with pytest.raises(ValueError, match=r"^assemble\(x\) must return a \(K, r\) pair whose "
+                       r"tangent K has shape \(3, 3\), got K = None"):
+        newton(lambda x: (None, prob.assemble(x, 2.0)[1]), np.full(3, 0.5))
+    # a residual-only evaluation is checked the same way
+    with pytest.raises(ValueError, match=r"^residual must return the residual as a real "
+                       r"array of shape \(3,\)"):
+        newton(lambda x: prob.assemble(x, 2.0), np.full(3, 0.5), residual=lambda x: None,
+               settings=NewtonSettings(chord=0.3))
+
+
+def test_newton_accepts_a_list_pair_from_assemble():
+    # [K, r] is a pair too: the same iterates as the tuple, root to round-off as in
+    # test_newton_quadratic_convergence_to_cardano_root
+    prob = Cubic()
+    res = newton(lambda x: list(prob.assemble(x, 2.0)), np.full(3, 0.5),
+                 settings=NewtonSettings(atol=1e-14, rtol=0))
+    np.testing.assert_allclose(res.x, cardano(2.0 * prob.c), rtol=1e-13)

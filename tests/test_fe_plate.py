@@ -238,3 +238,38 @@ def test_ramp_hands_the_upper_triangle_to_a_solver_that_reads_it(monkeypatch):
     assert seen and set(seen) == {"SymmetricUpper"} and a.converged and b.converged
     np.testing.assert_allclose(a.steps[-1].x, b.steps[-1].x, rtol=0,
                                atol=1e-9 * np.abs(b.steps[-1].x).max())
+
+
+def _no_build(monkeypatch):
+    """Make building a mesh or a membrane fail loudly: a driver that checks its callbacks
+    first never gets there."""
+    from skfem_dielectric.gallery import drivers
+
+    def forbidden(*args, **kwargs):
+        raise AssertionError("the driver built its model before checking its callbacks")
+
+    for name in ("plate_mesh", "membrane_mesh", "MembranePlate"):
+        monkeypatch.setattr(drivers, name, forbidden)
+    return drivers
+
+
+@pytest.mark.parametrize("call, name", [
+    (lambda d: d.equibiaxial_plate(0.5, [1.0], on_step=42), "on_step"),
+    (lambda d: d.maxwell_equibiaxial(0.5, [1.0], on_step="x"), "on_step"),
+    (lambda d: d.keplinger_plate(1.0, [1.0], on_step=42), "on_step"),
+    (lambda d: d.keplinger_plate(1.0, [1.0], state_analysis=3.0), "state_analysis"),
+    (lambda d: d.maxwell_keplinger(1.0, [1.0], on_step=[1]), "on_step"),
+    (lambda d: d.membrane_keplinger(1.0, [1.0], on_step=42), "on_step"),
+    (lambda d: d.membrane_keplinger(1.0, [1.0], admissible=0), "admissible"),
+])
+def test_drivers_name_a_callback_that_is_not_callable_before_building(monkeypatch, call, name):
+    drivers = _no_build(monkeypatch)
+    with pytest.raises(ValueError, match=rf"^{name} must be callable or None, got "):
+        call(drivers)
+
+
+def test_run_ramp_names_a_callback_that_is_not_callable():
+    from skfem_dielectric.gallery.drivers import equibiaxial_problem, run_ramp
+    pb = equibiaxial_problem()
+    with pytest.raises(ValueError, match=r"^on_step must be callable or None, got 42$"):
+        run_ramp(pb, [np.array([0.5, 0.0])], on_step=42)

@@ -8,6 +8,8 @@ Jm -> inf limit of Gent, and round trips of the inverse functions.
 
 from __future__ import annotations
 
+import re
+
 import numpy as np
 import pytest
 
@@ -350,3 +352,17 @@ def test_scalar_in_scalar_out_and_broadcasting():
 def test_bad_input_raises_value_error(call, match):
     with pytest.raises(ValueError, match=match):
         call()
+
+
+@pytest.mark.parametrize("maxiter", [0, -5, 2.5, True, "3", None])
+def test_biaxial_stretches_rejects_a_maxiter_that_is_not_a_count(maxiter):
+    with pytest.raises(ValueError, match=r"^maxiter must be an integer >= 1, got "
+                       + re.escape(repr(maxiter)) + "$"):
+        an.biaxial_stretches(1.0, 0.0, 2.0, maxiter=maxiter)
+
+
+def test_biaxial_stretches_with_a_valid_maxiter_meets_the_closed_form():
+    # numpy integers are counts too; Eq. (DEuniax) lam1^2 (lam1 - s) = sqrt(1 + D0^2) at
+    # s = 1, D0 = 2 holds to round-off once Newton converged (tolerance 1e-14 |grad|)
+    l1, _ = an.biaxial_stretches(1.0, 0.0, 2.0, maxiter=np.int64(50))
+    assert abs(l1**2 * (l1 - 1.0) - np.sqrt(5.0)) < 1e-12

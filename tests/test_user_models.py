@@ -1,6 +1,8 @@
 """User strain energies are probed on construction: a callable returning nan, None, inf,
 a wrong shape, or an energy with W'(3) != mu/2 is a ValueError naming the problem."""
 
+import re
+
 import numpy as np
 import pytest
 
@@ -64,3 +66,39 @@ def test_valid_user_models_and_scaling():
                        d2W=lambda I: 0 * I, mu=4.0)
     with pytest.raises(ValueError, match=r"dW\(3\) must equal 2.0"):
         sd.IdealDielectric(W=ok_W, dW=ok_dW, d2W=ok_d2W, mu=4.0)
+
+
+@pytest.mark.parametrize("limit", ["x", None, [5.0, 6.0], True, 1 + 2j, float("nan"), 3.0])
+def test_user_model_rejects_an_I1_limit_that_is_not_a_real_number_above_3(limit):
+    called = []
+
+    def spy(I):
+        called.append(I)
+        return 0.5 + 0.0 * I
+
+    with pytest.raises(ValueError, match=r"^I1_limit must be a real number > 3 \(or inf\), "
+                       r"got " + re.escape(repr(limit)) + "$"):
+        an.UserModel(W=spy, dW=spy, d2W=spy, I1_limit=limit)
+    assert called == []    # rejected before any user callable is evaluated
+
+
+@pytest.mark.parametrize("dW", [lambda I: 0.5 + 1e-3j + 0.0 * I, lambda I: 0.5 + 0j])
+def test_user_model_rejects_a_complex_dW(dW):
+    called = []
+
+    def d2W(I):
+        called.append(I)
+        return 0.0 * I
+
+    # the probe starts at I1 = 3, where the first complex value is reported
+    value = np.ravel(dW(np.array([3.0])))[0]
+    with pytest.raises(ValueError, match=r"^UserModel 'mine': dW\(I1\) must return real "
+                       r"numbers, got dW\(3.0\) = " + re.escape(repr(complex(value))) + "$"):
+        an.UserModel(W=ok_W, dW=dW, d2W=d2W, name="mine")
+    assert called == []    # d2W is probed after dW: the complex dW stopped the probe
+
+
+def test_user_model_accepts_an_integer_I1_limit():
+    # an integer limit is a real number; it is stored as float and bounds the domain
+    m = an.UserModel(W=ok_W, dW=ok_dW, d2W=ok_d2W, I1_limit=10)
+    assert m.I1_max() == 10.0 and isinstance(m.I1_limit, float)

@@ -1,5 +1,7 @@
 """Wrinkling: thin/thick limits (paper Secs. 4-5) and the finite-thickness plate."""
 
+import re
+
 import numpy as np
 import pytest
 from scipy.linalg import expm
@@ -472,3 +474,29 @@ def test_symmetric_long_waves_are_the_homogeneous_instability(model):
     # O((kh)^2) = 1e-4 long-wave correction (observed 1e-6 .. 4e-6) plus FD error
     np.testing.assert_allclose(got, D0_ref, rtol=2e-5)
     assert np.all(np.isnan(critical_D0(lam, 0.01, model, mode="symmetric", control="charge")))
+
+
+@pytest.mark.parametrize("lam", [1e6, 1e-4])
+def test_critical_D0_names_its_own_lam_when_the_stretch_overflows(lam):
+    # the computation runs in critical_D0_biaxial(lam1=lam, lam3=lam, ...); the message
+    # names the argument the user passed
+    with pytest.raises(ValueError, match=r"^lam must be of a size for which critical_D0 is "
+                       r"representable in double precision \(a step of the computation "
+                       r"overflows\), got " + re.escape(repr(lam)) + "$"):
+        critical_D0(lam, 2.0)
+
+
+def test_critical_D0_is_representable_over_the_documented_stretches():
+    khs = [1e-3, 1.0, 1e3, 1e6, np.inf]
+    # lam = 0.05 is far below the Green-Zerna stretch 0.666: the plate wrinkles without
+    # charge at every kh, so there is no root (nan), and no step overflows
+    assert all(np.isnan(critical_D0(0.05, kh)) for kh in khs)
+    # lam = 10: short waves tend to Eq. (short-wave); the scan and regula falsi reach
+    # ~1e-14 relative and exp(-p kh) at kh = 1e3 is far below round-off, 1e-9 allows for
+    # the root finder's stopping rule on either side
+    thick = thick_limit_D0(10.0)
+    for kh in khs[2:]:
+        assert abs(critical_D0(10.0, kh) - thick) <= 1e-9 * thick
+    # long waves tend to Eq. (antisym_thin): the correction is O(kh^2), 1e-6 relative at
+    # kh = 1e-3
+    assert abs(critical_D0(10.0, 1e-3) - thin_limit_D0(10.0)) <= 1e-6 * thin_limit_D0(10.0)

@@ -34,7 +34,7 @@ from ..models.plate.failure import StepLimitCounter, describe_failure, plate_fai
 from ..models.plate.problem import PlateProblem
 from ..problem import Problem
 from ..solvers.newton import check_settings
-from ..solvers.ramp import RampResult, RampSettings, StepResult, ramp
+from ..solvers.ramp import RampResult, RampSettings, StepResult, check_callbacks, ramp
 from .defaults import (EQUIBIAXIAL_PRELOAD_STEPS, EQUIBIAXIAL_RTOL, EQUIBIAXIAL_SIZE, GENT_JM,
                        KEPLINGER_CHORD, KEPLINGER_PRELOAD_STEPS, KEPLINGER_RTOL, KEPLINGER_SIZE)
 from .loads import charge_targets, keplinger_s, preload_then_charge, remaining_targets
@@ -145,6 +145,7 @@ def run_ramp(problem: Problem, targets: Sequence[Any], *,
         (``step_limited`` of ``newton_steps``, ``smallest_step_limit``), and ``reason``
         ends with that sentence (docs/validation.md, the corner failure).
     """
+    check_callbacks({"on_step": on_step, **ramp_options})
     targets = list(targets)
     if start is not None:
         targets = remaining_targets(targets, start)
@@ -271,6 +272,7 @@ def equibiaxial_plate(s: float, D0: Sequence[float], *, model: Any = "neo-Hookea
     """
     s = check_finite("s", s)
     check_settings("settings", settings, RampSettings)
+    check_callbacks({"on_step": on_step})
     prob = equibiaxial_problem(model=model, Jm=Jm, size=size, elements=elements,
                                symmetry=symmetry, control=control, coupling=coupling,
                                field=field, formulation=formulation, kappa=kappa,
@@ -351,6 +353,7 @@ def keplinger_plate(alpha: float | None = 1.0, D0: Sequence[float] = (1, 2, 3, 4
         s = keplinger_s(alpha, g=g, m=m, mu=mu, A=A)
     s = check_finite("s", s)
     check_settings("settings", settings, RampSettings)
+    check_callbacks({"on_step": on_step, "state_analysis": state_analysis})
     prob = keplinger_problem(model=model, Jm=Jm, size=size, elements=elements,
                              symmetry=symmetry, grading=grading, control=control,
                              coupling=coupling, field=field, formulation=formulation,
@@ -454,6 +457,7 @@ def membrane_keplinger(alpha: float = 1.0, D0=np.arange(0.0, 6.01, 0.5), materia
         Per step ``lam1`` (centre), ``lam3``, ``min_P33`` along the centre line,
         ``min_P33_clamp`` next to the clamp, ``lam1_mean``.
     """
+    check_callbacks(ramp_options)
     material = NeoHookeanDielectric(1.0, 1.0) if material is None else material
     pb = MembranePlate(membrane_mesh(L1, H, L3, n1, n3), material, loading="uniaxial")
     return membrane_ramp(pb, keplinger_s(alpha, g=g), D0, **ramp_options)

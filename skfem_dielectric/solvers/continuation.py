@@ -477,7 +477,9 @@ def continuation(problem: Problem, load0: Any = None, direction: Any = None, *,
         ``problem`` not a ``Problem``; ``ds`` (or ``ds_min``, ``ds_max``) not positive;
         neither ``load0, direction`` nor ``path``; a zero or mis-shaped ``direction``; a
         ``load_vector`` of the wrong shape; ``x0`` of the wrong length; unknown
-        ``predictor``; invalid counts; ``corrector`` not a ``NewtonSettings``.
+        ``predictor``; invalid counts; ``stop``, ``step_limit``, ``admissible`` not
+        callable, ``count`` neither a bool nor callable; ``corrector`` not a
+        ``NewtonSettings``.
     """
     ds, load0, direction = _check_inputs(problem, load0, direction, path, ds)
     ds_min = check_positive("ds_min", ds * 1e-4 if ds_min is None else ds_min)
@@ -490,6 +492,9 @@ def continuation(problem: Problem, load0: Any = None, direction: Any = None, *,
     max_angle = check_positive("max_angle", max_angle)
     for name, f in (("stop", stop), ("step_limit", step_limit), ("admissible", admissible)):
         check_callable(name, f)
+    if not (isinstance(count, bool) or callable(count)):
+        raise ValueError(f"count must be True, False or a callable count(x, load), got "
+                         f"{count!r}")
     check_settings("corrector", corrector, NewtonSettings)
     t_start = time.perf_counter()
     n = problem.ndofs

@@ -170,6 +170,31 @@ class _Point(NamedTuple):
     error: str
 
 
+def _check_vector_result(who: str, r: Any, n: int) -> None:
+    """``ValueError`` unless ``r`` is a real array of shape ``(n,)`` (the residual that
+    ``who`` returned for a state of ``n`` unknowns)."""
+    if not (isinstance(r, np.ndarray) and r.shape == (n,) and r.dtype.kind in "iuf"):
+        got = (f"{type(r).__name__} of shape {r.shape} and dtype {r.dtype}"
+               if isinstance(r, np.ndarray) else repr(r)[:80])
+        raise ValueError(f"{who} must return the residual as a real array of shape ({n},) "
+                         f"(one entry per unknown of x), got {got}")
+
+
+def _check_assembled(out: Any, n: int) -> None:
+    """``ValueError`` unless ``out`` (what ``assemble(x)`` returned for a state of ``n``
+    unknowns) is a ``(K, r)`` pair: a tangent of shape ``(n, n)`` and a residual of shape
+    ``(n,)``."""
+    if not (isinstance(out, (tuple, list)) and len(out) == 2):
+        raise ValueError(f"assemble(x) must return a (K, r) pair (sparse tangent dr/dx of "
+                         f"shape ({n}, {n}) and residual of shape ({n},)), got "
+                         f"{repr(out)[:80]}")
+    K, r = out
+    if getattr(K, "shape", None) != (n, n):
+        raise ValueError(f"assemble(x) must return a (K, r) pair whose tangent K has shape "
+                         f"({n}, {n}), got K = {repr(K)[:80]}")
+    _check_vector_result("assemble(x)", r, n)
+
+
 class _NewtonIteration:
     """The state of one Newton solve between two iterations.
 
@@ -201,11 +226,13 @@ class _NewtonIteration:
         """Tangent and residual at ``x``."""
         t = time.perf_counter()
         try:
-            K, r = self.assemble(x)
+            out = self.assemble(x)
         except (FloatingPointError, ValueError, ZeroDivisionError) as exc:
             self.result.assembly_seconds.append(time.perf_counter() - t)
             return _Point(None, None, np.inf, f"assembly failed: {exc}")
         self.result.assembly_seconds.append(time.perf_counter() - t)
+        _check_assembled(out, x.shape[0])
+        K, r = out
         if not np.all(np.isfinite(r)):
             return _Point(None, None, np.inf, "non-finite residual")
         return _Point(K, r, _norm(r), "")
@@ -221,6 +248,7 @@ class _NewtonIteration:
             return _Point(None, None, np.inf, f"residual failed: {exc}")
         finally:
             self.result.residual_seconds.append(time.perf_counter() - t)
+        _check_vector_result("residual", r, x.shape[0])
         if not np.all(np.isfinite(r)):
             return _Point(None, None, np.inf, "non-finite residual")
         return _Point(None, r, _norm(r), "")
@@ -439,7 +467,10 @@ def newton(assemble: Callable[[np.ndarray], tuple[sp.spmatrix, np.ndarray]],
     ------
     ValueError
         Invalid arguments, each named: a callable that is not, ``x0`` not a finite 1-D
-        vector, ``settings`` not a :class:`NewtonSettings`, a negative ``scale``.
+        vector, ``settings`` not a :class:`NewtonSettings`, a negative ``scale``; and, at
+        the first evaluation, an ``assemble(x)`` that does not return a ``(K, r)`` pair of
+        shapes ``(n, n)`` and ``(n,)`` (``n = len(x0)``) or a ``residual(x)`` that does
+        not return a real array of shape ``(n,)``.
 
     Examples
     --------

@@ -41,7 +41,7 @@ from ..linalg.solver_base import LinearSolver
 from ..problem import Problem
 from .newton import NewtonResult, NewtonSettings, check_settings, newton
 
-__all__ = ["RampSettings", "StepResult", "RampResult", "ramp"]
+__all__ = ["RampSettings", "StepResult", "RampResult", "ramp", "check_callbacks"]
 
 PREDICTORS = ("none", "secant")
 
@@ -435,6 +435,18 @@ class _Ramp:
             self.on_step(step)
 
 
+#: The callbacks :func:`ramp` accepts, each callable or ``None``.
+CALLBACKS = ("on_step", "step_limit", "admissible", "state_analysis")
+
+
+def check_callbacks(options: dict[str, Any]) -> None:
+    """``ValueError`` naming the first of :func:`ramp`'s callbacks (:data:`CALLBACKS`) in
+    ``options`` that is neither callable nor ``None``; other keys are ignored.  A driver
+    calls it on its ramp options before it builds its problem."""
+    for name in CALLBACKS:
+        check_callable(name, options.get(name))
+
+
 def ramp(problem: Problem, loads: Sequence[Any], *, x0: np.ndarray | None = None,
          start: Any = None, on_step: Callable[[StepResult], Any] | None = None,
          linear_solver: str | LinearSolver = "superlu",
@@ -497,9 +509,8 @@ def ramp(problem: Problem, loads: Sequence[Any], *, x0: np.ndarray | None = None
     if not isinstance(problem, Problem):
         raise ValueError("problem must be a skfem_dielectric.Problem (see "
                          f"skfem_dielectric.problem), got {type(problem).__name__}")
-    for name, f in (("on_step", on_step), ("step_limit", step_limit),
-                    ("admissible", admissible), ("state_analysis", state_analysis)):
-        check_callable(name, f)
+    check_callbacks({"on_step": on_step, "step_limit": step_limit, "admissible": admissible,
+                     "state_analysis": state_analysis})
     check_settings("settings", settings, RampSettings)
     t_start = time.perf_counter()
     solver = get_linear_solver(linear_solver, symmetric=problem.symmetric)

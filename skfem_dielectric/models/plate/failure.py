@@ -1,16 +1,18 @@
 """Why a ramp of the 3D plate stopped: the state where Newton failed, read at its
 quadrature points, and how often the ``det F > 0`` guard shortened the Newton steps.
 
-On the clamped plate (the paper's Sec. 6) the clamp face ``x1 = +-L1/2`` meets the free
-edge ``x3 = +-L3/2`` at a re-entrant corner of the boundary conditions, where the stresses
-of the continuum are singular.  A load-controlled Newton iteration can stall there while
-the tangent is still positive definite (no stability signal): the quadrature point next to
-the corner carries a large compressive ``S33`` and a ``det F`` well below one, and the
-Newton increments would invert it, so the step limit
+On the clamped plate (loading ``"uniaxial"``, the paper's Sec. 6) the clamp face
+``x1 = +-L1/2`` meets the free edge ``x3 = +-L3/2`` at a re-entrant corner of the boundary
+conditions, where the stresses of the continuum are singular. A load-controlled Newton
+iteration can stall there while the tangent is still positive definite (no stability
+signal): the quadrature point next to the corner carries a large compressive ``S33`` and a
+``det F`` well below one, and the Newton increments would invert it, so the step limit
 (:meth:`~skfem_dielectric.models.plate.problem.PlateProblem.max_step`) cuts them short.
 :func:`plate_failure_cause` measures exactly these quantities; :class:`StepLimitCounter`
-counts the shortened steps.  :func:`~skfem_dielectric.gallery.drivers.run_ramp` uses both to fill
-``RampResult.failure`` and to extend ``RampResult.reason``.
+counts the shortened steps. :func:`~skfem_dielectric.gallery.drivers.run_ramp` uses both to
+fill ``RampResult.failure`` and to extend ``RampResult.reason``. The other plates (dead
+tractions on their lateral faces) have no clamp and so no such corner: their diagnosis gives
+the positions of the extremes only.
 """
 
 from __future__ import annotations
@@ -61,9 +63,12 @@ class StepLimitCounter:
         return alpha
 
 
-def _corner_distance(problem: PlateProblem, X: np.ndarray) -> float:
+def _corner_distance(problem: PlateProblem, X: np.ndarray) -> float | None:
     """Distance of the reference point ``X`` from the nearest clamp/free-edge corner
-    ``(|x1|, |x3|) = (L1/2, L3/2)``, in plate thicknesses."""
+    ``(|x1|, |x3|) = (L1/2, L3/2)``, in plate thicknesses; ``None`` for a plate without
+    clamps (any loading but ``"uniaxial"``)."""
+    if problem.loading != "uniaxial":
+        return None
     pm = problem.plate
     return float(np.hypot(abs(X[0]) - pm.L1 / 2, abs(X[2]) - pm.L3 / 2) / pm.H)
 
@@ -85,7 +90,8 @@ def plate_failure_cause(problem: PlateProblem, x: np.ndarray, load) -> dict[str,
         x3)``), ``S33`` (the ``S33/mu`` of largest magnitude, signed; ``S`` the second
         Piola stress, the paper's ``P``) and ``S33_at``, and for both the distance from
         the nearest clamp/free-edge corner in thicknesses, ``min_J_corner_distance`` and
-        ``S33_corner_distance``.
+        ``S33_corner_distance`` (``None`` unless the plate is clamped, loading
+        ``"uniaxial"``).
 
     Raises
     ------
@@ -104,7 +110,7 @@ def plate_failure_cause(problem: PlateProblem, x: np.ndarray, load) -> dict[str,
         if J[i] < min_J:
             min_J, min_J_at = float(J[i]), Xq[:, sl][(slice(None),) + i]
         j = np.unravel_index(np.argmax(np.abs(S)), S.shape)
-        if abs(S[j]) > abs(S33):
+        if S33_at is None or abs(S[j]) > abs(S33):
             S33, S33_at = float(S[j]), Xq[:, sl][(slice(None),) + j]
     return {"min_J": min_J, "min_J_at": tuple(float(v) for v in min_J_at),
             "min_J_corner_distance": _corner_distance(problem, min_J_at),
@@ -112,13 +118,25 @@ def plate_failure_cause(problem: PlateProblem, x: np.ndarray, load) -> dict[str,
             "S33_corner_distance": _corner_distance(problem, S33_at)}
 
 
+def _point(X) -> str:
+    return "(" + ", ".join(f"{v:.3g}" for v in X) + ")"
+
+
 def describe_failure(cause: dict[str, Any]) -> str:
     """One sentence from :func:`plate_failure_cause` (plus the ``StepLimitCounter`` keys
-    ``step_limited``, ``newton_steps``, ``smallest_step_limit`` when present)."""
-    text = (f"at the last converged state min det F = {cause['min_J']:.3g} "
-            f"({cause['min_J_corner_distance']:.2g} thicknesses from a clamp/free-edge corner) "
-            f"and S33/mu = {cause['S33']:.3g} ({cause['S33_corner_distance']:.2g} thicknesses "
-            f"from it)")
+    ``step_limited``, ``newton_steps``, ``smallest_step_limit`` when present).
+
+    Where the extremes are: their distance from a clamp/free-edge corner on a clamped
+    plate, their reference point ``(x1, x2, x3)`` on a plate without clamps."""
+    if cause["min_J_corner_distance"] is None:
+        text = (f"at the last converged state min det F = {cause['min_J']:.3g} at "
+                f"{_point(cause['min_J_at'])} and S33/mu = {cause['S33']:.3g} at "
+                f"{_point(cause['S33_at'])}")
+    else:
+        text = (f"at the last converged state min det F = {cause['min_J']:.3g} "
+                f"({cause['min_J_corner_distance']:.2g} thicknesses from a clamp/free-edge "
+                f"corner) and S33/mu = {cause['S33']:.3g} "
+                f"({cause['S33_corner_distance']:.2g} thicknesses from it)")
     if "step_limited" in cause:
         text += (f"; the det F > 0 step limit shortened {cause['step_limited']} of "
                  f"{cause['newton_steps']} Newton steps towards the failed target "
