@@ -41,6 +41,8 @@ def positive(name: str, value, *, integer: bool = False, zero: bool = False) -> 
 
 
 def check_mesh(name: str, mesh) -> None:
+    """``ValueError`` naming option ``name`` unless ``mesh`` (if given) has element
+    counts >= 1."""
     if mesh is not None and any(n < 1 for n in mesh):
         raise ValueError(f"{name} must be three element counts >= 1, got "
                          f"{' '.join(map(str, mesh))}")

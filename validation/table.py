@@ -65,6 +65,9 @@ def csv_columns(case: Case) -> list[str]:
 
 
 def format_cell(x) -> str:
+    """The CSV text of one cell: empty for ``None``, ``True``/``False``, integers as
+    integers, strings as they are, floats to 12 significant digits and 12 decimals at
+    most (empty if not finite)."""
     if x is None:
         return ""
     if isinstance(x, (bool, np.bool_)):
@@ -93,6 +96,8 @@ def analytic_lams(spec: RunSpec, D0: float) -> tuple[float, float]:
 
 
 def is_breakdown(spec: RunSpec, rec: StepRecord) -> bool:
+    """The ``breakdown`` flag of a uni-axial state: its ``min_P33_interior`` (else
+    ``min_P33``) is below ``-BREAKDOWN_TOL``; always ``False`` for other geometries."""
     if spec.geometry != "uniaxial":
         return False
     p = rec.min_P33_interior if np.isfinite(rec.min_P33_interior) else rec.min_P33
@@ -101,6 +106,9 @@ def is_breakdown(spec: RunSpec, rec: StepRecord) -> bool:
 
 def case_row(case: Case, spec: RunSpec, index: int, rec: StepRecord | None, converged: bool,
          breakdown: bool, D0: float) -> list[str]:
+    """The CSV row of one target ``D0`` of run ``spec`` (:func:`csv_columns` order):
+    the FE record ``rec`` (``None`` for a target not reached), the analytic stretches and
+    the flags."""
     lam1_an, lam3_an = analytic_lams(spec, D0)
     vals = {"case": case.name, "run": spec.key, "step": index, "model": spec.model,
             "variant": spec.variant, "alpha": spec.alpha, "s": spec.s, "D0": D0,

@@ -76,6 +76,7 @@ def with_dead_load(spec: RunSpec) -> RunSpec:
 
 
 def is_membrane(spec: RunSpec) -> bool:
+    """Whether ``spec`` is a 2D membrane run (``membrane`` or ``membrane-maxwell``)."""
     return spec.variant in MEMBRANE_VARIANTS
 
 

@@ -66,6 +66,7 @@ LIMIT_NAME = "limit point (snap-through)"
 
 
 def new_axes(ax, n=1, figsize=None):
+    """``ax`` if given, else ``n`` new axes side by side (5 x 4 inches each by default)."""
     if ax is not None:
         return ax
     fig, axes = plt.subplots(1, n, figsize=figsize or (5.0 * n, 4.0), layout="constrained")
@@ -94,6 +95,8 @@ def fe_rows(fe, **match):
 
 
 def fe_dots(ax, fe, x, y, mask, variant, color, label=None):
+    """FE dots ``(x, y)`` of the rows in ``mask`` with the marker of ``variant``
+    (:data:`VARIANT_MARKER`); nothing if no row is selected."""
     if mask is None or not mask.any():
         return
     # not clipped: a dot on the frame (D0 = 0, or the top of the range) stays whole
@@ -247,6 +250,7 @@ def mesh_caption(items) -> str:
 
 
 def mesh_text(specs) -> str:
+    """The meshes of the runs ``specs`` for a caption line, one entry per FE variant."""
     return mesh_caption((MODEL_NAME[r.variant], plate_mesh_text(r.variant, r.mesh_dict))
                         for r in specs)
 
