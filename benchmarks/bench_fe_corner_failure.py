@@ -26,8 +26,8 @@ import numpy as np
 
 
 def main(argv=None) -> int:
-    from skfem_dielectric import keplinger_problem, keplinger_s
-    from skfem_dielectric.gallery.drivers import plate_admissible, run_ramp
+    from skfem_dielectric import keplinger_s
+    from skfem_dielectric.gallery.drivers import keplinger_problem, plate_admissible, run_ramp
     from skfem_dielectric.gallery.loads import preload_then_charge
     from skfem_dielectric.linalg.linear import get_linear_solver
     from skfem_dielectric.models.plate.failure import plate_failure_cause

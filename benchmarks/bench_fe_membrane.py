@@ -12,8 +12,8 @@ import time
 
 import numpy as np
 
-from skfem_dielectric import (MembranePlate, NeoHookeanDielectric, keplinger_s, membrane_mesh,
-                              membrane_ramp)
+from skfem_dielectric import MembranePlate, NeoHookeanDielectric, keplinger_s, membrane_mesh
+from skfem_dielectric.gallery import membrane_ramp
 
 
 def main(solver: str = "superlu") -> None:

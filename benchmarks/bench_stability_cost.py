@@ -28,7 +28,8 @@ import warnings
 
 import numpy as np
 
-from skfem_dielectric import StabilityMonitor, keplinger_plate, tangent_stability
+from skfem_dielectric import StabilityMonitor, keplinger_plate
+from skfem_dielectric.stability import tangent_stability
 
 
 def run(a, monitor):

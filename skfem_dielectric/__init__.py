@@ -1,75 +1,63 @@
 """scikit-fem finite elements for charge-controlled soft dielectric plates.
 
-Every model is a :class:`Problem` (module :mod:`skfem_dielectric.problem`): the Newton
-solver, the load ramp and the export work on any of them.  Models: :class:`PlateProblem`
-(3D, fully coupled or Maxwell-traction coupling), :class:`MembranePlate` (2D membrane),
-:class:`CrossSection` (2D generalised plane strain).
+The top level holds the names a user of the paper's plates needs:
 
-The subpackages, bottom up (docs/architecture.md): :mod:`skfem_dielectric.fem`
-(discretisation machinery), :mod:`skfem_dielectric.forms` (weak forms),
+- the contract every model implements: :class:`Problem`, :class:`Layout`;
+- the models and their meshes: :class:`PlateProblem` (3D, fully coupled or
+  Maxwell-traction coupling) with :func:`plate_mesh`, :class:`MembranePlate` (2D membrane)
+  with :func:`membrane_mesh`, :class:`CrossSection` (2D generalised plane strain) with
+  :func:`section_mesh`;
+- the ideal-dielectric materials: :class:`NeoHookeanDielectric`, :class:`GentDielectric`,
+  :class:`IdealDielectric`, :func:`make_material`;
+- the model-agnostic solvers: :func:`newton`, :func:`ramp`, :func:`continuation`,
+  :func:`critical_load`, their settings and results;
+- the stability of a converged state: :func:`stability_analysis`, :class:`StabilityResult`,
+  :class:`StabilityMonitor`;
+- the paper's plates: :func:`equibiaxial_plate`, :func:`keplinger_plate`,
+  :func:`keplinger_s`;
+- :func:`get_linear_solver`, and the export :func:`write_vtu_series`, :func:`write_xdmf`.
+
+Everything else is reached through its subpackage, bottom up (docs/architecture.md):
+:mod:`skfem_dielectric.fem` (discretisation machinery: dof reduction, scatter maps,
+meshes), :mod:`skfem_dielectric.forms` (weak forms, one module per form),
 :mod:`skfem_dielectric.linalg` (linear solvers, symmetric storage, inertia),
 :mod:`skfem_dielectric.stability` (stability of a converged state),
-:mod:`skfem_dielectric.models` (the FE models) and :mod:`skfem_dielectric.solvers`
-(Newton, ramp, continuation, critical load) side by side, :mod:`skfem_dielectric.gallery`
-(the paper's plates and load paths) and :mod:`skfem_dielectric.studies` (the paper's
-analyses).  The names below are re-exported from them.
+:mod:`skfem_dielectric.models` (the FE models, the plate's symmetry classes and modes) and
+:mod:`skfem_dielectric.solvers` (Newton, ramp, continuation, critical load) side by side,
+:mod:`skfem_dielectric.gallery` (the paper's plates, drivers and load paths, e.g.
+``gallery.run_ramp``) and :mod:`skfem_dielectric.studies` (the paper's analyses: buckling,
+post-buckling, snap-through, FE wrinkling).  The flat modules :mod:`skfem_dielectric.materials`,
+:mod:`skfem_dielectric.kinematics` and :mod:`skfem_dielectric.export` hold the pointwise
+laws, the small-matrix kinematics and the whole export.
 """
 
 from . import fem, forms, gallery, linalg, models, solvers, stability, studies
-from .export import step_mesh, write_vtu_series, write_xdmf
-from .fem import DofReduction, PlateMesh, ScatterMap, plate_mesh, point_gradients
-from .forms.maxwell_traction import maxwell_stress, maxwell_traction, maxwell_traction_field
-from .forms.membrane import membrane_kernel
-from .forms.plane_strain import cross_section_kernel
-from .gallery import (charge_targets, cross_section_ramp, equibiaxial_plate,
-                      equibiaxial_problem, keplinger_plate, keplinger_problem, keplinger_s,
-                      maxwell_equibiaxial, maxwell_keplinger, membrane_keplinger, membrane_ramp,
-                      newton_guards, plate_admissible, preload_then_charge, remaining_targets,
-                      run_ramp)
-from .kinematics import segment_det_limit
-from .linalg import (LinearSolver, PardisoLUSolver, PardisoSolver, SuperLUSolver,
-                     get_linear_solver, nonsymmetric_solver, pardiso_available, tangent_inertia)
-from .materials import (GentDielectric, IdealDielectric, NeoHookeanDielectric, PointResponse,
-                        ideal_dielectric_response, make_material)
-from .models import (ClassStability, CrossSection, MembraneMesh, MembranePlate, PlateProblem,
-                     SectionMesh, class_stability, classify_mode, lowest_physical,
-                     membrane_mesh, mode_mesh, section_mesh, symmetry_classes, write_mode_vtu)
+from .export import write_vtu_series, write_xdmf
+from .fem import plate_mesh
+from .gallery import equibiaxial_plate, keplinger_plate, keplinger_s
+from .linalg import get_linear_solver
+from .materials import GentDielectric, IdealDielectric, NeoHookeanDielectric, make_material
+from .models import CrossSection, MembranePlate, PlateProblem, membrane_mesh, section_mesh
 from .problem import Layout, Problem
-from .solvers import (ContinuationEvent, ContinuationPoint, ContinuationResult, CriticalLoad,
-                      NewtonResult, NewtonSettings, RampResult, RampSettings, StepResult,
-                      continuation, critical_load, newton, ramp)
-from .stability import StabilityMonitor, StabilityResult, stability_analysis, tangent_stability
-from .studies import (SnapThrough, homogeneous_plate, section_critical_load,
-                      section_critical_stretch, voltage_snap_through, wrinkling_section)
+from .solvers import (ContinuationResult, NewtonResult, NewtonSettings, RampResult,
+                      RampSettings, StepResult, continuation, critical_load, newton, ramp)
+from .stability import StabilityMonitor, StabilityResult, stability_analysis
 
 __all__ = [
-    # the contract and the machinery
-    "Problem", "Layout", "newton", "NewtonSettings", "NewtonResult", "segment_det_limit",
-    "ramp", "RampSettings", "RampResult",
-    "StepResult", "continuation", "ContinuationResult", "ContinuationPoint", "ContinuationEvent",
-    "LinearSolver", "SuperLUSolver", "PardisoSolver", "PardisoLUSolver", "get_linear_solver",
-    "nonsymmetric_solver", "pardiso_available", "DofReduction", "ScatterMap",
-    # materials and meshes
-    "NeoHookeanDielectric", "GentDielectric", "IdealDielectric", "PointResponse",
-    "ideal_dielectric_response", "make_material", "PlateMesh", "plate_mesh",
-    "point_gradients",
-    # models and their point kernels
-    "PlateProblem", "MembranePlate", "CrossSection", "MembraneMesh", "membrane_mesh",
-    "SectionMesh", "section_mesh", "membrane_kernel",
-    "cross_section_kernel", "maxwell_stress", "maxwell_traction", "maxwell_traction_field",
-    # loads and drivers
-    "keplinger_s", "charge_targets", "preload_then_charge", "remaining_targets",
-    "equibiaxial_problem", "keplinger_problem", "plate_admissible", "newton_guards", "run_ramp",
-    "equibiaxial_plate",
-    "keplinger_plate", "maxwell_equibiaxial", "maxwell_keplinger", "membrane_ramp",
-    "membrane_keplinger", "cross_section_ramp",
+    # the contract
+    "Problem", "Layout",
+    # models and their meshes
+    "PlateProblem", "MembranePlate", "CrossSection", "plate_mesh", "membrane_mesh",
+    "section_mesh",
+    # materials
+    "NeoHookeanDielectric", "GentDielectric", "IdealDielectric", "make_material",
+    # solvers
+    "newton", "ramp", "continuation", "NewtonSettings", "RampSettings", "NewtonResult",
+    "RampResult", "StepResult", "ContinuationResult", "critical_load",
     # stability
-    "StabilityResult", "StabilityMonitor", "stability_analysis", "tangent_stability", "tangent_inertia",
-    "ClassStability", "class_stability", "symmetry_classes", "classify_mode", "mode_mesh",
-    "write_mode_vtu", "lowest_physical", "CriticalLoad", "critical_load",
-    "wrinkling_section", "section_critical_load", "section_critical_stretch",
-    # voltage control through the snap-through
-    "homogeneous_plate", "voltage_snap_through", "SnapThrough",
-    # export
-    "step_mesh", "write_vtu_series", "write_xdmf",
+    "stability_analysis", "StabilityResult", "StabilityMonitor",
+    # the paper's plates
+    "equibiaxial_plate", "keplinger_plate", "keplinger_s",
+    # linear solver and export
+    "get_linear_solver", "write_vtu_series", "write_xdmf",
 ]

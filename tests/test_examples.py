@@ -174,7 +174,7 @@ def _full_plate_lowest_eig() -> float:
     tg = [np.array([-0.4, 1.0]) * t for t in np.linspace(0.25, 1.0, 4)]
     res = fe.ramp(pb, tg, x0=pb.initial_state(), start=np.zeros(2))
     K, _ = pb.assemble(res.x, tg[-1])
-    return float(fe.tangent_stability(pb, K, k=1, method="dense").eigenvalues[0])
+    return float(fe.stability.tangent_stability(pb, K, k=1, method="dense").eigenvalues[0])
 
 
 def test_every_example_is_pinned():

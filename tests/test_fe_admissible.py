@@ -8,8 +8,8 @@ import pytest
 
 import analytic
 import skfem_dielectric as sd
-from skfem_dielectric import (NewtonSettings, RampSettings, newton, plate_admissible,
-                              preload_then_charge, ramp)
+from skfem_dielectric import NewtonSettings, RampSettings, newton, ramp
+from skfem_dielectric.gallery import plate_admissible, preload_then_charge
 from skfem_dielectric.kinematics import segment_det_limit
 
 GENT = analytic.Gent(97.2)
@@ -37,7 +37,7 @@ def test_large_charge_jumps_reach_the_closed_form_or_fail(s, D0):
 
 
 def test_plain_ramp_finds_the_inverted_state_and_plate_admissible_names_it():
-    prob = sd.equibiaxial_problem(model="Gent")
+    prob = sd.gallery.equibiaxial_problem(model="Gent")
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", RuntimeWarning)
         res = ramp(prob, preload_then_charge(1.0, [2, 4, 500], 4),
@@ -56,7 +56,7 @@ def test_plain_ramp_finds_the_inverted_state_and_plate_admissible_names_it():
 
 
 def test_max_step_stops_before_det_F_reaches_zero():
-    prob = sd.equibiaxial_problem()
+    prob = sd.gallery.equibiaxial_problem()
     x = prob.initial_state()
     # a pure displacement increment that maps the plate to u = -2 X (F = -I at a = 1)
     full = np.zeros(prob.n_full)

@@ -5,7 +5,8 @@ import numpy as np
 import pytest
 from scipy.optimize import brentq
 
-from skfem_dielectric import CrossSection, cross_section_ramp, section_mesh
+from skfem_dielectric import CrossSection, section_mesh
+from skfem_dielectric.gallery import cross_section_ramp
 from skfem_dielectric.materials import GentDielectric, NeoHookeanDielectric
 
 MU, EPS, JM = 1.3, 0.7, 20.0

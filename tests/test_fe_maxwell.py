@@ -3,7 +3,8 @@
 import numpy as np
 import pytest
 
-from skfem_dielectric import maxwell_stress, maxwell_traction, maxwell_traction_field
+from skfem_dielectric.forms.maxwell_traction import (maxwell_stress, maxwell_traction,
+                                                     maxwell_traction_field)
 
 EPS = 0.8
 
@@ -71,7 +72,8 @@ def test_homogeneous_plate_reproduces_loading_curve(lam1, lam3):
 # --------------------------------------------------------------------------
 from scipy.optimize import brentq  # noqa: E402
 
-from skfem_dielectric import CrossSection, cross_section_ramp, section_mesh  # noqa: E402
+from skfem_dielectric import CrossSection, section_mesh  # noqa: E402
+from skfem_dielectric.gallery import cross_section_ramp  # noqa: E402
 from skfem_dielectric.materials import GentDielectric, NeoHookeanDielectric  # noqa: E402
 
 
@@ -131,7 +133,8 @@ def test_cross_section_maxwell_bad_input():
 # --------------------------------------------------------------------------
 # 2D membrane with Maxwell traction
 # --------------------------------------------------------------------------
-from skfem_dielectric import MembranePlate, membrane_mesh, membrane_ramp  # noqa: E402
+from skfem_dielectric import MembranePlate, membrane_mesh  # noqa: E402
+from skfem_dielectric.gallery import membrane_ramp  # noqa: E402
 
 
 @pytest.mark.parametrize("loading, s", [("equibiaxial", 1.5), ("uniaxial-free", 2.993)])

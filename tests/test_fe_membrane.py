@@ -3,7 +3,7 @@
 import numpy as np
 import pytest
 
-from skfem_dielectric import membrane_kernel
+from skfem_dielectric.forms.membrane import membrane_kernel
 from skfem_dielectric.materials import GentDielectric, NeoHookeanDielectric
 
 MU, EPS, JM = 1.3, 0.7, 20.0
@@ -68,8 +68,8 @@ def test_voltage_control_equibiaxial():
 # --------------------------------------------------------------------------
 from scipy.optimize import brentq  # noqa: E402
 
-from skfem_dielectric import (MembranePlate, membrane_keplinger, membrane_mesh,  # noqa: E402
-                              membrane_ramp, ramp)
+from skfem_dielectric import MembranePlate, membrane_mesh, ramp  # noqa: E402
+from skfem_dielectric.gallery import membrane_keplinger, membrane_ramp  # noqa: E402
 
 
 def _equibiaxial_lam(D0, s, Jm=np.inf):

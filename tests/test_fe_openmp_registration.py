@@ -9,12 +9,13 @@ import textwrap
 
 import pytest
 
-from skfem_dielectric import pardiso_available
+from skfem_dielectric.linalg import pardiso_available
 
 SCRIPT = textwrap.dedent("""
     import os, signal
     import numpy as np
-    from skfem_dielectric import get_linear_solver, equibiaxial_problem
+    from skfem_dielectric import get_linear_solver
+    from skfem_dielectric.gallery import equibiaxial_problem
     pb = equibiaxial_problem()
     K, r = pb.assemble(pb.initial_state(), (0.5, 1.0))
     get_linear_solver("pardiso").solve(K, r)

@@ -10,11 +10,11 @@ import numpy as np
 import pytest
 from scipy.optimize import brentq
 
-from skfem_dielectric import (CrossSection, MembranePlate, PlateProblem, cross_section_ramp,
-                              keplinger_plate, maxwell_equibiaxial, maxwell_keplinger,
-                              membrane_keplinger, membrane_mesh, membrane_ramp,
-                              nonsymmetric_solver, pardiso_available, section_mesh,
-                              write_vtu_series)
+from skfem_dielectric import (CrossSection, MembranePlate, PlateProblem, keplinger_plate,
+                              membrane_mesh, section_mesh, write_vtu_series)
+from skfem_dielectric.gallery import (cross_section_ramp, maxwell_equibiaxial, maxwell_keplinger,
+                                      membrane_keplinger, membrane_ramp)
+from skfem_dielectric.linalg import nonsymmetric_solver, pardiso_available
 from skfem_dielectric import RampSettings, ramp
 from skfem_dielectric.fem.mesh import plate_mesh
 from skfem_dielectric.materials import GentDielectric, NeoHookeanDielectric

@@ -33,7 +33,7 @@ TINY = [float(10.0 ** -RNG.uniform(62, 307)) for _ in range(2)]
 WORDS = ["".join(RNG.choice(list("abcxyz_-/."), size=int(RNG.integers(1, 8)))) for _ in range(3)]
 
 GENT = an.Gent(97.2)
-PB = sd.equibiaxial_problem()
+PB = sd.gallery.equibiaxial_problem()
 LOAD = (0.5, 1.0)
 NX = len(PB.initial_state())
 
@@ -145,15 +145,15 @@ def _cases():
     add("GentDielectric", "Jm", POSITIVE, lambda v: sd.GentDielectric(1.0, 1.0, v))
     add("make_material", "model", CHOICE + WORDS, lambda v: sd.make_material(v))
     add("equibiaxial_problem", "size", [(1.0, 2.0), "abc", 3.0, (1.0, -1.0, 1.0)],
-        lambda v: sd.equibiaxial_problem(size=v))
+        lambda v: sd.gallery.equibiaxial_problem(size=v))
     add("equibiaxial_problem", "elements", [(1, 1), (1, 0, 1), (1, INF, 1)],
-        lambda v: sd.equibiaxial_problem(elements=v))
+        lambda v: sd.gallery.equibiaxial_problem(elements=v))
     add("keplinger_s", "alpha", [NAN, INF, -0.5, "x", None], lambda v: sd.keplinger_s(v, g=9.81))
     add("keplinger_s", "g", POSITIVE, lambda v: sd.keplinger_s(1.0, g=v))
     add("preload_then_charge", "preload_steps", COUNT,
-        lambda v: sd.preload_then_charge(1.0, [1.0], v))
+        lambda v: sd.gallery.preload_then_charge(1.0, [1.0], v))
     add("charge_targets", "D0", [[NAN], [INF], [], "x", [[1.0, 2.0]]],
-        lambda v: sd.charge_targets(v))
+        lambda v: sd.gallery.charge_targets(v))
     add("equibiaxial_plate", "s", FINITE, lambda v: sd.equibiaxial_plate(v, [1.0]))
     add("equibiaxial_plate", "settings", CHOICE + [sd.NewtonSettings()],
         lambda v: sd.equibiaxial_plate(1.0, [1.0], settings=v))

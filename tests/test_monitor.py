@@ -21,7 +21,7 @@ from skfem_dielectric.linalg.solver_base import SuperLUSolver
 from skfem_dielectric.linalg.inertia import constrained_order, tangent_inertia
 from skfem_dielectric.stability.analysis import lowest_modes, metric_matrix
 
-SOLVERS = ["superlu"] + (["pardiso"] if fe.pardiso_available() else [])
+SOLVERS = ["superlu"] + (["pardiso"] if fe.linalg.pardiso_available() else [])
 
 
 def _pencil_eigenvalues(pb, K):
@@ -36,7 +36,7 @@ def _quarter_ramp(solver, state_analysis=None):
     # the clamped quarter plate (full thickness, 4 x 1 x 2): clamp-corner modes make the
     # count 0 after the first pre-load step and > 0 later, so both branches of the modes
     # (shift 0 on the ramp's factors; spectrum slicing) are exercised
-    pb = fe.keplinger_problem(elements=(4, 1, 2), symmetry="quarter")
+    pb = fe.gallery.keplinger_problem(elements=(4, 1, 2), symmetry="quarter")
     s = fe.keplinger_s(1.0, g=9.81)
     loads = [np.array([s * k / 3, 0.0]) for k in (1, 2, 3)] + [np.array([s, 1.0]),
                                                                np.array([s, 2.0])]
@@ -95,7 +95,7 @@ def test_all_negative_with_extra_gives_the_next_modes_too():
     signs = set()
     for st in res.steps:
         K, _ = pb.assemble(st.x, st.load)
-        out = fe.tangent_stability(pb, K, all_negative=True, extra=2, tol=1e-12)
+        out = fe.stability.tangent_stability(pb, K, all_negative=True, extra=2, tol=1e-12)
         ref = _pencil_eigenvalues(pb, K)
         assert out.eigenvalues.size == out.n_negative + 2
         # Lanczos tolerance 1e-12 relative in theta; the dense inverse of a tangent with
@@ -105,11 +105,11 @@ def test_all_negative_with_extra_gives_the_next_modes_too():
         signs.add(out.n_negative > 0)
     assert signs == {False, True}
     with pytest.raises(ValueError, match="extra must be an integer >= 0"):
-        fe.tangent_stability(pb, K, all_negative=True, extra=-1)
+        fe.stability.tangent_stability(pb, K, all_negative=True, extra=-1)
 
 
 def test_reuse_factors_starts_with_a_chord_step():
-    pb = fe.keplinger_problem(elements=(4, 1, 2))
+    pb = fe.gallery.keplinger_problem(elements=(4, 1, 2))
     s = fe.keplinger_s(1.0, g=9.81)
     a, b = np.array([s, 0.0]), np.array([s, 0.5])
     x_a = fe.ramp(pb, [a / 2, a], settings=fe.RampSettings(atol=1e-10, rtol=1e-11)).x
@@ -148,13 +148,13 @@ def test_monitor_bad_input():
         fe.StabilityMonitor(k=-1)
     with pytest.raises(ValueError, match="tol"):
         fe.StabilityMonitor(tol=0.0)
-    pb = fe.keplinger_problem(elements=(2, 1, 1), coupling="maxwell")
+    pb = fe.gallery.keplinger_problem(elements=(2, 1, 1), coupling="maxwell")
     with pytest.raises(ValueError, match="not symmetric"):
         fe.StabilityMonitor()(pb, pb.initial_state(), (0.0, 0.0), None, None)
-    pb = fe.keplinger_problem(elements=(2, 1, 1))
+    pb = fe.gallery.keplinger_problem(elements=(2, 1, 1))
     K, _ = pb.assemble(pb.initial_state(), (0.0, 0.0))
     with pytest.raises(ValueError, match="sigma_start, sigma_growth, shift_solver, v0"):
-        fe.tangent_stability(pb, K, k=1, sigma0=1.0)
+        fe.stability.tangent_stability(pb, K, k=1, sigma0=1.0)
     with pytest.raises(ValueError, match="state_analysis"):
         fe.ramp(pb, [(0.1, 0.0)], state_analysis=3)
 

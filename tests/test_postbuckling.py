@@ -114,7 +114,7 @@ def test_buckled_branch_is_stable_where_the_fundamental_is_not(lightly_loaded, b
 
 def test_bad_input(lightly_loaded, branch):
     pb, _, b, _ = lightly_loaded
-    eighth = fe.keplinger_problem(elements=(2, 1, 2))
+    eighth = fe.gallery.keplinger_problem(elements=(2, 1, 2))
     with pytest.raises(ValueError, match="x2 symmetry plane"):
         midplane_deflection(eighth, eighth.initial_state(), (0.0, 0.0))
     with pytest.raises(ValueError, match="mid-plane deflection"):

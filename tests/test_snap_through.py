@@ -26,7 +26,7 @@ def _check_counts(st):
 
 
 def test_equibiaxial_neo_hookean_s0_limit_point():
-    st = fe.voltage_snap_through(0.0, loading="equibiaxial", stop_after_limit=True)
+    st = fe.studies.voltage_snap_through(0.0, loading="equibiaxial", stop_after_limit=True)
     # literature value (DESIGN.md): E0max = sqrt(3)/2^(4/3) at lam = 2^(1/3).  The
     # mixed element reproduces the homogeneous state to solver tolerance and the limit
     # point is located to |dE0/ds| <= 1e-9, so 1e-8 in E0 (second order at a maximum)
@@ -38,7 +38,7 @@ def test_equibiaxial_neo_hookean_s0_limit_point():
 
 def test_uniaxial_neo_hookean_s1_limit_point():
     s = 1.0
-    st = fe.voltage_snap_through(s, loading="uniaxial-free", stop_after_limit=True)
+    st = fe.studies.voltage_snap_through(s, loading="uniaxial-free", stop_after_limit=True)
     # the paper's neo-Hookean uni-axial condition: 4 lam1 - 3 s - lam1^4 (lam1 - s)^3 = 0,
     # solved here independently of the analytic package; E0 from analytic.max_E0
     lam1 = brentq(lambda x: 4 * x - 3 * s - x ** 4 * (x - s) ** 3, 1.2, 3.0, xtol=1e-14)
@@ -54,7 +54,7 @@ def test_gent_without_maximum_has_no_limit_point():
     # Gent, Jm = 97.2, s = 3 lies above the threshold where E0 has no maximum
     # (analytic.max_E0 -> nan): the FE path has no turning point up to 1.3 lam
     assert np.all(np.isnan(an.max_E0(3.0, an.Gent(97.2))))
-    st = fe.voltage_snap_through(3.0, model="Gent", lam_factor=1.3, charge=False)
+    st = fe.studies.voltage_snap_through(3.0, model="Gent", lam_factor=1.3, charge=False)
     assert st.limit is None and np.all(st.path.column("tangent_t") > 0)
     # and each point lies on the analytic loading curve E0(lam) (1e-8: Newton tolerance;
     # the start E0 = 0 is left out, where dE0/dlam is infinite and round-off in lam shows)
@@ -69,7 +69,7 @@ def test_maxwell_coupling_under_voltage_control_limit_point():
     # 2 lam^6 - 3 s lam^5 - 8 = 0 (Sec. 3.1), solved here; tolerances as above
     s = 1.0
     lam = brentq(lambda x: 2 * x ** 6 - 3 * s * x ** 5 - 8, 1.0, 3.0, xtol=1e-14)
-    st = fe.voltage_snap_through(s, coupling="maxwell", stop_after_limit=True)
+    st = fe.studies.voltage_snap_through(s, coupling="maxwell", stop_after_limit=True)
     assert st.lam1_max == pytest.approx(lam, abs=1e-6)
     assert st.E0_max == pytest.approx(float(an.equibiaxial_E0(lam, s)), abs=1e-8)
     assert st.n_negative_voltage[0] is None       # non-symmetric tangent: no count
@@ -77,4 +77,4 @@ def test_maxwell_coupling_under_voltage_control_limit_point():
 
 def test_bad_loading():
     with pytest.raises(ValueError, match="loading"):
-        fe.voltage_snap_through(0.0, loading="uniaxial")
+        fe.studies.voltage_snap_through(0.0, loading="uniaxial")

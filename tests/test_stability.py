@@ -19,7 +19,7 @@ from skfem_dielectric.linalg.inertia import tangent_inertia
 from skfem_dielectric.stability.analysis import lowest_modes, metric_matrix, stability_analysis
 from skfem_dielectric.studies.wrinkling_fe import section_critical_load, wrinkling_section
 
-METHODS = ["superlu", "dense"] + (["pardiso"] if fe.pardiso_available() else [])
+METHODS = ["superlu", "dense"] + (["pardiso"] if fe.linalg.pardiso_available() else [])
 
 
 def _converged(pb, loads, **kw):
@@ -40,7 +40,7 @@ def _dense_negative(pb, x, load) -> int:
 def test_count_equals_dense_eigenvalues_3d_quarter_plate():
     # the clamped quarter plate (full thickness) has clamp-corner modes after the pre-load
     # on a coarse mesh: counts of 0 and > 0 both occur along this ramp
-    pb = fe.keplinger_problem(elements=(4, 1, 2), symmetry="quarter")
+    pb = fe.gallery.keplinger_problem(elements=(4, 1, 2), symmetry="quarter")
     s = fe.keplinger_s(1.0, g=9.81)
     loads = [np.array([s * k / 3, 0.0]) for k in (1, 2, 3)] + [np.array([s, 1.0])]
     res = _converged(pb, loads)
@@ -56,7 +56,7 @@ def test_count_equals_dense_eigenvalues_3d_quarter_plate():
 def test_count_equals_dense_eigenvalues_3d_voltage_control():
     # voltage control: the potential is prescribed on the electrodes, the count is over the
     # remaining potential unknowns; the equi-biaxial plate under E0 approaching its maximum
-    pb = fe.equibiaxial_problem(elements=(2, 1, 2), symmetry="quarter", control="voltage")
+    pb = fe.gallery.equibiaxial_problem(elements=(2, 1, 2), symmetry="quarter", control="voltage")
     res = _converged(pb, [np.array([0.5, 0.0]), np.array([0.5, 0.3]), np.array([0.5, 0.6])])
     for st in res.steps:
         ref = _dense_negative(pb, st.x, st.load)
@@ -120,14 +120,16 @@ def test_grad_div_leaves_homogeneous_states_and_keeps_the_tangent_consistent(
         assert_tangent_columns):
     s, D0 = 1.5, 3.0
     ref = fe.equibiaxial_plate(s, [D0], linear_solver="superlu").column("lam1")[-1]
-    pb = fe.equibiaxial_problem(grad_div=10.0)
-    res = fe.run_ramp(pb, fe.preload_then_charge(s, [D0], 4), linear_solver="superlu",
-                      settings=fe.RampSettings(atol=0.0, rtol=1e-11))
+    pb = fe.gallery.equibiaxial_problem(grad_div=10.0)
+    res = fe.gallery.run_ramp(pb, fe.gallery.preload_then_charge(s, [D0], 4),
+                              linear_solver="superlu",
+                              settings=fe.RampSettings(atol=0.0, rtol=1e-11))
     # J = 1 exactly on the homogeneous state: the stabilisation changes nothing (Newton
     # tolerance 1e-11)
     assert res.column("lam1")[-1] == pytest.approx(ref, rel=1e-10)
     rng = np.random.default_rng(5)
-    for prob, load in ((fe.keplinger_problem(elements=(2, 1, 1), grad_div=7.0), (1.0, 2.0)),
+    plate = fe.gallery.keplinger_problem(elements=(2, 1, 1), grad_div=7.0)
+    for prob, load in ((plate, (1.0, 2.0)),
                        (fe.CrossSection(fe.section_mesh(20.0, 1.0, 2, 1),
                                         fe.GentDielectric(1.0, 1.0, 20.0), grad_div=7.0),
                         (1.0, 0.5, 2.0))):

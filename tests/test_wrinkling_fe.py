@@ -91,8 +91,8 @@ def test_the_mode_near_zero_is_the_mode_of_the_full_search():
     from skfem_dielectric.studies.wrinkling_fe import _mode_near_zero, section_mode_eigenvalue
 
     ref = float(an.critical_D0(1.5, 2.0, mode="symmetric"))
-    pb = fe.wrinkling_section(1.5, 2.0, "symmetric", "charge", n1=8, n2=9)
-    crit = fe.section_critical_load(pb, "symmetric", 0.95 * ref, 1.05 * ref)
+    pb = fe.studies.wrinkling_section(1.5, 2.0, "symmetric", "charge", n1=8, n2=9)
+    crit = fe.studies.section_critical_load(pb, "symmetric", 0.95 * ref, 1.05 * ref)
     x = pb.initial_state()
     for f in (0.999, 1.001):
         load = np.array([0.0, 0.0, f * crit.load])

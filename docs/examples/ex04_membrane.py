@@ -24,8 +24,8 @@ breakdown indicator (Sec. 6).
 
 import numpy as np
 
-from skfem_dielectric import (MembranePlate, NeoHookeanDielectric, keplinger_s, membrane_mesh,
-                              membrane_ramp)
+from skfem_dielectric import MembranePlate, NeoHookeanDielectric, keplinger_s, membrane_mesh
+from skfem_dielectric.gallery import membrane_ramp
 
 s = keplinger_s(alpha=1.0, g=9.81)  # 2.993
 # the 100 x 1 x 50 mm plate, 16 x 8 elements on the quarter; "uniaxial": the clamped plate

@@ -23,7 +23,8 @@ other half. One element of the eighth model suffices (the state is homogeneous).
 
 import numpy as np
 
-from skfem_dielectric import equibiaxial_plate, maxwell_equibiaxial
+from skfem_dielectric import equibiaxial_plate
+from skfem_dielectric.gallery import maxwell_equibiaxial
 
 s = 1.5
 D0 = np.arange(1.0, 6.01, 1.0)

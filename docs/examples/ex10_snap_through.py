@@ -17,11 +17,11 @@ along the whole curve, and under charge control every state is stable.
 
 A voltage ramp (:func:`skfem_dielectric.solvers.ramp.ramp`) stops at the maximum.  Pseudo-arclength
 continuation (:func:`skfem_dielectric.solvers.continuation.continuation`, used by
-:func:`skfem_dielectric.voltage_snap_through`) makes ``E0`` an unknown and passes it:
+:func:`skfem_dielectric.studies.voltage_snap_through`) makes ``E0`` an unknown and passes it:
 the path turns back in ``E0`` while ``lam`` keeps growing.  At every state the number
 of negative eigenvalues of the reduced stiffness is counted twice
-(:func:`skfem_dielectric.tangent_stability`): with the potential prescribed on the faces
-(voltage control) and, for the *same* state, with the charge prescribed.  The first
+(:func:`skfem_dielectric.stability.tangent_stability`): with the potential prescribed on
+the faces (voltage control) and, for the *same* state, with the charge prescribed.  The first
 jumps from zero at the limit point; the second stays zero.
 """
 
@@ -31,7 +31,7 @@ import numpy as np
 
 import skfem_dielectric as fe
 
-st = fe.voltage_snap_through(0.0, loading="equibiaxial", lam_factor=1.6, ds=0.1)
+st = fe.studies.voltage_snap_through(0.0, loading="equibiaxial", lam_factor=1.6, ds=0.1)
 path = st.path
 lam = path.column("lam1")
 E0 = path.column("t")

@@ -7,7 +7,7 @@ admits increments that are mirror-symmetric with respect to every plane: it cann
 Switching each plane between symmetric and antisymmetric conditions
 (:func:`skfem_dielectric.models.plate.problem.plate_reduction`) gives the eight classes of
 increments of the whole plate; the tangent of the whole plate is block diagonal in them, so
-:func:`skfem_dielectric.class_stability` returns the whole plate's negative-eigenvalue
+:func:`skfem_dielectric.models.class_stability` returns the whole plate's negative-eigenvalue
 count and lowest modes at the cost of eight factorisations of the eighth model's size.
 
 Here a slender clamped plate (8 x 1 x 4 thicknesses) is compressed end to end past its
@@ -29,12 +29,12 @@ from skfem_dielectric.models.plate.symmetry_classes import class_mode_full
 pb = keplinger_problem(size=(8.0, 1.0, 4.0), elements=(4, 1, 2), symmetry="eighth")
 targets = [np.array([-0.4, 1.0]) * t for t in np.linspace(0.25, 1.0, 4)]
 res = fe.ramp(pb, targets, x0=pb.initial_state(), start=np.zeros(2))
-cs = fe.class_stability(pb, res.x, targets[-1], k=1)
+cs = fe.models.class_stability(pb, res.x, targets[-1], k=1)
 xf = pb.full(res.x, targets[-1])
 modes = []
 for c, r in zip(cs.classes, cs.results):
     w = class_mode_full(c, r.modes[:, 0])
-    lab = fe.classify_mode(pb, xf, w, symmetry=c.name)
+    lab = fe.models.classify_mode(pb, xf, w, symmetry=c.name)
     modes.append((float(r.eigenvalues[0]), c, w, lab))
     print(f"{c.name}: {r.n_negative} negative, lowest {r.eigenvalues[0]: .5e}, "
           f"corner share {lab['corner_share']:.2f}, mesh scale {lab['mesh_scale']:.2f}, "

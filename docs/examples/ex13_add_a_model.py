@@ -35,8 +35,9 @@ import numpy as np
 import skfem as fe
 from skfem.helpers import ddot, det, dot, grad, inv, mul, trace, transpose
 
-from skfem_dielectric import (DofReduction, Layout, NewtonSettings, Problem, RampSettings,
-                              newton, ramp, stability_analysis)
+from skfem_dielectric import (Layout, NewtonSettings, Problem, RampSettings, newton, ramp,
+                              stability_analysis)
+from skfem_dielectric.fem import DofReduction
 from skfem_dielectric.fem.mesh2d import quarter_quad_mesh
 
 

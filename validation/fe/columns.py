@@ -32,7 +32,7 @@ def stability_columns(spec: RunSpec, problem, x, load, analysis=None) -> dict:
     the verdict ``stable``.
 
     ``n_negative`` counts the negative eigenvalues of the reduced stiffness
-    (:func:`skfem_dielectric.tangent_stability`; of the model's own tangent, for the
+    (:func:`skfem_dielectric.stability.tangent_stability`; of the model's own tangent, for the
     homogeneous equi-biaxial plate of the grad-div stabilised one,
     :data:`STABILITY_GRAD_DIV`, which has the same state), ``n_unstable`` those whose mode
     is classified physical (:func:`skfem_dielectric.models.plate.modes.classify_mode`: not at a
@@ -66,8 +66,8 @@ def stability_columns(spec: RunSpec, problem, x, load, analysis=None) -> dict:
         else:
             K = problem.assemble(x, load)[0]
         # lowest_eig to 1e-6 (a column of the table; the count is exact)
-        st = fe.tangent_stability(problem, K, k=1, method="auto", all_negative=True,
-                                  tol=1e-6)
+        st = fe.stability.tangent_stability(problem, K, k=1, method="auto", all_negative=True,
+                                            tol=1e-6)
     artefacts = 0
     if not is_membrane(spec) and spec.geometry == "uniaxial" and st.n_negative:
         xf = problem.full(x, load)
@@ -132,7 +132,7 @@ def membrane_stretch_maps(problem, x) -> dict:
     # nudge boundary points inside so that the element finder locates them
     c = pts.mean(axis=1, keepdims=True)
     inner = pts + 1e-9 * (c - pts)
-    G, dofs = fe.point_gradients(problem.basis, inner)
+    G, dofs = fe.fem.point_gradients(problem.basis, inner)
     u = problem.T @ x
     F = np.einsum("pn,pijn->ijn", u[dofs], G) + np.eye(2)[:, :, None]
     return {"kind": np.ones(pts.shape[1]), "x1": pts[0] * 1e-3, "x3": pts[1] * 1e-3,

@@ -112,14 +112,14 @@ def build_problem(spec: RunSpec):
     coupling = {"coupling": "maxwell", "field": "electrostatic"} \
         if spec.variant == "maxwell" else {}
     if spec.geometry == "equibiaxial":
-        return fe.equibiaxial_problem(model=spec.model, Jm=GENT_JM, elements=el, **coupling)
+        return fe.gallery.equibiaxial_problem(model=spec.model, Jm=GENT_JM, elements=el, **coupling)
     if spec.geometry == "uniaxial":
         # the run analysed for buckling is the grad-div form of the buckling study
         # (docs/validation.md): its tangent is the Hessian of its own state, and Newton
         # passes the clamp/free-edge corner
-        return fe.keplinger_problem(model=spec.model, Jm=GENT_JM, size=(L1, H, L3),
-                                    elements=el, grad_div=BUCKLING_GRAD_DIV if spec.buckling
-                                    else 0.0, **coupling)
+        return fe.gallery.keplinger_problem(model=spec.model, Jm=GENT_JM, size=(L1, H, L3),
+                                            elements=el, grad_div=BUCKLING_GRAD_DIV
+                                            if spec.buckling else 0.0, **coupling)
     raise ValueError(f"the 3D plate has no geometry {spec.geometry!r}")
 
 
@@ -129,7 +129,7 @@ def ramp_targets(spec: RunSpec) -> list:
     3D: the pre-load in equal steps ``(s k/n, 0)``, ``n`` from :data:`PRELOAD_STEPS`
     (a single ``(0, 0)`` target when ``s = 0``), then ``(s, D0)`` for the charge
     targets. Membrane: straight to ``(s, D0)`` for every target, as
-    :func:`skfem_dielectric.membrane_ramp`.
+    :func:`skfem_dielectric.gallery.membrane_ramp`.
 
     Parameters
     ----------
@@ -142,7 +142,7 @@ def ramp_targets(spec: RunSpec) -> list:
     if is_membrane(spec):
         return [np.array([spec.s, d]) for d in spec.D0]
     n = PRELOAD_STEPS[spec.geometry] if spec.s > 0 else 1
-    return fe.preload_then_charge(spec.s, spec.D0, n)
+    return fe.gallery.preload_then_charge(spec.s, spec.D0, n)
 
 
 def ramp_settings(spec: RunSpec, linear_solver="superlu") -> dict:
@@ -154,7 +154,7 @@ def ramp_settings(spec: RunSpec, linear_solver="superlu") -> dict:
     linear_solver : str
         Requested solver. The Maxwell-traction variants have a non-symmetric tangent
         (follower load), which the symmetric-indefinite PARDISO set-up (upper triangle
-        only) cannot factorise: they get :func:`skfem_dielectric.nonsymmetric_solver`
+        only) cannot factorise: they get :func:`skfem_dielectric.linalg.nonsymmetric_solver`
         of it (SuperLU, or PARDISO as a general LU when PARDISO is asked for).
 
     Returns
@@ -166,7 +166,7 @@ def ramp_settings(spec: RunSpec, linear_solver="superlu") -> dict:
         ``linear_solver``.
     """
     if "maxwell" in spec.variant:
-        linear_solver = fe.nonsymmetric_solver(linear_solver)
+        linear_solver = fe.linalg.nonsymmetric_solver(linear_solver)
     tol = MEMBRANE_TOL if is_membrane(spec) else {"atol": 0.0, "rtol": RTOL[spec.geometry]}
     settings = fe.RampSettings(**tol, max_cutbacks=MAX_CUTBACKS, max_iter=MAX_ITER,
                                chord=CHORD)
@@ -175,4 +175,4 @@ def ramp_settings(spec: RunSpec, linear_solver="superlu") -> dict:
 
 def pardiso_installed() -> bool:
     """Whether PARDISO (pypardiso, the ``fast`` extra) can be used."""
-    return fe.pardiso_available()
+    return fe.linalg.pardiso_available()

@@ -65,7 +65,7 @@ def run_fe(spec, start, state, on_step, linear_solver="superlu"):
     start_load = None if state is None else np.asarray(state["load"], dtype=float)
     if start_load is not None:
         try:
-            targets = fe.remaining_targets(targets, start_load)
+            targets = fe.gallery.remaining_targets(targets, start_load)
         except ValueError:
             raise ValueError(f"saved load {start_load} is not a target of run {spec.key}"
                              ) from None
@@ -88,7 +88,7 @@ def run_fe(spec, start, state, on_step, linear_solver="superlu"):
             warnings.simplefilter("ignore", RuntimeWarning)   # the failure is recorded
             res = fe.ramp(problem, targets, x0=x0, start=start_load, on_step=cb,
                           state_analysis=monitor, **ramp_settings(spec, linear_solver),
-                          **fe.newton_guards(problem))
+                          **fe.gallery.newton_guards(problem))
     except _Stop:
         return RunOutcome(True)
     failed = None if res.failed_at is None else float(np.asarray(res.failed_at).ravel()[-1])

@@ -21,10 +21,10 @@ from .runner import run_fe
 __all__ = ["export_mesh", "simulate", "bench"]
 
 def export_mesh(spec: RunSpec, problem, x, load):
-    """meshio ``Mesh`` of a state: :func:`skfem_dielectric.step_mesh` in 3D (u, phi, p,
+    """meshio ``Mesh`` of a state: :func:`skfem_dielectric.export.step_mesh` in 3D (u, phi, p,
     P33, stretches); for the membrane the displacement ``(u1, 0, u3)``, ``lam1``, ``lam3``."""
     if not is_membrane(spec):
-        return fe.step_mesh(problem, x, load)
+        return fe.export.step_mesh(problem, x, load)
     u = problem.T @ x
     ud = u[problem.basis.nodal_dofs]                   # (2, nverts): u1, u3
     p = problem.mesh.p

@@ -90,17 +90,17 @@ def _analytic_E0(r: dict, lam1):
 
 def _keplinger_path(r: dict, quick: bool) -> tuple:
     """Voltage-controlled Keplinger plate: pre-load, then continuation in ``E0``."""
-    pb = fe.keplinger_problem(control="voltage", elements=KEPLINGER_MESH)
-    pre = fe.run_ramp(pb, [np.array([r["s"] * k / 4, 0.0]) for k in range(1, 5)])
+    pb = fe.gallery.keplinger_problem(control="voltage", elements=KEPLINGER_MESH)
+    pre = fe.gallery.run_ramp(pb, [np.array([r["s"] * k / 4, 0.0]) for k in range(1, 5)])
     lam0 = pre.steps[-1]["lam1"] if pre.steps else 1.0
 
     def count(x, load):
-        return fe.tangent_stability(pb, pb.assemble(x, load)[0]).n_negative
+        return fe.stability.tangent_stability(pb, pb.assemble(x, load)[0]).n_negative
 
     path = fe.continuation(pb, np.array([r["s"], 0.0]), np.array([0.0, 1.0]),
                            x0=pre.x if pre.steps else None, ds=0.05, count=count,
                            stop=lambda p: p.tangent_t < 0 or p["lam1"] > 2 * lam0,
-                           max_steps=60, **fe.newton_guards(pb))
+                           max_steps=60, **fe.gallery.newton_guards(pb))
     return path, [None] * len(path.points), [np.sign(p.t) * p["D0_centre"]
                                              for p in path.points]
 
@@ -113,9 +113,9 @@ def _rows_of(r: dict, quick: bool) -> list[list]:
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", RuntimeWarning)    # a stopped path is data
         if r["alpha"] is None:
-            st = fe.voltage_snap_through(r["s"], loading=r["loading"], model=r["model"],
-                                         lam_factor=1.5 if quick else 2.0,
-                                         ds=0.1 if quick else 0.05)
+            st = fe.studies.voltage_snap_through(r["s"], loading=r["loading"], model=r["model"],
+                                                 lam_factor=1.5 if quick else 2.0,
+                                                 ds=0.1 if quick else 0.05)
             path, n_c, D0 = st.path, st.n_negative_charge, list(st.D0)
         else:
             path, n_c, D0 = _keplinger_path(r, quick)

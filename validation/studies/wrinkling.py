@@ -2,8 +2,8 @@
 
 For each stretch ``lam``, wavenumber ``kh`` (deformed thickness), mode (symmetric or
 antisymmetric) and control (charge or voltage) the FE critical charge of the section with
-sliding ends (:func:`skfem_dielectric.wrinkling_section`,
-:func:`skfem_dielectric.section_critical_load`) is compared with
+sliding ends (:func:`skfem_dielectric.studies.wrinkling_section`,
+:func:`skfem_dielectric.studies.section_critical_load`) is compared with
 :func:`analytic.critical_D0`, the finite-thickness dispersion relation of the paper's
 Sec. 3 (under voltage control both are the critical ``D0 = lam^4 E0``).  Written as
 ``DIR/wrinkling-fe.csv`` (one row per grid point; a point without a Stroh root says so)
@@ -72,11 +72,11 @@ def _row(control, mode, lam, kh, n1) -> list:
         return base + [None, None, None, "", None, None, "no root of the dispersion relation"]
     a = math.pi / (lam**3 * kh)
     n2 = max(2, int(round((0.5 if mode == "symmetric" else 1.0) / (a / n1))))
-    pb = fe.wrinkling_section(lam, kh, mode, control, n1=n1, n2=n2)
+    pb = fe.studies.wrinkling_section(lam, kh, mode, control, n1=n1, n2=n2)
     ref_load = ref if control == "charge" else ref / lam**4
     n_ref = stroh_unstable_below(control, mode, lam, kh, n1, 0.95 * ref)
     try:
-        r = fe.section_critical_load(pb, mode, 0.95 * ref_load, 1.05 * ref_load)
+        r = fe.studies.section_critical_load(pb, mode, 0.95 * ref_load, 1.05 * ref_load)
     except ValueError as exc:
         return base + [None, ref, None, f"{n1}x{n2}", None, n_ref,
                        str(exc).splitlines()[0][:160]]
@@ -138,8 +138,8 @@ def _elastic_row(mode, kh, n1) -> list:
     # H/kh (reference) over which the mode decays from the faces
     n2 = max(2, int(round(thickness / (a / n1))), math.ceil(1.5 * kh * thickness))
     try:
-        lam, _ = fe.section_critical_stretch(kh, mode, 0.97 * ref, min(1.03 * ref, 0.9995),
-                                             n1=n1, n2=n2)
+        lam, _ = fe.studies.section_critical_stretch(kh, mode, 0.97 * ref,
+                                                     min(1.03 * ref, 0.9995), n1=n1, n2=n2)
     except ValueError as exc:
         return [mode, kh, None, ref, None, f"{n1}x{n2}", str(exc).splitlines()[0][:160]]
     return [mode, kh, lam, ref, lam / ref - 1.0, f"{n1}x{n2}", ""]

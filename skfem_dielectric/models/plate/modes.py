@@ -1,7 +1,7 @@
 """Classification of the modes of a plate's reduced stiffness.
 
 A negative eigenvalue is physics only when its mode is: the indicators below say where a
-mode of :func:`~skfem_dielectric.tangent_stability` (or of a symmetry class,
+mode of :func:`~skfem_dielectric.stability.tangent_stability` (or of a symmetry class,
 :func:`~skfem_dielectric.models.plate.symmetry_classes.class_stability`) sits and at which
 scale it varies; :func:`lowest_physical` is the lowest mode of the whole plate that sits
 neither at a clamp corner nor at the mesh scale.
