@@ -20,7 +20,11 @@ The rules (docs/architecture.md):
   tables and the result store import neither the FE runner, the figures nor the studies,
   and importing them loads no finite elements (neither ``skfem_dielectric`` nor
   scikit-fem); every module file of ``validation`` is named in the validation section of
-  docs/architecture.md.
+  docs/architecture.md;
+* the top level of ``skfem_dielectric`` is the short list of names a user of the paper's
+  plates needs (its ``__all__``) plus its modules and subpackages as namespaces: every name
+  of the top-level ``__all__`` and of each subpackage's ``__all__`` resolves, and the top
+  level binds no other name, so that the cut cannot grow back unnoticed.
 
 Each rule reports every offending place, so that a failure says what to change.
 """
@@ -28,9 +32,12 @@ Each rule reports every offending place, so that a failure says what to change.
 from __future__ import annotations
 
 import ast
+import importlib
 import os
+import pkgutil
 import subprocess
 import sys
+import types
 from pathlib import Path
 
 import pytest
@@ -377,3 +384,44 @@ def test_the_checker_sees_cases_importing_the_fe_runner(monkeypatch):
     bad = _layer_violations("validation", VALIDATION_LAYERS)
     assert len(bad) == 1, bad
     assert "validation.cases (cases) imports validation.fe.model (fe), up the layers" in bad[0]
+
+
+def _unresolved(module: types.ModuleType) -> list[str]:
+    """The names of ``module.__all__`` that are not attributes of ``module``."""
+    return [name for name in getattr(module, "__all__", ()) if not hasattr(module, name)]
+
+
+def _unlisted(module: types.ModuleType) -> list[str]:
+    """The names ``module`` binds besides its ``__all__``, its own submodules and dunders."""
+    listed = set(module.__all__)
+    return sorted(name for name, value in vars(module).items()
+                  if name not in listed and not (name.startswith("__") and name.endswith("__"))
+                  and not (isinstance(value, types.ModuleType)
+                           and value.__name__ == f"{module.__name__}.{name}"))
+
+
+def test_the_top_level_names_resolve_and_nothing_else_is_exported():
+    """The top-level ``__all__`` and every subpackage's ``__all__`` resolve; the top level
+    binds nothing outside its ``__all__`` but its modules and subpackages."""
+    import skfem_dielectric
+    bad = [f"skfem_dielectric.{name}" for name in _unresolved(skfem_dielectric)]
+    for info in pkgutil.walk_packages(skfem_dielectric.__path__, "skfem_dielectric."):
+        if info.ispkg:
+            package = importlib.import_module(info.name)
+            bad += [f"{info.name}.{name}" for name in _unresolved(package)]
+    assert not bad, "names in __all__ that do not resolve: " + ", ".join(bad)
+    extra = _unlisted(skfem_dielectric)
+    assert not extra, "skfem_dielectric binds names outside its __all__: " + ", ".join(extra)
+
+
+def test_the_checker_sees_an_unlisted_and_an_unresolved_name():
+    """A re-export missing from ``__all__`` and an ``__all__`` entry without an object are
+    reported; a submodule bound by the import system is not."""
+    package = types.ModuleType("pkg")
+    package.__all__ = ["solve", "missing"]
+    package.solve = len
+    package.helper = len                            # re-exported but not listed
+    package.sub = types.ModuleType("pkg.sub")       # its own submodule: a namespace
+    package.np = types.ModuleType("numpy")          # another package's module: a leak
+    assert _unresolved(package) == ["missing"]
+    assert _unlisted(package) == ["helper", "np"]
