@@ -29,7 +29,7 @@ def add_study_commands(add) -> None:
             "The critical charge of one Fourier mode of the cross-section with sliding ends "
             "(symmetric and antisymmetric, charge and voltage control) on a grid of lam and "
             "kh, against the finite-thickness dispersion relation: DIR/wrinkling-fe.csv and "
-            "DIR/wrinkling-fe.png (full grid: several minutes).")
+            "DIR/wrinkling-fe.png (what each costs: docs/performance.md).")
     w.add_argument("--quick", action="store_true", help="only lam = 1.5 and kh in {0.5, 2}")
     w.add_argument("--out", required=True, type=out_dir, help="output folder")
 
@@ -41,9 +41,9 @@ def add_study_commands(add) -> None:
             "per alpha x mesh, written as each is done; a rerun skips the rows present), "
             "DIR/buckling-scan.csv and DIR/buckling.png|pdf (redrawn after each row). "
             "Default: alpha = 1, 0.3, 1.5, 0.7, "
-            "0.05 on 10x1x5, 20x1x10, 40x1x20, D0 step 0.25 (hours on 2 cores); --quick: "
-            "alpha = 1 on 10x1x5 (the quick validate run's mesh), D0 step 0.5 (about a "
-            "minute).")
+            "0.05 on 10x1x5, 20x1x10, 40x1x20, D0 step 0.25; --quick: alpha = 1 on 10x1x5 "
+            "(the quick validate run's mesh), D0 step 0.5 (what each costs: "
+            "docs/performance.md).")
     _study_arguments(k, "alpha = 1 on the coarse mesh 10x1x5",
                      "eighth-model meshes, e.g. 10x1x5 20x1x10", "charge step of the scan",
                      "last charge target", "auto",
@@ -58,8 +58,8 @@ def add_study_commands(add) -> None:
              "homogeneous closed form, stability counts), DIR/post-buckling-summary.csv "
              "(one row per alpha x mesh, written as each is done; a rerun skips the rows "
              "present) and DIR/post-buckling.png|pdf. Default: alpha = 0.05 and 1 on the "
-             "quarter meshes 10x2x5, 14x2x7, 20x2x10 (about an hour on 2 cores); --quick: "
-             "alpha = 0.05 on 10x2x5 up to D0 = 1 (about a minute).")
+             "quarter meshes 10x2x5, 14x2x7, 20x2x10; --quick: alpha = 0.05 on 10x2x5 up to "
+             "D0 = 1 (what each costs: docs/performance.md).")
     _study_arguments(pb, "alpha = 0.05, one coarse mesh",
                      "quarter-model meshes with an even N2, e.g. 10x2x5 20x2x10",
                      "charge step of the scan and the branch (default 0.05)",
