@@ -32,12 +32,9 @@ L1, H, L3 = KEPLINGER_SIZE
 MEMBRANE_VARIANTS = ("membrane", "membrane-maxwell")
 #: 3D pre-load sub-steps: those of the drivers equibiaxial_plate and keplinger_plate.
 PRELOAD_STEPS = {"equibiaxial": EQUIBIAXIAL_PRELOAD_STEPS, "uniaxial": KEPLINGER_PRELOAD_STEPS}
-#: 3D Newton tolerance relative to the external load: that of equibiaxial_plate and of
-#: keplinger_plate; the membrane keeps the tolerance of the plain ramp.
+#: 3D Newton tolerance relative to the external load (``atol = 0``): that of
+#: equibiaxial_plate and of keplinger_plate; the membrane keeps the plain ramp's tolerances.
 RTOL = {"equibiaxial": EQUIBIAXIAL_RTOL, "uniaxial": KEPLINGER_RTOL}
-MEMBRANE_TOL = {"atol": 1e-10, "rtol": 1e-10}
-#: Cut-backs per target and Newton iterations per attempt, every variant.
-MAX_CUTBACKS, MAX_ITER = 6, 25
 #: chord factor of the ramps' Newton solves (:func:`skfem_dielectric.solvers.newton.newton`),
 #: that of keplinger_plate: a factorisation is reused while the residual contracts at least
 #: tenfold per step.  No secant predictor: it depends on the state before the last one, so
@@ -160,16 +157,15 @@ def ramp_settings(spec: RunSpec, linear_solver="superlu") -> dict:
     Returns
     -------
     dict
-        ``settings``: a :class:`skfem_dielectric.RampSettings` with ``atol``, ``rtol``
-        (:data:`RTOL` with ``atol = 0`` in 3D, :data:`MEMBRANE_TOL` for the membrane),
-        ``max_cutbacks``, ``max_iter`` and ``chord`` (:data:`CHORD`); and
-        ``linear_solver``.
+        ``settings``: the ramp's :class:`skfem_dielectric.RampSettings` (its tolerances,
+        cut-backs and Newton budget) with ``chord`` :data:`CHORD`, and in 3D ``atol = 0``
+        and ``rtol`` :data:`RTOL`; and ``linear_solver``.
     """
     if "maxwell" in spec.variant:
         linear_solver = fe.linalg.nonsymmetric_solver(linear_solver)
-    tol = MEMBRANE_TOL if is_membrane(spec) else {"atol": 0.0, "rtol": RTOL[spec.geometry]}
-    settings = fe.RampSettings(**tol, max_cutbacks=MAX_CUTBACKS, max_iter=MAX_ITER,
-                               chord=CHORD)
+    settings = fe.RampSettings(chord=CHORD)
+    if not is_membrane(spec):
+        settings = replace(settings, atol=0.0, rtol=RTOL[spec.geometry])
     return {"settings": settings, "linear_solver": linear_solver}
 
 
