@@ -27,7 +27,8 @@ def _check_counts(st):
 
 def test_equibiaxial_neo_hookean_s0_limit_point():
     st = fe.studies.voltage_snap_through(0.0, loading="equibiaxial", stop_after_limit=True)
-    # literature value (DESIGN.md): E0max = sqrt(3)/2^(4/3) at lam = 2^(1/3).  The
+    # literature value (Zhao and Suo, Appl. Phys. Lett. 91, 061921, 2007: a peak of
+    # 0.69 sqrt(mu/eps) at lam = 1.26): E0max = sqrt(3)/2^(4/3) at lam = 2^(1/3).  The
     # mixed element reproduces the homogeneous state to solver tolerance and the limit
     # point is located to |dE0/ds| <= 1e-9, so 1e-8 in E0 (second order at a maximum)
     # and 1e-6 in lam (first order) hold with margin; the stated targets are 1e-6, 1e-4
