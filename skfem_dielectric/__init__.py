@@ -39,8 +39,9 @@ from .linalg import get_linear_solver
 from .materials import GentDielectric, IdealDielectric, NeoHookeanDielectric, make_material
 from .models import CrossSection, MembranePlate, PlateProblem, membrane_mesh, section_mesh
 from .problem import Layout, Problem
-from .solvers import (ContinuationResult, NewtonResult, NewtonSettings, RampResult,
-                      RampSettings, StepResult, continuation, critical_load, newton, ramp)
+from .solvers import (ContinuationResult, ContinuationSettings, NewtonResult, NewtonSettings,
+                      RampResult, RampSettings, StepResult, continuation, critical_load, newton,
+                      ramp)
 from .stability import StabilityMonitor, StabilityResult, stability_analysis
 
 __all__ = [
@@ -52,8 +53,8 @@ __all__ = [
     # materials
     "NeoHookeanDielectric", "GentDielectric", "IdealDielectric", "make_material",
     # solvers
-    "newton", "ramp", "continuation", "NewtonSettings", "RampSettings", "NewtonResult",
-    "RampResult", "StepResult", "ContinuationResult", "critical_load",
+    "newton", "ramp", "continuation", "NewtonSettings", "RampSettings", "ContinuationSettings",
+    "NewtonResult", "RampResult", "StepResult", "ContinuationResult", "critical_load",
     # stability
     "stability_analysis", "StabilityResult", "StabilityMonitor",
     # the paper's plates

@@ -1,6 +1,8 @@
 """Pseudo-arclength continuation: limit points of problems with closed forms."""
 
 import math
+import re
+from dataclasses import replace
 
 import numpy as np
 import pytest
@@ -8,7 +10,8 @@ import scipy.sparse as sp
 
 import skfem_dielectric as fe
 from skfem_dielectric.problem import Layout, Problem
-from skfem_dielectric.solvers.continuation import continuation
+from skfem_dielectric.solvers.continuation import ContinuationSettings, continuation
+from skfem_dielectric.solvers.newton import NewtonSettings
 
 
 class Truss(Problem):
@@ -66,7 +69,8 @@ class WrongLoadVector(Pitchfork):
 def test_truss_passes_both_limit_points_and_returns_to_stable_branch():
     pb = Truss()
     P_max, v_max = pb.closed_form_limit()
-    res = continuation(pb, 0.0, 1.0, ds=0.05, stop=lambda p: p.x[0] > 1.3)
+    res = continuation(pb, 0.0, 1.0, stop=lambda p: p.x[0] > 1.3,
+                       settings=ContinuationSettings(ds=0.05))
     assert res.converged, res.reason
     limits = [e for e in res.events if e.kind == "limit"]
     assert len(limits) == 2 and all(e.located for e in limits)
@@ -90,7 +94,7 @@ def test_truss_passes_both_limit_points_and_returns_to_stable_branch():
 
 
 def test_bifurcation_is_reported_with_the_load_increasing():
-    res = continuation(Pitchfork(), 0.0, 1.0, ds=0.1, t_max=1.5)
+    res = continuation(Pitchfork(), 0.0, 1.0, t_max=1.5, settings=ContinuationSettings(ds=0.1))
     assert [e.kind for e in res.events] == ["bifurcation"]
     ev = res.events[0]
     before = res.points[ev.index - 1]
@@ -100,16 +104,41 @@ def test_bifurcation_is_reported_with_the_load_increasing():
     assert np.all(res.column("tangent_t") > 0)
 
 
-@pytest.mark.parametrize("kwargs, match", [
-    ({"ds": 0.0}, "ds must be"),
-    ({"ds": -0.1}, "ds must be"),
-    ({"direction": np.array([1.0, 0.0])}, "direction"),
-    ({"predictor": "cubic"}, "predictor"),
+def test_bad_arguments():
+    with pytest.raises(ValueError, match="direction"):
+        continuation(Pitchfork(), 0.0, np.array([1.0, 0.0]))
+    with pytest.raises(ValueError, match=r"^settings must be a ContinuationSettings, got "):
+        continuation(Pitchfork(), 0.0, 1.0, settings=NewtonSettings())
+
+
+@pytest.mark.parametrize("field, value", [
+    ("ds", 0.0), ("ds", -0.1), ("ds", math.nan), ("ds_min", 0.0), ("ds_max", -1.0),
+    ("max_steps", 0), ("max_steps", 2.5), ("predictor", "cubic"), ("increase", "yes"),
+    ("target_iterations", 0), ("max_cutbacks", -1), ("max_angle", 0.0), ("locate", 1),
+    ("locate_tol", -1e-9), ("corrector", {"max_iter": 15}),
 ])
-def test_bad_arguments(kwargs, match):
-    args = {"load0": 0.0, "direction": 1.0, **kwargs}
-    with pytest.raises(ValueError, match=match):
-        continuation(Pitchfork(), **args)
+def test_continuation_settings_name_the_bad_field(field, value):
+    with pytest.raises(ValueError, match=rf"^{field} must .*got {re.escape(repr(value))}$"):
+        ContinuationSettings(**{field: value})
+
+
+def test_step_bounds_follow_ds_unless_given():
+    # ds_min = ds 1e-4 and ds_max = 8 ds by default: scaled with ds by a replace
+    coarse = replace(ContinuationSettings(), ds=0.5)
+    assert coarse.step_bounds == (0.5e-4, 4.0)
+    assert ContinuationSettings(ds=0.5, ds_min=0.01, ds_max=1.0).step_bounds == (0.01, 1.0)
+
+
+def test_max_steps_of_the_settings_ends_the_path():
+    # the pitchfork's trivial branch (u1 = t, u2 = 0) has no stop before t_max: max_steps = 3
+    # ends it after the start and three steps of arclength ds = ds_max = 0.1.  In the metric
+    # W = 1/2 on both unknowns a step dt has arclength sqrt(1/2 + 1) dt, so t = 3 ds / sqrt(1.5)
+    res = continuation(Pitchfork(), 0.0, 1.0, t_max=1.5,
+                       settings=ContinuationSettings(ds=0.1, ds_max=0.1, max_steps=3))
+    assert res.converged and res.reason == "max_steps = 3 reached"
+    assert len(res.points) == 4
+    # the branch is linear: each corrector lands on it to round-off
+    assert res.points[-1].t == pytest.approx(0.3 / math.sqrt(1.5), rel=1e-12)
 
 
 def test_load_vector_of_wrong_size():

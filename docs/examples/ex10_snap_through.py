@@ -26,12 +26,15 @@ jumps from zero at the limit point; the second stays zero.
 """
 
 import math
+from dataclasses import replace
 
 import numpy as np
 
 import skfem_dielectric as fe
 
-st = fe.studies.voltage_snap_through(0.0, loading="equibiaxial", lam_factor=1.6, ds=0.1)
+coarse = replace(fe.studies.SNAP_THROUGH_SETTINGS, ds=0.1)     # arclength step 0.1
+st = fe.studies.voltage_snap_through(0.0, loading="equibiaxial", lam_factor=1.6,
+                                     settings=coarse)
 path = st.path
 lam = path.column("lam1")
 E0 = path.column("t")

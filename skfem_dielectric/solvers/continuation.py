@@ -32,6 +32,11 @@ bifurcation
     (:func:`~skfem_dielectric.stability.analysis.tangent_stability`) changes without a sign change
     of ``tau_t``: an eigenvalue crosses zero with the load still monotone (a branch point).
 
+How the path is stepped -- the arclength steps, the predictor, the step control, the
+location of limit points and the correctors' Newton settings -- is one
+:class:`ContinuationSettings` (``settings=``); the path itself and where it ends (``t_max``,
+``t_min``, ``stop``) are arguments of :func:`continuation`.
+
 Failure is data: a corrector that does not converge halves the step (``max_cutbacks``
 times); the continuation then stops with ``converged=False`` and a ``reason`` and keeps
 every converged point.
@@ -48,16 +53,109 @@ from typing import Any, Callable
 import numpy as np
 import scipy.sparse as sp
 
-from ..checks import check_callable, check_count, check_nonnegative_int, check_positive
+from ..checks import (check_callable, check_choice, check_count, check_nonnegative_int,
+                      check_positive)
 from ..linalg.linear import nonsymmetric_solver
 from ..linalg.solver_base import LinearSolver
 from ..problem import Problem
 from ..stability.analysis import metric_matrix, tangent_stability
 from .newton import NewtonSettings, check_settings, newton
 
-__all__ = ["ContinuationPoint", "ContinuationEvent", "ContinuationResult", "continuation"]
+__all__ = ["ContinuationSettings", "ContinuationPoint", "ContinuationEvent",
+           "ContinuationResult", "continuation"]
 
 PREDICTORS = ("secant", "tangent")
+
+
+def _check_bool(name: str, value: Any) -> bool:
+    if not isinstance(value, (bool, np.bool_)):
+        raise ValueError(f"{name} must be True or False, got {value!r}")
+    return bool(value)
+
+
+@dataclass(frozen=True)
+class ContinuationSettings:
+    """How :func:`continuation` steps along the path: arclength steps, predictor, step
+    control, location of limit points and the correctors' Newton settings.
+
+    The step control of Keller's pseudo-arclength method (module docstring) as one frozen
+    object, checked once where it is made, like
+    :class:`~skfem_dielectric.solvers.newton.NewtonSettings` and
+    :class:`~skfem_dielectric.solvers.ramp.RampSettings`; the path and its stop criteria
+    stay arguments of :func:`continuation`.  Change one field with
+    :func:`dataclasses.replace`, e.g. ``replace(ContinuationSettings(), ds=0.1)``.
+
+    Attributes
+    ----------
+    ds
+        Initial arclength step, ``> 0``.
+    ds_min, ds_max
+        Smallest and largest arclength step, ``> 0``; ``None`` stands for ``ds * 1e-4`` and
+        ``ds * 8`` (read through :attr:`step_bounds`, so that a ``replace`` of ``ds``
+        scales them).
+    max_steps
+        Steps before the continuation stops, ``>= 1``.
+    predictor
+        ``"secant"`` (through the last two points; the tangent on the first step) or
+        ``"tangent"``.
+    increase
+        Initial direction: ``t`` increasing (True) or decreasing.
+    target_iterations
+        The step is scaled by ``sqrt(target_iterations / iterations)`` (within ``[1/2,
+        2]``) after each success, ``>= 1``.
+    max_cutbacks
+        Halvings of one step (after a failed corrector, or a tangent turning by more than
+        ``max_angle``) before the continuation stops, ``>= 0``.
+    max_angle
+        A step whose tangent turns by more than this angle (radians, ``> 0``) is halved.
+    locate, locate_tol
+        Locate limit points by regula falsi to ``|tau_t| <= locate_tol`` (``> 0``).
+    corrector
+        Newton settings of the correctors and of the start
+        (:class:`~skfem_dielectric.solvers.newton.NewtonSettings`, default 15 iterations);
+        ``rtol`` is relative to ``problem.residual_scale``.
+
+    Raises
+    ------
+    ValueError
+        A field out of its range, naming the field and the value.
+    """
+
+    ds: float = 0.05
+    ds_min: float | None = None
+    ds_max: float | None = None
+    max_steps: int = 200
+    predictor: str = "secant"
+    increase: bool = True
+    target_iterations: int = 4
+    max_cutbacks: int = 10
+    max_angle: float = 0.5
+    locate: bool = True
+    locate_tol: float = 1e-9
+    corrector: NewtonSettings = NewtonSettings(max_iter=15)
+
+    def __post_init__(self) -> None:
+        check_choice("predictor", self.predictor, PREDICTORS)
+        check_settings("corrector", self.corrector, NewtonSettings)
+        checked = dict(
+            ds=check_positive("ds", self.ds),
+            ds_min=None if self.ds_min is None else check_positive("ds_min", self.ds_min),
+            ds_max=None if self.ds_max is None else check_positive("ds_max", self.ds_max),
+            max_steps=check_count("max_steps", self.max_steps),
+            increase=_check_bool("increase", self.increase),
+            target_iterations=check_count("target_iterations", self.target_iterations),
+            max_cutbacks=check_nonnegative_int("max_cutbacks", self.max_cutbacks),
+            max_angle=check_positive("max_angle", self.max_angle),
+            locate=_check_bool("locate", self.locate),
+            locate_tol=check_positive("locate_tol", self.locate_tol))
+        for name, value in checked.items():     # the checked values, as the solver uses them
+            object.__setattr__(self, name, value)
+
+    @property
+    def step_bounds(self) -> tuple[float, float]:
+        """``(ds_min, ds_max)`` with the defaults ``ds * 1e-4`` and ``ds * 8`` filled in."""
+        return (self.ds * 1e-4 if self.ds_min is None else self.ds_min,
+                self.ds * 8.0 if self.ds_max is None else self.ds_max)
 
 
 @dataclass
@@ -229,11 +327,10 @@ class _Path:
         return tau_x / nrm, tau_t / nrm
 
 
-def _check_inputs(problem, load0, direction, path, ds):
+def _check_inputs(problem, load0, direction, path):
     if not isinstance(problem, Problem):
         raise ValueError("problem must be a skfem_dielectric.Problem (layout, initial_state, "
                          f"assemble, load_vector), got {type(problem).__name__}")
-    ds = check_positive("ds", ds)
     check_callable("path", path)
     if path is None:
         if load0 is None or direction is None:
@@ -245,8 +342,8 @@ def _check_inputs(problem, load0, direction, path, ds):
                 or not np.all(np.isfinite(a0)) or not np.any(d):
             raise ValueError(f"direction must be a finite, non-zero load of the shape of "
                              f"load0 {a0.shape}, got {direction!r}")
-        return ds, (float(a0) if a0.ndim == 0 else a0), (float(d) if d.ndim == 0 else d)
-    return ds, load0, direction
+        return (float(a0) if a0.ndim == 0 else a0), (float(d) if d.ndim == 0 else d)
+    return load0, direction
 
 
 class _Continuation:
@@ -404,16 +501,11 @@ class _Continuation:
 
 def continuation(problem: Problem, load0: Any = None, direction: Any = None, *,
                  path: Callable[[float], Any] | None = None, x0: np.ndarray | None = None,
-                 t0: float = 0.0, ds: float = 0.05, ds_min: float | None = None,
-                 ds_max: float | None = None, max_steps: int = 200,
-                 t_max: float | None = None, t_min: float | None = None,
+                 t0: float = 0.0, t_max: float | None = None, t_min: float | None = None,
                  stop: Callable[[ContinuationPoint], bool] | None = None,
-                 predictor: str = "secant", increase: bool = True,
-                 target_iterations: int = 4, max_cutbacks: int = 10,
-                 max_angle: float = 0.5, count: bool | Callable = True,
-                 locate: bool = True, locate_tol: float = 1e-9,
+                 settings: ContinuationSettings = ContinuationSettings(),
+                 count: bool | Callable = True,
                  linear_solver: str | LinearSolver = "superlu",
-                 corrector: NewtonSettings = NewtonSettings(max_iter=15),
                  step_limit: Callable | None = None,
                  admissible: Callable | None = None) -> ContinuationResult:
     """Follow the equilibrium path of ``problem`` through limit points.
@@ -431,36 +523,18 @@ def continuation(problem: Problem, load0: Any = None, direction: Any = None, *,
     x0, t0
         Start: a state near equilibrium at ``load(t0)`` (default ``problem.initial_state()``);
         it is corrected at fixed load first.
-    ds, ds_min, ds_max
-        Initial, smallest and largest arclength step (defaults ``ds * 1e-4`` and
-        ``ds * 8``); ``ds > 0``.
-    max_steps, t_max, t_min, stop
-        Stop after ``max_steps`` steps, when ``t`` leaves ``[t_min, t_max]`` (that point is
-        kept), or when ``stop(point)`` is true.
-    predictor
-        ``"secant"`` (through the last two points; the tangent on the first step) or
-        ``"tangent"``.
-    increase
-        Initial direction: ``t`` increasing (True) or decreasing.
-    target_iterations
-        Step control: the step is scaled by ``sqrt(target_iterations / iterations)``
-        (within ``[1/2, 2]``) after each success, halved after a failure.
-    max_cutbacks
-        Halvings of one step before the continuation stops.
-    max_angle
-        A step whose tangent turns by more than this angle (radians) is halved.
+    t_max, t_min, stop
+        Stop when ``t`` leaves ``[t_min, t_max]`` (that point is kept), or when
+        ``stop(point)`` is true (besides after ``settings.max_steps`` steps).
+    settings
+        How the path is stepped (:class:`ContinuationSettings`: arclength steps, predictor,
+        step control, location of limit points, the correctors' Newton settings).
     count
         Count the negative eigenvalues of the reduced stiffness at every point (True, for
         a symmetric tangent: :func:`~skfem_dielectric.stability.analysis.tangent_stability`), or a
         callable ``count(x, load) -> int`` (e.g. on a stabilised tangent), or False.
-    locate, locate_tol
-        Locate limit points to ``|tau_t| <= locate_tol``.
     linear_solver
         Solver for the (non-symmetric) bordered system.
-    corrector
-        Newton settings of the correctors and of the start
-        (:class:`~skfem_dielectric.solvers.newton.NewtonSettings`, default 15 iterations);
-        ``rtol`` is relative to ``problem.residual_scale``.
     step_limit, admissible
         ``step_limit(x, dx, load)`` and ``admissible(x, load)`` of the admissible states, as
         in :func:`~skfem_dielectric.solvers.ramp.ramp`.
@@ -474,28 +548,40 @@ def continuation(problem: Problem, load0: Any = None, direction: Any = None, *,
     Raises
     ------
     ValueError
-        ``problem`` not a ``Problem``; ``ds`` (or ``ds_min``, ``ds_max``) not positive;
-        neither ``load0, direction`` nor ``path``; a zero or mis-shaped ``direction``; a
-        ``load_vector`` of the wrong shape; ``x0`` of the wrong length; unknown
-        ``predictor``; invalid counts; ``stop``, ``step_limit``, ``admissible`` not
-        callable, ``count`` neither a bool nor callable; ``corrector`` not a
-        ``NewtonSettings``.
+        ``problem`` not a ``Problem``; neither ``load0, direction`` nor ``path``; a zero or
+        mis-shaped ``direction``; a ``load_vector`` of the wrong shape; ``x0`` of the wrong
+        length; ``settings`` not a ``ContinuationSettings``; ``stop``, ``step_limit``,
+        ``admissible`` not callable, ``count`` neither a bool nor callable.
+
+    Examples
+    --------
+    The load of the scalar problem ``r = x^3 - 3 x - t`` has a maximum ``t = 2`` at ``x =
+    -1``; a load ramp stops there, the continuation passes it and locates it:
+
+    >>> import numpy as np, scipy.sparse as sp
+    >>> from skfem_dielectric.problem import Layout, Problem
+    >>> class Cubic(Problem):
+    ...     layout = Layout.single(1)
+    ...     def initial_state(self):        # near the root x = -sqrt(3) of t = 0
+    ...         return np.array([-1.8])
+    ...     def assemble(self, x, load):
+    ...         K = sp.csr_matrix([[3 * x[0] ** 2 - 3]])
+    ...         return K, np.array([x[0] ** 3 - 3 * x[0] - float(load)])
+    >>> res = continuation(Cubic(), 0.0, 1.0, t_max=3.0, count=False,
+    ...                    settings=ContinuationSettings(ds=0.2))
+    >>> round(res.limit_points[0].t, 8), round(float(res.limit_points[0].x[0]), 4)
+    (2.0, -1.0)
     """
-    ds, load0, direction = _check_inputs(problem, load0, direction, path, ds)
-    ds_min = check_positive("ds_min", ds * 1e-4 if ds_min is None else ds_min)
-    ds_max = check_positive("ds_max", ds * 8.0 if ds_max is None else ds_max)
-    if predictor not in PREDICTORS:
-        raise ValueError(f"predictor must be one of {PREDICTORS}, got {predictor!r}")
-    max_steps = check_count("max_steps", max_steps)
-    target_iterations = check_count("target_iterations", target_iterations)
-    max_cutbacks = check_nonnegative_int("max_cutbacks", max_cutbacks)
-    max_angle = check_positive("max_angle", max_angle)
+    load0, direction = _check_inputs(problem, load0, direction, path)
+    check_settings("settings", settings, ContinuationSettings)
+    ds, (ds_min, ds_max) = settings.ds, settings.step_bounds
+    predictor, max_steps = settings.predictor, settings.max_steps
+    target_iterations = settings.target_iterations
     for name, f in (("stop", stop), ("step_limit", step_limit), ("admissible", admissible)):
         check_callable(name, f)
     if not (isinstance(count, bool) or callable(count)):
         raise ValueError(f"count must be True, False or a callable count(x, load), got "
                          f"{count!r}")
-    check_settings("corrector", corrector, NewtonSettings)
     t_start = time.perf_counter()
     n = problem.ndofs
     x = problem.initial_state() if x0 is None else np.asarray(x0, dtype=float)
@@ -505,11 +591,12 @@ def continuation(problem: Problem, load0: Any = None, direction: Any = None, *,
     wdiag = metric_matrix(problem).diagonal()
     weight = wdiag / max(1.0, float(wdiag.sum()))
     P = _Path(problem, load0, direction, path, weight, n_load)
-    run = _Continuation(problem, P, nonsymmetric_solver(linear_solver), corrector, count,
-                        step_limit, admissible, max_cutbacks=max_cutbacks, ds_min=ds_min,
-                        max_angle=max_angle, locate_tol=locate_tol)
+    run = _Continuation(problem, P, nonsymmetric_solver(linear_solver), settings.corrector,
+                        count, step_limit, admissible, max_cutbacks=settings.max_cutbacks,
+                        ds_min=ds_min, max_angle=settings.max_angle,
+                        locate_tol=settings.locate_tol)
     out = run.out
-    tau = run.start(x, t0, increase)
+    tau = run.start(x, t0, settings.increase)
     if tau is None:
         warnings.warn(out.reason, RuntimeWarning, stacklevel=2)
         return out
@@ -531,7 +618,7 @@ def continuation(problem: Problem, load0: Any = None, direction: Any = None, *,
         arc += h
         b = run.point(xb, tb, taub, it, h, arc, "regular", Kb)
         if (b.tangent_t > 0) != (tau[1] > 0) and tau[1] != 0:
-            found = run.locate_limit(a, tau, b) if locate else None
+            found = run.locate_limit(a, tau, b) if settings.locate else None
             if found is not None:
                 (xl, tl, taul, itl, Kl), hl = found
                 out.points.append(run.point(xl, tl, taul, itl, hl, arc - h + hl, "limit", Kl))

@@ -9,7 +9,8 @@ from .buckling import BucklingLoad, buckling_load
 from .postbuckling import (midplane_nodes, midplane_deflection, critical_mode, BranchSwitch,
                            switch_branch, follow_branch, PostBuckledBranch,
                            post_buckled_branch)
-from .snap_through import homogeneous_plate, SnapThrough, voltage_snap_through
+from .snap_through import (SNAP_THROUGH_SETTINGS, homogeneous_plate, SnapThrough,
+                           voltage_snap_through)
 from .wrinkling_fe import (wrinkling_section, section_mode_eigenvalue,
                            section_critical_load, SectionBifurcation,
                            section_critical_stretch)
@@ -17,7 +18,7 @@ from .wrinkling_fe import (wrinkling_section, section_mode_eigenvalue,
 __all__ = [
     "BucklingLoad", "buckling_load", "midplane_nodes", "midplane_deflection",
     "critical_mode", "BranchSwitch", "switch_branch", "follow_branch", "PostBuckledBranch",
-    "post_buckled_branch", "homogeneous_plate", "SnapThrough", "voltage_snap_through",
+    "post_buckled_branch", "SNAP_THROUGH_SETTINGS", "homogeneous_plate", "SnapThrough", "voltage_snap_through",
     "wrinkling_section", "section_mode_eigenvalue", "section_critical_load",
     "SectionBifurcation", "section_critical_stretch",
 ]

@@ -33,13 +33,20 @@ from ..fem.mesh import plate_mesh
 from ..gallery.drivers import newton_guards
 from ..materials import make_material
 from ..models.plate.problem import PlateProblem
-from ..solvers.continuation import ContinuationPoint, ContinuationResult, continuation
+from ..solvers.continuation import (ContinuationPoint, ContinuationResult, ContinuationSettings,
+                                    continuation)
+from ..solvers.newton import check_settings
 from ..solvers.ramp import ramp
 from ..stability.analysis import tangent_stability
 
-__all__ = ["homogeneous_plate", "SnapThrough", "voltage_snap_through"]
+__all__ = ["SNAP_THROUGH_SETTINGS", "homogeneous_plate", "SnapThrough", "voltage_snap_through"]
 
 HOMOGENEOUS_LOADINGS = ("equibiaxial", "uniaxial-free")
+
+#: How :func:`voltage_snap_through` steps along the path: arclength step 0.05, at most 150
+#: steps (the stop criteria end the homogeneous paths well before), otherwise the defaults
+#: of :class:`~skfem_dielectric.solvers.continuation.ContinuationSettings`.
+SNAP_THROUGH_SETTINGS = ContinuationSettings(ds=0.05, max_steps=150)
 
 
 def homogeneous_plate(loading: str = "equibiaxial", control: str = "voltage", *,
@@ -118,10 +125,11 @@ def _counter(problem: PlateProblem, grad_div: float):
 
 def voltage_snap_through(s: float, *, loading: str = "equibiaxial",
                          model: Any = "neo-Hookean", Jm: float = 97.2,
-                         grad_div: float = 10.0, ds: float = 0.05, lam_factor: float = 2.0,
-                         E0_max: float = 10.0, max_steps: int = 150, charge: bool = True,
+                         grad_div: float = 10.0, lam_factor: float = 2.0,
+                         E0_max: float = 10.0, charge: bool = True,
                          stop_after_limit: bool = False, coupling: str = "full",
-                         **options) -> SnapThrough:
+                         settings: ContinuationSettings = SNAP_THROUGH_SETTINGS,
+                         linear_solver: str = "superlu") -> SnapThrough:
     """Voltage-controlled path of the homogeneous plate at dead load ``s`` through the
     maximum of ``E0``, with the stability counts under voltage and charge control.
 
@@ -135,13 +143,9 @@ def voltage_snap_through(s: float, *, loading: str = "equibiaxial",
         ``"neo-Hookean"``, ``"Gent"`` (with ``Jm``) or a material object.
     grad_div
         Grad-div stabilisation of the counted tangents (units of ``mu``, > 0).
-    ds
-        Initial arclength step.
     lam_factor, E0_max
         The path ends when ``lam1`` exceeds ``lam_factor`` times its pre-loaded value,
         when ``E0`` falls below zero, or when ``E0 > E0_max``.
-    max_steps
-        Largest number of continuation steps.
     charge
         Also count the charge-controlled stiffness at every state (full coupling).
     stop_after_limit
@@ -149,8 +153,11 @@ def voltage_snap_through(s: float, *, loading: str = "equibiaxial",
     coupling
         ``"full"`` or ``"maxwell"`` (the Maxwell traction of the solved field; its tangent
         is not symmetric, so no counts are taken).
-    **options
-        :func:`~skfem_dielectric.solvers.continuation.continuation` options.
+    settings
+        How the continuation steps (default :data:`SNAP_THROUGH_SETTINGS`; e.g.
+        ``replace(SNAP_THROUGH_SETTINGS, ds=0.1)`` for a coarser path).
+    linear_solver
+        Solver of the continuation's bordered systems.
 
     Returns
     -------
@@ -162,6 +169,7 @@ def voltage_snap_through(s: float, *, loading: str = "equibiaxial",
     check_choice("loading", loading, HOMOGENEOUS_LOADINGS)
     grad_div = check_positive("grad_div", grad_div)
     lam_factor = check_positive("lam_factor", lam_factor)
+    check_settings("settings", settings, ContinuationSettings)
     pb = homogeneous_plate(loading, "voltage", model=model, Jm=Jm, coupling=coupling)
     full = coupling == "full"
     guards = newton_guards(pb)
@@ -173,11 +181,10 @@ def voltage_snap_through(s: float, *, loading: str = "equibiaxial",
         return (p["lam1"] > lam_factor * lam0 or p.t < 0.0
                 or (stop_after_limit and p.tangent_t < 0))
 
-    options.setdefault("max_steps", max_steps)
     path = continuation(pb, np.array([s, 0.0]), np.array([0.0, 1.0]),
-                        x0=pre.x if pre.steps else None, ds=ds, t_max=E0_max,
-                        count=_counter(pb, grad_div) if full else False, stop=stop,
-                        **guards, **options)
+                        x0=pre.x if pre.steps else None, t_max=E0_max, stop=stop,
+                        settings=settings, count=_counter(pb, grad_div) if full else False,
+                        linear_solver=linear_solver, **guards)
     n_c: list[int | None] = []
     D0, res = [], []
     cpb = homogeneous_plate(loading, "charge", model=model, Jm=Jm) if charge and full else None

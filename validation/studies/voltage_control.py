@@ -25,6 +25,7 @@ from __future__ import annotations
 import math
 import time
 import warnings
+from dataclasses import replace
 from pathlib import Path
 
 import matplotlib.pyplot as plt
@@ -34,6 +35,7 @@ from matplotlib.lines import Line2D
 import analytic as an
 import skfem_dielectric as fe
 from skfem_dielectric.gallery.loads import keplinger_s
+from skfem_dielectric.studies import SNAP_THROUGH_SETTINGS
 
 from ..cases import analytic_model
 from ..figures import (LIMIT_NAME, MODEL_NAME, PAPER_FIGURE, add_caption, mesh_caption,
@@ -98,9 +100,10 @@ def _keplinger_path(r: dict, quick: bool) -> tuple:
         return fe.stability.tangent_stability(pb, pb.assemble(x, load)[0]).n_negative
 
     path = fe.continuation(pb, np.array([r["s"], 0.0]), np.array([0.0, 1.0]),
-                           x0=pre.x if pre.steps else None, ds=0.05, count=count,
+                           x0=pre.x if pre.steps else None, count=count,
                            stop=lambda p: p.tangent_t < 0 or p["lam1"] > 2 * lam0,
-                           max_steps=60, **fe.gallery.newton_guards(pb))
+                           settings=fe.ContinuationSettings(ds=0.05, max_steps=60),
+                           **fe.gallery.newton_guards(pb))
     return path, [None] * len(path.points), [np.sign(p.t) * p["D0_centre"]
                                              for p in path.points]
 
@@ -115,7 +118,8 @@ def _rows_of(r: dict, quick: bool) -> list[list]:
         if r["alpha"] is None:
             st = fe.studies.voltage_snap_through(r["s"], loading=r["loading"], model=r["model"],
                                                  lam_factor=1.5 if quick else 2.0,
-                                                 ds=0.1 if quick else 0.05)
+                                                 settings=replace(SNAP_THROUGH_SETTINGS,
+                                                                  ds=0.1 if quick else 0.05))
             path, n_c, D0 = st.path, st.n_negative_charge, list(st.D0)
         else:
             path, n_c, D0 = _keplinger_path(r, quick)
