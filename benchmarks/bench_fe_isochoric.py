@@ -51,7 +51,7 @@ def homogeneous(s: float, D0: float, kappa: float, form: str) -> float:
 
 
 def main(argv=None) -> int:
-    from skfem_dielectric import keplinger_plate, keplinger_s
+    from skfem_dielectric import PlateOptions, keplinger_plate, keplinger_s
     from skfem_dielectric.gallery import KEPLINGER_SETTINGS
 
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
@@ -74,10 +74,11 @@ def main(argv=None) -> int:
             warnings.simplefilter("ignore", RuntimeWarning)
             # a finite kappa needs more Newton iterations than the mixed form (the
             # volumetric stiffness dominates the tangent): the ramp's general budget
-            res = keplinger_plate(a.alpha, a.D0, elements=(a.n1, 1, a.n3), formulation=form,
-                                  kappa=kappa, linear_solver=a.solver, preload_steps=6,
+            res = keplinger_plate(a.alpha, a.D0, elements=(a.n1, 1, a.n3),
+                                  options=PlateOptions(formulation=form, kappa=kappa),
+                                  linear_solver=a.solver, preload_steps=6,
                                   settings=replace(KEPLINGER_SETTINGS, max_iter=30,
-                                                             max_cutbacks=6))
+                                                   max_cutbacks=6))
         got = {round(float(st.load[1]), 12): st["lam1"] for st in res.steps
                if st.target_reached and st.load[0] == s}
         lam[form, kappa] = got

@@ -33,7 +33,7 @@ import warnings
 def run(solver: str, n1: int, n3: int, threads: int | None, stop_unstable: bool) -> dict:
     import numpy as np
 
-    from skfem_dielectric import keplinger_plate
+    from skfem_dielectric import PlateOptions, keplinger_plate
     from skfem_dielectric.gallery import KEPLINGER_SETTINGS
 
     t0 = time.perf_counter()
@@ -46,7 +46,8 @@ def run(solver: str, n1: int, n3: int, threads: int | None, stop_unstable: bool)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         res = keplinger_plate(1.0, D0=[1, 2, 3, 4, 5, 6], elements=(n1, 1, n3),
-                              linear_solver=solver, threads=threads, on_step=on_step,
+                              linear_solver=solver, options=PlateOptions(threads=threads),
+                              on_step=on_step,
                               settings=replace(KEPLINGER_SETTINGS,
                                                stop_on_instability=stop_unstable))
     wall = time.perf_counter() - t0

@@ -14,7 +14,7 @@ The top level holds the names a user of the paper's plates needs:
 - the stability of a converged state: :func:`stability_analysis`, :class:`StabilityResult`,
   :class:`StabilityMonitor`;
 - the paper's plates: :func:`equibiaxial_plate`, :func:`keplinger_plate`,
-  :func:`keplinger_s`;
+  :func:`keplinger_s`, and their model options :class:`PlateOptions`;
 - :func:`get_linear_solver`, and the export :func:`write_vtu_series`, :func:`write_xdmf`.
 
 Everything else is reached through its subpackage, bottom up (docs/architecture.md):
@@ -34,7 +34,7 @@ laws, the small-matrix kinematics and the whole export.
 from . import fem, forms, gallery, linalg, models, solvers, stability, studies
 from .export import write_vtu_series, write_xdmf
 from .fem import plate_mesh
-from .gallery import equibiaxial_plate, keplinger_plate, keplinger_s
+from .gallery import PlateOptions, equibiaxial_plate, keplinger_plate, keplinger_s
 from .linalg import get_linear_solver
 from .materials import GentDielectric, IdealDielectric, NeoHookeanDielectric, make_material
 from .models import CrossSection, MembranePlate, PlateProblem, membrane_mesh, section_mesh
@@ -58,7 +58,7 @@ __all__ = [
     # stability
     "stability_analysis", "StabilityResult", "StabilityMonitor",
     # the paper's plates
-    "equibiaxial_plate", "keplinger_plate", "keplinger_s",
+    "equibiaxial_plate", "keplinger_plate", "keplinger_s", "PlateOptions",
     # linear solver and export
     "get_linear_solver", "write_vtu_series", "write_xdmf",
 ]

@@ -28,7 +28,8 @@ def test_homogeneous_equibiaxial_plate_has_no_buckling_load():
     """Charge control with a dead load s = 1: the homogeneous thin plate never reaches the
     Stroh threshold (the paper's claim), so the scan of every symmetry class finds no
     physical negative eigenvalue -- through the same code path as the clamped plate."""
-    pb = equibiaxial_problem(size=(20.0, 1.0, 20.0), elements=(4, 1, 4), grad_div=10.0)
+    pb = equibiaxial_problem(size=(20.0, 1.0, 20.0), elements=(4, 1, 4),
+                             options=fe.PlateOptions(grad_div=10.0))
     D0 = np.array([2.0, 4.0, 6.0])
     states = _states(pb, [np.array([1.0, 0.0])] + [np.array([1.0, d]) for d in D0])
     out = buckling_load(pb, states)

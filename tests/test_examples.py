@@ -149,7 +149,8 @@ def _eighth_class_crossing() -> float:
     from skfem_dielectric.gallery.drivers import newton_guards
     from skfem_dielectric.models.plate.symmetry_classes import class_stability
 
-    res = fe.keplinger_plate(0.05, D0=[0.75, 0.8], elements=(10, 1, 5), grad_div=10.0,
+    res = fe.keplinger_plate(0.05, D0=[0.75, 0.8], elements=(10, 1, 5),
+                             options=fe.PlateOptions(grad_div=10.0),
                              settings=replace(fe.gallery.KEPLINGER_SETTINGS, max_cutbacks=6,
                                               max_iter=25))
     pb, a, b = res.problem, res.steps[-2], res.steps[-1]

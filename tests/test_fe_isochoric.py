@@ -20,7 +20,7 @@ import numpy as np
 import pytest
 from scipy.optimize import brentq, root
 
-from skfem_dielectric.gallery.drivers import EQUIBIAXIAL_SETTINGS, equibiaxial_plate
+from skfem_dielectric.gallery import EQUIBIAXIAL_SETTINGS, PlateOptions, equibiaxial_plate
 
 JM = 97.2
 
@@ -71,7 +71,8 @@ def test_isochoric_equibiaxial_matches_its_closed_form(model, formulation):
     # the mixed form's p (J - 1) - p^2/(2 kappa) is stationary in p at p = kappa (J - 1),
     # where it equals kappa (J - 1)^2 / 2: both formulations have the same state
     s, kappa, D0 = 1.5, 100.0, [1.0, 3.0]
-    res = equibiaxial_plate(s, D0, model=model, formulation=formulation, kappa=kappa,
+    res = equibiaxial_plate(s, D0, model=model,
+                            options=PlateOptions(formulation=formulation, kappa=kappa),
                             preload_steps=4, linear_solver="superlu",
                             settings=replace(EQUIBIAXIAL_SETTINGS, rtol=1e-12))
     assert res.converged, res.reason
@@ -89,4 +90,4 @@ def test_isochoric_equibiaxial_matches_its_closed_form(model, formulation):
 
 def test_isochoric_needs_a_finite_kappa():
     with pytest.raises(ValueError, match="kappa"):
-        equibiaxial_plate(1.0, [1.0], formulation="isochoric", kappa=math.inf)
+        equibiaxial_plate(1.0, [1.0], options=PlateOptions(formulation="isochoric", kappa=math.inf))

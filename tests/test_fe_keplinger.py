@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 from scipy.optimize import brentq
 
-from skfem_dielectric import keplinger_plate, keplinger_s
+from skfem_dielectric import PlateOptions, keplinger_plate, keplinger_s
 from skfem_dielectric.gallery import KEPLINGER_SETTINGS
 
 ALPHAS = [0.05, 0.3, 0.7, 1.0, 1.5]
@@ -125,7 +125,7 @@ def test_keplinger_chord_and_secant_keep_the_fe_dots():
 
 def test_keplinger_grad_div_keyword_reaches_the_plate():
     s = keplinger_s(1.0, g=9.81)
-    res = keplinger_plate(1.0, D0=[2], elements=(4, 1, 2), grad_div=10.0,
+    res = keplinger_plate(1.0, D0=[2], elements=(4, 1, 2), options=PlateOptions(grad_div=10.0),
                           linear_solver="superlu")
     assert res.converged, res.reason
     assert res.problem.grad_div == 10.0

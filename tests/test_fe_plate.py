@@ -14,6 +14,7 @@ from skfem import MeshHex
 
 from skfem_dielectric.fem.mesh import plate_mesh
 from skfem_dielectric.gallery.drivers import equibiaxial_plate
+from skfem_dielectric.gallery.plates import PlateOptions
 from skfem_dielectric.materials import NeoHookeanDielectric
 from skfem_dielectric.models.plate.problem import PlateProblem
 
@@ -63,7 +64,7 @@ def test_equibiaxial_mixed_matches_closed_form(model, s):
 def test_equibiaxial_voltage_control_obeys_D0_equals_lam4_E0():
     s = 1.5
     E0 = [0.05, 0.1, 0.15]
-    res = equibiaxial_plate(s, E0, control="voltage", linear_solver="superlu")
+    res = equibiaxial_plate(s, E0, options=PlateOptions(control="voltage"), linear_solver="superlu")
     assert res.converged
     for st in res.steps[-3:]:
         lam = st["lam1"]
@@ -77,7 +78,7 @@ def test_penalty_error_scales_like_mu_over_kappa():
     kappas = np.array([1e2, 1e3, 1e4])
     errs = []
     for kappa in kappas:
-        res = equibiaxial_plate(s, [D0], formulation="penalty", kappa=kappa,
+        res = equibiaxial_plate(s, [D0], options=PlateOptions(formulation="penalty", kappa=kappa),
                                 linear_solver="superlu")
         assert res.converged
         errs.append(abs(res.steps[-1]["lam1"] / lam_ref - 1))
@@ -273,3 +274,40 @@ def test_run_ramp_names_a_callback_that_is_not_callable():
     pb = equibiaxial_problem()
     with pytest.raises(ValueError, match=r"^on_step must be callable or None, got 42$"):
         run_ramp(pb, [np.array([0.5, 0.0])], on_step=42)
+
+
+@pytest.mark.parametrize("field, value", [
+    ("control", "current"), ("coupling", "weak"), ("field", "far"), ("formulation", "exact"),
+    ("phi_element", "Q3"), ("kappa", 0.0), ("kappa", -1.0), ("threads", 0), ("threads", 1.5),
+    ("grad_div", -1.0), ("grad_div", math.nan),
+])
+def test_plate_options_name_the_bad_field_as_the_plate_does(field, value):
+    # the reference is PlateProblem's own check of the same keyword: one message for one
+    # bad value, whether it is given to the model or to the drivers' options
+    pm = plate_mesh(4.0, 1.0, 4.0, 1, 1, 1, symmetry="eighth")
+    with pytest.raises(ValueError) as model_error:
+        PlateProblem(pm, NeoHookeanDielectric(1.0, 1.0), **{field: value})
+    with pytest.raises(ValueError, match=rf"^{field} must ") as options_error:
+        PlateOptions(**{field: value})
+    assert str(options_error.value) == str(model_error.value)
+
+
+@pytest.mark.parametrize("call", [
+    lambda d: d.equibiaxial_plate(0.5, [1.0], options={"grad_div": 10.0}),
+    lambda d: d.keplinger_plate(1.0, [1.0], options={"grad_div": 10.0}),
+    lambda d: d.maxwell_keplinger(1.0, [1.0], options="maxwell"),
+    lambda d: d.keplinger_problem(options=None),
+])
+def test_drivers_name_options_that_are_not_plate_options_before_building(monkeypatch, call):
+    drivers = _no_build(monkeypatch)
+    with pytest.raises(ValueError, match=r"^options must be a PlateOptions, got "):
+        call(drivers)
+
+
+def test_plate_options_reach_the_plate():
+    from skfem_dielectric.gallery.drivers import keplinger_problem
+    opts = PlateOptions(control="voltage", phi_element="Q1", grad_div=3.0, threads=1)
+    pb = keplinger_problem(elements=(2, 1, 1), options=opts)
+    # PlateProblem records the options it was built with: exactly the ones given
+    assert {k: pb.options[k] for k in opts.as_kwargs()} == opts.as_kwargs()
+    assert pb.load_names == ("s", "E0") and pb.grad_div == 3.0

@@ -148,7 +148,8 @@ def test_monitor_bad_input():
         fe.StabilityMonitor(k=-1)
     with pytest.raises(ValueError, match="tol"):
         fe.StabilityMonitor(tol=0.0)
-    pb = fe.gallery.keplinger_problem(elements=(2, 1, 1), coupling="maxwell")
+    pb = fe.gallery.keplinger_problem(elements=(2, 1, 1),
+                                      options=fe.PlateOptions(coupling="maxwell"))
     with pytest.raises(ValueError, match="not symmetric"):
         fe.StabilityMonitor()(pb, pb.initial_state(), (0.0, 0.0), None, None)
     pb = fe.gallery.keplinger_problem(elements=(2, 1, 1))

@@ -26,7 +26,7 @@ def lightly_loaded():
     fundamental states at D0 = 0.75 (stable) and 0.8 (past the buckling load 0.7785 of
     docs/validation.md), and the own class's eigenvalue crossing between them."""
     res = fe.keplinger_plate(0.05, D0=[0.75, 0.8], elements=(10, 2, 5), symmetry="quarter",
-                             grad_div=10.0,
+                             options=fe.PlateOptions(grad_div=10.0),
                              settings=replace(fe.gallery.KEPLINGER_SETTINGS, max_cutbacks=6,
                                               max_iter=25))
     assert res.converged
@@ -53,7 +53,8 @@ def test_critical_load_is_the_eighth_models_class_crossing(lightly_loaded):
     pb, a, b, d_crit = lightly_loaded
     assert critical_mode(pb, a.x, a.load).eigenvalue > 0
     assert critical_mode(pb, b.x, b.load).eigenvalue < 0
-    res = fe.keplinger_plate(0.05, D0=[0.75, 0.8], elements=(10, 1, 5), grad_div=10.0,
+    res = fe.keplinger_plate(0.05, D0=[0.75, 0.8], elements=(10, 1, 5),
+                             options=fe.PlateOptions(grad_div=10.0),
                              settings=replace(fe.gallery.KEPLINGER_SETTINGS, max_cutbacks=6,
                                               max_iter=25))
     pe, ea, eb = res.problem, res.steps[-2], res.steps[-1]

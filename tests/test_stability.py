@@ -56,7 +56,8 @@ def test_count_equals_dense_eigenvalues_3d_quarter_plate():
 def test_count_equals_dense_eigenvalues_3d_voltage_control():
     # voltage control: the potential is prescribed on the electrodes, the count is over the
     # remaining potential unknowns; the equi-biaxial plate under E0 approaching its maximum
-    pb = fe.gallery.equibiaxial_problem(elements=(2, 1, 2), symmetry="quarter", control="voltage")
+    pb = fe.gallery.equibiaxial_problem(elements=(2, 1, 2), symmetry="quarter",
+                                        options=fe.PlateOptions(control="voltage"))
     res = _converged(pb, [np.array([0.5, 0.0]), np.array([0.5, 0.3]), np.array([0.5, 0.6])])
     for st in res.steps:
         ref = _dense_negative(pb, st.x, st.load)
@@ -120,7 +121,7 @@ def test_grad_div_leaves_homogeneous_states_and_keeps_the_tangent_consistent(
         assert_tangent_columns):
     s, D0 = 1.5, 3.0
     ref = fe.equibiaxial_plate(s, [D0], linear_solver="superlu").column("lam1")[-1]
-    pb = fe.gallery.equibiaxial_problem(grad_div=10.0)
+    pb = fe.gallery.equibiaxial_problem(options=fe.PlateOptions(grad_div=10.0))
     res = fe.gallery.run_ramp(pb, fe.gallery.preload_then_charge(s, [D0], 4),
                               linear_solver="superlu",
                               settings=fe.RampSettings(atol=0.0, rtol=1e-11))
@@ -128,7 +129,7 @@ def test_grad_div_leaves_homogeneous_states_and_keeps_the_tangent_consistent(
     # tolerance 1e-11)
     assert res.column("lam1")[-1] == pytest.approx(ref, rel=1e-10)
     rng = np.random.default_rng(5)
-    plate = fe.gallery.keplinger_problem(elements=(2, 1, 1), grad_div=7.0)
+    plate = fe.gallery.keplinger_problem(elements=(2, 1, 1), options=fe.PlateOptions(grad_div=7.0))
     for prob, load in ((plate, (1.0, 2.0)),
                        (fe.CrossSection(fe.section_mesh(20.0, 1.0, 2, 1),
                                         fe.GentDielectric(1.0, 1.0, 20.0), grad_div=7.0),

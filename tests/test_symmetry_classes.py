@@ -65,7 +65,7 @@ def test_voltage_control_counts_add_up():
     counts = {}
     for sym in ("eighth", "full"):
         pb = keplinger_problem(size=SIZE, elements=MODELS[sym], symmetry=sym,
-                               control="voltage")
+                               options=fe.PlateOptions(control="voltage"))
         x, load = _state(pb, (-0.4, 0.2))
         counts[sym] = class_stability(pb, x, load, k=0, method="dense").n_negative
     assert counts["eighth"] == counts["full"] > 0
@@ -94,7 +94,7 @@ def test_bad_classes_and_couplings():
     with pytest.raises(ValueError, match="increments must map"):
         plate_reduction(pb, {1: "anti", 2: "symmetric", 3: "symmetric"})
     mx = keplinger_problem(size=SIZE, elements=MODELS["eighth"], symmetry="eighth",
-                           coupling="maxwell")
+                           options=fe.PlateOptions(coupling="maxwell"))
     with pytest.raises(ValueError, match="Maxwell coupling"):
         class_stability(mx, mx.initial_state(), (0.0, 0.0))
     with pytest.raises(ValueError, match="x must have shape"):

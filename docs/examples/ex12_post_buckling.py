@@ -25,7 +25,7 @@ import skfem_dielectric as fe
 from skfem_dielectric.studies.postbuckling import critical_mode, midplane_nodes, post_buckled_branch
 
 res = fe.keplinger_plate(0.05, D0=[0.75, 0.8], elements=(10, 2, 5), symmetry="quarter",
-                         grad_div=10.0,
+                         options=fe.PlateOptions(grad_div=10.0),
                          settings=replace(fe.gallery.KEPLINGER_SETTINGS, max_cutbacks=6,
                                           max_iter=25))
 pb, before, after = res.problem, res.steps[-2], res.steps[-1]

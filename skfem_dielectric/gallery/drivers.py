@@ -5,7 +5,11 @@ lengths as given (the Keplinger plate in mm), so ``s`` and ``D0`` (``E0``) are t
 dimensionless loads.  The 3D drivers are a *builder* (:func:`equibiaxial_problem`,
 :func:`keplinger_problem`: the :class:`~skfem_dielectric.models.plate.problem.PlateProblem`) and a
 ramp along :func:`~skfem_dielectric.gallery.loads.preload_then_charge` (:func:`run_ramp`); use the
-builders to ramp a plate along a path of your own.  The load of every step is the pair
+builders to ramp a plate along a path of your own.  Builders and drivers take the plate's
+model options (control, coupling, formulation, grad-div, threads, ...) as one
+:class:`~skfem_dielectric.gallery.plates.PlateOptions` (``options=``) and how the load steps
+are solved as one :class:`~skfem_dielectric.solvers.ramp.RampSettings` (``settings=``).  The
+load of every step is the pair
 ``(s, D0)`` (``(s, E0)`` under voltage control).  Each step's ``quantities`` hold the
 post-processed values of the model plus ``phase`` (``"preload"`` or ``"charge"``) and
 ``stable`` (inertia verdict with PARDISO, else ``None``).
@@ -17,7 +21,6 @@ are bit-for-bit those of the uninterrupted run (deterministic linear solver).
 
 from __future__ import annotations
 
-import math
 from dataclasses import replace
 from functools import partial
 from typing import Any, Callable, Sequence
@@ -38,6 +41,7 @@ from ..solvers.ramp import RampResult, RampSettings, StepResult, check_callbacks
 from .defaults import (EQUIBIAXIAL_PRELOAD_STEPS, EQUIBIAXIAL_RTOL, EQUIBIAXIAL_SIZE, GENT_JM,
                        KEPLINGER_CHORD, KEPLINGER_PRELOAD_STEPS, KEPLINGER_RTOL, KEPLINGER_SIZE)
 from .loads import charge_targets, keplinger_s, preload_then_charge, remaining_targets
+from .plates import PlateOptions
 
 __all__ = ["EQUIBIAXIAL_SETTINGS", "KEPLINGER_SETTINGS", "MAXWELL_KEPLINGER_SETTINGS",
            "plate_admissible", "newton_guards", "equibiaxial_problem", "keplinger_problem",
@@ -181,7 +185,7 @@ def run_ramp(problem: Problem, targets: Sequence[Any], *,
 def equibiaxial_problem(*, model: Any = "neo-Hookean", Jm: float = GENT_JM,
                         size: tuple[float, float, float] = EQUIBIAXIAL_SIZE,
                         elements: tuple[int, int, int] = (1, 1, 1), symmetry: str = "eighth",
-                        **options) -> PlateProblem:
+                        options: PlateOptions = PlateOptions()) -> PlateProblem:
     """The equi-biaxial dead-load plate (dimensionless ``mu = eps = 1``).
 
     Parameters
@@ -192,19 +196,22 @@ def equibiaxial_problem(*, model: Any = "neo-Hookean", Jm: float = GENT_JM,
         Full plate ``(L1, H, L3)``, elements of the model, symmetry (see
         :func:`~skfem_dielectric.fem.mesh.plate_mesh`).  The state is homogeneous, so one
         element suffices.
-    **options
-        :class:`~skfem_dielectric.models.plate.problem.PlateProblem` options (``control``,
-        ``coupling``, ``field``, ``formulation``, ``kappa``, ``phi_element``, ``threads``, ...).
+    options
+        The model options (:class:`~skfem_dielectric.gallery.plates.PlateOptions`: control,
+        coupling, formulation, ...).
     """
+    check_settings("options", options, PlateOptions)
     pm = plate_mesh(*_triple("size", size, check_positive),
                     *_triple("elements", elements, check_count), symmetry=symmetry)
-    return PlateProblem(pm, make_material(model, Jm), loading="equibiaxial", **options)
+    return PlateProblem(pm, make_material(model, Jm), loading="equibiaxial",
+                        **options.as_kwargs())
 
 
 def keplinger_problem(*, model: Any = "neo-Hookean", Jm: float = GENT_JM,
                       size: tuple[float, float, float] = KEPLINGER_SIZE,
                       elements: tuple[int, int, int] = (40, 1, 20), symmetry: str = "eighth",
-                      grading: float = 1.0, **options) -> PlateProblem:
+                      grading: float = 1.0,
+                      options: PlateOptions = PlateOptions()) -> PlateProblem:
     """The clamped uni-axial Keplinger plate (dimensionless ``mu = eps = 1``, mm).
 
     A plate ``L1 x H x L3 = 100 x 1 x 50`` (mm) clamped on its short edges ``x1 = +-L1/2``;
@@ -220,22 +227,23 @@ def keplinger_problem(*, model: Any = "neo-Hookean", Jm: float = GENT_JM,
     size, elements, symmetry, grading
         Plate ``(L1, H, L3)`` in mm, elements of the model ``(n1, n2, n3)``, symmetry and
         x1-grading towards the clamp (see :func:`~skfem_dielectric.fem.mesh.plate_mesh`).
-    **options
-        :class:`~skfem_dielectric.models.plate.problem.PlateProblem` options.
+    options
+        The model options (:class:`~skfem_dielectric.gallery.plates.PlateOptions`: control,
+        coupling, formulation, grad-div stabilisation, threads, ...).
     """
+    check_settings("options", options, PlateOptions)
     pm = plate_mesh(*_triple("size", size, check_positive),
                     *_triple("elements", elements, check_count), symmetry=symmetry,
                     grading=grading)
-    return PlateProblem(pm, make_material(model, Jm), loading="uniaxial", **options)
+    return PlateProblem(pm, make_material(model, Jm), loading="uniaxial",
+                        **options.as_kwargs())
 
 
 def equibiaxial_plate(s: float, D0: Sequence[float], *, model: Any = "neo-Hookean",
                       Jm: float = GENT_JM, size: tuple[float, float, float] = EQUIBIAXIAL_SIZE,
                       elements: tuple[int, int, int] = (1, 1, 1), symmetry: str = "eighth",
-                      preload_steps: int = EQUIBIAXIAL_PRELOAD_STEPS, control: str = "charge",
-                      coupling: str = "full", field: str = "electrostatic",
-                      formulation: str = "mixed", kappa: float = math.inf,
-                      phi_element: str = "Q2", linear_solver: str = "auto",
+                      options: PlateOptions = PlateOptions(),
+                      preload_steps: int = EQUIBIAXIAL_PRELOAD_STEPS, linear_solver: str = "auto",
                       on_step: Callable[[StepResult], Any] | None = None,
                       x0: np.ndarray | None = None, start: Any = None,
                       settings: RampSettings = EQUIBIAXIAL_SETTINGS) -> RampResult:
@@ -247,13 +255,13 @@ def equibiaxial_plate(s: float, D0: Sequence[float], *, model: Any = "neo-Hookea
         Dimensionless nominal lateral traction ``t/mu`` on all lateral faces.
     D0
         Target values of the charge ramp (``D0 = sigma_F/sqrt(mu eps)``); under
-        ``control="voltage"`` they are ``E0`` values.
+        ``PlateOptions(control="voltage")`` they are ``E0`` values.
     model, Jm, size, elements, symmetry
         See :func:`equibiaxial_problem`.
+    options
+        The model options (:class:`~skfem_dielectric.gallery.plates.PlateOptions`).
     preload_steps
         Number of equal pre-load targets.
-    control, coupling, field, formulation, kappa, phi_element
-        See :class:`~skfem_dielectric.models.plate.problem.PlateProblem`.
     linear_solver
         ``"auto"``, ``"superlu"`` or ``"pardiso"`` (for ``coupling="maxwell"`` PARDISO is
         its general LU).
@@ -274,12 +282,10 @@ def equibiaxial_plate(s: float, D0: Sequence[float], *, model: Any = "neo-Hookea
     check_settings("settings", settings, RampSettings)
     check_callbacks({"on_step": on_step})
     prob = equibiaxial_problem(model=model, Jm=Jm, size=size, elements=elements,
-                               symmetry=symmetry, control=control, coupling=coupling,
-                               field=field, formulation=formulation, kappa=kappa,
-                               phi_element=phi_element)
+                               symmetry=symmetry, options=options)
     extra = {"model": type(prob.material).__name__}
-    if coupling == "maxwell":
-        extra["variant"] = f"maxwell-{field}"
+    if options.coupling == "maxwell":
+        extra["variant"] = f"maxwell-{options.field}"
     return run_ramp(prob, preload_then_charge(s, D0, preload_steps), on_step=on_step, x0=x0,
                     start=start, linear_solver=linear_solver, extra=extra, settings=settings)
 
@@ -289,16 +295,12 @@ def keplinger_plate(alpha: float | None = 1.0, D0: Sequence[float] = (1, 2, 3, 4
                     mu: float = 9833.07, A: float = 50e-6, model: Any = "neo-Hookean",
                     Jm: float = GENT_JM, size: tuple[float, float, float] = KEPLINGER_SIZE,
                     elements: tuple[int, int, int] = (40, 1, 20), symmetry: str = "eighth",
-                    grading: float = 1.0, preload_steps: int = KEPLINGER_PRELOAD_STEPS,
-                    control: str = "charge",
-                    coupling: str = "full", field: str = "electrostatic",
-                    formulation: str = "mixed", kappa: float = math.inf,
-                    phi_element: str = "Q2", linear_solver: str = "auto",
+                    grading: float = 1.0, options: PlateOptions = PlateOptions(),
+                    preload_steps: int = KEPLINGER_PRELOAD_STEPS, linear_solver: str = "auto",
+                    settings: RampSettings = KEPLINGER_SETTINGS,
+                    state_analysis: Callable[..., dict] | None = None,
                     on_step: Callable[[StepResult], Any] | None = None,
-                    x0: np.ndarray | None = None, start: Any = None,
-                    settings: RampSettings = KEPLINGER_SETTINGS, threads: int | None = None,
-                    grad_div: float = 0.0,
-                    state_analysis: Callable[..., dict] | None = None) -> RampResult:
+                    x0: np.ndarray | None = None, start: Any = None) -> RampResult:
     """The uni-axial Keplinger plate: weight on a rigid clamp, then the charge ramp.
 
     Parameters
@@ -314,14 +316,14 @@ def keplinger_plate(alpha: float | None = 1.0, D0: Sequence[float] = (1, 2, 3, 4
         Physical data for ``s`` (``g`` default 9.81 m/s^2).
     model, Jm, size, elements, symmetry, grading
         See :func:`keplinger_problem`.
+    options
+        The model options (:class:`~skfem_dielectric.gallery.plates.PlateOptions`);
+        ``PlateOptions(grad_div=10.0)`` lets Newton pass the clamp/free-edge corner where
+        the plain mixed form stalls on fine meshes (docs/validation.md, the corner failure).
     preload_steps
         Number of pre-load targets (the ramp cuts back automatically if needed).
-    control, coupling, field, formulation, kappa, phi_element
-        See :class:`~skfem_dielectric.models.plate.problem.PlateProblem`.
-    linear_solver, threads
-        Linear solver name and assembly threads.
-    on_step, x0, start
-        Callback and resume state (see the module docstring).
+    linear_solver
+        Linear solver name.
     settings
         How the load steps are solved (:class:`~skfem_dielectric.solvers.ramp.RampSettings`;
         default :data:`KEPLINGER_SETTINGS`: ``rtol = 1e-9``, ``atol = 0``, 4 cut-backs, 12
@@ -330,15 +332,12 @@ def keplinger_plate(alpha: float | None = 1.0, D0: Sequence[float] = (1, 2, 3, 4
         whose tangent inertia says unstable (PARDISO only): the discrete breakdown near the
         clamps; ``predictor="secant"`` starts each Newton solve from the secant (a resumed
         ramp then repeats the uninterrupted one only within the Newton tolerance).
-    grad_div
-        Grad-div stabilisation of the mixed form (units of ``mu``, see
-        :class:`~skfem_dielectric.models.plate.problem.PlateProblem`); ``10`` lets Newton pass the
-        clamp/free-edge corner where the plain form stalls on fine meshes
-        (docs/validation.md, the corner failure).  Default 0.
     state_analysis
         Analysis of every converged state on the factorisation of its tangent, e.g.
         ``StabilityMonitor(k=5)`` (:mod:`skfem_dielectric.stability.monitor`); see
         :func:`~skfem_dielectric.solvers.ramp.ramp`.
+    on_step, x0, start
+        Callback and resume state (see the module docstring).
 
     Returns
     -------
@@ -355,36 +354,63 @@ def keplinger_plate(alpha: float | None = 1.0, D0: Sequence[float] = (1, 2, 3, 4
     check_settings("settings", settings, RampSettings)
     check_callbacks({"on_step": on_step, "state_analysis": state_analysis})
     prob = keplinger_problem(model=model, Jm=Jm, size=size, elements=elements,
-                             symmetry=symmetry, grading=grading, control=control,
-                             coupling=coupling, field=field, formulation=formulation,
-                             kappa=kappa, phi_element=phi_element, threads=threads,
-                             grad_div=grad_div)
+                             symmetry=symmetry, grading=grading, options=options)
     extra = {"alpha": alpha if alpha is not None else float("nan"), "g": g}
-    if coupling == "maxwell":
-        extra["variant"] = f"maxwell-{field}"
+    if options.coupling == "maxwell":
+        extra["variant"] = f"maxwell-{options.field}"
     return run_ramp(prob, preload_then_charge(s, D0, preload_steps), on_step=on_step, x0=x0,
                     start=start, linear_solver=linear_solver, extra=extra, settings=settings,
                     state_analysis=state_analysis)
 
 
-def maxwell_equibiaxial(s: float, D0, *, field: str = "electrostatic", **options) -> RampResult:
+def maxwell_equibiaxial(s: float, D0, *, field: str = "electrostatic",
+                        options: PlateOptions = PlateOptions(), **driver_args) -> RampResult:
     """:func:`equibiaxial_plate` with ``coupling="maxwell"`` (charge control).
+
+    Parameters
+    ----------
+    s, D0
+        Dead load and charge targets, see :func:`equibiaxial_plate`.
+    field
+        ``"electrostatic"`` or ``"local"``
+        (:class:`~skfem_dielectric.gallery.plates.PlateOptions`).
+    options
+        The other model options; their ``coupling`` and ``field`` are set here.
+    **driver_args
+        The other arguments of :func:`equibiaxial_plate`.
 
     Returns
     -------
     RampResult
         ``lam1`` at the centre follows Eq. (loading_gent) for either field.
     """
-    return equibiaxial_plate(s, D0, coupling="maxwell", field=field, **options)
+    check_settings("options", options, PlateOptions)
+    return equibiaxial_plate(s, D0, options=replace(options, coupling="maxwell", field=field),
+                             **driver_args)
 
 
 def maxwell_keplinger(alpha: float | None = 1.0, D0=(1, 2, 3, 4, 5, 6), *,
                       field: str = "electrostatic",
+                      options: PlateOptions = PlateOptions(),
                       settings: RampSettings = MAXWELL_KEPLINGER_SETTINGS,
-                      **options) -> RampResult:
+                      **driver_args) -> RampResult:
     """:func:`keplinger_plate` with ``coupling="maxwell"`` (charge control), by default
     with the ramp's Newton budget (:data:`MAXWELL_KEPLINGER_SETTINGS`: 6 cut-backs, 25
     iterations).
+
+    Parameters
+    ----------
+    alpha, D0
+        Weight fraction and charge targets, see :func:`keplinger_plate`.
+    field
+        ``"electrostatic"`` or ``"local"``
+        (:class:`~skfem_dielectric.gallery.plates.PlateOptions`).
+    options
+        The other model options; their ``coupling`` and ``field`` are set here.
+    settings
+        How the load steps are solved (default :data:`MAXWELL_KEPLINGER_SETTINGS`).
+    **driver_args
+        The other arguments of :func:`keplinger_plate`.
 
     Returns
     -------
@@ -392,8 +418,9 @@ def maxwell_keplinger(alpha: float | None = 1.0, D0=(1, 2, 3, 4, 5, 6), *,
         Per step ``lam1`` at the centre, ``min_P33`` (total stress) on the centre line,
         ``min_P33_clamp``, ``phase``, ``alpha``.
     """
-    return keplinger_plate(alpha, D0, coupling="maxwell", field=field, settings=settings,
-                           **options)
+    check_settings("options", options, PlateOptions)
+    return keplinger_plate(alpha, D0, options=replace(options, coupling="maxwell", field=field),
+                           settings=settings, **driver_args)
 
 
 def membrane_ramp(problem: MembranePlate, s: float, D0, **ramp_options) -> RampResult:

@@ -106,17 +106,19 @@ def build_problem(spec: RunSpec):
                                 loading=spec.geometry, coupling=coupling)
     el = (m.get("n1", 1), m.get("n2", 1), m.get("n3", 1))
     # the variant that discretises the fully coupled equations (docs/fe_variants.md)
-    coupling = {"coupling": "maxwell", "field": "electrostatic"} \
-        if spec.variant == "maxwell" else {}
+    options = fe.PlateOptions(coupling="maxwell", field="electrostatic") \
+        if spec.variant == "maxwell" else fe.PlateOptions()
     if spec.geometry == "equibiaxial":
-        return fe.gallery.equibiaxial_problem(model=spec.model, Jm=GENT_JM, elements=el, **coupling)
+        return fe.gallery.equibiaxial_problem(model=spec.model, Jm=GENT_JM, elements=el,
+                                              options=options)
     if spec.geometry == "uniaxial":
         # the run analysed for buckling is the grad-div form of the buckling study
         # (docs/validation.md): its tangent is the Hessian of its own state, and Newton
         # passes the clamp/free-edge corner
+        if spec.buckling:
+            options = replace(options, grad_div=BUCKLING_GRAD_DIV)
         return fe.gallery.keplinger_problem(model=spec.model, Jm=GENT_JM, size=(L1, H, L3),
-                                            elements=el, grad_div=BUCKLING_GRAD_DIV
-                                            if spec.buckling else 0.0, **coupling)
+                                            elements=el, options=options)
     raise ValueError(f"the 3D plate has no geometry {spec.geometry!r}")
 
 

@@ -98,7 +98,8 @@ def run_one(alpha: float, elements, *, D0_step: float, D0_max: float,
     t0 = time.time()
     D0 = np.round(np.arange(D0_step, D0_max + 1e-9, D0_step), 10)
     res = fe.keplinger_plate(alpha, D0=D0, elements=tuple(elements), symmetry="eighth",
-                             grad_div=BUCKLING_GRAD_DIV, linear_solver=solver,
+                             options=fe.PlateOptions(grad_div=BUCKLING_GRAD_DIV),
+                             linear_solver=solver,
                              settings=replace(fe.gallery.KEPLINGER_SETTINGS, max_cutbacks=6,
                                               max_iter=25))
     newton = dict(linear_solver=solver,

@@ -69,7 +69,8 @@ def _mesh_name(el) -> str:
 
 def _fundamental(alpha, elements, D0, solver, model):
     res = fe.keplinger_plate(alpha, D0=D0, elements=tuple(elements), symmetry=MODELS[model],
-                             grad_div=BUCKLING_GRAD_DIV, linear_solver=solver,
+                             options=fe.PlateOptions(grad_div=BUCKLING_GRAD_DIV),
+                             linear_solver=solver,
                              settings=replace(fe.gallery.KEPLINGER_SETTINGS, max_cutbacks=6,
                                               max_iter=25))
     newton = dict(linear_solver=solver,

@@ -92,7 +92,8 @@ def _analytic_E0(r: dict, lam1):
 
 def _keplinger_path(r: dict, quick: bool) -> tuple:
     """Voltage-controlled Keplinger plate: pre-load, then continuation in ``E0``."""
-    pb = fe.gallery.keplinger_problem(control="voltage", elements=KEPLINGER_MESH)
+    pb = fe.gallery.keplinger_problem(elements=KEPLINGER_MESH,
+                                      options=fe.PlateOptions(control="voltage"))
     pre = fe.gallery.run_ramp(pb, [np.array([r["s"] * k / 4, 0.0]) for k in range(1, 5)])
     lam0 = pre.steps[-1]["lam1"] if pre.steps else 1.0
 
