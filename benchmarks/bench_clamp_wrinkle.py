@@ -54,7 +54,8 @@ def run(alpha: float, mesh: str, D0_max: float = 5.0, solver: str = "auto") -> l
     states = [st for st in res.steps if float(np.asarray(st.load)[1]) > 0]
     D0 = np.array([float(np.asarray(st.load)[1]) for st in states])
     b = states[int(np.argmin(np.abs(D0 - D0_b)))]
-    lab = lowest_physical(pb, b.x, b.load, method="pardiso" if solver == "pardiso" else "auto").label
+    method = "pardiso" if solver == "pardiso" else "auto"
+    lab = lowest_physical(pb, b.x, b.load, method=method).label
     point = energy_centroid(pb, b.x, b.load, lab.mode)
     n_half = half_waves(pb, lab.mode, lab.increments, point[0])
     # the clamp-side point of the centroid's X3 where sigma_33 is most compressive at D0_b

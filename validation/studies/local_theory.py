@@ -226,7 +226,16 @@ class DirectionCriteria:
 
 @dataclass(frozen=True)
 class LocalCriteria:
-    """The local state and the homogeneous criteria in its two principal directions."""
+    """The local state and the homogeneous criteria in its two principal directions.
+
+    Attributes
+    ----------
+    state : LocalState
+        The local homogeneous state the criteria are evaluated for.
+    parallel, perpendicular : DirectionCriteria
+        Wrinkles with the wave vector along the ``lam1`` axis (the load) and along the
+        ``lam3`` axis (across the width).
+    """
 
     state: LocalState
     parallel: DirectionCriteria
@@ -250,6 +259,11 @@ def local_criteria(state: LocalState, model: an.Model | None = None,
     Returns
     -------
     LocalCriteria
+
+    Raises
+    ------
+    ValueError
+        If ``state`` is not a :class:`LocalState`.
 
     Notes
     -----
@@ -303,6 +317,12 @@ def first_firing(D0, margin) -> float:
         non-negative margin (that state's ``D0`` when its margin is ``+inf`` or the one
         before it is ``nan``); the first ``D0`` if the margin starts non-negative; ``nan``
         if it never fires.
+
+    Examples
+    --------
+    >>> from validation.studies.local_theory import first_firing
+    >>> first_firing([1.0, 2.0, 3.0], [-1.0, -0.5, 0.5])
+    2.5
     """
     D0, m = np.asarray(D0, dtype=float), np.asarray(margin, dtype=float)
     if D0.shape != m.shape or D0.ndim != 1:
