@@ -359,3 +359,14 @@ def test_a_full_disk_names_the_file(fake, tmp_path, capsys, monkeypatch):
     assert code == 3 and len(err.strip().splitlines()) == 1, err
     assert f"cannot use {tmp_path / '.state' / 'buckling.json'}: No space left on device" in err
     assert not list(tmp_path.rglob(".*.tmp"))
+
+
+@pytest.mark.parametrize("cmd", ["simulate", "bench"])
+def test_too_many_steps_are_refused_before_any_work(cmd, tmp_path, capsys):
+    out = ["--out", str(tmp_path / "res")] if cmd == "simulate" else []
+    code = main([cmd, "--steps", "200000"] + out)
+    err = capsys.readouterr().err
+    # 200000 steps are 200001 targets, the bound is 1e5
+    assert code == 2 and len(err.strip().splitlines()) == 1, err
+    assert "--steps gives 200001 targets up to" in err and "more than 100000" in err
+    assert not (tmp_path / "res").exists()

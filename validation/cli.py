@@ -21,8 +21,6 @@ from concurrent.futures import CancelledError
 from importlib.metadata import PackageNotFoundError, version
 from pathlib import Path
 
-import numpy as np
-
 from .cases import CASES
 from .fe import bench, run_fe, simulate
 from .figures import case_figure, save_figure
@@ -32,7 +30,7 @@ from .store import write_text_atomic
 from .sweep import validate
 from .studies.commands import STUDY_COMMANDS, add_study_commands
 from .studies.extra_cases import EXTRA_CASES
-from .options import check_mesh, out_dir, positive, solver_name
+from .options import check_mesh, load_targets, out_dir, positive, solver_name
 
 __all__ = ["main", "build_parser", "EXIT_CODES"]
 
@@ -307,6 +305,7 @@ def _cmd_simulate(args) -> int:
                          f"uniaxial")
     positive("--steps", args.steps, integer=True)
     positive("--D0-max", args.D0_max)
+    load_targets("--steps", 0.0, args.D0_max, num=args.steps + 1)     # bounded
     if args.alpha is not None:
         positive("--alpha", args.alpha)
     if args.s is not None:
@@ -326,7 +325,8 @@ def _cmd_simulate(args) -> int:
                                             vtu, [r["D0"] for r in done]))
     for p in out:
         print(p)
-    targets = [float(d) for d in np.linspace(0.0, args.D0_max, args.steps + 1)]
+    targets = [float(d) for d in load_targets("--steps", 0.0, args.D0_max,
+                                              num=args.steps + 1)]
     failed = [r for r in rows if r["D0"] == ""]
     if failed:
         k = len(done)
@@ -341,6 +341,7 @@ def _cmd_simulate(args) -> int:
 def _cmd_bench(args) -> int:
     positive("--steps", args.steps, integer=True)
     positive("--D0-max", args.D0_max)
+    load_targets("--steps", 0.0, args.D0_max, num=args.steps + 1)     # bounded
     positive("--alpha", args.alpha)
     check_mesh("--mesh", args.mesh)
     used = solver_name(args.solver)
