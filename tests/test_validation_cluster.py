@@ -64,3 +64,49 @@ def test_scheduler_without_dask_is_an_input_error(tmp_path, capsys, monkeypatch)
     assert code == 2 and len(err.strip().splitlines()) == 1
     assert "--scheduler needs dask.distributed (pip install -e '.[cluster]')" in err
     assert not (tmp_path / "nh-d-e.csv").exists()
+
+
+@pytest.mark.slow
+def test_a_scheduler_that_goes_away_is_exit_3_naming_it(tmp_path, capsys):
+    """A scheduler killed mid-run (after the first case's CSV appears): one line naming
+    it, exit code 3, the rows written so far kept for the rerun."""
+    import socket
+    import subprocess
+    import threading
+    import time
+
+    pytest.importorskip("distributed", reason=NO_DASK)
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        port = s.getsockname()[1]
+    address = f"tcp://127.0.0.1:{port}"
+    dask = [sys.executable, "-m", "distributed.cli.dask_"]
+    sched = subprocess.Popen(dask[:-1] + ["distributed.cli.dask_scheduler", "--host",
+                                           "127.0.0.1", "--port", str(port),
+                                           "--no-dashboard"],
+                             stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    worker = subprocess.Popen(dask[:-1] + ["distributed.cli.dask_worker", address,
+                                            "--nthreads", "1", "--no-dashboard"],
+                              stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+
+    def kill_when_written():
+        for _ in range(600):
+            if (tmp_path / "nh-d-e.csv").exists():
+                break
+            time.sleep(0.2)
+        sched.kill()
+
+    try:
+        killer = threading.Thread(target=kill_when_written)
+        killer.start()
+        code = main(["validate", "--quick", "--case", "nh-d-e", "figde", "--no-progress",
+                     "--solver", "superlu", "--scheduler", address, "--out", str(tmp_path)])
+        killer.join()
+    finally:
+        for p in (sched, worker):
+            p.kill()
+            p.wait()
+    err = capsys.readouterr().err
+    assert code == 3 and len(err.strip().splitlines()) == 1, err
+    assert f"cannot use {address}: the dask scheduler went away mid-run" in err
+    assert (tmp_path / "nh-d-e.csv").exists()

@@ -8,15 +8,18 @@ only into the folder given by ``--out``.
 from __future__ import annotations
 
 import argparse
+import atexit
 import csv
 import functools
+import logging
 import os
+import signal
 import sys
+import threading
 import time
+from concurrent.futures import CancelledError
 from importlib.metadata import PackageNotFoundError, version
 from pathlib import Path
-
-import numpy as np
 
 from .cases import CASES
 from .fe import bench, run_fe, simulate
@@ -27,7 +30,7 @@ from .store import write_text_atomic
 from .sweep import validate
 from .studies.commands import STUDY_COMMANDS, add_study_commands
 from .studies.extra_cases import EXTRA_CASES
-from .options import check_mesh, out_dir, positive, solver_name
+from .options import check_mesh, load_targets, out_dir, positive, solver_name
 
 __all__ = ["main", "build_parser", "EXIT_CODES"]
 
@@ -49,7 +52,9 @@ EXIT_CODES = {
     3: "file system: a path below --out cannot be created, read or written (--out is a "
        "file or below a file, no permission, disk full, .state is a file, a CSV is a "
        "folder); the message names the path",
-    130: "interrupted (rerun the same command to resume)",
+    130: "interrupted by Ctrl-C, SIGINT (rerun the same command to resume)",
+    143: "terminated by SIGTERM (timeout, a scheduler, docker stop; rerun the same command "
+         "to resume)",
 }
 
 SIM_HELP = ("Run one FE ramp (pre-load, then D0 = 0 -> --D0-max in --steps steps) and export "
@@ -213,14 +218,42 @@ def _dask_executor(address: str, jobs: int):
         raise ValueError(f"--scheduler needs dask.distributed (pip install -e '.[cluster]'), "
                          f"got --scheduler {address} without it") from None
     if address == "local":
+        # a dashboard on a free port of this machine: no warning when 8787 is taken
         cluster = LocalCluster(n_workers=jobs, threads_per_worker=1, processes=True,
-                               dashboard_address=None)
+                               dashboard_address="127.0.0.1:0")
         return Client(cluster), cluster
     try:
         return Client(address, timeout="20s"), None
     except ValueError as exc:
         raise ValueError(f"--scheduler must be a dask scheduler address (tcp://HOST:PORT) or "
                          f"'local', got {address!r} ({exc})") from None
+
+
+def _validate_on_cluster(args, kw: dict) -> list:
+    """:func:`~validation.sweep.validate` on the cluster of ``--scheduler``; a scheduler
+    that goes away mid-run is an ``OSError`` naming it (exit code 3): the folder keeps
+    what was saved and resumes when the command is rerun."""
+    client, cluster = _dask_executor(args.scheduler, args.jobs)
+    logs = [logging.getLogger(n) for n in ("distributed", "distributed.client")]
+    levels = [log.level for log in logs]
+    for log in logs:                   # the client's reconnect tracebacks: said below
+        log.setLevel(logging.CRITICAL)
+    try:
+        return validate(args.case, args.out, executor=client.get_executor(), **kw)
+    except (CancelledError, OSError, TimeoutError) as exc:
+        if client.status == "running" and not isinstance(exc, CancelledError):
+            raise                      # a file of --out, not the cluster
+        raise OSError(None, f"the dask scheduler went away mid-run "
+                            f"({type(exc).__name__}); rerun the same command to resume",
+                      args.scheduler) from None
+    finally:
+        try:
+            client.close(timeout=10)
+            if cluster is not None:
+                cluster.close(timeout=10)
+        finally:
+            for log, level in zip(logs, levels):
+                log.setLevel(level)
 
 
 def _cpu_seconds() -> float:
@@ -238,13 +271,7 @@ def _cmd_validate(args) -> int:
     kw = dict(quick=args.quick, force=args.force, runner=runner,
               progress=False if args.no_progress else None)
     if args.scheduler:
-        client, cluster = _dask_executor(args.scheduler, args.jobs)
-        try:
-            results = validate(args.case, args.out, executor=client.get_executor(), **kw)
-        finally:
-            client.close()
-            if cluster is not None:
-                cluster.close()
+        results = _validate_on_cluster(args, kw)
         for r in results:                 # the workers' stderr may not reach this terminal
             for line in r.repairs:
                 print(f"skfem-dielectric: {line}", file=sys.stderr)
@@ -278,6 +305,7 @@ def _cmd_simulate(args) -> int:
                          f"uniaxial")
     positive("--steps", args.steps, integer=True)
     positive("--D0-max", args.D0_max)
+    load_targets("--steps", 0.0, args.D0_max, num=args.steps + 1)     # bounded
     if args.alpha is not None:
         positive("--alpha", args.alpha)
     if args.s is not None:
@@ -297,7 +325,8 @@ def _cmd_simulate(args) -> int:
                                             vtu, [r["D0"] for r in done]))
     for p in out:
         print(p)
-    targets = [float(d) for d in np.linspace(0.0, args.D0_max, args.steps + 1)]
+    targets = [float(d) for d in load_targets("--steps", 0.0, args.D0_max,
+                                              num=args.steps + 1)]
     failed = [r for r in rows if r["D0"] == ""]
     if failed:
         k = len(done)
@@ -312,6 +341,7 @@ def _cmd_simulate(args) -> int:
 def _cmd_bench(args) -> int:
     positive("--steps", args.steps, integer=True)
     positive("--D0-max", args.D0_max)
+    load_targets("--steps", 0.0, args.D0_max, num=args.steps + 1)     # bounded
     positive("--alpha", args.alpha)
     check_mesh("--mesh", args.mesh)
     used = solver_name(args.solver)
@@ -335,6 +365,25 @@ def _os_message(exc: OSError) -> str:
     return _one_line(exc) or what
 
 
+class _Terminated(KeyboardInterrupt):
+    """SIGTERM, raised in the main thread so that it unwinds like Ctrl-C: locks released,
+    temporary files removed."""
+
+
+def _on_sigterm(signum, frame):
+    raise _Terminated()
+
+
+def _remove_openmp_registration(pid: int | None = None) -> None:
+    """Remove Intel OpenMP's ``/dev/shm/__KMP_REGISTERED_LIB_<pid>_0`` of this process
+    (loaded with PARDISO for the inertia), which a process stopped by a signal leaves."""
+    path = Path(f"/dev/shm/__KMP_REGISTERED_LIB_{pid or os.getpid()}_0")
+    try:
+        path.unlink()
+    except OSError:
+        pass
+
+
 def main(argv: list[str] | None = None) -> int:
     """Entry point of the console script; returns the exit code.
 
@@ -348,8 +397,8 @@ def main(argv: list[str] | None = None) -> int:
     int
         One of :data:`EXIT_CODES`: 0 success, 1 a validation case produced no FE
         step, 2 bad input (also: another process writes the same case), 3 a path
-        cannot be created, read or written, 130 interrupted (rerun the same command
-        to resume). Every error is one line on stderr.
+        cannot be created, read or written, 130 interrupted by SIGINT, 143 by SIGTERM
+        (rerun the same command to resume). Every error is one line on stderr.
     """
     parser = build_parser()
     args = parser.parse_args(argv)
@@ -357,10 +406,17 @@ def main(argv: list[str] | None = None) -> int:
            "simulate": _cmd_simulate, "bench": _cmd_bench,
            **STUDY_COMMANDS}[args.command]
     prefix = f"skfem-dielectric {args.command}: error:"
+    atexit.unregister(_remove_openmp_registration)      # once per process
+    atexit.register(_remove_openmp_registration, os.getpid())
+    main_thread = threading.current_thread() is threading.main_thread()
+    previous = signal.signal(signal.SIGTERM, _on_sigterm) if main_thread else None
     try:
         if getattr(args, "jobs", 1) < 1:
             raise ValueError(f"--jobs must be >= 1, got {args.jobs}")
         return cmd(args)
+    except _Terminated:
+        print("\nterminated (SIGTERM); rerun the same command to resume", file=sys.stderr)
+        return 143
     except ValueError as exc:
         print(f"{prefix} {_one_line(exc)}", file=sys.stderr)
         return 2
@@ -370,6 +426,9 @@ def main(argv: list[str] | None = None) -> int:
     except KeyboardInterrupt:
         print("\ninterrupted; rerun the same command to resume", file=sys.stderr)
         return 130
+    finally:
+        if main_thread:
+            signal.signal(signal.SIGTERM, previous)
 
 
 if __name__ == "__main__":      # pragma: no cover

@@ -8,9 +8,15 @@ import argparse
 import math
 from pathlib import Path
 
+import numpy as np
+
 from .fe import pardiso_installed
 
-__all__ = ["out_dir", "mesh_triple", "positive", "check_mesh", "solver_name"]
+__all__ = ["out_dir", "mesh_triple", "positive", "check_mesh", "solver_name", "MAX_TARGETS",
+           "load_targets"]
+
+#: the most load targets one option may ask for (a ramp or a grid of user input)
+MAX_TARGETS = 10**5
 
 
 def out_dir(text: str) -> Path:
@@ -57,3 +63,59 @@ def solver_name(name: str) -> str:
     if name == "auto":
         return "pardiso" if pardiso_installed() else "superlu"
     return name
+
+
+def load_targets(name: str, start: float, stop: float, step: float | None = None, *,
+                 num: int | None = None) -> np.ndarray:
+    """The load targets of user input, bounded before anything is computed.
+
+    With ``step``: ``start, start + step, ... <= stop`` (``np.arange``, the end included
+    within 1e-9, rounded to 10 decimals); with ``num``: ``num`` points from ``start`` to
+    ``stop`` (``np.linspace``).
+
+    Parameters
+    ----------
+    name : str
+        The option that sets the count (``"--D0-step"``, ``"--steps"``), for the message.
+    start, stop : float
+        The first target and the last one allowed.
+    step : float, optional
+        The spacing (> 0).
+    num : int, optional
+        The number of points (>= 1), instead of ``step``.
+
+    Returns
+    -------
+    numpy.ndarray
+        At most :data:`MAX_TARGETS` targets.
+
+    Raises
+    ------
+    ValueError
+        More than :data:`MAX_TARGETS` targets, or a spacing that is not finite and > 0;
+        the message names ``name`` and its value.
+
+    Examples
+    --------
+    >>> load_targets("--D0-step", 0.5, 2.0, 0.5)
+    array([0.5, 1. , 1.5, 2. ])
+    >>> load_targets("--D0-step", 1e-9, 6.0, 1e-9)
+    Traceback (most recent call last):
+    ...
+    ValueError: --D0-step 1e-09 gives 6000000001 targets up to 6, more than 100000
+    """
+    if (step is None) == (num is None):
+        raise ValueError("load_targets takes step or num, not both or neither")
+    if num is None:
+        positive(name, step)
+        n = math.floor((stop + 1e-9 - start) / step) + 1 if stop >= start else 0
+        given = f"{name} {step:g}"
+    else:
+        n = int(num)
+        given = name
+    if n > MAX_TARGETS:
+        raise ValueError(f"{given} gives {n} targets up to {stop:g}, more than "
+                         f"{MAX_TARGETS}")
+    if num is not None:
+        return np.linspace(start, stop, n)
+    return np.round(np.arange(start, stop + 1e-9, step), 10)

@@ -131,6 +131,7 @@ def run_case(case: Case | str, out, *, quick: bool = False, force: bool = False,
                  f"is recomputed")
             force = True                                            # rows without state
         if force:
+            _drop_summary(out)                  # it described the rows discarded here
             for p in (csv_path, fields_path):
                 if p.exists():
                     p.unlink()
@@ -145,6 +146,22 @@ def run_case(case: Case | str, out, *, quick: bool = False, force: bool = False,
     result.repairs = notes
     return result
 
+
+
+#: the files of a folder that summarise every case in it (:func:`validate`)
+SUMMARY_FILES = ("summary.json", "report.md")
+
+
+def _drop_summary(out: Path) -> None:
+    """Remove ``summary.json`` and ``report.md`` of ``out`` (under the summary's lock) when
+    results are discarded: an interrupted recomputation leaves no summary of rows that no
+    longer exist; the next :func:`validate` writes them anew."""
+    if not any((out / name).exists() for name in SUMMARY_FILES):
+        return
+    with FolderLock(out / ".state" / "summary.lock", f"the summary of {out}", wait=True):
+        for name in SUMMARY_FILES:
+            if (out / name).is_file():
+                (out / name).unlink()
 
 
 def _run_locked(case, runs, csv_path, fields_path, state_dir, runner, progress,

@@ -6,20 +6,25 @@ interruptions, for every command that writes into ``--out``.
   :func:`load_state`);
 * :mod:`.case_files` -- the CSVs of a validation case, its manifest and the resume plan
   that keeps only what verifies;
-* :mod:`.rows` -- the row files of the studies, resumed by their keys (:func:`read_rows`,
-  :func:`append_rows`, :class:`KeyedRows`), and :func:`command_lock`, the lock of a
-  command that writes a folder.
+* :mod:`.rows` -- the files of the studies: :class:`StudyStore` (settings checked, resumed
+  unit by unit, each file rewritten atomically, the table last), :func:`read_rows`,
+  :class:`KeyedRows`, and :func:`command_lock`, the lock of a command that writes a
+  folder.
 """
 
 from .case_files import (CaseFiles, append_csv_rows, case_manifest, resume_plan, spec_sig,
                          state_path)
-from .rows import KeyedRows, append_rows, command_lock, read_rows
+from .rows import (DamagedFileError, KeyedRows, RowFile, StudyStore, TEXT_COLUMNS,
+                   command_lock, read_rows)
 from .files import (STATE_VERSION, FolderLock, LockedError, RowDigest, csv_line, dumps,
-                    load_state, save_state, write_csv_atomic, write_text_atomic)
+                    load_state, save_state, write_csv_atomic, write_npz_atomic,
+                    write_text_atomic)
 
 __all__ = [
-    "LockedError", "FolderLock", "write_text_atomic", "write_csv_atomic", "csv_line",
+    "LockedError", "FolderLock", "write_text_atomic", "write_csv_atomic", "write_npz_atomic",
+    "csv_line",
     "RowDigest", "save_state", "load_state", "dumps", "STATE_VERSION",
     "CaseFiles", "append_csv_rows", "case_manifest", "resume_plan", "spec_sig", "state_path",
-    "KeyedRows", "append_rows", "command_lock", "read_rows",
+    "KeyedRows", "command_lock", "read_rows", "DamagedFileError", "RowFile", "StudyStore",
+    "TEXT_COLUMNS",
 ]

@@ -4,7 +4,7 @@
   so that ``--force`` or a change of settings cannot make a second process lock a
   fresh file while the first one still writes; the holder's pid and command line are
   written into the file, so that a refused process can name it.
-* :func:`write_text_atomic`, :func:`write_csv_atomic` -- a temporary file in the same
+* :func:`write_text_atomic`, :func:`write_csv_atomic`, :func:`write_npz_atomic` -- a temporary file in the same
   folder, ``fsync``, then :func:`os.replace`: a reader (or a crash) sees the old or
   the new file, never half of one.
 * :class:`RowDigest` -- row count and SHA-256 checksum of the CSV rows of one run.
@@ -32,7 +32,8 @@ try:
 except ImportError:                   # pragma: no cover - Windows
     fcntl = None
 
-__all__ = ["LockedError", "FolderLock", "write_text_atomic", "write_csv_atomic", "csv_line",
+__all__ = ["LockedError", "FolderLock", "write_text_atomic", "write_csv_atomic",
+           "write_npz_atomic", "csv_line",
            "RowDigest", "save_state", "load_state", "dumps", "STATE_VERSION"]
 
 #: Layout version of the state files; a state of another layout is not trusted.
@@ -124,6 +125,10 @@ def write_text_atomic(path, text: str) -> Path:
         fh = open(tmp, "w", newline="")
         fh.write(text)
         _replace(tmp, path, fh)
+    except OSError as exc:
+        if exc.filename is None:          # a full disk names no file: name the one written
+            raise OSError(exc.errno, exc.strerror or str(exc), str(path)) from exc
+        raise
     finally:
         if tmp.exists():
             tmp.unlink()
@@ -137,6 +142,21 @@ def write_csv_atomic(path, header: list[str], rows) -> Path:
     w.writerow(header)
     w.writerows(rows)
     return write_text_atomic(path, buf.getvalue())
+
+
+def write_npz_atomic(path, **arrays) -> Path:
+    """Write ``arrays`` as an ``.npz`` file atomically (temporary file, ``fsync``,
+    ``os.replace``): a killed write leaves no half file."""
+    path = Path(path)
+    tmp = _tmp_path(path)
+    try:
+        fh = open(tmp, "wb")
+        np.savez(fh, **arrays)
+        _replace(tmp, path, fh)
+    finally:
+        if tmp.exists():
+            tmp.unlink()
+    return path
 
 
 def csv_line(row) -> str:

@@ -1,15 +1,32 @@
-"""The row files of the studies (``buckling``, ``post-buckling``, ``wrinkling-fe``): a CSV
-resumed by the keys of its rows, so that a rerun into the same folder computes only the
-missing rows, and the lock of the command that writes the folder."""
+"""The row files of the studies (``buckling``, ``post-buckling``, ``wrinkling-fe``) and the
+lock of a command that writes a folder.
+
+* :class:`StudyStore` -- the files of one study: a table with one row per unit of work
+  (an alpha x mesh), written last, and detail files with the unit's other rows; every
+  file is rewritten atomically in the order of an uninterrupted run, so that a resumed
+  study leaves the same files as one that was never interrupted;
+* :func:`read_rows` -- a study CSV back as dicts, a damaged row named
+  (:class:`DamagedFileError`);
+* :class:`KeyedRows` -- a CSV resumed by the keys of its rows (``wrinkling-fe``);
+* :func:`command_lock` -- the lock of a command that writes a folder.
+"""
 
 from __future__ import annotations
 
 import csv
+import io
+import json
+import shutil
+from dataclasses import dataclass
 from pathlib import Path
 
-from .files import FolderLock, write_csv_atomic
+from .files import FolderLock, dumps, write_csv_atomic, write_text_atomic
 
-__all__ = ["read_rows", "append_rows", "KeyedRows", "command_lock"]
+__all__ = ["read_rows", "KeyedRows", "command_lock", "DamagedFileError", "RowFile",
+           "StudyStore", "TEXT_COLUMNS"]
+
+#: the columns of the study CSVs that hold text; every other cell is a number
+TEXT_COLUMNS = frozenset({"mesh", "class", "physical_class", "branch", "reason", "model"})
 
 
 def command_lock(out, name: str, what: str) -> FolderLock:
@@ -35,30 +52,287 @@ def command_lock(out, name: str, what: str) -> FolderLock:
     return FolderLock(state_root / f"{name}.lock", what)
 
 
+class DamagedFileError(OSError):
+    """A complete row of a study CSV that cannot be read back (exit code 3 of the CLI):
+    ``filename`` is the file, the message names the row (its line number) and why."""
+
+    def __init__(self, path, line: int, why: str):
+        where = f"row {line - 1} (line {line}) " if line > 1 else ""
+        super().__init__(None, f"{where}{why}", str(path))
+
+
+def _text(v) -> str:
+    """The cell of a row value: ``""`` for ``None``, floats with 10 significant digits."""
+    if v is None:
+        return ""
+    return f"{v:.10g}" if isinstance(v, float) else str(v)
+
+
+def _value(path, line: int, column: str, text: str):
+    if column in TEXT_COLUMNS:
+        return text
+    if text == "":
+        return float("nan")
+    try:
+        return float(text)
+    except ValueError:
+        raise DamagedFileError(path, line, f"has {text!r} in the number column "
+                               f"{column!r}") from None
+
+
+def _parse(path: Path, text: str) -> tuple[list[str] | None, list[tuple[int, list[str]]], bool]:
+    """``(header, [(line, cells)], cut)`` of a CSV's text; ``cut``: its last line had no
+    line end (a write cut short) and was left out."""
+    cut = bool(text) and not text.endswith("\n")
+    if cut:
+        text = text[:text.rfind("\n") + 1]
+    try:
+        rows = list(csv.reader(io.StringIO(text, newline="")))
+    except csv.Error as exc:
+        raise DamagedFileError(path, 0, f"is not CSV ({exc})") from None
+    if not rows:
+        return None, [], cut
+    return rows[0], [(i + 2, r) for i, r in enumerate(rows[1:])], cut
+
+
+def _read_text(path: Path) -> str:
+    try:
+        return path.read_text(encoding="utf-8") if path.exists() else ""
+    except UnicodeDecodeError as exc:
+        raise DamagedFileError(path, 0, f"is not text ({exc.reason})") from None
+
+
 def read_rows(path: Path) -> list[dict]:
-    """Rows of a CSV written by :func:`append_rows` (numbers as floats; the text
-    columns ``mesh``, ``class``, ``physical_class``, ``branch``, ``reason``, ``model``
-    as written)."""
-    if not path.exists():
-        return []
-    with open(path, newline="") as f:
-        rows = list(csv.DictReader(f))
-    for r in rows:
-        for k, v in r.items():
-            if k not in ("mesh", "class", "physical_class", "branch", "reason", "model"):
-                r[k] = float(v) if v not in ("", None) else float("nan")
-    return rows
+    """The rows of a study CSV (:class:`StudyStore`) as dicts: numbers as floats (an empty
+    cell as ``nan``), the :data:`TEXT_COLUMNS` as written; ``[]`` if there is no file.
+
+    Raises
+    ------
+    DamagedFileError
+        A row with another number of cells than the header, or a number column holding
+        something else (the file and the row named).
+    """
+    path = Path(path)
+    header, rows, _ = _parse(path, _read_text(path))
+    out = []
+    for line, r in rows:
+        if len(r) != len(header):
+            raise DamagedFileError(path, line, f"has {len(r)} cells, the header {len(header)}")
+        out.append({c: _value(path, line, c, t) for c, t in zip(header, r)})
+    return out
 
 
-def append_rows(path: Path, columns, rows) -> None:
-    """Append ``rows`` (dicts) to the CSV ``path``, writing its header first if new."""
-    new = not path.exists()
-    with open(path, "a", newline="") as f:
-        w = csv.DictWriter(f, fieldnames=columns)
-        if new:
-            w.writeheader()
-        for r in rows:
-            w.writerow({k: (f"{v:.10g}" if isinstance(v, float) else v) for k, v in r.items()})
+@dataclass(frozen=True)
+class RowFile:
+    """One CSV of a study: its file name in ``out``, its columns and the columns that key
+    a row to its unit of work (e.g. ``("alpha", "mesh")``)."""
+
+    name: str
+    columns: tuple
+    key: tuple
+
+    def key_of(self, row) -> tuple:
+        """The key of ``row`` (a dict of values or the list of its cells) as text."""
+        if isinstance(row, dict):
+            return tuple(_text(row[c]) for c in self.key)
+        return tuple(row[self.columns.index(c)] for c in self.key)
+
+
+class StudyStore:
+    """The files of one study in ``out``, held under its lock: resumed unit by unit.
+
+    A unit of work (one alpha x mesh) ends with one row of the ``table`` and any number
+    of rows in each of the ``details`` files.  :meth:`commit` rewrites the detail files,
+    then the table, each atomically, all in the order of ``plan`` (keys of earlier runs
+    not in ``plan`` first, as found): the table is the record of what is done, and
+    rows of the detail files whose unit is not in it (an interrupted commit) are dropped
+    when the store is opened.  So a study interrupted at any moment and rerun leaves
+    the files of an uninterrupted run (timing columns aside).
+
+    Parameters
+    ----------
+    out : path-like
+        The output folder (created).
+    name : str
+        The study's name: its lock ``.state/<name>.lock`` and settings ``.state/<name>.json``.
+    settings : dict
+        What the results depend on besides their keys (e.g. the charge step); a folder
+        whose saved settings differ is discarded, with a note, and recomputed.
+    table : RowFile
+        One row per unit, written last.
+    details : tuple of RowFile
+        The units' other rows.
+    derived : tuple of str
+        Files and folders in ``out`` drawn from the rows (figures, mode shapes): removed
+        with the rows when these are discarded.
+    note : callable
+        ``note(message)``: one line for each repair (rows dropped, results discarded).
+
+    Raises
+    ------
+    DamagedFileError
+        On opening: a complete row that cannot be read back (names the file and row).
+    LockedError
+        On opening: another process writes this study into ``out``.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> out = tempfile.mkdtemp()
+    >>> t = RowFile("t.csv", ("alpha", "mesh", "D0_b"), ("alpha", "mesh"))
+    >>> d = RowFile("d.csv", ("alpha", "mesh", "D0"), ("alpha", "mesh"))
+    >>> with StudyStore(out, "demo", {"D0_step": 0.5}, t, (d,), plan=[(1.0, "2x1x1")],
+    ...                 note=print) as st:
+    ...     st.commit({"alpha": 1.0, "mesh": "2x1x1", "D0_b": 0.25},
+    ...               {"d.csv": [{"alpha": 1.0, "mesh": "2x1x1", "D0": 0.5}]})
+    ...     st.done((1.0, "2x1x1"))
+    True
+    >>> notes = []
+    >>> with StudyStore(out, "demo", {"D0_step": 0.25}, t, (d,), plan=[],
+    ...                 note=notes.append) as st:
+    ...     st.done((1.0, "2x1x1"))
+    False
+    >>> "results are discarded and recomputed" in notes[0]
+    True
+    """
+
+    def __init__(self, out, name: str, settings: dict, table: RowFile,
+                 details: tuple = (), *, plan, derived: tuple = (), note=None):
+        self.out, self.name, self.settings = Path(out), name, settings
+        self.table, self.details, self.derived = table, tuple(details), tuple(derived)
+        self.plan = [tuple(_text(v) for v in k) for k in plan]
+        self.note = note or (lambda msg: None)
+        self._lock = None
+
+    # -- opening ---------------------------------------------------------------------
+    def __enter__(self) -> "StudyStore":
+        self._lock = command_lock(self.out, self.name, f"the {self.name} study in {self.out}")
+        self._lock.__enter__()
+        try:
+            self._open()
+        except BaseException:
+            self._lock.__exit__(None, None, None)
+            raise
+        return self
+
+    def __exit__(self, *exc) -> None:
+        self._lock.__exit__(*exc)
+
+    def _files(self):
+        return (self.table,) + self.details
+
+    def _open(self) -> None:
+        for f in self._files():                     # temporaries of a killed write
+            for tmp in self.out.glob(f".{f.name}.*.tmp"):
+                tmp.unlink()
+        man = self.out / ".state" / f"{self.name}.json"
+        want = json.loads(dumps(self.settings))
+        present = [f.name for f in self._files() if (self.out / f.name).exists()]
+        why = ""
+        if man.exists():
+            try:
+                saved = json.loads(man.read_text())
+            except (ValueError, UnicodeDecodeError):
+                saved, why = None, f"{man} is unreadable"
+            if saved is not None and saved != want:
+                why = (f"the settings of {', '.join(present) or 'its results'} in {self.out} "
+                       f"({dumps(saved)}) differ from these ({dumps(want)})")
+        elif present:
+            why = f"{', '.join(present)} in {self.out} have no saved settings ({man})"
+        if not why:
+            why = self._read()
+        if why:
+            if present:
+                self.note(f"{why}; its results are discarded and recomputed")
+            self._discard()
+        write_text_atomic(man, dumps(self.settings))
+
+    def _read(self) -> str:
+        """Read the files into memory; why they are discarded as a whole (empty: kept)."""
+        self.cells: dict[str, dict[tuple, list]] = {}
+        self.order: list[tuple] = []
+        repaired = False
+        for f in self._files():
+            path = self.out / f.name
+            header, rows, cut = _parse(path, _read_text(path))
+            if header is not None and header != list(f.columns):
+                return f"{path} has other columns than {', '.join(f.columns)}"
+            if cut:
+                self.note(f"{path}: its last row is incomplete (no line end); dropped")
+                repaired = True
+            by: dict[tuple, list] = {}
+            for line, r in rows:
+                if len(r) != len(f.columns):
+                    raise DamagedFileError(path, line, f"has {len(r)} cells, the header "
+                                           f"{len(f.columns)}")
+                for c, t in zip(f.columns, r):
+                    _value(path, line, c, t)
+                k = f.key_of(r)
+                if f is self.table and k in by:
+                    self.note(f"{path}: row {line} repeats the unit {', '.join(k)}; dropped")
+                    repaired = True
+                    continue
+                by.setdefault(k, []).append(r)
+                if f is self.table:
+                    self.order.append(k)
+            self.cells[f.name] = by
+        done = set(self.order)
+        for f in self.details:
+            extra = [k for k in self.cells[f.name] if k not in done]
+            if extra:
+                n = sum(len(self.cells[f.name].pop(k)) for k in extra)
+                self.note(f"{self.out / f.name}: {n} row(s) of {len(extra)} unfinished "
+                          f"unit(s) dropped")
+                repaired = True
+        if repaired:
+            self._write()
+        return ""
+
+    def _discard(self) -> None:
+        for name in [f.name for f in self._files()] + list(self.derived):
+            p = self.out / name
+            if p.is_dir() and not p.is_symlink():
+                shutil.rmtree(p)
+            elif p.exists() or p.is_symlink():
+                p.unlink()
+        self.cells = {f.name: {} for f in self._files()}
+        self.order = []
+
+    # -- use -------------------------------------------------------------------------
+    def done(self, key) -> bool:
+        """Whether the unit ``key`` (values of the table's key columns) is in the table."""
+        return tuple(_text(v) for v in key) in self.cells[self.table.name]
+
+    def _keys(self) -> list[tuple]:
+        planned = set(self.plan)
+        have = self.cells[self.table.name]
+        return ([k for k in self.order if k not in planned]
+                + [k for k in self.plan if k in have])
+
+    def _write(self) -> None:
+        keys = self._keys()
+        for f in self.details + (self.table,):          # the table last: it commits
+            by = self.cells[f.name]
+            rows = [r for k in keys for r in by.get(k, [])]
+            if rows or (self.out / f.name).exists():
+                write_csv_atomic(self.out / f.name, list(f.columns), rows)
+
+    def commit(self, row: dict, details: dict) -> None:
+        """Record one finished unit: its table ``row`` and its rows in each detail file
+        (``{file name: [dict, ...]}``), all files rewritten (the table last)."""
+        k = self.table.key_of(row)
+        for f in self.details:
+            self.cells[f.name][k] = [[_text(r[c]) for c in f.columns]
+                                     for r in details.get(f.name, [])]
+        if k not in self.cells[self.table.name]:
+            self.order.append(k)
+        self.cells[self.table.name][k] = [[_text(row[c]) for c in self.table.columns]]
+        self._write()
+
+    def rows(self, name: str | None = None) -> list[dict]:
+        """The rows of the table (or of the detail file ``name``) as dicts, in file order."""
+        path = self.out / (name or self.table.name)
+        return read_rows(path)
 
 
 def _cell(text: str):

@@ -8,8 +8,8 @@ buckling load ``D0_b`` located to ``1e-4``.  Next to it: the onsets of compressi
 Ogden, "Stability analysis of charge-controlled soft dielectric plates", Int. J. Eng.
 Sci., 2020, Sec. 6) on five sets of points, and where Newton stops.
 
-Files (all in ``out``): ``buckling.csv`` (one row per alpha x mesh, appended as each is
-done; a rerun skips the rows present), ``buckling-scan.csv`` (every scanned state),
+Files (all in ``out``): ``buckling.csv`` (one row per alpha x mesh, written as each is
+done, after its other rows; a rerun skips the rows present), ``buckling-scan.csv`` (every scanned state),
 ``buckling-plain.csv`` (the same ramp without grad-div: its ``P33`` onsets and Newton
 limit), ``.modes/<alpha>_<mesh>.npz`` (the critical mode's top-face deflection) and
 ``buckling.png``.
@@ -30,11 +30,13 @@ from skfem_dielectric.studies.buckling import buckling_load
 
 from ..fe.model import BUCKLING_GRAD_DIV
 from ..figures import save_figure
-from ..store import append_rows, read_rows
+from ..options import load_targets
+from ..store import RowFile, StudyStore, write_npz_atomic
 from ..table import BREAKDOWN_TOL
 
 __all__ = ["COLUMNS", "SCAN_COLUMNS", "PLAIN_COLUMNS", "P33_SETS", "p33_measures", "onset",
-           "run_one", "run_plain", "run_buckling", "richardson", "buckling_figure"]
+           "TABLE", "SCAN", "PLAIN",
+           "charge_targets", "run_one", "run_plain", "run_buckling", "richardson", "buckling_figure"]
 
 #: where min P33/mu is taken: centre line, clamp line (one element inside the clamp),
 #: centre line outside the clamps' 2H layer, all quadrature points outside it, centre
@@ -96,7 +98,7 @@ def run_one(alpha: float, elements, *, D0_step: float, D0_max: float,
             ) -> tuple[dict, list[dict]]:
     """One alpha x mesh: ramp, P33 onsets, buckling load.  Returns the row and the scan."""
     t0 = time.time()
-    D0 = np.round(np.arange(D0_step, D0_max + 1e-9, D0_step), 10)
+    D0 = charge_targets(D0_step, D0_max)
     res = fe.keplinger_plate(alpha, D0=D0, elements=tuple(elements), symmetry="eighth",
                              options=fe.PlateOptions(grad_div=BUCKLING_GRAD_DIV),
                              linear_solver=solver,
@@ -138,7 +140,7 @@ def run_one(alpha: float, elements, *, D0_step: float, D0_max: float,
     if modes_dir is not None and lab is not None:
         modes_dir.mkdir(parents=True, exist_ok=True)
         X1, X3, u2 = top_deflection(pb, lab.mode, lab.increments)
-        np.savez(modes_dir / f"{alpha:g}_{mesh}.npz", X1=X1, X3=X3, u2=u2)
+        write_npz_atomic(modes_dir / f"{alpha:g}_{mesh}.npz", X1=X1, X3=X3, u2=u2)
     return row, scan
 
 
@@ -147,7 +149,7 @@ def run_plain(alpha: float, elements, *, D0_step: float, D0_max: float,
     """The plain form (``grad_div = 0``, as the validation harness ramps it) on the same
     targets: its ``P33`` onsets and where Newton stops (``nan``: all targets reached)."""
     t0 = time.time()
-    D0 = np.round(np.arange(D0_step, D0_max + 1e-9, D0_step), 10)
+    D0 = charge_targets(D0_step, D0_max)
     res = fe.keplinger_plate(alpha, D0=D0, elements=tuple(elements), symmetry="eighth",
                              linear_solver=solver,
                              settings=replace(fe.gallery.KEPLINGER_SETTINGS, max_cutbacks=6,
@@ -163,38 +165,58 @@ def run_plain(alpha: float, elements, *, D0_step: float, D0_max: float,
             "D0_max": D0_max, "seconds": round(time.time() - t0, 1)}
 
 
+#: the files of the study (:class:`~validation.store.StudyStore`): the table last
+TABLE = RowFile("buckling.csv", tuple(COLUMNS), ("alpha", "mesh"))
+SCAN = RowFile("buckling-scan.csv", tuple(SCAN_COLUMNS), ("alpha", "mesh"))
+PLAIN = RowFile("buckling-plain.csv", tuple(PLAIN_COLUMNS), ("alpha", "mesh"))
+
+
+def charge_targets(D0_step: float, D0_max: float) -> np.ndarray:
+    """The charge targets ``D0_step, 2 D0_step, ... <= D0_max`` of the ramp (checked:
+    ``ValueError`` naming ``--D0-step`` for more than
+    :data:`~validation.options.MAX_TARGETS`)."""
+    return load_targets("--D0-step", D0_step, D0_max, D0_step)
+
+
 def run_buckling(out: Path, *, alphas, meshes, D0_step: float, D0_max: float,
-                 solver: str = "auto", progress=None) -> list[dict]:
-    """The study: every alpha x mesh not yet in ``out/buckling.csv``, then the figure."""
+                 solver: str = "auto", progress=None, note=None) -> list[dict]:
+    """The study: every alpha x mesh not yet in ``out/buckling.csv``, then the figure.
+
+    The study holds its lock and store (:class:`~validation.store.StudyStore`): one
+    alpha x mesh is done when its row is in ``buckling.csv``, written after its scan and
+    plain-form rows; a folder of another ``D0_step``, ``D0_max`` or ``solver`` is
+    discarded and recomputed (``note(message)`` says so).  Repeated alphas and meshes
+    are computed once.
+    """
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
-    table = out / "buckling.csv"
-    plain = out / "buckling-plain.csv"
-    done = {(r["alpha"], r["mesh"]) for r in read_rows(table)}
-    done_plain = {(r["alpha"], r["mesh"]) for r in read_rows(plain)}
+    alphas = list(dict.fromkeys(float(a) for a in alphas))
+    meshes = list(dict.fromkeys(tuple(int(n) for n in el) for el in meshes))
+    charge_targets(D0_step, D0_max)
     footer = (f"skfem-dielectric buckling: eighth-model meshes "
               f"{', '.join(_mesh_name(el) for el in meshes)}, D0 step {D0_step:g} up to "
               f"{D0_max:g}, linear solver {solver}")
-    for alpha in alphas:
-        for el in meshes:
-            key = (float(alpha), _mesh_name(el))
-            if key not in done:
-                row, scan = run_one(float(alpha), el, D0_step=D0_step, D0_max=D0_max,
+    settings = {"D0_step": float(D0_step), "D0_max": float(D0_max), "solver": solver}
+    plan = [(a, _mesh_name(el)) for a in alphas for el in meshes]
+    with StudyStore(out, "buckling", settings, TABLE, (SCAN, PLAIN), plan=plan,
+                    derived=("buckling.png", "buckling.pdf", ".modes"), note=note) as store:
+        for alpha in alphas:
+            for el in meshes:
+                if store.done((alpha, _mesh_name(el))):
+                    continue
+                row, scan = run_one(alpha, el, D0_step=D0_step, D0_max=D0_max,
                                     solver=solver, modes_dir=out / ".modes")
-                append_rows(out / "buckling-scan.csv", SCAN_COLUMNS, scan)
-                append_rows(table, COLUMNS, [row])
+                plain = run_plain(alpha, el, D0_step=D0_step, D0_max=D0_max, solver=solver)
+                store.commit(row, {SCAN.name: scan, PLAIN.name: [plain]})
                 # the figure follows the table: a long study shows every finished row
-                buckling_figure(read_rows(table), read_rows(out / "buckling-scan.csv"),
-                                out / ".modes", out / "buckling.png", footer=footer)
+                buckling_figure(store.rows(), store.rows(SCAN.name), out / ".modes",
+                                out / "buckling.png", footer=footer)
                 if progress is not None:
                     progress(row)
-            if key not in done_plain:
-                append_rows(plain, PLAIN_COLUMNS, [run_plain(float(alpha), el, D0_step=D0_step,
-                                                         D0_max=D0_max, solver=solver)])
-    rows = read_rows(table)
-    if rows:
-        buckling_figure(rows, read_rows(out / "buckling-scan.csv"), out / ".modes",
-                        out / "buckling.png", footer=footer)
+        rows = store.rows()
+        if rows:
+            buckling_figure(rows, store.rows(SCAN.name), out / ".modes",
+                            out / "buckling.png", footer=footer)
     return rows
 
 

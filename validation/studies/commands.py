@@ -1,15 +1,19 @@
 """The studies' commands of ``skfem-dielectric``: ``wrinkling-fe``, ``buckling`` and
 ``post-buckling``, their options and what they print.  Each command holds the lock
-``--out/.state/<command>.lock`` (:func:`validation.store.command_lock`) while it writes,
-so that a second process writing the same study into the same folder is refused.
+``--out/.state/<command>.lock`` (:func:`validation.store.command_lock`, taken by the
+studies' :class:`validation.store.StudyStore`) while it writes, so that a second process
+writing the same study into the same folder is refused.
 """
 
 from __future__ import annotations
 
 from ..options import mesh_triple, out_dir, positive, solver_name
+from ..progress import notice
 from ..store import command_lock
 from .buckling import FULL as BUCKLING_FULL, QUICK as BUCKLING_QUICK, run_buckling
+from .buckling import charge_targets as buckling_targets
 from .postbuckling import FULL as POST_FULL, QUICK as POST_QUICK, run_post_buckling
+from .postbuckling import charge_targets as post_targets, study_window
 from .wrinkling import run_wrinkling_fe
 
 __all__ = ["add_study_commands", "STUDY_COMMANDS", "cmd_wrinkling", "cmd_buckling",
@@ -87,7 +91,8 @@ def _study_arguments(p, quick: str, meshes: str, step: str, top: str, solver: st
 
 def _study_options(args, quick: dict, full: dict) -> dict:
     """The study's settings: the ``--quick`` or default ones, overridden by the options
-    given, each checked (``ValueError`` naming the option)."""
+    given, each checked (``ValueError`` naming the option), repeated alphas and meshes
+    given once."""
     opts = dict(quick if args.quick else full)
     for key in ("alpha", "meshes", "D0_step", "D0_max"):
         value = getattr(args, key)
@@ -98,6 +103,8 @@ def _study_options(args, quick: dict, full: dict) -> dict:
         positive("--D0-max", opts["D0_max"])
     for a in opts["alphas"]:
         positive("--alpha", a)
+    opts["alphas"] = tuple(dict.fromkeys(float(a) for a in opts["alphas"]))
+    opts["meshes"] = tuple(dict.fromkeys(tuple(m) for m in opts["meshes"]))
     args.solver = solver_name(args.solver)
     return opts
 
@@ -110,6 +117,9 @@ def cmd_post_buckling(args) -> int:
         if m[1] % 2:
             raise ValueError(f"--meshes: N2 must be even (nodes on the mid-plane), got "
                              f"{'x'.join(map(str, m))}")
+    for a in opts["alphas"]:                 # bounded before any work
+        start, top = study_window(a, opts["D0_step"], opts["D0_max"])
+        post_targets(opts["D0_step"], top, start)
 
     def show(row):
         print(f"alpha = {row['alpha']:g} {row['model']} {row['mesh']}: "
@@ -118,9 +128,8 @@ def cmd_post_buckling(args) -> int:
               f"mm at D0 = {row['D0_last']:.3g}; {row['seconds']:.0f} s"
               + (f" ({row['reason']})" if row["reason"] else ""), flush=True)
 
-    with command_lock(args.out, "post-buckling", f"the post-buckling study in {args.out}"):
-        run_post_buckling(args.out, **opts, solver=args.solver, model=args.model,
-                          progress=show)
+    run_post_buckling(args.out, **opts, solver=args.solver, model=args.model,
+                      progress=show, note=notice)
     print(f"wrote {args.out / 'post-buckling.csv'}, {args.out / 'post-buckling.png'} (and .pdf)")
     return 0
 
@@ -129,6 +138,7 @@ def cmd_buckling(args) -> int:
     """``skfem-dielectric buckling``: :func:`~.buckling.run_buckling` with the options of
     ``args``, one line per finished alpha x mesh; returns the exit code 0."""
     opts = _study_options(args, BUCKLING_QUICK, BUCKLING_FULL)
+    buckling_targets(opts["D0_step"], opts["D0_max"])          # bounded before any work
 
     def show(row):
         print(f"alpha = {row['alpha']:g} {row['mesh']}: D0_b = {row['D0_b']:.4f} "
@@ -136,8 +146,7 @@ def cmd_buckling(args) -> int:
               f"{row['P33_onset_interior']:.3f}, Newton limit {row['newton_limit']:.3f}, "
               f"{row['seconds']:.0f} s", flush=True)
 
-    with command_lock(args.out, "buckling", f"the buckling study in {args.out}"):
-        run_buckling(args.out, **opts, solver=args.solver, progress=show)
+    run_buckling(args.out, **opts, solver=args.solver, progress=show, note=notice)
     print(f"wrote {args.out / 'buckling.csv'}, {args.out / 'buckling.png'} (and .pdf)")
     return 0
 

@@ -14,8 +14,8 @@ centre is compared with the fundamental branch and with the homogeneous curve (E
 charge-controlled soft dielectric plates", Int. J. Eng. Sci., 2020).
 
 Files (all in ``out``): ``post-buckling.csv`` (one row per state of both branches),
-``post-buckling-summary.csv`` (one row per alpha x mesh, appended as each is done; a rerun
-skips the pairs present), ``.post-buckling/<alpha>_<mesh>.npz`` (the mid-plane deflection
+``post-buckling-summary.csv`` (one row per alpha x mesh, written as each is done, after
+its states; a rerun skips the pairs present), ``.post-buckling/<alpha>_<mesh>.npz`` (the mid-plane deflection
 of the last buckled state) and ``post-buckling.png``.
 """
 
@@ -36,11 +36,13 @@ from skfem_dielectric.solvers.critical import critical_load
 from skfem_dielectric.studies.postbuckling import (critical_mode, midplane_deflection,
                                            midplane_nodes, post_buckled_branch)
 
-from ..store import append_rows, read_rows
+from ..options import load_targets
+from ..store import RowFile, StudyStore, write_npz_atomic
 from ..fe.model import BUCKLING_GRAD_DIV
 from ..figures import save_figure
 
-__all__ = ["COLUMNS", "SUMMARY_COLUMNS", "QUICK", "FULL", "WINDOW", "MODELS", "run_one", "run_post_buckling",
+__all__ = ["COLUMNS", "SUMMARY_COLUMNS", "QUICK", "FULL", "WINDOW", "MODELS", "TABLE", "STATES",
+           "charge_targets", "study_window", "run_one", "run_post_buckling",
            "post_buckling_figure"]
 
 COLUMNS = ("alpha", "mesh", "model", "branch", "D0", "deflection", "lam1", "lam1_fundamental",
@@ -61,6 +63,28 @@ FULL = {"alphas": (0.05, 1.0), "meshes": ((10, 2, 5), (14, 2, 7), (20, 2, 10)),
 #: per weight: where the spectrum scan starts (below 0.9 of the buckling load of the
 #: table in docs/validation.md) and where the branch ends by default
 WINDOW = {0.05: (0.65, 1.5), 0.3: (1.3, 2.0), 0.7: (2.2, 3.0), 1.0: (2.55, 3.3)}
+
+
+#: the files of the study (:class:`~validation.store.StudyStore`): the summary last
+TABLE = RowFile("post-buckling-summary.csv", tuple(SUMMARY_COLUMNS), ("alpha", "mesh", "model"))
+STATES = RowFile("post-buckling.csv", tuple(COLUMNS), ("alpha", "mesh", "model"))
+
+
+def charge_targets(D0_step: float, D0_max: float, D0_from: float = 0.0) -> np.ndarray:
+    """The fundamental ramp's targets: steps of 0.25 below ``D0_from``, then ``D0_step``
+    up to ``D0_max`` (checked: ``ValueError`` naming ``--D0-step`` for more than
+    :data:`~validation.options.MAX_TARGETS`)."""
+    D0 = np.concatenate([load_targets("--D0-step", 0.25, D0_from - 2e-9, 0.25),
+                         load_targets("--D0-step", D0_from, D0_max, D0_step)])
+    return D0[D0 > 0]
+
+
+def study_window(alpha: float, D0_step: float, D0_max: float | None) -> tuple[float, float]:
+    """Where the spectrum scan of ``alpha`` starts and where its branch ends
+    (:data:`WINDOW`; ``D0_max`` overrides the end)."""
+    start, top = WINDOW.get(float(alpha), (D0_step, 1.5))
+    top = top if D0_max is None else D0_max
+    return min(start, top), top
 
 
 def _mesh_name(el) -> str:
@@ -109,9 +133,7 @@ def run_one(alpha: float, elements, *, D0_step: float, D0_max: float,
     ``D0_step``; the spectrum from ``D0_from`` on), ``D0_b``, branch switch, the buckled
     branch forward to ``D0_max`` and back.  Returns the summary row and the state rows."""
     t0 = time.time()
-    D0 = np.round(np.concatenate([np.arange(0.25, D0_from - 1e-9, 0.25),
-                                  np.arange(D0_from, D0_max + 1e-9, D0_step)]), 10)
-    D0 = D0[D0 > 0]
+    D0 = charge_targets(D0_step, D0_max, D0_from)
     if model not in MODELS:
         raise ValueError(f"model must be one of {tuple(MODELS)}, got {model!r}")
     res, newton = _fundamental(alpha, elements, D0, solver, model)
@@ -201,7 +223,7 @@ def run_one(alpha: float, elements, *, D0_step: float, D0_max: float,
         X = pb.b2.doflocs
         mid = midplane_nodes(pb)
         u2 = pb.full(st.x, st.load)[1:pb.n_u:3][mid]
-        np.savez(shapes_dir / f"{alpha:g}_{model}_{mesh}.npz", X1=X[0][mid], X3=X[2][mid], u2=u2,
+        write_npz_atomic(shapes_dir / f"{alpha:g}_{model}_{mesh}.npz", X1=X[0][mid], X3=X[2][mid], u2=u2,
                  D0=float(st.load[1]))
     summary["seconds"] = round(time.time() - t0, 1)
     return summary, rows
@@ -209,39 +231,49 @@ def run_one(alpha: float, elements, *, D0_step: float, D0_max: float,
 
 def run_post_buckling(out: Path, *, alphas, meshes, D0_step: float, D0_max: float | None,
                       solver: str = "auto", model: str = "quarter",
-                      progress=None) -> list[dict]:
+                      progress=None, note=None) -> list[dict]:
     """The study: every alpha x mesh not yet in ``out/post-buckling-summary.csv``, then
     the figure.  Each weight's spectrum scan starts at ``WINDOW[alpha][0]`` (``D0_step``
-    for a weight not in it); ``D0_max=None`` ends it at ``WINDOW[alpha][1]`` (1.5)."""
+    for a weight not in it); ``D0_max=None`` ends it at ``WINDOW[alpha][1]`` (1.5).
+
+    The study holds its lock and store (:class:`~validation.store.StudyStore`): one
+    alpha x mesh x model is done when its summary row is written, after its states; a
+    folder of another ``D0_step``, ``D0_max`` or ``solver`` is discarded and recomputed
+    (``note(message)`` says so).  Repeated alphas and meshes are computed once."""
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
-    table = out / "post-buckling-summary.csv"
-    done = {(r["alpha"], r["mesh"], r["model"]) for r in read_rows(table)}
+    alphas = list(dict.fromkeys(float(a) for a in alphas))
+    meshes = list(dict.fromkeys(tuple(int(n) for n in el) for el in meshes))
+    for alpha in alphas:
+        charge_targets(D0_step, *study_window(alpha, D0_step, D0_max)[::-1])
     footer = (f"skfem-dielectric post-buckling: {model} model, meshes "
               f"{', '.join(_mesh_name(el) for el in meshes)}, D0 step {D0_step:g}, "
               f"linear solver {solver}")
-    for alpha in alphas:
-        start, top = WINDOW.get(float(alpha), (D0_step, 1.5))
-        top = top if D0_max is None else D0_max
-        start = min(start, top)
-        for el in meshes:
-            if (float(alpha), _mesh_name(el), model) in done:
-                continue
-            summary, rows = run_one(float(alpha), el, D0_step=D0_step, D0_max=top,
-                                    D0_from=start, solver=solver, model=model,
-                                    shapes_dir=out / ".post-buckling")
-            append_rows(out / "post-buckling.csv", COLUMNS, rows)
-            append_rows(table, SUMMARY_COLUMNS, [summary])
-            # the figure follows the table: a long study shows every finished row
-            post_buckling_figure(read_rows(table), read_rows(out / "post-buckling.csv"),
-                                 out / ".post-buckling", out / "post-buckling.png",
-                                 footer=footer)
-            if progress is not None:
-                progress(summary)
-    summary = read_rows(table)
-    if summary:
-        post_buckling_figure(summary, read_rows(out / "post-buckling.csv"),
-                             out / ".post-buckling", out / "post-buckling.png", footer=footer)
+    settings = {"D0_step": float(D0_step),
+                "D0_max": None if D0_max is None else float(D0_max), "solver": solver}
+    plan = [(a, _mesh_name(el), model) for a in alphas for el in meshes]
+    with StudyStore(out, "post-buckling", settings, TABLE, (STATES,), plan=plan,
+                    derived=("post-buckling.png", "post-buckling.pdf", ".post-buckling"),
+                    note=note) as store:
+        for alpha in alphas:
+            start, top = study_window(alpha, D0_step, D0_max)
+            for el in meshes:
+                if store.done((alpha, _mesh_name(el), model)):
+                    continue
+                summary, rows = run_one(alpha, el, D0_step=D0_step, D0_max=top,
+                                        D0_from=start, solver=solver, model=model,
+                                        shapes_dir=out / ".post-buckling")
+                store.commit(summary, {STATES.name: rows})
+                # the figure follows the table: a long study shows every finished row
+                post_buckling_figure(store.rows(), store.rows(STATES.name),
+                                     out / ".post-buckling", out / "post-buckling.png",
+                                     footer=footer)
+                if progress is not None:
+                    progress(summary)
+        summary = store.rows()
+        if summary:
+            post_buckling_figure(summary, store.rows(STATES.name), out / ".post-buckling",
+                                 out / "post-buckling.png", footer=footer)
     return summary
 
 
