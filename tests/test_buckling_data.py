@@ -101,3 +101,91 @@ def test_docs_table_agrees_with_the_data_file():
         if not np.isnan(e.newton_limit):
             assert float(newton) == e.newton_limit
 
+
+def _by_gid(ax, gid):
+    return [ln for ln in ax.lines if ln.get_gid() == gid]
+
+
+def test_breakdown_map_draws_each_meaning_where_the_data_put_it():
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from validation.figures import homogeneous_wrinkling_D0, plot_breakdown_map
+
+    fig, ax = plt.subplots()
+    p33 = {"coupled": {0.05: 0.5, 1.0: 3.0, 1.5: None}}
+    plot_breakdown_map(p33=p33, run_buckling={1.0: 2.68}, run_newton={0.3: 5.5},
+                       run_mesh="10 x 1 x 5", ax=ax)
+    conv = [e for e in buckling_loads() if e.converged]
+    # the converged loads: black diamonds at (alpha, D0_b), error bars of +- error
+    (line,) = [ln for ln in _by_gid(ax, "buckling-converged") if ln.get_marker() == "D"]
+    np.testing.assert_array_equal(line.get_xydata(), [[e.alpha, e.D0_b] for e in conv])
+    (bars,) = [c for c in ax.collections if c.get_gid() == "buckling-converged"]
+    half = [abs(s[1, 1] - s[0, 1]) / 2 for s in bars.get_segments()]
+    np.testing.assert_allclose(half, [e.error for e in conv], rtol=1e-12)   # rounding
+    # no diamond at alpha = 1.5 (not converged), but its three mesh values as dots
+    assert 1.5 not in line.get_xdata()
+    dots = np.vstack([ln.get_xydata() for ln in _by_gid(ax, "buckling-mesh")])
+    assert dots[dots[:, 0] == 1.5][:, 1].tolist() == [4.2027, 3.9908, 4.4008]
+    # the P33 criterion as given (the None of alpha = 1.5 is not drawn), red open circles
+    (p,) = _by_gid(ax, "p33-coupled")
+    np.testing.assert_array_equal(p.get_xydata(), [[0.05, 0.5], [1.0, 3.0]])
+    assert p.get_marker() == "o" and p.get_markerfacecolor() == "none"
+    # the run's crosses and Newton limit, the file's Newton limits (0.05: 3.91, 0.3: 5.125)
+    np.testing.assert_array_equal(_by_gid(ax, "buckling-run")[0].get_xydata(), [[1.0, 2.68]])
+    assert _by_gid(ax, "buckling-run")[0].get_marker() == "x"
+    np.testing.assert_array_equal(_by_gid(ax, "newton-run")[0].get_xydata(), [[0.3, 5.5]])
+    np.testing.assert_array_equal(_by_gid(ax, "newton-limit")[0].get_xydata(),
+                                  [[0.05, 3.91], [0.3, 5.125]])
+    # the homogeneous paths of s > 0 never reach the wrinkling limits (docs/wrinkling.md):
+    # arrows at the top for every weight, no limit line
+    assert not _by_gid(ax, "wrinkling-limit")
+    np.testing.assert_array_equal(_by_gid(ax, "wrinkling-not-reached")[0].get_xdata(),
+                                  [0.05, 0.3, 0.7, 1.0, 1.5])
+    plt.close(fig)
+
+
+def test_homogeneous_wrinkling_limit_on_the_paths():
+    from validation.figures import homogeneous_wrinkling_D0
+
+    # s = 0 (alpha = 0) is the thin-plate limit itself: reached at once; every s > 0 path
+    # stays below both limits (docs/wrinkling.md: margin of the thin limit
+    # D0^2 = thin^2 - lam^5 s > 0)
+    assert homogeneous_wrinkling_D0(0.0)[0] == 0.0
+    for a in (0.05, 1.0):
+        assert all(np.isnan(homogeneous_wrinkling_D0(a)))
+    with pytest.raises(ValueError, match="alpha must be >= 0, got -1"):
+        homogeneous_wrinkling_D0(-1.0)
+
+
+
+def test_fig5_draws_the_converged_loads_on_their_curves():
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    import analytic as an
+    from analytic.units import keplinger_s
+    from validation.figures import plot_uniaxial_wrinkling
+
+    fe = {"run": np.array(["r"]), "alpha": np.array([1.0]), "variant": np.array(["coupled"]),
+          "converged": np.array([True]), "breakdown": np.array([False]),
+          "lam1_fe": np.array([3.2]), "lam1_analytic": np.array([3.2]), "D0": np.array([2.5])}
+    fig, ax = plt.subplots()
+    plot_uniaxial_wrinkling(fe=fe, ax=ax)
+    conv = [e for e in buckling_loads() if e.converged]
+    (line,) = [ln for ln in ax.lines if ln.get_gid() == "buckling-converged"
+               and ln.get_marker() == "D"]
+    # on the weight's homogeneous curve Eq. (DEuniax): lam1 = uniaxial_lam1(D0_b, s)
+    want = [[an.uniaxial_lam1(e.D0_b, keplinger_s(e.alpha, g=9.81), an.NeoHookean()), e.D0_b]
+            for e in conv]
+    np.testing.assert_allclose(line.get_xydata(), want, rtol=1e-12)   # same closed form
+    (nl,) = [ln for ln in ax.lines if ln.get_gid() == "newton-limit"]
+    np.testing.assert_array_equal(nl.get_ydata(), [3.91, 5.125])
+    labels = [t.get_text() for t in ax.get_legend().get_texts()]
+    assert "buckling load $D_{0b}$, converged (error bar)" in labels
+    assert "Newton limit, plain form (20 x 1 x 10)" in labels
+    plt.close(fig)
