@@ -208,7 +208,7 @@ def breakdown_map_figure(p33=None, run_buckling=None, run_newton=None, loads=Non
     matplotlib Figure
     """
     if not modes:
-        fig, ax = plt.subplots(figsize=(8.0, 5.4), layout="constrained")
+        fig, ax = plt.subplots(figsize=(11.0, 5.6), layout="constrained")
         plot_breakdown_map(p33, run_buckling, run_newton, loads, run_mesh=run_mesh, ax=ax)
     else:
         keys = sorted(modes)
