@@ -63,7 +63,8 @@ LAYERS = (
 #: the layers of ``validation``, bottom up, in the same sense as :data:`LAYERS`; the groups
 #: below ``fe`` import no finite elements
 VALIDATION_LAYERS = (
-    ("clash", "progress", "specs", "records"),   # package guard, progress; run data, records
+    ("clash", "progress", "specs", "records",   # package guard, progress; run data, records;
+     "buckling_data"),               # the measured buckling loads
     ("cases",),                      # the validation cases, one per paper figure
     ("table",),                      # the tidy CSV of a case
     ("store",),                      # lock, atomic files, checksums, resume

@@ -38,7 +38,9 @@ import numpy as np
 
 from .cases import CASES, Case, get_case
 from .fe import run_fe, with_dead_load
-from .figures import case_figure, save_figure
+from .figures import case_figure, plate_mesh_text, run_caption, save_figure
+from .figures.common import mesh_text
+from .figures.breakdown_map import breakdown_map_figure
 from .progress import Progress, notice
 from .records import StepRecord
 from .report import write_report, write_summary
@@ -48,7 +50,8 @@ from .store import (CaseFiles, FolderLock, RowDigest, case_manifest, command_loc
 from .table import FIELD_KEYS, case_row, format_cell, is_breakdown, read_table
 from .studies.extra_cases import EXTRA_CASES
 
-__all__ = ["run_case", "run_cases", "validate", "make_figure", "extra_case_result"]
+__all__ = ["run_case", "run_cases", "validate", "make_figure", "make_breakdown_map",
+           "extra_case_result"]
 
 
 def run_case(case: Case | str, out, *, quick: bool = False, force: bool = False,
@@ -313,6 +316,36 @@ def make_figure(case: Case | str, out) -> list[Path]:
     return save_figure(case_figure(case.name, fe=fe, fields=fields), out, case.name)
 
 
+def make_breakdown_map(result: CaseResult, out, *, quick: bool = False) -> list[Path]:
+    """Draw the breakdown map (docs/breakdown.md) into ``out/breakdown-map.png|pdf``.
+
+    The run's ``P33`` breakdowns and buckling loads per weight come from ``result`` (the
+    uni-axial-ideal case's summary), its Newton failures from its CSV, the converged
+    buckling loads from :mod:`validation.buckling_data`.  The map is drawn without the
+    mode panels (docs/breakdown.md says how to draw them).
+    """
+    out = Path(out)
+    t = read_table(out / result.csv)
+    newton = {}
+    for key in map(str, dict.fromkeys(t["run"]) if t else ()):
+        sel = (t["run"] == key) & (t["variant"] == "coupled")
+        fails = np.flatnonzero(~np.array([bool(c) for c in t["converged"][sel]], dtype=bool))
+        if fails.size:
+            newton[float(t["alpha"][sel][0])] = float(t["D0"][sel][fails[0]])
+    buckled = {float(a): d for a, d in result.buckling_D0_by_alpha.get("coupled", {}).items()}
+    specs = get_case(result.name).runs(quick)
+    coupled = [r for r in specs if r.variant == "coupled"]
+    mesh = (plate_mesh_text("coupled", coupled[0].mesh_dict).split(" elements")[0]
+            if coupled else "")
+    caption = run_caption("Breakdown map (paper Sec. 6 and Fig. 5)", quick,
+                          mesh_text(specs))
+    fig = breakdown_map_figure(p33={v: {float(a): d for a, d in per.items()}
+                                    for v, per in result.breakdown_D0_by_alpha.items()},
+                               run_buckling=buckled, run_newton=newton, run_mesh=mesh,
+                               caption=caption)
+    return save_figure(fig, out, "breakdown-map")
+
+
 def validate(cases: Iterable[Case | str] | None, out, *, quick: bool = False,
              force: bool = False, jobs: int = 1, executor: Executor | None = None,
              runner: Callable | None = None, progress: bool | None = None) -> list[CaseResult]:
@@ -337,6 +370,9 @@ def validate(cases: Iterable[Case | str] | None, out, *, quick: bool = False,
                         executor=executor, runner=runner, progress=progress)
     for r in results:
         make_figure(r.name, out)
+    if any(r.name == "uni-axial-ideal" for r in results):
+        make_breakdown_map(next(r for r in results if r.name == "uni-axial-ideal"), out,
+                           quick=quick)
     for name in (c for c in cases if c in EXTRA_CASES):
         cpu = time.process_time()
         results.append(extra_case_result(name, out, quick=quick))

@@ -2,13 +2,15 @@
 
 One module per paper figure (:mod:`.equibiaxial_loading`: Figs. 1 and 2,
 :mod:`.equibiaxial_wrinkling`: Fig. 3, :mod:`.uniaxial_loading`: Fig. 4,
-:mod:`.uniaxial_wrinkling`: Fig. 5, :mod:`.stretch_maps`: Fig. 6, :mod:`.p33_profiles`:
+:mod:`.uniaxial_wrinkling`: Fig. 5 (and :mod:`.breakdown_map`: its breakdown loads per weight), :mod:`.stretch_maps`: Fig. 6, :mod:`.p33_profiles`:
 Fig. 7), the drawing they share (:mod:`.common`: markers, model names, caption line,
 :func:`save_figure`) and the figure of each case with its caption (:mod:`.case`).
 """
 
+from .breakdown_map import breakdown_map_figure, homogeneous_wrinkling_D0, plot_breakdown_map
 from .case import case_figure, figure_caption
-from .common import (BREAKDOWN_NAME, BUCKLING_NAME, LIMIT_NAME, MODEL_NAME, PAPER_FIGURE,
+from .common import (BREAKDOWN_NAME, BUCKLING_NAME, LIMIT_NAME, MODEL_NAME, NEWTON_NAME,
+                     PAPER_FIGURE,
                      add_caption, mesh_caption, plate_mesh_text, run_caption, save_figure,
                      tag_panels)
 from .equibiaxial_loading import plot_equibiaxial_loading
@@ -25,6 +27,9 @@ __all__ = [
     "plot_uniaxial_wrinkling",
     "plot_stretch_maps",
     "plot_p33_profiles",
+    "plot_breakdown_map",
+    "breakdown_map_figure",
+    "homogeneous_wrinkling_D0",
     "uniaxial_thick_limit_curve",
     "uniaxial_voltage_locus",
     "case_figure",
@@ -39,5 +44,6 @@ __all__ = [
     "MODEL_NAME",
     "BREAKDOWN_NAME",
     "BUCKLING_NAME",
+    "NEWTON_NAME",
     "LIMIT_NAME",
 ]

@@ -10,7 +10,8 @@ FE data are the tidy tables of :func:`validation.table.read_table` (``None``
 draws the analytic curves alone).
 
 The names of the FE models and markers in legends and caption lines
-(:data:`MODEL_NAME`, :data:`BREAKDOWN_NAME`, :data:`BUCKLING_NAME`, :data:`LIMIT_NAME`)
+(:data:`MODEL_NAME`, :data:`BREAKDOWN_NAME`, :data:`BUCKLING_NAME`, :data:`NEWTON_NAME`,
+:data:`LIMIT_NAME`)
 and the caption line itself (:func:`run_caption`, :func:`add_caption`) are shared by
 every figure of ``skfem-dielectric validate``, also those of ``voltage-control`` and
 ``wrinkling-fe``, so that one set of names stands in the figures and the docs.
@@ -27,7 +28,7 @@ from matplotlib.lines import Line2D
 import analytic as an
 
 __all__ = [
-    "PAPER_FIGURE", "MODEL_NAME", "BREAKDOWN_NAME", "BUCKLING_NAME", "LIMIT_NAME",
+    "PAPER_FIGURE", "MODEL_NAME", "BREAKDOWN_NAME", "BUCKLING_NAME", "NEWTON_NAME", "LIMIT_NAME",
     "VARIANT_MARKER", "BREAKDOWN_MARKER", "new_axes", "colors", "fe_rows", "fe_dots", "fe_E0", "loading_fe_dots",
     "variant_legend", "wrinkling_zone", "finish_loading_axes", "refine_start", "equibiaxial_curve", "uniaxial_curve", "plate_mesh_text",
     "mesh_caption", "mesh_text", "run_caption", "add_caption", "shared_legend", "tag_panels",
@@ -55,12 +56,14 @@ BREAKDOWN_MARKER = {"coupled": dict(marker="o", ms=19), "maxwell": dict(marker="
 MODEL_NAME = {"coupled": "3D fully coupled", "maxwell": "3D Maxwell traction",
               "membrane": "2D membrane", "membrane-maxwell": "2D membrane (local-field Maxwell)",
               "section": "2D cross-section"}
-#: Legend name of the red open marker: the first step with compressive ``P33`` near the
-#: clamps (``P33/mu < -0.01``) or that the solver could not reach.
+#: Legend name of the red open marker: the paper's criterion, the first step with
+#: compressive ``P33`` near the clamps (``P33/mu < -0.01``; the red crosses of its Fig. 5).
 BREAKDOWN_NAME = "P33 breakdown"
-#: Legend name of the red cross: the zero crossing of the lowest physical eigenvalue of
-#: the whole plate, ``D0_b``.
+#: Legend name of the buckling load ``D0_b``: the zero crossing of the lowest physical
+#: eigenvalue of the whole plate (red cross: a run's own mesh; black diamond: converged).
 BUCKLING_NAME = "buckling load"
+#: Legend name of the triangle down: the first charge target a Newton ramp cannot reach.
+NEWTON_NAME = "Newton limit"
 #: Legend name of the star of ``voltage-control``: the maximum of ``E0`` on a path.
 LIMIT_NAME = "limit point (snap-through)"
 

@@ -10,10 +10,11 @@ from matplotlib.lines import Line2D
 import analytic as an
 from analytic.units import keplinger_s
 
+from ..buckling_data import buckling_loads
 from ..cases import ALPHAS, analytic_model
 from ..specs import KEPLINGER
 from ..records import buckling_crossing
-from .common import (BREAKDOWN_MARKER, BREAKDOWN_NAME, BUCKLING_NAME, MODEL_NAME,
+from .common import (BREAKDOWN_MARKER, BREAKDOWN_NAME, BUCKLING_NAME, MODEL_NAME, NEWTON_NAME,
                      VARIANT_MARKER, colors, new_axes, refine_start, uniaxial_curve,
                      variant_legend, wrinkling_zone)
 
@@ -53,6 +54,34 @@ def uniaxial_thick_limit_curve(lam1, model="neo-Hookean", direction="parallel"):
     return np.where(ok, D0, np.nan)
 
 
+def _measured_loads(ax, alphas, m, D0max):
+    """The converged buckling loads of :mod:`validation.buckling_data` (black diamonds with
+    error bars) and the plain form's Newton limits (black triangles down), on each
+    weight's homogeneous loading curve; returns their legend entries."""
+    out = []
+    conv, newton = [], []
+    for e in buckling_loads():
+        if not any(np.isclose(e.alpha, a) for a in alphas):
+            continue
+        s = float(keplinger_s(e.alpha, g=KEPLINGER["g"]))
+        if e.converged:
+            conv.append((float(an.uniaxial_lam1(e.D0_b, s, m)), e.D0_b, e.error))
+        if np.isfinite(e.newton_limit) and e.newton_limit <= D0max:
+            newton.append((float(an.uniaxial_lam1(e.newton_limit, s, m)), e.newton_limit))
+    if conv:
+        x, y, err = zip(*conv)
+        ax.errorbar(x, y, yerr=err, fmt="D", color="k", ms=6, capsize=3, zorder=7,
+                    gid="buckling-converged")
+        out.append(Line2D([], [], ls="none", color="k", marker="D", ms=6,
+                          label=f"{BUCKLING_NAME} $D_{{0b}}$, converged (error bar)"))
+    if newton:
+        ax.plot(*zip(*newton), ls="none", color="k", marker="v", ms=8, zorder=7,
+                gid="newton-limit")
+        out.append(Line2D([], [], ls="none", color="k", marker="v", ms=8,
+                          label=f"{NEWTON_NAME}, plain form (20 x 1 x 10)"))
+    return out
+
+
 def plot_uniaxial_wrinkling(fe=None, alphas=ALPHAS, ax=None, D0max=7.0):
     """The Keplinger plate (paper Fig. uni-axial-ideal).
 
@@ -65,6 +94,10 @@ def plot_uniaxial_wrinkling(fe=None, alphas=ALPHAS, ax=None, D0max=7.0):
     reach), and a red cross at the "buckling load"
     ``D0_b`` (:data:`BUCKLING_NAME`) of the runs analysed with the whole plate's spectrum
     (the zero crossing of the lowest physical eigenvalue, column ``physical_eig``).
+    With FE data, also the converged buckling load ``D0_b`` of each weight
+    (:func:`validation.buckling_data.buckling_loads`, black diamond with its error bar)
+    and the plain form's Newton limit (black triangle down), both on the weight's
+    homogeneous curve (docs/breakdown.md).
     The FE models are named by :data:`MODEL_NAME` in the legend.
 
     Returns
@@ -108,6 +141,8 @@ def plot_uniaxial_wrinkling(fe=None, alphas=ALPHAS, ax=None, D0max=7.0):
                 ax.plot(np.interp(D0b, D0_fe[ok], lam_fe[ok]), D0b, ls="none", color="red",
                         marker="x", ms=11, mew=2.4, zorder=6, clip_on=False)
                 buckled.append(f"{a:g}")
+    drawn = _measured_loads(ax, alphas, m, D0max) if fe is not None and len(
+        fe.get("run", [])) else []
     ax.set_xlim(0.4, 6.0)
     ax.set_ylim(0, D0max)
     ax.set_xlabel(r"$\lambda_1$")
@@ -119,8 +154,9 @@ def plot_uniaxial_wrinkling(fe=None, alphas=ALPHAS, ax=None, D0max=7.0):
                for v in BREAKDOWN_MARKER if v in broken]
     if buckled:
         crosses.insert(0, Line2D([], [], ls="none", color="red", marker="x", ms=8, mew=2.2,
-                                 label=f"{BUCKLING_NAME} (whole-plate spectrum), "
+                                 label=f"{BUCKLING_NAME} on this run's mesh, "
                                  + r"$\alpha = $" + ", ".join(buckled)))
+    crosses += drawn
     ax.legend(handles=handles + variant_legend(ax, fe) + crosses, fontsize=8,
               loc="center left", bbox_to_anchor=(1.01, 0.5))
     ax.set_title("Keplinger plate, uni-axial dead load (neo-Hookean)", fontsize=10)

@@ -26,6 +26,7 @@ import numpy as np
 
 import skfem_dielectric as fe
 from skfem_dielectric.models.plate.modes import top_deflection
+from skfem_dielectric.solvers import illinois
 from skfem_dielectric.studies.buckling import buckling_load
 
 from ..fe.model import BUCKLING_GRAD_DIV
@@ -221,19 +222,71 @@ def run_buckling(out: Path, *, alphas, meshes, D0_step: float, D0_max: float,
 
 
 def richardson(h, values) -> tuple[float, float, float]:
-    """Extrapolated value, its error estimate and the observed order from the three
-    finest meshes (mesh sizes ``h`` descending); ``nan`` where the sequence is not
-    monotone (no asymptotic range)."""
-    h, v = np.asarray(h, float)[-3:], np.asarray(values, float)[-3:]
+    """Richardson extrapolation of a value on three meshes with unequal refinement ratios.
+
+    The three finest meshes (sizes ``h`` descending, ``h1 > h2 > h3``) are taken as
+    ``v = v_inf + b h^p``.  With the ratios ``r1 = h1/h2``, ``r2 = h2/h3`` the observed
+    order ``p`` solves the three-mesh equation
+
+        (v1 - v2) / (v2 - v3) = r2^p (r1^p - 1) / (r2^p - 1),
+
+    found by Illinois steps (:func:`skfem_dielectric.solvers.illinois`) on its logarithm;
+    ``r1 = r2 = r`` gives the familiar ``p = log((v1 - v2)/(v2 - v3)) / log r``.  Then
+    ``v_inf = v3 + (v3 - v2)/(r2^p - 1)``.
+
+    Parameters
+    ----------
+    h, values : array_like
+        Mesh sizes (descending) and the values on them; the last three are used.
+
+    Returns
+    -------
+    extrapolated, error, order : float
+        ``v_inf``, the error estimate ``|v_inf - v3|`` and ``p``.  ``nan`` (the error:
+        ``|v3 - v2|``) where the sequence is not monotone or its differences shrink too
+        slowly for any positive order (no asymptotic range).
+
+    Raises
+    ------
+    ValueError
+        ``h`` not strictly descending and positive, or ``h`` and ``values`` of different
+        lengths.
+
+    Notes
+    -----
+    Used for the converged buckling loads (docs/validation.md, "The study"; the meshes
+    10 x 1 x 5, 14 x 1 x 7, 20 x 1 x 10 have ratios 1.4 and 1.43;
+    ``validation/data/buckling_loads.csv``, :mod:`validation.buckling_data`).
+    """
+    h, v = np.asarray(h, float), np.asarray(values, float)
+    if h.shape != v.shape:
+        raise ValueError(f"h and values must have the same length, got {h.size} and {v.size}")
+    h, v = h[-3:], v[-3:]
     if v.size < 3 or not np.all(np.isfinite(v)):
         return float("nan"), float("nan"), float("nan")
+    if not (np.all(h > 0) and np.all(np.diff(h) < 0)):
+        raise ValueError(f"h must be positive and strictly descending, got {h.tolist()}")
     d1, d2 = v[1] - v[0], v[2] - v[1]
     if d1 == 0 or d2 / d1 <= 0:
         return float("nan"), abs(d2), float("nan")
-    r = h[0] / h[1]
-    p = float(np.log(abs(d1 / d2)) / np.log(r))
-    ext = float(v[2] + d2 / (r ** p - 1))
-    return ext, abs(ext - v[2]), p
+    l1, l2 = np.log(h[0] / h[1]), np.log(h[1] / h[2])
+    log_q = float(np.log(d1 / d2))
+
+    def g(p):       # log q - log(r2^p (r1^p - 1)/(r2^p - 1)): > 0 below the order
+        return log_q - (p * l2 + np.log(np.expm1(p * l1)) - np.log(np.expm1(p * l2)))
+
+    lo, g_lo = 1e-12, log_q - float(np.log(l1 / l2))     # the limit p -> 0
+    if g_lo <= 0:                       # differences shrink too slowly for any p > 0
+        return float("nan"), abs(d2), float("nan")
+    hi = 1.0
+    while g(hi) > 0:
+        hi *= 2
+        if hi > 1e3:
+            return float("nan"), abs(d2), float("nan")
+    p, *_ = illinois(g, lo, g_lo, hi, g(hi), maxiter=200,
+                     done=lambda a, b, c: abs(b - a) <= 4e-16 * max(1.0, abs(c)))
+    ext = float(v[2] + d2 / np.expm1(p * l2))
+    return ext, abs(ext - v[2]), float(p)
 
 
 def buckling_figure(rows, scan, modes_dir: Path, path: Path, footer: str = "") -> Path:
