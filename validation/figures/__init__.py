@@ -16,7 +16,8 @@ from .equibiaxial_wrinkling import plot_equibiaxial_wrinkling
 from .p33_profiles import plot_p33_profiles
 from .stretch_maps import plot_stretch_maps
 from .uniaxial_loading import plot_uniaxial_loading, uniaxial_voltage_locus
-from .uniaxial_wrinkling import plot_uniaxial_wrinkling, uniaxial_thick_limit_curve
+from .uniaxial_wrinkling import (RunMarks, keplinger_run_marks, plot_uniaxial_wrinkling,
+                                 uniaxial_thick_limit_curve)
 
 __all__ = [
     "plot_equibiaxial_loading",
@@ -26,6 +27,8 @@ __all__ = [
     "plot_stretch_maps",
     "plot_p33_profiles",
     "uniaxial_thick_limit_curve",
+    "keplinger_run_marks",
+    "RunMarks",
     "uniaxial_voltage_locus",
     "case_figure",
     "figure_caption",
