@@ -25,22 +25,38 @@ __all__ = ["uniaxial_thick_limit_curve", "RunMarks", "keplinger_run_marks", "plo
 def uniaxial_thick_limit_curve(lam1, model="neo-Hookean", direction="parallel"):
     """``D0`` of the thick-plate limit on the uni-axial path, per ``lam1``.
 
-    Solves Eq. (thick-uni-axial) together with Eq. (uni-axial-loading)_2,
-    ``D0^2 = lam1^2 lam3^4 - 1``, for ``lam3`` by vectorised bisection of
-    ``thick_limit_D0_uniaxial(lam1, lam3) - sqrt(lam1^2 lam3^4 - 1)`` (paper
-    Fig. uni-axial-ideal); ``nan`` where no root is bracketed.  ``model`` is a FE
+    Solves Eq. (thick-uni-axial) together with the uni-axial path
+    ``D0^2 = 2W'(I1) (lam1^2 lam3^4 - 1)`` (Eq. (uni-axial-loading)_2,
+    ``D0^2 = lam1^2 lam3^4 - 1``, for neo-Hookean) for ``lam3`` by vectorised bisection of
+    ``thick_limit_D0_uniaxial(lam1, lam3) - D0(path)`` (paper Fig. uni-axial-ideal);
+    ``nan`` where no root is bracketed (for Gent the bracket stays below the locking).  ``model`` is a FE
     material name (:func:`~validation.cases.analytic_model`) or an :mod:`analytic` model.
     """
     m = analytic_model(model) if isinstance(model, str) else an.as_model(model)
     lam1 = np.asarray(lam1, dtype=float)
     lo = lam1 ** -0.5 * (1 + 1e-12)       # D0 = 0 on the path
     hi = lo * 20.0
+    I1max = m.I1_max()
+    if np.isfinite(I1max):                # Gent: the bracket stays below the locking I1
+        b = I1max - lam1**2
+        disc = b**2 - 4.0 / lam1**2       # I1 = lam1^2 + x + 1/(lam1^2 x) = I1max, x = lam3^2
+        x_lock = np.where((b > 0) & (disc > 0), 0.5 * (b + np.sqrt(np.abs(disc))), 0.0)
+        hi = np.where(x_lock > lo**2, np.minimum(hi, np.sqrt(x_lock) * (1 - 1e-9)), lo)
 
     def g(l3):
         th = np.asarray(an.thick_limit_D0_uniaxial(lam1, l3, m, direction=direction), dtype=float)
-        path = np.sqrt(np.maximum(lam1**2 * l3**4 - 1.0, 0.0))
+        I1 = lam1**2 + l3**2 + 1.0 / (lam1 * l3) ** 2
+        path = np.sqrt(np.maximum(2 * m.dW(I1) * (lam1**2 * l3**4 - 1.0), 0.0))
         return th - path
 
+    if np.isfinite(I1max):
+        # the difference turns positive again near the locking: bracket its first sign
+        # change on a geometric scan from the D0 = 0 state
+        grid = lo * (hi / lo) ** np.linspace(0.0, 1.0, 48)[:, None]
+        vals = np.array([g(row) for row in grid])
+        change = np.sign(vals[1:]) != np.sign(vals[:1])
+        k = np.where(change.any(axis=0), np.argmax(change, axis=0) + 1, grid.shape[0] - 1)
+        hi = grid[k, np.arange(lam1.size)] if lam1.ndim else grid[k, 0]
     glo, ghi = g(lo), g(hi)
     ok = np.isfinite(glo) & np.isfinite(ghi) & (np.sign(glo) != np.sign(ghi))
     a, b, ga = lo.copy(), hi.copy(), glo.copy()
@@ -52,7 +68,8 @@ def uniaxial_thick_limit_curve(lam1, model="neo-Hookean", direction="parallel"):
         ga = np.where(left, gm, ga)
         b = np.where(left, b, mid)
     l3 = 0.5 * (a + b)
-    D0 = np.sqrt(np.maximum(lam1**2 * l3**4 - 1.0, 0.0))
+    I1 = lam1**2 + l3**2 + 1.0 / (lam1 * l3) ** 2
+    D0 = np.sqrt(np.maximum(2 * m.dW(I1) * (lam1**2 * l3**4 - 1.0), 0.0))
     return np.where(ok, D0, np.nan)
 
 
