@@ -91,7 +91,6 @@ def test_a_foreign_host_is_refused_and_the_page_needs_no_cdn(server):
     assert "/static/js/bokeh.min.js" in html and "cdn.bokeh.org" not in html
 
 
-@pytest.mark.slow
 def test_moving_s_in_a_browser_redraws_the_E0_maximum(server):
     if CHROMIUM is None:
         pytest.skip("no chromium (apt-get install chromium)")
