@@ -45,7 +45,7 @@ import pytest
 ROOT = Path(__file__).resolve().parents[1]
 PACKAGES = ("analytic", "skfem_dielectric", "validation")
 # optional dependencies (extras): imported inside the functions that need them
-OPTIONAL = ("pypardiso", "mkl", "dask", "distributed")
+OPTIONAL = ("pypardiso", "mkl", "dask", "distributed", "bokeh", "tornado")
 #: the layers of ``skfem_dielectric``, bottom up; the groups of one layer stand side by side
 #: (neither imports the other).  A group is a top-level module or a subpackage; the package
 #: itself (``skfem_dielectric/__init__.py``) sits above all of them and re-exports them.
@@ -71,7 +71,7 @@ VALIDATION_LAYERS = (
     ("fe", "figures"),               # the FE runner; the paper's figures
     ("options",),                    # checks of the command-line options
     ("studies",),                    # buckling, post-buckling, wrinkling, snap-through
-    ("results", "report"),           # case summaries; summary.json and report.md
+    ("results", "report", "explore"),  # case summaries; summary.json, report.md; the page
     ("sweep",),                      # the harness: run_case, run_cases, validate
     ("cli",),                        # the command line
     ("validation",),                 # the package namespace

@@ -24,8 +24,14 @@ pytest.importorskip("sphinx")
 pytest.importorskip("sphinx_gallery")
 
 ROOT = Path(__file__).resolve().parents[1]
-_GENERATED = shutil.ignore_patterns("_build", "auto_examples", "generated", "*.png",
-                                    "sg_execution_times.rst", "__pycache__")
+_GENERATED_PATTERNS = shutil.ignore_patterns("_build", "auto_examples", "generated", "*.png",
+                                             "sg_execution_times.rst", "__pycache__")
+#: images committed with the docs (the others are written by the examples)
+_COMMITTED = {"explore.png"}
+
+
+def _GENERATED(folder, names):
+    return set(_GENERATED_PATTERNS(folder, names)) - _COMMITTED
 
 
 def _build(tmp_path: Path, run_examples: bool) -> Path:

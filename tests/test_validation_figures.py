@@ -27,6 +27,30 @@ def test_uniaxial_thick_limit_curve_solves_the_paper_polynomial():
     assert uniaxial_thick_limit_curve(np.array([0.4440]))[0] < 0.05
 
 
+
+def test_gent_uniaxial_thick_limit_curve_lies_on_the_gent_path_and_the_limit():
+    """For Gent the point solves both the uni-axial path D0^2 = 2W'(I1)(lam1^2 lam3^4 - 1)
+    and the thick-plate limit; lam3 is found here independently by brentq on the path."""
+    from scipy.optimize import brentq
+
+    import analytic as an
+    gent = an.Gent(Jm=97.2)
+    lam1 = np.array([0.8, 1.5, 2.5, 4.0])
+    D0 = uniaxial_thick_limit_curve(lam1, gent)
+    assert np.isfinite(D0).all()
+    for l1, d in zip(lam1, D0):
+        def path(l3):
+            I1 = l1**2 + l3**2 + 1 / (l1 * l3) ** 2
+            return 2 * float(gent.dW(I1)) * (l1**2 * l3**4 - 1) - d**2
+        b = 100.2 - l1**2                   # lam3^2 where I1 = 3 + Jm (locking)
+        top = np.sqrt(0.5 * (b + np.sqrt(b**2 - 4 / l1**2))) * (1 - 1e-12)
+        l3 = brentq(path, l1**-0.5, top, xtol=1e-15)
+        # both sides are smooth in lam3 and the bisection runs to machine precision in lam3:
+        # 1e-8 relative leaves room for the conditioning of the path near the locking
+        assert abs(float(an.thick_limit_D0_uniaxial(l1, l3, gent)) - d) < 1e-8 * d
+    # the Gent plate stiffens: its limit lies above the neo-Hookean one at every lam1
+    assert (D0 > uniaxial_thick_limit_curve(lam1)).all()
+
 def test_uniaxial_voltage_locus_is_det_H_star_zero():
     lam1, D0, E0 = uniaxial_voltage_locus("neo-Hookean", s=np.linspace(0.0, 4.0, 9))
     lam3 = ((1 + D0**2) / lam1**2) ** 0.25

@@ -1,5 +1,5 @@
 """The ``skfem-dielectric`` command line: ``list | curves | simulate | validate | bench |
-wrinkling-fe | buckling | post-buckling``.
+explore | wrinkling-fe | buckling | post-buckling``.
 
 Every subcommand has ``--help``. Only this module prints, and it writes files
 only into the folder given by ``--out``.
@@ -18,6 +18,7 @@ import sys
 import threading
 import time
 from concurrent.futures import CancelledError
+import webbrowser
 from importlib.metadata import PackageNotFoundError, version
 from pathlib import Path
 
@@ -31,6 +32,7 @@ from .sweep import validate
 from .studies.commands import STUDY_COMMANDS, add_study_commands
 from .studies.extra_cases import EXTRA_CASES
 from .options import check_mesh, load_targets, out_dir, positive, solver_name
+from .explore import INSTALL_HINT, export_html, load_results, make_server, require_bokeh
 
 __all__ = ["main", "build_parser", "EXIT_CODES"]
 
@@ -168,6 +170,19 @@ def build_parser() -> argparse.ArgumentParser:
     s.add_argument("--format", dest="fmt", choices=["vtu", "xdmf"], default="vtu",
                    help="one .vtu per step with a .pvd index, or one XDMF time series")
     s.add_argument("--out", required=True, type=out_dir, help="output folder")
+
+    e = add("explore", "the paper's theory live in a browser (needs the 'explore' extra)",
+            "Serve a page on 127.0.0.1 whose panels follow the model, Jm, control, s, alpha "
+            "and lam widgets: equi-biaxial D0-lam and E0-lam with the det H* = 0 locus and "
+            "the E0 maximum, the Keplinger plate's uni-axial curve with the wrinkling limits, "
+            "the dispersion D0_c(kh) (docs/explore.md). " + INSTALL_HINT + ".")
+    e.add_argument("--results", default=None, metavar="DIR",
+                   help="a `validate` output folder: FE dots and P33/buckling markers on top")
+    e.add_argument("--port", type=int, default=5006, help="TCP port on 127.0.0.1")
+    e.add_argument("--no-browser", action="store_true", help="do not open a browser")
+    e.add_argument("--export", default=None, metavar="FILE.html",
+                   help="write the panels at the paper's parameters as one HTML file "
+                        "(BokehJS inline) and exit, instead of serving")
 
     b = add("bench", "time one Keplinger ramp (DOFs, iterations, seconds)",
             "Time the Keplinger plate ramp on a given mesh and solver; prints the linear "
@@ -338,6 +353,25 @@ def _cmd_simulate(args) -> int:
     return 0
 
 
+def _cmd_explore(args) -> int:
+    require_bokeh()
+    results = load_results(args.results)
+    if args.export:
+        print(export_html(args.export, results))
+        return 0
+    server = make_server(results, port=args.port)
+    server.start()
+    url = f"http://127.0.0.1:{args.port}/"
+    print(f"explore: {url} (Ctrl-C stops the server)", flush=True)
+    if not args.no_browser:
+        webbrowser.open(url)
+    try:
+        server.io_loop.start()
+    except KeyboardInterrupt:
+        print("explore: stopped")
+    return 0
+
+
 def _cmd_bench(args) -> int:
     positive("--steps", args.steps, integer=True)
     positive("--D0-max", args.D0_max)
@@ -403,7 +437,7 @@ def main(argv: list[str] | None = None) -> int:
     parser = build_parser()
     args = parser.parse_args(argv)
     cmd = {"list": _cmd_list, "curves": _cmd_curves, "validate": _cmd_validate,
-           "simulate": _cmd_simulate, "bench": _cmd_bench,
+           "simulate": _cmd_simulate, "bench": _cmd_bench, "explore": _cmd_explore,
            **STUDY_COMMANDS}[args.command]
     prefix = f"skfem-dielectric {args.command}: error:"
     atexit.unregister(_remove_openmp_registration)      # once per process

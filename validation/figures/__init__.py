@@ -18,7 +18,8 @@ from .equibiaxial_wrinkling import plot_equibiaxial_wrinkling
 from .p33_profiles import plot_p33_profiles
 from .stretch_maps import plot_stretch_maps
 from .uniaxial_loading import plot_uniaxial_loading, uniaxial_voltage_locus
-from .uniaxial_wrinkling import plot_uniaxial_wrinkling, uniaxial_thick_limit_curve
+from .uniaxial_wrinkling import (RunMarks, keplinger_run_marks, plot_uniaxial_wrinkling,
+                                 uniaxial_thick_limit_curve)
 
 __all__ = [
     "plot_equibiaxial_loading",
@@ -31,6 +32,8 @@ __all__ = [
     "breakdown_map_figure",
     "homogeneous_wrinkling_D0",
     "uniaxial_thick_limit_curve",
+    "keplinger_run_marks",
+    "RunMarks",
     "uniaxial_voltage_locus",
     "case_figure",
     "figure_caption",

@@ -30,7 +30,7 @@ import analytic as an
 __all__ = [
     "PAPER_FIGURE", "MODEL_NAME", "BREAKDOWN_NAME", "BUCKLING_NAME", "NEWTON_NAME", "LIMIT_NAME",
     "VARIANT_MARKER", "BREAKDOWN_MARKER", "new_axes", "colors", "fe_rows", "fe_dots", "fe_E0", "loading_fe_dots",
-    "variant_legend", "wrinkling_zone", "finish_loading_axes", "refine_start", "equibiaxial_curve", "uniaxial_curve", "plate_mesh_text",
+    "variant_legend", "wrinkling_zone_outline", "wrinkling_zone", "finish_loading_axes", "refine_start", "equibiaxial_curve", "uniaxial_curve", "plate_mesh_text",
     "mesh_caption", "mesh_text", "run_caption", "add_caption", "shared_legend", "tag_panels",
     "save_figure",
 ]
@@ -131,16 +131,24 @@ def variant_legend(ax, fe):
             for v in VARIANT_MARKER if v in set(fe["variant"])]
 
 
-def wrinkling_zone(ax, lk, thick, ln, thin, D0max):
-    """Shade the wrinkling zone between the thick-plate limit ``(lk, thick)`` and the
-    thin-plate limit ``(ln, thin)`` up to ``D0max`` and draw the thick-plate limit (paper
-    Figs. gent-equi-biaxial and uni-axial-ideal)."""
+def wrinkling_zone_outline(lk, thick, ln, thin, D0max):
+    """The outline ``(xs, ys)`` of the wrinkling zone between the thick-plate limit
+    ``(lk, thick)`` and the thin-plate limit ``(ln, thin)`` up to ``D0max`` (paper Figs.
+    gent-equi-biaxial and uni-axial-ideal); ``None`` if either limit has no point there."""
     ok_k = np.isfinite(thick) & (thick <= D0max)
     ok_n = np.isfinite(thin) & (thin <= D0max)
-    if ok_k.any() and ok_n.any():
-        xs = np.concatenate([lk[ok_k], ln[ok_n][::-1]])
-        ys = np.concatenate([thick[ok_k], thin[ok_n][::-1]])
-        ax.fill(xs, ys, color="0.85", zorder=0, label="wrinkling zone")
+    if not (ok_k.any() and ok_n.any()):
+        return None
+    return (np.concatenate([lk[ok_k], ln[ok_n][::-1]]),
+            np.concatenate([thick[ok_k], thin[ok_n][::-1]]))
+
+
+def wrinkling_zone(ax, lk, thick, ln, thin, D0max):
+    """Shade the wrinkling zone (:func:`wrinkling_zone_outline`) and draw the thick-plate
+    limit (paper Figs. gent-equi-biaxial and uni-axial-ideal)."""
+    zone = wrinkling_zone_outline(lk, thick, ln, thin, D0max)
+    if zone is not None:
+        ax.fill(*zone, color="0.85", zorder=0, label="wrinkling zone")
     ax.plot(lk, thick, "--", color="tab:blue", label="thick-plate limit")
 
 

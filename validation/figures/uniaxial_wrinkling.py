@@ -4,6 +4,8 @@ clamped plate, its ``P33`` breakdown and its buckling load."""
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 import numpy as np
 from matplotlib.lines import Line2D
 
@@ -18,27 +20,44 @@ from .common import (BREAKDOWN_MARKER, BREAKDOWN_NAME, BUCKLING_NAME, MODEL_NAME
                      VARIANT_MARKER, colors, new_axes, refine_start, uniaxial_curve,
                      variant_legend, wrinkling_zone)
 
-__all__ = ["uniaxial_thick_limit_curve", "plot_uniaxial_wrinkling"]
+__all__ = ["uniaxial_thick_limit_curve", "RunMarks", "keplinger_run_marks", "plot_uniaxial_wrinkling"]
 
 
 def uniaxial_thick_limit_curve(lam1, model="neo-Hookean", direction="parallel"):
     """``D0`` of the thick-plate limit on the uni-axial path, per ``lam1``.
 
-    Solves Eq. (thick-uni-axial) together with Eq. (uni-axial-loading)_2,
-    ``D0^2 = lam1^2 lam3^4 - 1``, for ``lam3`` by vectorised bisection of
-    ``thick_limit_D0_uniaxial(lam1, lam3) - sqrt(lam1^2 lam3^4 - 1)`` (paper
-    Fig. uni-axial-ideal); ``nan`` where no root is bracketed.
+    Solves Eq. (thick-uni-axial) together with the uni-axial path
+    ``D0^2 = 2W'(I1) (lam1^2 lam3^4 - 1)`` (Eq. (uni-axial-loading)_2,
+    ``D0^2 = lam1^2 lam3^4 - 1``, for neo-Hookean) for ``lam3`` by vectorised bisection of
+    ``thick_limit_D0_uniaxial(lam1, lam3) - D0(path)`` (paper Fig. uni-axial-ideal);
+    ``nan`` where no root is bracketed (for Gent the bracket stays below the locking).  ``model`` is a FE
+    material name (:func:`~validation.cases.analytic_model`) or an :mod:`analytic` model.
     """
-    m = analytic_model(model)
+    m = analytic_model(model) if isinstance(model, str) else an.as_model(model)
     lam1 = np.asarray(lam1, dtype=float)
     lo = lam1 ** -0.5 * (1 + 1e-12)       # D0 = 0 on the path
     hi = lo * 20.0
+    I1max = m.I1_max()
+    if np.isfinite(I1max):                # Gent: the bracket stays below the locking I1
+        b = I1max - lam1**2
+        disc = b**2 - 4.0 / lam1**2       # I1 = lam1^2 + x + 1/(lam1^2 x) = I1max, x = lam3^2
+        x_lock = np.where((b > 0) & (disc > 0), 0.5 * (b + np.sqrt(np.abs(disc))), 0.0)
+        hi = np.where(x_lock > lo**2, np.minimum(hi, np.sqrt(x_lock) * (1 - 1e-9)), lo)
 
     def g(l3):
         th = np.asarray(an.thick_limit_D0_uniaxial(lam1, l3, m, direction=direction), dtype=float)
-        path = np.sqrt(np.maximum(lam1**2 * l3**4 - 1.0, 0.0))
+        I1 = lam1**2 + l3**2 + 1.0 / (lam1 * l3) ** 2
+        path = np.sqrt(np.maximum(2 * m.dW(I1) * (lam1**2 * l3**4 - 1.0), 0.0))
         return th - path
 
+    if np.isfinite(I1max):
+        # the difference turns positive again near the locking: bracket its first sign
+        # change on a geometric scan from the D0 = 0 state
+        grid = lo * (hi / lo) ** np.linspace(0.0, 1.0, 48)[:, None]
+        vals = np.array([g(row) for row in grid])
+        change = np.sign(vals[1:]) != np.sign(vals[:1])
+        k = np.where(change.any(axis=0), np.argmax(change, axis=0) + 1, grid.shape[0] - 1)
+        hi = grid[k, np.arange(lam1.size)] if lam1.ndim else grid[k, 0]
     glo, ghi = g(lo), g(hi)
     ok = np.isfinite(glo) & np.isfinite(ghi) & (np.sign(glo) != np.sign(ghi))
     a, b, ga = lo.copy(), hi.copy(), glo.copy()
@@ -50,7 +69,8 @@ def uniaxial_thick_limit_curve(lam1, model="neo-Hookean", direction="parallel"):
         ga = np.where(left, gm, ga)
         b = np.where(left, b, mid)
     l3 = 0.5 * (a + b)
-    D0 = np.sqrt(np.maximum(lam1**2 * l3**4 - 1.0, 0.0))
+    I1 = lam1**2 + l3**2 + 1.0 / (lam1 * l3) ** 2
+    D0 = np.sqrt(np.maximum(2 * m.dW(I1) * (lam1**2 * l3**4 - 1.0), 0.0))
     return np.where(ok, D0, np.nan)
 
 
@@ -80,6 +100,56 @@ def _measured_loads(ax, alphas, m, D0max):
         out.append(Line2D([], [], ls="none", color="k", marker="v", ms=8,
                           label=f"{NEWTON_NAME}, plain form (20 x 1 x 10)"))
     return out
+
+
+@dataclass(frozen=True)
+class RunMarks:
+    """What the Keplinger figure draws of one FE run (one ``alpha``, one variant).
+
+    Attributes
+    ----------
+    dots : tuple of ndarray
+        ``(lam1_fe, D0)`` of the converged rows.
+    breakdown : tuple of float or None
+        ``(lam1, D0)`` of the "P33 breakdown" (:data:`BREAKDOWN_NAME`): the first row with
+        ``P33/mu < -0.01`` near the clamps, else the last converged row before a target
+        the solver could not reach; ``None`` if the run has neither.
+    buckling : tuple of float or None
+        ``(lam1, D0_b)`` of the "buckling load" (:data:`BUCKLING_NAME`), the zero crossing
+        of the whole plate's lowest physical eigenvalue (column ``physical_eig``);
+        ``None`` if the run has no such crossing.
+    """
+
+    dots: tuple
+    breakdown: tuple | None
+    buckling: tuple | None
+
+
+def keplinger_run_marks(fe, alpha: float, variant: str) -> RunMarks | None:
+    """The dots, ``P33`` breakdown and buckling load of the run ``(alpha, variant)`` of a
+    ``uni-axial-ideal`` table (paper Fig. uni-axial-ideal); ``None`` if the table has no
+    such run."""
+    if fe is None or not len(fe.get("run", [])):
+        return None
+    sel = np.isclose(fe["alpha"], alpha) & (fe["variant"] == variant)
+    if not sel.any():
+        return None
+    conv = np.array([bool(x) for x in fe["converged"][sel]])
+    brk = np.array([bool(x) for x in fe["breakdown"][sel]])
+    lam_fe, D0_fe = fe["lam1_fe"][sel], fe["D0"][sel]
+    breakdown = None
+    if brk.any() or not conv.all():
+        # the first compressive step, else the last converged one before the failure
+        i = int(np.argmax(brk)) if brk.any() else max(int(np.argmin(conv)) - 1, 0)
+        x = lam_fe[i] if np.isfinite(lam_fe[i]) else fe["lam1_analytic"][sel][i]
+        breakdown = (x, D0_fe[i])
+    ev = fe["physical_eig"][sel] if "physical_eig" in fe else np.zeros(0)
+    D0b = buckling_crossing(D0_fe, ev) if np.isfinite(ev).any() else None
+    buckling = None
+    if D0b is not None:
+        ok = conv & np.isfinite(lam_fe)
+        buckling = (np.interp(D0b, D0_fe[ok], lam_fe[ok]), D0b)
+    return RunMarks((lam_fe[conv], D0_fe[conv]), breakdown, buckling)
 
 
 def plot_uniaxial_wrinkling(fe=None, alphas=ALPHAS, ax=None, D0max=7.0):
@@ -120,26 +190,18 @@ def plot_uniaxial_wrinkling(fe=None, alphas=ALPHAS, ax=None, D0max=7.0):
         if fe is None or not len(fe.get("run", [])):
             continue
         for v in VARIANT_MARKER:
-            sel = np.isclose(fe["alpha"], a) & (fe["variant"] == v)
-            if not sel.any():
+            marks = keplinger_run_marks(fe, a, v)
+            if marks is None:
                 continue
-            conv = np.array([bool(x) for x in fe["converged"][sel]])
-            brk = np.array([bool(x) for x in fe["breakdown"][sel]])
-            lam_fe, D0_fe = fe["lam1_fe"][sel], fe["D0"][sel]
-            ax.plot(lam_fe[conv], D0_fe[conv], ls="none", color=c, **VARIANT_MARKER[v])
-            if brk.any() or not conv.all():
-                # the first compressive step, else the last converged one before the failure
-                i = int(np.argmax(brk)) if brk.any() else max(int(np.argmin(conv)) - 1, 0)
-                x = lam_fe[i] if np.isfinite(lam_fe[i]) else fe["lam1_analytic"][sel][i]
-                ax.plot(x, D0_fe[i], ls="none", color="red", mfc="none", mew=1.6, zorder=5,
-                        clip_on=False, **BREAKDOWN_MARKER.get(v, BREAKDOWN_MARKER["coupled"]))
+            ax.plot(*marks.dots, ls="none", color=c, **VARIANT_MARKER[v])
+            if marks.breakdown is not None:
+                ax.plot(*marks.breakdown, ls="none", color="red", mfc="none", mew=1.6,
+                        zorder=5, clip_on=False,
+                        **BREAKDOWN_MARKER.get(v, BREAKDOWN_MARKER["coupled"]))
                 broken.add(v)
-            ev = fe["physical_eig"][sel] if "physical_eig" in fe else np.zeros(0)
-            D0b = buckling_crossing(D0_fe, ev) if np.isfinite(ev).any() else None
-            if D0b is not None:       # the stability-based breakdown: a red cross
-                ok = conv & np.isfinite(lam_fe)
-                ax.plot(np.interp(D0b, D0_fe[ok], lam_fe[ok]), D0b, ls="none", color="red",
-                        marker="x", ms=11, mew=2.4, zorder=6, clip_on=False)
+            if marks.buckling is not None:       # the stability-based breakdown: a red cross
+                ax.plot(*marks.buckling, ls="none", color="red", marker="x", ms=11, mew=2.4,
+                        zorder=6, clip_on=False)
                 buckled.append(f"{a:g}")
     drawn = _measured_loads(ax, alphas, m, D0max) if fe is not None and len(
         fe.get("run", [])) else []
