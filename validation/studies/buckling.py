@@ -173,7 +173,7 @@ PLAIN = RowFile("buckling-plain.csv", tuple(PLAIN_COLUMNS), ("alpha", "mesh"))
 
 
 def charge_targets(D0_step: float, D0_max: float) -> np.ndarray:
-    """The charge targets ``D0_step, 2 D0_step, ... <= D0_max`` of the ramp (checked:
+    """The charge targets of the ramp, multiples of ``D0_step`` up to ``D0_max`` (checked:
     ``ValueError`` naming ``--D0-step`` for more than
     :data:`~validation.options.MAX_TARGETS`)."""
     return load_targets("--D0-step", D0_step, D0_max, D0_step)
