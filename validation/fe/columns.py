@@ -19,7 +19,7 @@ import skfem_dielectric.models.plate.modes as fe_modes
 
 from ..records import StepRecord
 from ..specs import RunSpec
-from .model import H, L1, is_membrane
+from .model import BUCKLING_GRAD_DIV, H, L1, is_membrane
 
 __all__ = ["stability_columns", "stability_monitor", "plate_buckling_columns", "whole_plate_verdict", "membrane_stretch_maps", "step_record"]
 
@@ -180,14 +180,15 @@ def plate_buckling_columns(spec: RunSpec, problem, x, load) -> dict:
     ``n_negative_plate`` (negative eigenvalues over every symmetry class of the eighth
     model), ``physical_eig`` (the lowest eigenvalue whose mode is classified physical,
     :func:`skfem_dielectric.models.plate.modes.lowest_physical`; ``nan`` if none of the computed
-    ones is) and ``physical_class`` (its symmetry class).  Empty for other runs, and where
+    ones is) and ``physical_class`` (its symmetry class), of the grad-div stabilised tangent
+    (:data:`~validation.fe.model.BUCKLING_GRAD_DIV`) at the plain state.  Empty for other runs, and where
     the spectrum cannot be computed (a ``ValueError``, e.g. a class tangent too large to
     be counted without PARDISO)."""
     if not (spec.buckling and spec.geometry == "uniaxial" and not is_membrane(spec)
             and problem.symmetric):
         return {}
     try:
-        lowest = fe_modes.lowest_physical(problem, x, load)
+        lowest = fe_modes.lowest_physical(problem, x, load, grad_div=BUCKLING_GRAD_DIV)
     except ValueError:
         return {}
     return {"n_negative_plate": int(lowest.n_negative), "physical_eig": lowest.eigenvalue,

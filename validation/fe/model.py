@@ -24,7 +24,8 @@ from skfem_dielectric.gallery.loads import keplinger_s
 
 from ..specs import GENT_JM, KEPLINGER, RunSpec
 
-__all__ = ["with_dead_load", "is_membrane", "build_problem", "ramp_targets", "ramp_settings",
+__all__ = ["BUCKLING_GRAD_DIV", "BUCKLING_TOL", "BUCKLING_NEWTON", "with_dead_load",
+           "is_membrane", "build_problem", "ramp_targets", "ramp_settings",
            "pardiso_installed"]
 
 #: the Keplinger plate, mm: the gallery's plate
@@ -42,9 +43,17 @@ RTOL = {"equibiaxial": EQUIBIAXIAL_RTOL, "uniaxial": KEPLINGER_RTOL}
 #: breakdown it can jump to another branch of the clamped plate).  The FE dots move within
 #: the Newton tolerance (timings: docs/performance.md).
 CHORD = KEPLINGER_CHORD
-#: grad-div stabilisation (units of mu) of the uni-axial runs analysed for buckling
-#: (``RunSpec.buckling``) and of the studies ``buckling`` and ``post-buckling``
+#: grad-div stabilisation (units of mu) of the tangent with which the whole plate's
+#: spectrum of a plain (unstabilised) state is analysed, in the uni-axial runs analysed for
+#: buckling (``RunSpec.buckling``) and the study ``buckling``, and of the ramp of the study
+#: ``post-buckling`` (docs/stability.md, "One state per row")
 BUCKLING_GRAD_DIV = 10.0
+#: the buckling load ``D0_b`` is located to this tolerance in ``D0``
+#: (:func:`skfem_dielectric.studies.buckling.buckling_load`), by the harness and the study
+#: ``buckling`` alike
+BUCKLING_TOL = 1e-4
+#: Newton settings of the trial states of that location
+BUCKLING_NEWTON = fe.RampSettings(rtol=1e-9, max_cutbacks=6, max_iter=25)
 
 
 def with_dead_load(spec: RunSpec) -> RunSpec:
@@ -111,12 +120,11 @@ def build_problem(spec: RunSpec):
     if spec.geometry == "equibiaxial":
         return fe.gallery.equibiaxial_problem(model=spec.model, Jm=GENT_JM, elements=el, **coupling)
     if spec.geometry == "uniaxial":
-        # the run analysed for buckling is the grad-div form of the buckling study
-        # (docs/validation.md): its tangent is the Hessian of its own state, and Newton
-        # passes the clamp/free-edge corner
+        # the plain form for every run, also the one analysed for buckling: its state is
+        # the one the paper's P33 criterion reads; the whole plate's spectrum of that state
+        # is taken with the stabilised tangent (BUCKLING_GRAD_DIV, docs/stability.md)
         return fe.gallery.keplinger_problem(model=spec.model, Jm=GENT_JM, size=(L1, H, L3),
-                                            elements=el, grad_div=BUCKLING_GRAD_DIV
-                                            if spec.buckling else 0.0, **coupling)
+                                            elements=el, **coupling)
     raise ValueError(f"the 3D plate has no geometry {spec.geometry!r}")
 
 

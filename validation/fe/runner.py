@@ -5,7 +5,11 @@ problem (:func:`~validation.fe.model.build_problem`), ramps the load (pre-load f
 the charge targets) with :func:`skfem_dielectric.solvers.ramp.ramp` and reports each
 converged target as a :class:`~validation.records.StepRecord`
 (:func:`~validation.fe.columns.step_record`). The saved state is the ramp's reduced
-solution vector and its load, so a resumed ramp continues bit for bit.
+solution vector and its load, so a resumed ramp continues bit for bit.  A run analysed
+for buckling (``RunSpec.buckling``) locates its buckling load ``D0_b`` at the first state
+whose lowest physical eigenvalue is negative, between that state and the one before it
+(:func:`_located_D0_b`): both are at hand also in a resumed ramp, so the located value is
+the same.
 """
 
 from __future__ import annotations
@@ -16,9 +20,12 @@ import numpy as np
 
 import skfem_dielectric as fe
 
+from skfem_dielectric.studies.buckling import buckling_load
+
 from ..records import RunOutcome
 from .columns import step_record, stability_monitor
-from .model import build_problem, ramp_settings, ramp_targets, with_dead_load
+from .model import (BUCKLING_GRAD_DIV, BUCKLING_NEWTON, BUCKLING_TOL, build_problem,
+                    ramp_settings, ramp_targets, with_dead_load)
 
 __all__ = ["run_fe"]
 
@@ -34,6 +41,22 @@ def _analysis(monitor, step, load):
             or not np.array_equal(np.asarray(monitor.history[-1][0], dtype=float), load):
         return None
     return monitor.last
+
+
+def _located_D0_b(spec, problem, prev, cur, linear_solver) -> float:
+    """The buckling load between the states ``prev`` and ``cur`` (``(x, load)`` pairs), or
+    ``nan`` when ``prev`` is already past it (its crossing was located at ``prev``'s own
+    row) or there is no ``prev``: the study ``buckling``'s location
+    (:func:`skfem_dielectric.studies.buckling.buckling_load`, the stabilised tangent
+    :data:`~validation.fe.model.BUCKLING_GRAD_DIV`, to
+    :data:`~validation.fe.model.BUCKLING_TOL`), the trial states solved from ``prev``."""
+    if prev is None:
+        return float("nan")
+    method = "pardiso" if linear_solver == "pardiso" else "auto"
+    bl = buckling_load(problem, [prev, cur], grad_div=BUCKLING_GRAD_DIV, method=method,
+                       tol=BUCKLING_TOL, linear_solver=linear_solver,
+                       settings=BUCKLING_NEWTON)
+    return float(bl.D0_b)
 
 
 def run_fe(spec, start, state, on_step, linear_solver="superlu"):
@@ -71,6 +94,8 @@ def run_fe(spec, start, state, on_step, linear_solver="superlu"):
                              ) from None
 
     monitor = stability_monitor(spec, problem, linear_solver)
+    # the previous target's state (for the location of D0_b) and whether it is done
+    track = {"prev": None if state is None else (x0, start_load), "located": False}
 
     def cb(step):
         load = np.asarray(step.load, dtype=float)
@@ -79,8 +104,14 @@ def run_fe(spec, start, state, on_step, linear_solver="superlu"):
             # target the ramp failed to reach (the failed target is recorded as a row)
             return
         i = spec.D0.index(float(load[1]))
-        if on_step(i, step_record(spec, problem, step, _analysis(monitor, step, load)),
-                   {"x": step.x, "load": load}):
+        rec = step_record(spec, problem, step, _analysis(monitor, step, load))
+        if spec.buckling and not track["located"] and np.isfinite(rec.physical_eig) \
+                and rec.physical_eig < 0:
+            rec.D0_b = _located_D0_b(spec, problem, track["prev"], (step.x, load),
+                                     linear_solver)
+            track["located"] = True
+        track["prev"] = (step.x, load)
+        if on_step(i, rec, {"x": step.x, "load": load}):
             raise _Stop
 
     try:

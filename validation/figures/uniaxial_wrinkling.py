@@ -12,7 +12,6 @@ from analytic.units import keplinger_s
 
 from ..cases import ALPHAS, analytic_model
 from ..specs import KEPLINGER
-from ..records import buckling_crossing
 from .common import (BREAKDOWN_MARKER, BREAKDOWN_NAME, BUCKLING_NAME, MODEL_NAME,
                      VARIANT_MARKER, colors, new_axes, refine_start, uniaxial_curve,
                      variant_legend, wrinkling_zone)
@@ -64,7 +63,7 @@ def plot_uniaxial_wrinkling(fe=None, alphas=ALPHAS, ax=None, D0max=7.0):
     the first step with ``P33/mu < -0.01`` near the clamps or that the solver could not
     reach), and a red cross at the "buckling load"
     ``D0_b`` (:data:`BUCKLING_NAME`) of the runs analysed with the whole plate's spectrum
-    (the zero crossing of the lowest physical eigenvalue, column ``physical_eig``).
+    (the located zero crossing of the lowest physical eigenvalue, column ``D0_b``).
     The FE models are named by :data:`MODEL_NAME` in the legend.
 
     Returns
@@ -101,9 +100,10 @@ def plot_uniaxial_wrinkling(fe=None, alphas=ALPHAS, ax=None, D0max=7.0):
                 ax.plot(x, D0_fe[i], ls="none", color="red", mfc="none", mew=1.6, zorder=5,
                         clip_on=False, **BREAKDOWN_MARKER.get(v, BREAKDOWN_MARKER["coupled"]))
                 broken.add(v)
-            ev = fe["physical_eig"][sel] if "physical_eig" in fe else np.zeros(0)
-            D0b = buckling_crossing(D0_fe, ev) if np.isfinite(ev).any() else None
-            if D0b is not None:       # the stability-based breakdown: a red cross
+            located = fe["D0_b"][sel][np.isfinite(fe["D0_b"][sel])] if "D0_b" in fe \
+                else np.zeros(0)
+            if located.size:          # the stability-based breakdown: a red cross
+                D0b = float(located[0])
                 ok = conv & np.isfinite(lam_fe)
                 ax.plot(np.interp(D0b, D0_fe[ok], lam_fe[ok]), D0b, ls="none", color="red",
                         marker="x", ms=11, mew=2.4, zorder=6, clip_on=False)

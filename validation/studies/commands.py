@@ -34,9 +34,9 @@ def add_study_commands(add) -> None:
     w.add_argument("--out", required=True, type=out_dir, help="output folder")
 
     k = add("buckling", "first physical buckling load of the clamped plate per weight",
-            "Ramp the clamped Keplinger plate (eighth model, grad-div 10) for each --alpha on "
-            "each mesh, scan its states with the whole plate's spectrum (every symmetry "
-            "class), locate the first physical buckling load D0_b to 1e-4 and compare it with "
+            "Ramp the clamped Keplinger plate (eighth model, the plain form) for each --alpha "
+            "on each mesh, scan its states with the whole plate's spectrum (every symmetry "
+            "class, grad-div 10 stabilised tangent), locate the first physical buckling load D0_b to 1e-4 and compare it with "
             "the onsets of compressive P33 and the Newton limit: DIR/buckling.csv (one row "
             "per alpha x mesh, written as each is done; a rerun skips the rows present), "
             "DIR/buckling-scan.csv and DIR/buckling.png|pdf (redrawn after each row). "
