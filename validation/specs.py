@@ -73,12 +73,14 @@ class RunSpec:
         Also analyse every converged state of the clamped plate with the whole plate's
         spectrum (every symmetry class of the eighth model,
         :func:`skfem_dielectric.models.plate.modes.lowest_physical`): the columns
-        ``n_negative_plate``, ``physical_eig`` and ``physical_class``, and ``D0_b``, the
-        stability-based breakdown where that eigenvalue crosses zero, located to
-        ``1e-4`` (:func:`skfem_dielectric.studies.buckling.buckling_load`, as the study
-        ``buckling``).  The state is the plain form, as every other run's; its spectrum
-        is that of the grad-div stabilised tangent (``grad_div = 10``) at that state
-        (docs/stability.md, "One state per row").
+        ``n_negative_plate``, ``physical_eig``, ``physical_class`` and ``stable``, and
+        ``D0_b``, the stability-based breakdown where that eigenvalue crosses zero,
+        located to ``1e-4`` (:func:`skfem_dielectric.studies.buckling.buckling_load`, as
+        the study ``buckling``).  Those columns are of the grad-div form
+        (``grad_div = 10``, :func:`validation.fe.model.buckling_problem`) ramped to the
+        same loads, so that the analysed tangent is the Hessian of its own state; every
+        other column is of the plain form, as in every other run (docs/stability.md,
+        "Which state each column is of").
     """
 
     geometry: str

@@ -46,6 +46,8 @@ def csv_columns(case: Case) -> list[str]:
     :func:`validation.fe.plate_buckling_columns`; empty for the others); a case with such
     a run (``RunSpec.buckling``) also ``D0_b``, the run's buckling load located to
     ``1e-4`` where that eigenvalue crosses zero, on the row of the first state past it.
+    In such a run the whole plate's columns, ``stable`` and ``D0_b`` are of its grad-div
+    form's state at the row's load, every other column of its plain state.
 
     Parameters
     ----------

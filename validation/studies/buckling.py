@@ -1,17 +1,20 @@
 """Buckling study of the clamped Keplinger plate: first physical buckling load per weight.
 
-For each weight ``alpha`` and mesh the eighth model (the plain form, as the ``validate``
-harness ramps it) is ramped in ``D0``; its states are scanned with the whole plate's
-spectrum of the grad-div stabilised tangent (grad-div 10, docs/stability.md, "One state per
-row"; :func:`skfem_dielectric.studies.buckling.buckling_load`) and the first physical
-buckling load ``D0_b`` located to ``1e-4``, as the harness locates it.  Next to it: the onsets of compressive
+For each weight ``alpha`` and mesh the eighth model (grad-div 10, which lets Newton pass
+the clamp/free-edge corner) is ramped in ``D0``; its states are scanned with the whole
+plate's spectrum of their own tangent, the Hessian of the stabilised energy whose
+equilibria they are (:func:`skfem_dielectric.studies.buckling.buckling_load`), and the first
+physical buckling load ``D0_b`` located to ``1e-4``, as the ``validate`` harness locates
+it on its run analysed for buckling (same form, tolerance and Newton settings;
+docs/stability.md, "Which state each column is of").  Next to it: the onsets of compressive
 ``P33/mu < -BREAKDOWN_TOL`` (the paper's breakdown, Conroy Broderick, Righi, Destrade and
 Ogden, "Stability analysis of charge-controlled soft dielectric plates", Int. J. Eng.
 Sci., 2020, Sec. 6) on five sets of points, and where Newton stops.
 
 Files (all in ``out``): ``buckling.csv`` (one row per alpha x mesh, appended as each is
 done; a rerun skips the rows present), ``buckling-scan.csv`` (every scanned state),
-``.modes/<alpha>_<mesh>.npz`` (the critical mode's top-face deflection) and
+``buckling-plain.csv`` (the same ramp without grad-div: its ``P33`` onsets and Newton
+limit), ``.modes/<alpha>_<mesh>.npz`` (the critical mode's top-face deflection) and
 ``buckling.png``.
 """
 
@@ -33,8 +36,8 @@ from ..figures import save_figure
 from ..store import append_rows, read_rows
 from ..table import BREAKDOWN_TOL
 
-__all__ = ["COLUMNS", "SCAN_COLUMNS", "P33_SETS", "p33_measures", "onset",
-           "run_one", "run_buckling", "richardson", "buckling_figure"]
+__all__ = ["COLUMNS", "SCAN_COLUMNS", "PLAIN_COLUMNS", "P33_SETS", "p33_measures", "onset",
+           "run_one", "run_plain", "run_buckling", "richardson", "buckling_figure"]
 
 #: where min P33/mu is taken: centre line, clamp line (one element inside the clamp),
 #: centre line outside the clamps' 2H layer, all quadrature points outside it, centre
@@ -45,6 +48,9 @@ COLUMNS = (["alpha", "mesh", "D0_b", "class", "lowest_eig", "corner_share", "mes
            + ["newton_limit", "D0_max", "seconds"])
 SCAN_COLUMNS = (["alpha", "mesh", "D0", "n_negative", "lowest", "physical", "physical_class",
                  "corner_share", "mesh_scale", "lam1"] + [f"P33_{k}" for k in P33_SETS])
+#: the same ramp without grad-div (the harness's form): its P33 onsets and Newton limit
+PLAIN_COLUMNS = (["alpha", "mesh"] + [f"P33_onset_{k}" for k in P33_SETS]
+                 + ["newton_limit", "D0_max", "seconds"])
 #: ``--quick``: the mesh and step of the quick ``validate`` run's alpha = 1 plate, so that
 #: both report the same D0_b
 QUICK = {"alphas": (1.0,), "meshes": ((10, 1, 5),), "D0_step": 0.5,
@@ -95,7 +101,7 @@ def run_one(alpha: float, elements, *, D0_step: float, D0_max: float,
     t0 = time.time()
     D0 = np.round(np.arange(D0_step, D0_max + 1e-9, D0_step), 10)
     res = fe.keplinger_plate(alpha, D0=D0, elements=tuple(elements), symmetry="eighth",
-                             linear_solver=solver,
+                             grad_div=BUCKLING_GRAD_DIV, linear_solver=solver,
                              settings=replace(fe.gallery.KEPLINGER_SETTINGS, max_cutbacks=6,
                                               max_iter=25))
     newton = dict(linear_solver=solver, settings=BUCKLING_NEWTON)
@@ -105,7 +111,7 @@ def run_one(alpha: float, elements, *, D0_step: float, D0_max: float,
     mesh = _mesh_name(elements)
     method = "pardiso" if solver == "pardiso" else "auto"
     bl = buckling_load(pb, [(st.x, st.load) for st in states], method=method,
-                       grad_div=BUCKLING_GRAD_DIV, tol=BUCKLING_TOL, **newton)
+                       tol=BUCKLING_TOL, **newton)
     scan = []
     for st, row in zip(states, bl.scan):
         m = p33_measures(pb, st.x, st.load, st.quantities)
@@ -138,13 +144,36 @@ def run_one(alpha: float, elements, *, D0_step: float, D0_max: float,
     return row, scan
 
 
+def run_plain(alpha: float, elements, *, D0_step: float, D0_max: float,
+              solver: str = "auto") -> dict:
+    """The plain form (``grad_div = 0``, as the validation harness ramps it) on the same
+    targets: its ``P33`` onsets and where Newton stops (``nan``: all targets reached)."""
+    t0 = time.time()
+    D0 = np.round(np.arange(D0_step, D0_max + 1e-9, D0_step), 10)
+    res = fe.keplinger_plate(alpha, D0=D0, elements=tuple(elements), symmetry="eighth",
+                             linear_solver=solver,
+                             settings=replace(fe.gallery.KEPLINGER_SETTINGS, max_cutbacks=6,
+                                              max_iter=25))
+    pb = res.problem
+    states = [st for st in res.steps if np.asarray(st.load)[1] > 0]
+    ms = [p33_measures(pb, st.x, st.load, st.quantities) for st in states]
+    d = [float(np.asarray(st.load)[1]) for st in states]
+    return {"alpha": alpha, "mesh": _mesh_name(elements),
+            **{f"P33_onset_{k}": onset(d, [m[k] for m in ms]) for k in P33_SETS},
+            "newton_limit": (float(np.asarray(res.steps[-1].load)[1]) if not res.converged
+                             else np.nan),
+            "D0_max": D0_max, "seconds": round(time.time() - t0, 1)}
+
+
 def run_buckling(out: Path, *, alphas, meshes, D0_step: float, D0_max: float,
                  solver: str = "auto", progress=None) -> list[dict]:
     """The study: every alpha x mesh not yet in ``out/buckling.csv``, then the figure."""
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
     table = out / "buckling.csv"
+    plain = out / "buckling-plain.csv"
     done = {(r["alpha"], r["mesh"]) for r in read_rows(table)}
+    done_plain = {(r["alpha"], r["mesh"]) for r in read_rows(plain)}
     footer = (f"skfem-dielectric buckling: eighth-model meshes "
               f"{', '.join(_mesh_name(el) for el in meshes)}, D0 step {D0_step:g} up to "
               f"{D0_max:g}, linear solver {solver}")
@@ -161,6 +190,9 @@ def run_buckling(out: Path, *, alphas, meshes, D0_step: float, D0_max: float,
                                 out / ".modes", out / "buckling.png", footer=footer)
                 if progress is not None:
                     progress(row)
+            if key not in done_plain:
+                append_rows(plain, PLAIN_COLUMNS, [run_plain(float(alpha), el, D0_step=D0_step,
+                                                         D0_max=D0_max, solver=solver)])
     rows = read_rows(table)
     if rows:
         buckling_figure(rows, read_rows(out / "buckling-scan.csv"), out / ".modes",

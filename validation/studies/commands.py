@@ -34,12 +34,14 @@ def add_study_commands(add) -> None:
     w.add_argument("--out", required=True, type=out_dir, help="output folder")
 
     k = add("buckling", "first physical buckling load of the clamped plate per weight",
-            "Ramp the clamped Keplinger plate (eighth model, the plain form) for each --alpha "
-            "on each mesh, scan its states with the whole plate's spectrum (every symmetry "
-            "class, grad-div 10 stabilised tangent), locate the first physical buckling load D0_b to 1e-4 and compare it with "
+            "Ramp the clamped Keplinger plate (eighth model, grad-div 10) for each --alpha on "
+            "each mesh, scan its states with the whole plate's spectrum (every symmetry "
+            "class), locate the first physical buckling load D0_b to 1e-4 (as validate locates "
+            "it) and compare it with "
             "the onsets of compressive P33 and the Newton limit: DIR/buckling.csv (one row "
             "per alpha x mesh, written as each is done; a rerun skips the rows present), "
-            "DIR/buckling-scan.csv and DIR/buckling.png|pdf (redrawn after each row). "
+            "DIR/buckling-scan.csv, DIR/buckling-plain.csv (the plain form's P33 onsets) and "
+            "DIR/buckling.png|pdf (redrawn after each row). "
             "Default: alpha = 1, 0.3, 1.5, 0.7, "
             "0.05 on 10x1x5, 20x1x10, 40x1x20, D0 step 0.25; --quick: alpha = 1 on 10x1x5 "
             "(the quick validate run's mesh), D0 step 0.5 (what each costs: "
