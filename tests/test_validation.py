@@ -343,3 +343,41 @@ def test_read_table_verdict_columns_are_bool_even_when_empty(tmp_path):
     assert list(t["stable"]) == [None, None]
     assert list(t["converged"]) == [True, False]
     assert t["D0"].tolist() == [0.5, 1.0]
+
+
+def test_buckling_load_is_the_located_value_of_its_row(tmp_path):
+    # a run analysed for buckling: the summary's D0_b is the runner's located value on
+    # the row of the first state past it (here 2.3, as a location of a nonlinear
+    # eigenvalue gives), not an interpolation of the rows' eigenvalues (0.9 - 0.4 D0
+    # interpolates to 2.25); a resumed run keeps it (the row is verified and kept)
+    spec = vc.RunSpec("uniaxial", "neo-Hookean", "coupled", keplinger_s(1.0, g=9.81),
+                      tuple(np.linspace(0, 4, 9)), alpha=1.0, buckling=True,
+                      stop_at_breakdown=False)
+    case = vc.Case("uni-axial-ideal", "uni-axial-ideal", "test", "uniaxial", quick=(spec,),
+                   full=(spec,))
+    assert csv_columns(case)[-1] == "D0_b"
+    assert "D0_b" not in csv_columns(uni_case())      # only cases with such a run
+
+    def runner(spec, start, state, on_step, interrupt_at=None):
+        for i in range(start, len(spec.D0)):
+            D0 = spec.D0[i]
+            ev = 0.9 - 0.4 * D0
+            rec = StepRecord(D0=D0, lam1=exact_lam("uniaxial", spec.s, D0), lam3=1.0,
+                             min_P33=0.0, physical_eig=ev, n_negative_plate=0,
+                             D0_b=2.3 if ev < 0 and 0.9 - 0.4 * spec.D0[i - 1] >= 0
+                             else float("nan"))
+            on_step(i, rec, {"x": np.zeros(1), "load": np.array([spec.s, D0])})
+            if interrupt_at is not None and D0 >= interrupt_at:
+                raise Interrupted
+        return RunOutcome(True)
+
+    with pytest.raises(Interrupted):
+        run_case(case, tmp_path / "a", runner=lambda *a: runner(*a, interrupt_at=3.0),
+                 progress=False)
+    resumed = run_case(case, tmp_path / "a", runner=runner, progress=False)
+    fresh = run_case(case, tmp_path / "b", runner=runner, progress=False)
+    assert resumed.buckling_D0[spec.key] == fresh.buckling_D0[spec.key] == 2.3
+    assert filecmp.cmp(tmp_path / "a" / "uni-axial-ideal.csv",
+                       tmp_path / "b" / "uni-axial-ideal.csv", shallow=False)
+    t = read_table(tmp_path / "b" / "uni-axial-ideal.csv")
+    assert np.isfinite(t["D0_b"]).sum() == 1 and t["D0"][np.isfinite(t["D0_b"])][0] == 2.5

@@ -3,17 +3,19 @@
 from __future__ import annotations
 
 import filecmp
+from dataclasses import replace
 
 import numpy as np
 import pytest
 
 from validation import cases as vc
 from skfem_dielectric.gallery.loads import keplinger_s
-from validation.fe import (build_problem, pardiso_installed, run_fe,
+from validation.fe import (buckling_problem, build_problem, pardiso_installed, run_fe,
                            stability_columns, whole_plate_verdict)
+from validation.fe.model import BUCKLING_TOL
 from validation.records import StepRecord
 from validation.sweep import run_case
-from validation.table import read_table
+from validation.table import is_breakdown, read_table
 
 
 class Interrupted(Exception):
@@ -171,10 +173,11 @@ def test_a_target_the_ramp_cannot_reach_ends_the_run_with_its_reason():
 
 
 def test_stable_column_never_true_on_a_buckled_state(tmp_path, monkeypatch):
-    # the quick case's alpha = 1 run (10 x 1 x 5 eighth model, whole-plate spectrum at every
-    # state), cut to the states around its buckling load: the model's own (symmetric-class)
-    # tangent has no physical negative eigenvalue on any of them, the whole plate's spectrum
-    # has one from D0 = 3 on (its lowest physical eigenvalue 7.9e-4 at 2.5, -1.4e-3 at 3)
+    # the quick case's alpha = 1 run (10 x 1 x 5 eighth model; its whole-plate columns of
+    # the grad-div form's state at every target), cut to the states around its buckling
+    # load: that state's own (symmetric-class) tangent has no physical negative eigenvalue
+    # on any of them, the whole plate's spectrum has one from D0 = 3 on (its lowest
+    # physical eigenvalue 7.9e-4 at 2.5, -1.4e-3 at 3)
     quick = next(r for r in vc.CASES["uni-axial-ideal"].quick
                  if r.variant == "coupled" and r.alpha == 1.0 and r.buckling)
     spec = vc.RunSpec(quick.geometry, quick.model, quick.variant, quick.s, (0.0, 2.5, 3.0),
@@ -196,9 +199,30 @@ def test_stable_column_never_true_on_a_buckled_state(tmp_path, monkeypatch):
     assert stable == [not bool(e < 0) for e in ev], (list(ev), stable)
     # ... and the symmetric class alone would have said True everywhere (what the column
     # must not report): the rule is what makes the difference
-    problem = build_problem(spec)
-    own = [stability_columns(spec, problem, st["x"], st["load"])["stable"] for _, st in seen]
+    problem = buckling_problem(spec)
+    own = [stability_columns(spec, problem, st["x_stab"], st["load"])["stable"]
+           for _, st in seen]
     assert own == [True] * len(ev)
+    # the two ramps are two states: the plain one's J = 1 holds weakly only, the grad-div
+    # one is pulled towards J = 1 near the clamps, so their vectors differ by far more than
+    # the Newton tolerance (1e-9 relative)
+    assert all(np.linalg.norm(st["x"] - st["x_stab"]) > 1e-6 * np.linalg.norm(st["x"])
+               for _, st in seen)
+    # the buckling load is located (to BUCKLING_TOL) on the row of the first state past it,
+    # inside the bracket 2.5 .. 3 of the two states; no other row holds one
+    located = t["D0_b"]
+    assert np.isnan(located[:2]).all() and 2.5 < located[2] < 3.0, located
+    # a linear interpolation of the two rows' eigenvalues would put it at 2.68: the
+    # eigenvalue is far from linear there, the located value is not that
+    assert abs(located[2] - (2.5 + 0.5 * ev[1] / (ev[1] - ev[2]))) > 10 * BUCKLING_TOL
+    # interrupted after the state before the crossing and resumed: both ramps continue
+    # from the saved vectors and D0_b is located from the saved grad-div state, so the
+    # file is the uninterrupted run's, byte for byte
+    with pytest.raises(Interrupted):
+        run_case(case, tmp_path / "part", quick=True, runner=StopAfter(2), progress=False)
+    run_case(case, tmp_path / "part", quick=True, runner=run_fe, progress=False)
+    assert filecmp.cmp(tmp_path / "uni-axial-ideal.csv", tmp_path / "part" /
+                       "uni-axial-ideal.csv", shallow=False)
 
 
 @pytest.mark.parametrize("variant, symmetry, own, plate, expected", [
@@ -220,3 +244,33 @@ def test_whole_plate_verdict_rule(variant, symmetry, own, plate, expected):
     if plate is not None:
         rec.n_negative_plate, rec.physical_eig = plate
     assert whole_plate_verdict(spec, problem, rec) is expected
+
+
+def test_alpha_1_breaks_down_after_alpha_0_7_and_both_cases_agree(monkeypatch):
+    # the quick run's 3D P33 markers (10 x 1 x 5 eighth model, plain state): the paper's
+    # trend, a heavier weight takes more charge before P33 near the clamps turns
+    # compressive (alpha = 0.7 at D0 = 2, alpha = 1 at 3), and the alpha = 1 run of
+    # uni-axial-ideal (analysed for buckling) and of zs22 are the same state, row by row
+    # (equal to rounding, 1e-12: one problem, one ramp)
+    import validation.fe.runner as runner
+    monkeypatch.setattr(runner, "plate_buckling_columns", lambda *a, **k: {})  # not tested
+    uni = vc.CASES["uni-axial-ideal"].quick
+    a07 = next(r for r in uni if r.variant == "coupled" and r.alpha == 0.7)
+    a1 = next(r for r in uni if r.variant == "coupled" and r.alpha == 1.0)
+    z1 = next(r for r in vc.CASES["zs22"].quick if r.variant == "coupled")
+    assert a1.buckling and not z1.buckling
+    cut = tuple(d for d in z1.D0 if d <= 3.0)
+
+    def onset(spec):
+        rows = []
+
+        def on_step(i, rec, st):
+            rows.append((rec.D0, rec.min_P33_interior, rec.lam1))
+            return is_breakdown(spec, rec)
+        run_fe(replace(spec, D0=cut), 0, None, on_step, linear_solver="superlu")
+        return rows
+
+    r07, r1, rz = onset(a07), onset(a1), onset(z1)
+    assert r07[-1][0] == 2.0 and r1[-1][0] == 3.0 and rz[-1][0] == 3.0
+    assert r1[-1][0] >= r07[-1][0]
+    np.testing.assert_allclose(np.array(r1), np.array(rz), rtol=0, atol=1e-12)

@@ -9,9 +9,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-import numpy as np
-
-__all__ = ["StepRecord", "RunOutcome", "buckling_crossing"]
+__all__ = ["StepRecord", "RunOutcome"]
 
 
 @dataclass
@@ -33,6 +31,8 @@ class StepRecord:
     n_negative_plate: int | None = None
     physical_eig: float = float("nan")
     physical_class: str = ""
+    #: the located buckling load, on the record of the first state past it (else ``nan``)
+    D0_b: float = float("nan")
 
 
 @dataclass
@@ -43,21 +43,3 @@ class RunOutcome:
     reason: str = ""
     failed_D0: float | None = None
 
-
-def buckling_crossing(D0, physical_eig) -> float | None:
-    """The stability-based breakdown of one run: where the whole plate's lowest physical
-    eigenvalue crosses zero, linearly interpolated between the last analysed row above
-    zero and the first below (the first analysed row's ``D0`` if it is already
-    negative); ``None`` if no analysed row is negative."""
-    D0 = np.asarray(D0, dtype=float)
-    ev = np.asarray(physical_eig, dtype=float)
-    rows = np.flatnonzero(np.isfinite(ev))
-    neg = rows[ev[rows] < 0]
-    if not neg.size:
-        return None
-    i = int(neg[0])
-    before = rows[rows < i]
-    if not before.size:
-        return float(D0[i])
-    j = int(before[-1])
-    return float(D0[j] + (D0[i] - D0[j]) * ev[j] / (ev[j] - ev[i]))

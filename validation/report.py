@@ -175,9 +175,9 @@ def write_report(results, folder, *, quick: bool) -> Path:
     bk = [(r.name, k, v) for r in results for k, v in getattr(r, "buckling_D0", {}).items()]
     if bk:
         lines += ["", "Buckling load D0_b (FE stability: where the lowest eigenvalue of the whole "
-                  "plate whose mode is classified physical crosses zero, interpolated between "
-                  "the run's states, on that run's mesh - the quick run's is coarse and not "
-                  "mesh-converged; the mesh study is `skfem-dielectric buckling`):", ""]
+                  "plate whose mode is classified physical crosses zero, located to 1e-4, on "
+                  "that run's mesh - the quick run's is coarse and not mesh-converged; the "
+                  "mesh study is `skfem-dielectric buckling`):", ""]
         lines += [f"- {name} / {k}: " + ("no physical negative eigenvalue up to the last D0"
                                          if v is None else f"D0_b = {v:.4g}")
                   for name, k, v in bk]

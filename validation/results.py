@@ -12,7 +12,6 @@ import numpy as np
 
 from .cases import CASES
 from .studies.extra_cases import EXTRA_CASES
-from .records import buckling_crossing
 from .specs import Case
 from .store import case_manifest
 from .table import read_table
@@ -70,8 +69,9 @@ def summarise_case(case: Case, csv_path: Path, n_runs: int) -> CaseResult:
             variant = str(t["variant"][sel][0])
             res.breakdown_D0_by_alpha.setdefault(variant, {})[format(t["alpha"][sel][0], "g")] = \
                 res.breakdown_D0[key]
-        if "physical_eig" in t and np.isfinite(t["physical_eig"][sel]).any():
-            res.buckling_D0[key] = buckling_crossing(t["D0"][sel], t["physical_eig"][sel])
+        if "D0_b" in t and np.isfinite(t["physical_eig"][sel]).any():
+            located = t["D0_b"][sel][np.isfinite(t["D0_b"][sel])]
+            res.buckling_D0[key] = float(located[0]) if located.size else None
             res.buckling_D0_by_alpha.setdefault(str(t["variant"][sel][0]), {})[
                 format(t["alpha"][sel][0], "g")] = res.buckling_D0[key]
         fails = ~conv[sel]

@@ -73,10 +73,14 @@ class RunSpec:
         Also analyse every converged state of the clamped plate with the whole plate's
         spectrum (every symmetry class of the eighth model,
         :func:`skfem_dielectric.models.plate.modes.lowest_physical`): the columns
-        ``n_negative_plate``, ``physical_eig`` and ``physical_class``, whose zero
-        crossing is the stability-based breakdown ``D0_b``.  Such a run is the grad-div
-        form of the plate (``grad_div = 10``, as the buckling study), so that the analysed
-        tangent is the Hessian of its own state.
+        ``n_negative_plate``, ``physical_eig``, ``physical_class`` and ``stable``, and
+        ``D0_b``, the stability-based breakdown where that eigenvalue crosses zero,
+        located to ``1e-4`` (:func:`skfem_dielectric.studies.buckling.buckling_load`, as
+        the study ``buckling``).  Those columns are of the grad-div form
+        (``grad_div = 10``, :func:`validation.fe.model.buckling_problem`) ramped to the
+        same loads, so that the analysed tangent is the Hessian of its own state; every
+        other column is of the plain form, as in every other run (docs/stability.md,
+        "Which state each column is of").
     """
 
     geometry: str

@@ -43,7 +43,11 @@ def csv_columns(case: Case) -> list[str]:
     (those not classified as clamp-corner artefacts) and ``lowest_eig``, ``breakdown`` and
     the Newton ``iterations``; the uni-axial cases also the whole plate's spectrum of the
     runs that analyse it (``n_negative_plate``, ``physical_eig``, ``physical_class``, see
-    :func:`validation.fe.plate_buckling_columns`; empty for the others).
+    :func:`validation.fe.plate_buckling_columns`; empty for the others); a case with such
+    a run (``RunSpec.buckling``) also ``D0_b``, the run's buckling load located to
+    ``1e-4`` where that eigenvalue crosses zero, on the row of the first state past it.
+    In such a run the whole plate's columns, ``stable`` and ``D0_b`` are of its grad-div
+    form's state at the row's load, every other column of its plain state.
 
     Parameters
     ----------
@@ -61,6 +65,8 @@ def csv_columns(case: Case) -> list[str]:
              "n_unstable", "lowest_eig", "breakdown", "iterations"]
     if case.geometry == "uniaxial":
         cols += ["n_negative_plate", "physical_eig", "physical_class"]
+    if any(r.buckling for r in case.quick + case.full):
+        cols.append("D0_b")
     return cols
 
 
@@ -124,7 +130,8 @@ def case_row(case: Case, spec: RunSpec, index: int, rec: StepRecord | None, conv
             "breakdown": breakdown, "iterations": rec.iterations if rec else None,
             "n_negative_plate": rec.n_negative_plate if rec else None,
             "physical_eig": rec.physical_eig if rec else None,
-            "physical_class": rec.physical_class if rec else None}
+            "physical_class": rec.physical_class if rec else None,
+            "D0_b": rec.D0_b if rec else None}
     return [format_cell(vals[c]) for c in csv_columns(case)]
 
 

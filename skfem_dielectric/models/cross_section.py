@@ -362,15 +362,17 @@ class CrossSection(Problem):
 
         Points ``(X1, X2, 0)``; point data ``displacement`` ``(u1, u2, 0)``,
         ``potential``, ``pressure``; cell data (element averages) ``P33``,
-        ``P11`` (total second Piola over ``mu``), ``lam1``, ``lam2``, ``lam3``.
+        ``P11`` (total second Piola over ``mu``, the physical stress: the grad-div
+        term of a stabilised section is not part of it), ``lam1``, ``lam2``, ``lam3``.
         """
         load = self._load(load)
         u, p, phi, lam3 = self.split(x, load)
         nv = self.mesh.p.shape[1]
         disp = np.column_stack([u.reshape(-1, 2)[:nv], np.zeros(nv)])
-        gu, lam3, gf, R, _ = self._volume(x, load, need_tangent=False)
+        gu, lam3, pq, gf = self._fields(x, load)
+        # the physical stress: without the grad-div term (a device of the weak form)
+        P = cross_section_kernel(self.material, gu, lam3, pq, gf, need_tangent=False).P
         F = plane_strain_F(gu, lam3)
-        P = R.P
         if self._local:
             P = P + maxwell_nominal_stress(F, -self._sigma(load), self.material.eps)[1]
         S = second_piola(F, P) / self.material.mu
@@ -385,7 +387,8 @@ class CrossSection(Problem):
         """Stretches at the centre and ``P33`` along the centre line ``x2 = 0``.
 
         Returns ``lam1``, ``lam2`` at the centre (``x1 = x2 = 0``), ``lam3``,
-        ``min_P33`` (min of the second Piola ``P33/mu`` along ``x2 = 0``) and its
+        ``min_P33`` (min of the physical second Piola ``P33/mu`` along ``x2 = 0``: the
+        grad-div term of a stabilised section is not part of it) and its
         ``x_min_P33``, and ``E0``/``D0`` at the centre (dimensionless ``-E_L2``
         and ``-D_L2``).
         """
@@ -397,8 +400,8 @@ class CrossSection(Problem):
         gf = np.einsum("pn,pin->in", phi[df], Gf)
         Np, dp = self._probe_p
         pq = np.einsum("pn,pn->n", p[dp], Np)
-        R = cross_section_kernel(self.material, gu, lam3, pq, gf, need_tangent=False,
-                                 grad_div=self.grad_div)
+        # the physical stress: without the grad-div term (a device of the weak form)
+        R = cross_section_kernel(self.material, gu, lam3, pq, gf, need_tangent=False)
         mu, eps = self.material.mu, self.material.eps
         P33 = R.P[2, 2] / lam3 / mu  # second Piola S33 = P33 / lam3 (F block-diagonal)
         E0 = float(gf[1, 0] * math.sqrt(eps / mu))

@@ -5,7 +5,8 @@ spectrum, the verdict on the whole plate, the centre line and the stretch maps.
   lowest eigenvalue of a converged state (:func:`stability_monitor`: read from the ramp's
   own factorisations with PARDISO);
 * :func:`plate_buckling_columns`, :func:`whole_plate_verdict` -- the whole plate's
-  spectrum and the ``stable`` column;
+  spectrum (of the grad-div form's state in a run analysed for buckling) and the
+  ``stable`` column;
 * :func:`membrane_stretch_maps` -- the membrane's deformation gradient at points;
 * :func:`step_record` -- the :class:`~validation.records.StepRecord` of a converged target.
 """
@@ -176,13 +177,32 @@ def _interior_min(x1_mm, P33) -> float:
 
 
 def plate_buckling_columns(spec: RunSpec, problem, x, load) -> dict:
-    """The whole plate's spectrum at a state of a run with ``spec.buckling``:
-    ``n_negative_plate`` (negative eigenvalues over every symmetry class of the eighth
-    model), ``physical_eig`` (the lowest eigenvalue whose mode is classified physical,
-    :func:`skfem_dielectric.models.plate.modes.lowest_physical`; ``nan`` if none of the computed
-    ones is) and ``physical_class`` (its symmetry class).  Empty for other runs, and where
-    the spectrum cannot be computed (a ``ValueError``, e.g. a class tangent too large to
-    be counted without PARDISO)."""
+    """The whole plate's columns of a state of a run with ``spec.buckling``.
+
+    ``problem`` is the run's grad-div form (:func:`~validation.fe.model.buckling_problem`)
+    and ``x`` its own state at ``load``: the spectrum is of that state's own tangent, the
+    Hessian of the energy whose equilibrium it is.  ``n_negative_plate`` (negative
+    eigenvalues over every symmetry class of the eighth model), ``physical_eig`` (the
+    lowest eigenvalue whose mode is classified physical,
+    :func:`skfem_dielectric.models.plate.modes.lowest_physical`; ``nan`` if none of the
+    computed ones is), ``physical_class`` (its symmetry class) and ``stable``
+    (:func:`whole_plate_verdict` of that state: its own-tangent verdict,
+    :func:`stability_columns`, and the whole plate's spectrum).  Empty for other runs,
+    and where the spectrum cannot be computed (a ``ValueError``, e.g. a class tangent too
+    large to be counted without PARDISO).
+
+    Parameters
+    ----------
+    spec : RunSpec
+    problem : PlateProblem
+        The grad-div form of the run's plate.
+    x, load
+        Its converged reduced state and the load.
+
+    Returns
+    -------
+    dict
+    """
     if not (spec.buckling and spec.geometry == "uniaxial" and not is_membrane(spec)
             and problem.symmetric):
         return {}
@@ -190,8 +210,13 @@ def plate_buckling_columns(spec: RunSpec, problem, x, load) -> dict:
         lowest = fe_modes.lowest_physical(problem, x, load)
     except ValueError:
         return {}
-    return {"n_negative_plate": int(lowest.n_negative), "physical_eig": lowest.eigenvalue,
+    cols = {"n_negative_plate": int(lowest.n_negative), "physical_eig": lowest.eigenvalue,
             "physical_class": lowest.label.symmetry if lowest.label is not None else ""}
+    own = stability_columns(spec, problem, x, load)["stable"]
+    verdict = StepRecord(D0=float(np.asarray(load)[1]), lam1=np.nan, lam3=np.nan,
+                         min_P33=np.nan, stable=own, n_negative_plate=cols["n_negative_plate"],
+                         physical_eig=cols["physical_eig"])
+    return {**cols, "stable": whole_plate_verdict(spec, problem, verdict)}
 
 
 def whole_plate_verdict(spec: RunSpec, problem, rec: StepRecord) -> bool | None:
@@ -235,13 +260,15 @@ def whole_plate_verdict(spec: RunSpec, problem, rec: StepRecord) -> bool | None:
 
 
 def step_record(spec: RunSpec, problem, step, analysis=None) -> StepRecord:
-    """The :class:`StepRecord` of a converged target, with the centre line if recorded."""
+    """The :class:`StepRecord` of a converged target of ``problem``, with the centre line if
+    recorded; the whole plate's columns of a run analysed for buckling are not in it (they
+    are of the grad-div form's state, :func:`plate_buckling_columns`, added by the
+    runner)."""
     q = step.quantities
     rec = StepRecord(D0=float(np.asarray(step.load)[1]), lam1=q["lam1"], lam3=q["lam3"],
                      min_P33=q["min_P33"], min_P33_clamp=q.get("min_P33_clamp", np.nan),
                      iterations=step.iterations,
-                     **stability_columns(spec, problem, step.x, step.load, analysis),
-                     **plate_buckling_columns(spec, problem, step.x, step.load))
+                     **stability_columns(spec, problem, step.x, step.load, analysis))
     rec.stable = whole_plate_verdict(spec, problem, rec)
     c = _centre_line(spec, problem, step)
     rec.min_P33_interior = _interior_min(c["x1"], c["P33"])

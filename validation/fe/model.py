@@ -2,6 +2,8 @@
 
 * :func:`build_problem` -- the FE problem of a spec (3D plate, 3D Maxwell-traction
   plate or 2D membrane);
+* :func:`buckling_problem` -- the grad-div form of the plate of a run analysed for
+  buckling, whose states give its whole-plate spectrum and ``D0_b``;
 * :func:`ramp_targets` and :func:`ramp_settings` -- the ramp's loads ``(s, D0)`` and
   its Newton tolerances, cut-back limit and linear solver;
 * :func:`with_dead_load` -- the dead load of a Keplinger run given by its weight fraction.
@@ -24,7 +26,8 @@ from skfem_dielectric.gallery.loads import keplinger_s
 
 from ..specs import GENT_JM, KEPLINGER, RunSpec
 
-__all__ = ["with_dead_load", "is_membrane", "build_problem", "ramp_targets", "ramp_settings",
+__all__ = ["BUCKLING_GRAD_DIV", "BUCKLING_TOL", "BUCKLING_NEWTON", "with_dead_load",
+           "is_membrane", "build_problem", "buckling_problem", "ramp_targets", "ramp_settings",
            "pardiso_installed"]
 
 #: the Keplinger plate, mm: the gallery's plate
@@ -42,9 +45,19 @@ RTOL = {"equibiaxial": EQUIBIAXIAL_RTOL, "uniaxial": KEPLINGER_RTOL}
 #: breakdown it can jump to another branch of the clamped plate).  The FE dots move within
 #: the Newton tolerance (timings: docs/performance.md).
 CHORD = KEPLINGER_CHORD
-#: grad-div stabilisation (units of mu) of the uni-axial runs analysed for buckling
-#: (``RunSpec.buckling``) and of the studies ``buckling`` and ``post-buckling``
+#: grad-div stabilisation (units of mu) of the form ramped for the whole plate's spectrum
+#: and ``D0_b``: the second ramp of the uni-axial runs analysed for buckling
+#: (``RunSpec.buckling``, :func:`buckling_problem`), and the ramps of the studies
+#: ``buckling`` and ``post-buckling``; each state is analysed with its own tangent, the
+#: Hessian of the energy whose equilibrium it is (docs/stability.md, "Which state each
+#: column is of")
 BUCKLING_GRAD_DIV = 10.0
+#: the buckling load ``D0_b`` is located to this tolerance in ``D0``
+#: (:func:`skfem_dielectric.studies.buckling.buckling_load`), by the harness and the study
+#: ``buckling`` alike
+BUCKLING_TOL = 1e-4
+#: Newton settings of the trial states of that location
+BUCKLING_NEWTON = fe.RampSettings(rtol=1e-9, max_cutbacks=6, max_iter=25)
 
 
 def with_dead_load(spec: RunSpec) -> RunSpec:
@@ -112,14 +125,48 @@ def build_problem(spec: RunSpec):
         return fe.gallery.equibiaxial_problem(model=spec.model, Jm=GENT_JM, elements=el,
                                               options=options)
     if spec.geometry == "uniaxial":
-        # the run analysed for buckling is the grad-div form of the buckling study
-        # (docs/validation.md): its tangent is the Hessian of its own state, and Newton
-        # passes the clamp/free-edge corner
-        if spec.buckling:
-            options = replace(options, grad_div=BUCKLING_GRAD_DIV)
+        # the plain form for every run, also the one analysed for buckling: its state is
+        # the one the paper's P33 criterion reads (the whole plate's spectrum of such a run
+        # is of the grad-div form's own state, buckling_problem)
         return fe.gallery.keplinger_problem(model=spec.model, Jm=GENT_JM, size=(L1, H, L3),
                                             elements=el, options=options)
     raise ValueError(f"the 3D plate has no geometry {spec.geometry!r}")
+
+
+def buckling_problem(spec: RunSpec):
+    """The grad-div form of the plate of a run analysed for buckling (``spec.buckling``).
+
+    The plain form (:func:`build_problem`) gives the run's ``P33`` columns; this form
+    (:data:`BUCKLING_GRAD_DIV`, which lets Newton pass the clamp/free-edge corner) is
+    ramped to the same loads for the whole plate's spectrum and the located ``D0_b``.
+    Each of its states is an equilibrium of the stabilised energy, so that its own tangent
+    is the Hessian whose spectrum is read; the stabilised tangent at a plain state is not
+    (the stabilised energy's gradient there is ``gamma (J - 1)``, not zero, where the
+    discrete ``J`` departs from 1).  The same form as the studies ``buckling`` and
+    ``post-buckling`` (Conroy Broderick et al. 2020, Sec. 6, the clamped plate).
+
+    Parameters
+    ----------
+    spec : RunSpec
+        A 3D fully coupled uni-axial run (``variant="coupled"``).
+
+    Returns
+    -------
+    PlateProblem
+
+    Raises
+    ------
+    ValueError
+        ``spec`` is not such a run.
+    """
+    if spec.geometry != "uniaxial" or spec.variant != "coupled":
+        raise ValueError(f"spec must be a 3D fully coupled uni-axial run, got geometry "
+                         f"{spec.geometry!r}, variant {spec.variant!r}")
+    m = spec.mesh_dict
+    el = (m.get("n1", 1), m.get("n2", 1), m.get("n3", 1))
+    return fe.gallery.keplinger_problem(model=spec.model, Jm=GENT_JM, size=(L1, H, L3),
+                                        elements=el,
+                                        options=fe.PlateOptions(grad_div=BUCKLING_GRAD_DIV))
 
 
 def ramp_targets(spec: RunSpec) -> list:

@@ -6,6 +6,16 @@ the charge targets) with :func:`skfem_dielectric.solvers.ramp.ramp` and reports 
 converged target as a :class:`~validation.records.StepRecord`
 (:func:`~validation.fe.columns.step_record`). The saved state is the ramp's reduced
 solution vector and its load, so a resumed ramp continues bit for bit.
+
+A run analysed for buckling (``RunSpec.buckling``) ramps twice to the same loads: the plain
+form (:func:`~validation.fe.model.build_problem`), which gives every column a plain run has
+(stretches, ``P33``, ``breakdown``, the model's own stability counts), and before it the
+grad-div form (:func:`~validation.fe.model.buckling_problem`), whose states give the whole
+plate's spectrum and ``stable`` (:func:`~validation.fe.columns.plate_buckling_columns`) and
+the buckling load ``D0_b``, located at the first of its states whose lowest physical
+eigenvalue is negative, between that state and the one before it (:func:`_located_D0_b`).
+The saved state holds both ramps' vectors (``x``, ``x_stab``) and whether ``D0_b`` is
+located, so a resumed run continues both ramps bit for bit and locates the same value.
 """
 
 from __future__ import annotations
@@ -16,9 +26,12 @@ import numpy as np
 
 import skfem_dielectric as fe
 
+from skfem_dielectric.studies.buckling import buckling_load
+
 from ..records import RunOutcome
-from .columns import step_record, stability_monitor
-from .model import build_problem, ramp_settings, ramp_targets, with_dead_load
+from .columns import plate_buckling_columns, step_record, stability_monitor
+from .model import (BUCKLING_NEWTON, BUCKLING_TOL, buckling_problem, build_problem,
+                    ramp_settings, ramp_targets, with_dead_load)
 
 __all__ = ["run_fe"]
 
@@ -34,6 +47,44 @@ def _analysis(monitor, step, load):
             or not np.array_equal(np.asarray(monitor.history[-1][0], dtype=float), load):
         return None
     return monitor.last
+
+
+def _located_D0_b(problem, prev, cur, linear_solver) -> float:
+    """The buckling load between the grad-div form's states ``prev`` and ``cur``
+    (``(x, load)`` pairs), or ``nan`` when there is no ``prev``: the study ``buckling``'s
+    location (:func:`skfem_dielectric.studies.buckling.buckling_load` on the same form, to
+    :data:`~validation.fe.model.BUCKLING_TOL`, trial states solved from ``prev`` with
+    :data:`~validation.fe.model.BUCKLING_NEWTON`)."""
+    if prev is None:
+        return float("nan")
+    method = "pardiso" if linear_solver == "pardiso" else "auto"
+    bl = buckling_load(problem, [prev, cur], method=method, tol=BUCKLING_TOL,
+                       linear_solver=linear_solver, settings=BUCKLING_NEWTON)
+    return float(bl.D0_b)
+
+
+def _stabilised_states(spec, targets, state, linear_solver) -> dict:
+    """The grad-div form's ramp of a run analysed for buckling, from the saved
+    ``state["x_stab"]`` (at ``state["load"]``) or from the start: its problem and its
+    converged charge targets, ``{D0: x}`` (a target it cannot reach ends it; the rows
+    from there on have no whole-plate columns)."""
+    problem = buckling_problem(spec)
+    if state is not None and "x_stab" not in state:
+        return {"problem": problem, "x": {}}      # that ramp had stopped before
+    x0 = None if state is None else np.asarray(state["x_stab"], dtype=float)
+    start = None if state is None else np.asarray(state["load"], dtype=float)
+    states = {}
+
+    def cb(step):
+        load = np.asarray(step.load, dtype=float)
+        if load[0] == spec.s and step.target_reached:
+            states[float(load[1])] = step.x
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", RuntimeWarning)       # its rows show the failure
+        fe.ramp(problem, targets, x0=x0, start=start, on_step=cb,
+                **ramp_settings(spec, linear_solver), **fe.gallery.newton_guards(problem))
+    return {"problem": problem, "x": states}
 
 
 def run_fe(spec, start, state, on_step, linear_solver="superlu"):
@@ -71,6 +122,11 @@ def run_fe(spec, start, state, on_step, linear_solver="superlu"):
                              ) from None
 
     monitor = stability_monitor(spec, problem, linear_solver)
+    stab = _stabilised_states(spec, targets, state, linear_solver) if spec.buckling else None
+    # the grad-div form's previous state (for the location of D0_b) and whether it is done
+    track = {"prev": None if state is None or "x_stab" not in state
+             else (np.asarray(state["x_stab"], dtype=float), start_load),
+             "located": state is not None and bool(state.get("located", False))}
 
     def cb(step):
         load = np.asarray(step.load, dtype=float)
@@ -79,8 +135,22 @@ def run_fe(spec, start, state, on_step, linear_solver="superlu"):
             # target the ramp failed to reach (the failed target is recorded as a row)
             return
         i = spec.D0.index(float(load[1]))
-        if on_step(i, step_record(spec, problem, step, _analysis(monitor, step, load)),
-                   {"x": step.x, "load": load}):
+        rec = step_record(spec, problem, step, _analysis(monitor, step, load))
+        saved = {"x": step.x, "load": load}
+        if stab is not None:
+            xs = stab["x"].get(float(load[1]))
+            if xs is not None:
+                for k, v in plate_buckling_columns(spec, stab["problem"], xs, load).items():
+                    setattr(rec, k, v)
+                if not track["located"] and np.isfinite(rec.physical_eig) \
+                        and rec.physical_eig < 0:
+                    rec.D0_b = _located_D0_b(stab["problem"], track["prev"], (xs, load),
+                                             linear_solver)
+                    track["located"] = True
+                track["prev"] = (xs, load)
+                saved["x_stab"] = xs
+            saved["located"] = np.array(track["located"])
+        if on_step(i, rec, saved):
             raise _Stop
 
     try:

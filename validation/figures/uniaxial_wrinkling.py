@@ -15,7 +15,6 @@ from analytic.units import keplinger_s
 from ..buckling_data import buckling_loads
 from ..cases import ALPHAS, analytic_model
 from ..specs import KEPLINGER
-from ..records import buckling_crossing
 from .common import (BREAKDOWN_MARKER, BREAKDOWN_NAME, BUCKLING_NAME, MODEL_NAME, NEWTON_NAME,
                      VARIANT_MARKER, colors, new_axes, refine_start, uniaxial_curve,
                      variant_legend, wrinkling_zone)
@@ -115,8 +114,8 @@ class RunMarks:
         ``P33/mu < -0.01`` near the clamps, else the last converged row before a target
         the solver could not reach; ``None`` if the run has neither.
     buckling : tuple of float or None
-        ``(lam1, D0_b)`` of the "buckling load" (:data:`BUCKLING_NAME`), the zero crossing
-        of the whole plate's lowest physical eigenvalue (column ``physical_eig``);
+        ``(lam1, D0_b)`` of the "buckling load" (:data:`BUCKLING_NAME`), the located zero
+        crossing of the whole plate's lowest physical eigenvalue (column ``D0_b``);
         ``None`` if the run has no such crossing.
     """
 
@@ -143,10 +142,10 @@ def keplinger_run_marks(fe, alpha: float, variant: str) -> RunMarks | None:
         i = int(np.argmax(brk)) if brk.any() else max(int(np.argmin(conv)) - 1, 0)
         x = lam_fe[i] if np.isfinite(lam_fe[i]) else fe["lam1_analytic"][sel][i]
         breakdown = (x, D0_fe[i])
-    ev = fe["physical_eig"][sel] if "physical_eig" in fe else np.zeros(0)
-    D0b = buckling_crossing(D0_fe, ev) if np.isfinite(ev).any() else None
+    located = fe["D0_b"][sel][np.isfinite(fe["D0_b"][sel])] if "D0_b" in fe else np.zeros(0)
     buckling = None
-    if D0b is not None:
+    if located.size:
+        D0b = float(located[0])
         ok = conv & np.isfinite(lam_fe)
         buckling = (np.interp(D0b, D0_fe[ok], lam_fe[ok]), D0b)
     return RunMarks((lam_fe[conv], D0_fe[conv]), breakdown, buckling)
@@ -163,7 +162,7 @@ def plot_uniaxial_wrinkling(fe=None, alphas=ALPHAS, ax=None, D0max=7.0):
     the first step with ``P33/mu < -0.01`` near the clamps or that the solver could not
     reach), and a red cross at the "buckling load"
     ``D0_b`` (:data:`BUCKLING_NAME`) of the runs analysed with the whole plate's spectrum
-    (the zero crossing of the lowest physical eigenvalue, column ``physical_eig``).
+    (the located zero crossing of the lowest physical eigenvalue, column ``D0_b``).
     With FE data, also the converged buckling load ``D0_b`` of each weight
     (:func:`validation.buckling_data.buckling_loads`, black diamond with its error bar)
     and the plain form's Newton limit (black triangle down), both on the weight's

@@ -2,8 +2,11 @@
 
 For each weight ``alpha`` and mesh the eighth model (grad-div 10, which lets Newton pass
 the clamp/free-edge corner) is ramped in ``D0``; its states are scanned with the whole
-plate's spectrum (:func:`skfem_dielectric.studies.buckling.buckling_load`) and the first physical
-buckling load ``D0_b`` located to ``1e-4``.  Next to it: the onsets of compressive
+plate's spectrum of their own tangent, the Hessian of the stabilised energy whose
+equilibria they are (:func:`skfem_dielectric.studies.buckling.buckling_load`), and the first
+physical buckling load ``D0_b`` located to ``1e-4``, as the ``validate`` harness locates
+it on its run analysed for buckling (same form, tolerance and Newton settings;
+docs/stability.md, "Which state each column is of").  Next to it: the onsets of compressive
 ``P33/mu < -BREAKDOWN_TOL`` (the paper's breakdown, Conroy Broderick, Righi, Destrade and
 Ogden, "Stability analysis of charge-controlled soft dielectric plates", Int. J. Eng.
 Sci., 2020, Sec. 6) on five sets of points, and where Newton stops.
@@ -29,7 +32,7 @@ from skfem_dielectric.models.plate.modes import top_deflection
 from skfem_dielectric.solvers import illinois
 from skfem_dielectric.studies.buckling import buckling_load
 
-from ..fe.model import BUCKLING_GRAD_DIV
+from ..fe.model import BUCKLING_GRAD_DIV, BUCKLING_NEWTON, BUCKLING_TOL
 from ..figures import save_figure
 from ..options import load_targets
 from ..store import RowFile, StudyStore, write_npz_atomic
@@ -105,14 +108,14 @@ def run_one(alpha: float, elements, *, D0_step: float, D0_max: float,
                              linear_solver=solver,
                              settings=replace(fe.gallery.KEPLINGER_SETTINGS, max_cutbacks=6,
                                               max_iter=25))
-    newton = dict(linear_solver=solver,
-                  settings=fe.RampSettings(rtol=1e-9, max_cutbacks=6, max_iter=25))
+    newton = dict(linear_solver=solver, settings=BUCKLING_NEWTON)
     pb = res.problem
     charge = [st for st in res.steps if np.asarray(st.load)[1] > 0]
     states = [res.steps[len(res.steps) - len(charge) - 1]] + charge
     mesh = _mesh_name(elements)
     method = "pardiso" if solver == "pardiso" else "auto"
-    bl = buckling_load(pb, [(st.x, st.load) for st in states], method=method, **newton)
+    bl = buckling_load(pb, [(st.x, st.load) for st in states], method=method,
+                       tol=BUCKLING_TOL, **newton)
     scan = []
     for st, row in zip(states, bl.scan):
         m = p33_measures(pb, st.x, st.load, st.quantities)

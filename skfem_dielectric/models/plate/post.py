@@ -1,9 +1,11 @@
 """Post-processing of 3D plate states: fields at points, stresses, line profiles, export.
 
 Every function takes a :class:`~skfem_dielectric.models.plate.problem.PlateProblem` and a state;
-stresses are the *total* stresses (elastic, pressure and electric parts; for the local Maxwell field
-the Maxwell stress of ``D = F D_L / J`` is added), dimensionless quantities are divided by
-``mu``.
+stresses are the *total* physical stresses (elastic, pressure and electric parts; for the local
+Maxwell field the Maxwell stress of ``D = F D_L / J`` is added), dimensionless quantities are
+divided by ``mu``.  A numerical device of the model never enters them: the grad-div term
+``gamma (J - 1)^2 / 2`` of a stabilised model stiffens its weak form but is not part of the
+material, so its stress ``gamma (J - 1) J F^-T`` is left out.
 """
 
 from __future__ import annotations
@@ -65,9 +67,15 @@ def evaluate_fields(problem, xf: np.ndarray, points: np.ndarray) -> dict[str, np
 
 def plate_stresses(problem, F: np.ndarray, G: np.ndarray, p: np.ndarray | None,
                    sigma: float = 0.0) -> dict[str, np.ndarray]:
-    """Stresses and fields from ``F``, ``G = Grad phi`` and ``p`` (any trailing shape).
+    """Physical stresses and fields from ``F``, ``G = Grad phi`` and ``p`` (any trailing
+    shape).
 
-    ``sigma`` is the charge per reference area, used only by the local Maxwell field.
+    ``sigma`` is the charge per reference area, used only by the local Maxwell field.  The
+    stress is the material's, Eq. (const-rels1) with Eq. (modelD) (``dOmega*/dF - p
+    F^-T``), with the model's multiplier ``p``.  The grad-div stabilisation of the model
+    (``problem.grad_div``), a device of the discretisation, is not part of it: a stabilised
+    and a plain model give the same stress at the same ``F``, ``p``, ``G``, and the paper's
+    ``P33`` criterion reads the material's stress on either.
 
     Returns
     -------
@@ -79,8 +87,7 @@ def plate_stresses(problem, F: np.ndarray, G: np.ndarray, p: np.ndarray | None,
     local = problem.local_field
     r = ideal_dielectric_response(problem.material, F, np.zeros_like(G) if local else G, p,
                                   kappa=problem.kappa, formulation=problem.formulation,
-                                  need_tangent=False,
-                                  grad_div=problem.grad_div * problem.material.mu)
+                                  need_tangent=False)
     Finv = inv3(F)
     S = np.einsum("Ka...,aL...->KL...", Finv, r.P)
     cauchy = np.einsum("aK...,bK...->ab...", r.P, F) / r.J
