@@ -18,11 +18,10 @@ from typing import Callable
 
 import numpy as np
 import scipy.sparse as sp
-import scipy.sparse.linalg as spla
 from scipy.sparse.csgraph import reverse_cuthill_mckee
 
 from .linear import PardisoSolver, pardiso_available
-from .solver_base import LinearSolver
+from .solver_base import LinearSolver, splu
 
 __all__ = ["INERTIA_METHODS", "DENSE_LIMIT", "tangent_inertia", "constrained_order",
            "counted_inertia", "symmetric_lu", "SymmetricFactors", "inertia_factors",
@@ -105,16 +104,16 @@ def symmetric_lu(K: sp.spmatrix, order: np.ndarray | None = None
     """
     lu = None
     if order is None:
-        lu = spla.splu(sp.csc_matrix(K), permc_spec="MMD_AT_PLUS_A", diag_pivot_thresh=0.0,
-                       options={"SymmetricMode": True})
+        lu = splu(K, permc_spec="MMD_AT_PLUS_A", diag_pivot_thresh=0.0,
+                  options={"SymmetricMode": True})
         solve = lu.solve
     if lu is None or not np.array_equal(lu.perm_r, lu.perm_c):
         # a zero pivot: a multiplier (zero diagonal) eliminated before the displacements
         # it couples to; retry with an order that puts each such unknown after all its
         # neighbours (then its pivot is the Schur complement -b^T A^-1 b, non-zero)
         order = constrained_order(K) if order is None else np.asarray(order)
-        lu = spla.splu(sp.csc_matrix(K)[order][:, order], permc_spec="NATURAL",
-                       diag_pivot_thresh=0.0, options={"SymmetricMode": True})
+        lu = splu(sp.csc_matrix(K)[order][:, order], permc_spec="NATURAL",
+                  diag_pivot_thresh=0.0, options={"SymmetricMode": True})
         if not np.array_equal(lu.perm_r, lu.perm_c):
             raise ValueError("SuperLU needed off-diagonal pivots: no inertia from its "
                              "diagonal (use method='dense' or 'pardiso')")
@@ -201,9 +200,15 @@ class SymmetricFactors(LinearSolver):
         return self._solve(b)
 
 
-def inertia_factors(K: sp.spmatrix, method: str = "auto"
+def inertia_factors(K: sp.spmatrix, method: str = "auto", orders: list | None = None
                     ) -> tuple[tuple[int, int, int], LinearSolver | None]:
     """:func:`counted_inertia` of ``K`` and the sparse factorisation that counted it.
+
+    ``orders`` (a list) keeps the SuperLU elimination order from one call to the next for
+    matrices of one pattern and zero diagonal (e.g. the tangents of one symmetry class along
+    a load path): empty, it receives the constrained order where minimum degree met a zero
+    pivot (:func:`symmetric_lu`); holding one, that order is used at once, without the
+    minimum-degree factorisation that would fail again.
 
     Returns
     -------
@@ -225,20 +230,22 @@ def inertia_factors(K: sp.spmatrix, method: str = "auto"
         return solver.inertia, solver
     if method == "superlu":
         try:
-            inertia, solve, _ = symmetric_lu(K)
+            inertia, solve, order = symmetric_lu(K, orders[0] if orders else None)
         except ValueError:
             return counted_inertia(K, method), None
+        if orders is not None and not orders and order is not None:
+            orders.append(order)
         return inertia, SymmetricFactors(inertia, solve)
     return counted_inertia(K, method), None
 
 
-def reusable_factors(factors: LinearSolver | None, inertia: tuple[int, int, int],
-                     n_negative: int) -> LinearSolver | None:
+def reusable_factors(factors: LinearSolver | None, inertia: tuple[int, int, int]
+                     ) -> LinearSolver | None:
     """The factors of :func:`inertia_factors` to pass on as the shift-0 solver of
-    :func:`~skfem_dielectric.stability.analysis.lowest_modes`, or ``None``: not for a singular
-    matrix, and PARDISO's only without negative eigenvalues (with them the spectrum
-    slicing factorises the shifted matrices too, and two large factorisations would be
-    held at once)."""
+    :func:`~skfem_dielectric.stability.analysis.lowest_modes`, or ``None`` for a singular
+    matrix.  They serve both of its parts: the negative eigenvalues (the algebraically
+    smallest ``1/lambda``) and the lowest positive ones (the largest), so that the count
+    and the modes of a state cost one factorisation."""
     if factors is None or inertia[2] != 0:
         return None
-    return factors if n_negative <= 0 or isinstance(factors, SymmetricFactors) else None
+    return factors

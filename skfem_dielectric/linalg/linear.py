@@ -36,7 +36,7 @@ import numpy as np
 import scipy.sparse as sp
 
 from ..fem.assembly import trim_heap
-from .solver_base import LinearSolver, SuperLUSolver, whole_matrix
+from .solver_base import LinearSolver, SuperLUSolver, count_factorisation, whole_matrix
 from .symmetric import SymmetricUpper, same_memory, same_pattern
 
 __all__ = ["PardisoSolver", "PardisoLUSolver", "get_linear_solver", "nonsymmetric_solver",
@@ -278,6 +278,7 @@ class PardisoSolver(LinearSolver):
                                                            or U.indices.flags.writeable)
                              else (U.indptr.copy(), U.indices.copy()))
         self._call(22, U, b)
+        count_factorisation()
         self.inertia = self._read_inertia(K.shape[0])
         x = self._call(33, U, b)
         self._last = U

@@ -8,13 +8,42 @@ live in :mod:`skfem_dielectric.linalg.linear`.
 
 from __future__ import annotations
 
+import threading
+
 import numpy as np
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
 from .symmetric import SymmetricUpper
 
-__all__ = ["LinearSolver", "SuperLUSolver", "whole_matrix"]
+__all__ = ["LinearSolver", "SuperLUSolver", "whole_matrix", "splu", "factorisation_count",
+           "count_factorisation"]
+
+
+_FACTORISATIONS = [0]
+_COUNT_LOCK = threading.Lock()
+
+
+def count_factorisation() -> None:
+    """Add one to :func:`factorisation_count` (every sparse factorisation of the package
+    calls it: :func:`splu`, the PARDISO solvers' numerical factorisation)."""
+    with _COUNT_LOCK:
+        _FACTORISATIONS[0] += 1
+
+
+def factorisation_count() -> int:
+    """Sparse factorisations (SuperLU and PARDISO) of this process so far, over all
+    threads: the difference of two readings is what the code between them factorised,
+    the measure of the cost of a stability analysis along a path (docs/performance.md)."""
+    with _COUNT_LOCK:
+        return _FACTORISATIONS[0]
+
+
+def splu(A: sp.spmatrix, **options):
+    """:func:`scipy.sparse.linalg.splu` of ``A`` (CSC), counted in
+    :func:`factorisation_count`; ``options`` are splu's."""
+    count_factorisation()
+    return spla.splu(sp.csc_matrix(A), **options)
 
 
 class LinearSolver:
@@ -79,9 +108,8 @@ class SuperLUSolver(LinearSolver):
     def solve(self, K: sp.spmatrix, b: np.ndarray) -> np.ndarray:
         """Factorise ``K`` (CSC copy) and solve ``K x = b``."""
         self._lu = None
-        lu = spla.splu(sp.csc_matrix(whole_matrix(K)), permc_spec=self.permc_spec,
-                       diag_pivot_thresh=self.diag_pivot_thresh,
-                       options={"SymmetricMode": True})
+        lu = splu(whole_matrix(K), permc_spec=self.permc_spec,
+                  diag_pivot_thresh=self.diag_pivot_thresh, options={"SymmetricMode": True})
         self._lu = lu
         return lu.solve(np.asarray(b, dtype=float))
 

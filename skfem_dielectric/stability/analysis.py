@@ -39,7 +39,7 @@ import scipy.sparse.linalg as spla
 from ..linalg.inertia import (DENSE_LIMIT, counted_inertia, inertia_factors, reusable_factors,
                               symmetric_lu, tangent_inertia)
 from ..linalg.linear import PardisoSolver, pardiso_available
-from ..linalg.solver_base import LinearSolver
+from ..linalg.solver_base import LinearSolver, splu
 from ..problem import Problem
 
 __all__ = ["StabilityResult", "stability_analysis", "tangent_stability", "metric_matrix",
@@ -62,7 +62,7 @@ def _pencil_solve(Ks: sp.spmatrix, use_pardiso: bool, solver: PardisoSolver | No
         solver = solver if solver is not None else PardisoSolver()
         solver.solve(Ks, np.zeros(Ks.shape[0]))
         return solver.resolve
-    return spla.splu(sp.csc_matrix(Ks), permc_spec="MMD_AT_PLUS_A").solve
+    return splu(Ks, permc_spec="MMD_AT_PLUS_A").solve
 
 
 def _below(Ks: sp.spmatrix, n_m: int, use_pardiso: bool, solver: PardisoSolver | None = None,
@@ -129,11 +129,33 @@ def _eig_near(solve, sigma: float, d: np.ndarray, sq: np.ndarray, n: int, m: int
     return vals[order], vecs
 
 
+#: at most this many negative eigenvalues are taken on the factors of ``K`` itself
+#: (:func:`lowest_modes`); more are sliced, where Lanczos needs fewer vectors at once
+ZERO_SHIFT_LIMIT = 64
+
+
+def _negative_at_zero(solve, d: np.ndarray, sq: np.ndarray, n: int, n_neg: int, tol: float,
+                      v0: np.ndarray | None):
+    """The ``n_neg`` negative eigenpairs of the pencil on the factors of ``K`` (``solve``):
+    the algebraically smallest ``theta = 1/lambda`` of the shift-invert operator at 0.
+    ``None`` unless Lanczos converges to exactly ``n_neg`` negative ones (the inertia's
+    count), each apart from the multipliers' ``theta = 0`` by more than rounding."""
+    try:
+        vals, vecs = _eig_near(solve, 0.0, d, sq, n, n_neg, "SA", tol, v0)
+    except spla.ArpackNoConvergence:
+        return None
+    theta_max = float(np.max(np.abs(1.0 / vals))) if vals.size else 0.0
+    ok = (vals < 0) & np.isfinite(vals) & (np.abs(1.0 / vals) > 1e-10 * theta_max)
+    if vals.size != n_neg or not np.all(ok):
+        return None
+    return vals, vecs
+
+
 def lowest_modes(K: sp.spmatrix, M: sp.spmatrix, k: int, n_negative: int = 0,
                  sigma: float | None = None, tol: float = 1e-12, *,
                  factors: LinearSolver | None = None, sigma_start: float | None = None,
                  sigma_growth: float = 2.0, shift_solver: PardisoSolver | None = None,
-                 v0: np.ndarray | None = None):
+                 v0: np.ndarray | None = None, orders: list | None = None):
     """The ``k`` lowest finite eigenpairs of the pencil ``K w = lambda M w``.
 
     ``M`` is diagonal, positive on the displacement-like unknowns (index set ``d``) and
@@ -150,7 +172,12 @@ def lowest_modes(K: sp.spmatrix, M: sp.spmatrix, k: int, n_negative: int = 0,
       factorisation of ``K`` itself, serves it without a new factorisation; else ``K`` is
       factorised, with a shift just below zero when it is singular), as the largest
       positive ``theta``: the soft modes nearest to zero come first;
-    * the ``n_negative`` negative ones (known from the inertia) by spectrum slicing: the
+    * the ``n_negative`` negative ones (known from the inertia): where ``factors`` are
+      given (and at most :data:`ZERO_SHIFT_LIMIT` are negative), on those same factors as
+      the algebraically smallest ``theta = 1/lambda`` (the negative ``theta`` lie apart
+      from the positive ones and from the multipliers' ``theta = 0``), kept when Lanczos
+      returns exactly ``n_negative`` of them, the count of Sylvester's law; otherwise by
+      spectrum slicing: the
       shift moves down by decades (from ``sigma_start`` by factors of ``sigma_growth``
       when given, e.g. 1.5 times the previous state's lowest eigenvalue) until the inertia of
       ``K - sigma M`` shows no eigenvalue below it; the interval between the last two
@@ -165,7 +192,10 @@ def lowest_modes(K: sp.spmatrix, M: sp.spmatrix, k: int, n_negative: int = 0,
     shifted matrices with its symbolic analysis kept from call to call; ``v0`` (length
     ``nd``: the displacement-like unknowns scaled by ``M^1/2``, e.g. the previous lowest
     mode) starts the Lanczos iteration of the negative part (of the other where there is
-    none).  ``tol`` is ARPACK's relative tolerance on ``theta``.
+    none).  ``orders`` (a list, see
+    :func:`~skfem_dielectric.linalg.inertia.inertia_factors`) keeps the SuperLU elimination
+    order of the shifted matrices from call to call.  ``tol`` is ARPACK's relative
+    tolerance on ``theta``.
 
     Returns
     -------
@@ -203,8 +233,16 @@ def lowest_modes(K: sp.spmatrix, M: sp.spmatrix, k: int, n_negative: int = 0,
     tiny = -1e-8 * float(abs(K).max())
     parts = []
     n_neg = max(0, int(n_negative))
-    if n_neg:
-        sig, grow, hi, orders = tiny, 10.0, None, []
+    solve_k = None          # a solve with K itself, from the factors given
+    if factors is not None and factors.resolve(np.zeros(n)) is not None:
+        solve_k = factors.resolve
+    neg = (_negative_at_zero(solve_k, d, sq, n, n_neg, tol, v0)
+           if n_neg and solve_k is not None and n_neg <= ZERO_SHIFT_LIMIT else None)
+    if neg is not None:     # every negative one, ascending: the lowest first
+        parts.append((neg[0][:k], neg[1][:, :k]))
+    elif n_neg:
+        sig, grow, hi = tiny, 10.0, None
+        orders = [] if orders is None else orders
         if sigma_start is not None and sigma_start < sig:
             sig, grow = float(sigma_start), float(sigma_growth)
         for _ in range(40):
@@ -241,10 +279,8 @@ def lowest_modes(K: sp.spmatrix, M: sp.spmatrix, k: int, n_negative: int = 0,
                 break
             m *= 2
     if n_neg < k:
-        sig0, solve0 = 0.0, None
-        if factors is not None and factors.resolve(np.zeros(n)) is not None:
-            solve0 = factors.resolve
-        else:
+        sig0, solve0 = 0.0, solve_k
+        if solve0 is None:
             sig0 = tiny
             solve0 = _pencil_solve(shifted(sig0), use_pardiso, shift_solver)
         # the ones below zero belong to the negative part (a shift just below zero can
@@ -388,8 +424,9 @@ def tangent_stability(problem: Problem, K: sp.spmatrix, *, k: int = 0,
         count where the factors show it (no new factorisation), and its back-substitutions
         serve the modes of a state without negative eigenvalues.
     **reuse
-        ``sigma_start``, ``sigma_growth``, ``shift_solver``, ``v0`` of
-        :func:`lowest_modes`.
+        ``sigma_start``, ``sigma_growth``, ``shift_solver``, ``v0``, ``orders`` of
+        :func:`lowest_modes` (``orders`` also serves the count's own factorisation,
+        :func:`~skfem_dielectric.linalg.inertia.inertia_factors`).
 
     Returns
     -------
@@ -401,16 +438,16 @@ def tangent_stability(problem: Problem, K: sp.spmatrix, *, k: int = 0,
         raise ValueError(f"extra must be an integer >= 0, got {extra!r}")
     if K.shape != (problem.ndofs, problem.ndofs):
         raise ValueError(f"K must have shape ({problem.ndofs}, {problem.ndofs}), got {K.shape}")
-    unknown = set(reuse) - {"sigma_start", "sigma_growth", "shift_solver", "v0"}
+    unknown = set(reuse) - {"sigma_start", "sigma_growth", "shift_solver", "v0", "orders"}
     if unknown:
         raise ValueError(f"unknown keyword arguments {sorted(unknown)} (allowed: "
-                         "sigma_start, sigma_growth, shift_solver, v0)")
+                         "sigma_start, sigma_growth, shift_solver, v0, orders)")
     inertia = factors.factor_inertia() if factors is not None else None
     n_m = problem.layout.n_multipliers
     if inertia is None and factors is None and (k or all_negative):
         # the factorisation that counts also serves the shift-0 solves of the modes
-        inertia, own = inertia_factors(K, method)
-        factors = reusable_factors(own, inertia, inertia[1] - n_m)
+        inertia, own = inertia_factors(K, method, reuse.get("orders"))
+        factors = reusable_factors(own, inertia)
         del own
     elif inertia is None:
         inertia = counted_inertia(K, method)

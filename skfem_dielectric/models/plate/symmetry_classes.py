@@ -58,6 +58,12 @@ class SymmetryClass:
         mirror images in the full plate over ``2^m`` (1 inside, 1/2 on one plane, ...),
         zero on the multipliers -- so that the Euclidean norm of the full plate's nodal
         displacements restricts to it, and the classes' eigenvalues are the full plate's.
+    orders
+        The SuperLU elimination order of its tangents (``orders`` of
+        :func:`~skfem_dielectric.linalg.inertia.inertia_factors`): filled at the first
+        analysis that needs the constrained order, used by every later one (the tangents of
+        all states have one pattern and one zero diagonal), so that each state's count
+        costs one factorisation.
     """
 
     increments: dict[int, str]
@@ -65,6 +71,7 @@ class SymmetryClass:
     layout: Layout
     P: sp.csr_matrix
     metric: sp.csr_matrix
+    orders: list = field(default_factory=list, repr=False)
 
     @property
     def ndofs(self) -> int:
@@ -233,7 +240,7 @@ def class_stability(problem: PlateProblem, x: np.ndarray, load: Any, *, k: int =
     def analyse(c):
         return tangent_stability(c, class_tangent(c, K), k=k, method=method,
                                  all_negative=all_negative, extra=extra, tol=tol,
-                                 metric=c.metric)
+                                 metric=c.metric, orders=c.orders)
 
     todo = [c for c in classes if only is None or c.name in only]
     if threads == 1 or len(todo) < 2:
