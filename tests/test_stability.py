@@ -147,7 +147,8 @@ def test_reported_stress_of_a_grad_div_model_is_the_plain_models():
     # term gamma (J - 1) J F^-T would be of order 7 * 0.01 mu), equal to rounding (1e-12 mu)
     rng = np.random.default_rng(3)
     plain = fe.gallery.keplinger_problem(elements=(2, 1, 1))
-    stab = fe.gallery.keplinger_problem(elements=(2, 1, 1), grad_div=7.0)
+    stab = fe.gallery.keplinger_problem(elements=(2, 1, 1),
+                                         options=fe.PlateOptions(grad_div=7.0))
     x = plain.initial_state() + 0.01 * rng.standard_normal(plain.ndofs)
     load = (1.0, 2.0)
     for (_, F, G, p), (_, F2, G2, p2) in zip(plain.quadrature_fields(x, load),
