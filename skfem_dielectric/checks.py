@@ -9,6 +9,8 @@ from __future__ import annotations
 
 import math
 import numbers
+import os
+from pathlib import Path
 from typing import Any, Callable, Sequence
 
 import numpy as np
@@ -16,7 +18,7 @@ import numpy as np
 __all__ = ["check_number", "check_positive", "check_nonnegative", "check_count",
            "check_nonnegative_int", "check_finite", "check_choice", "check_callable",
            "check_tolerances", "check_material", "check_vector", "check_file_prefix",
-           "check_energy", "check_instance"]
+           "check_folder", "check_file_path", "check_energy", "check_instance"]
 
 
 def check_number(name: str, value: Any) -> float:
@@ -133,6 +135,40 @@ def check_file_prefix(name: str, value: Any) -> str:
         raise ValueError(f"{name} must be a file-name prefix without path separators, "
                          f"got {value!r}")
     return value
+
+
+def _path(name: str, value: Any, what: str) -> Path:
+    if not isinstance(value, (str, os.PathLike)) or not os.fspath(value):
+        raise ValueError(f"{name} must be a {what} path, got {value!r}")
+    return Path(value)
+
+
+def _folders_on(name: str, value: Any, folders: Sequence[Path], what: str) -> None:
+    for part in folders:
+        if part.exists() and not part.is_dir():
+            raise ValueError(f"{name} must be a {what}, got {value!r}: {str(part)!r} is "
+                             f"a file")
+
+
+def check_folder(name: str, value: Any) -> Path:
+    """``Path(value)`` of a folder to write into: an existing folder or a path where one
+    can be made, else ``ValueError`` (the path, or a folder on it, is an existing file;
+    the value is not a path)."""
+    path = _path(name, value, "folder")
+    _folders_on(name, value, [path, *path.parents], "folder (existing or to be made)")
+    return path
+
+
+def check_file_path(name: str, value: Any) -> Path:
+    """``Path(value)`` of a file to write (overwritten if it exists; missing folders are
+    made), else ``ValueError`` (the path is an existing folder, a folder on it is an
+    existing file, or the value is not a path)."""
+    path = _path(name, value, "file")
+    if path.is_dir():
+        raise ValueError(f"{name} must be a file, got {value!r}: a folder")
+    _folders_on(name, value, list(path.parents), "file in a folder (existing or to be "
+                "made)")
+    return path
 
 
 #: ``I1`` values at which a user strain energy is probed on construction (from the

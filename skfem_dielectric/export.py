@@ -16,7 +16,7 @@ from typing import Any
 import meshio
 import numpy as np
 
-from .checks import check_file_prefix
+from .checks import check_file_path, check_file_prefix, check_folder
 from .problem import Problem
 
 __all__ = ["step_mesh", "write_vtu_series", "write_xdmf"]
@@ -49,7 +49,8 @@ def write_vtu_series(result, directory: str | Path, prefix: str = "step",
         :class:`~skfem_dielectric.solvers.ramp.RampResult` (its ``problem`` is used unless
         ``problem`` is given).
     directory
-        Output directory (created if missing).
+        Output directory (created if missing; ``ValueError`` naming ``directory`` if it,
+        or a folder on its path, is an existing file).
     prefix
         File name prefix (no path separators: the files stay in ``directory``).
     problem
@@ -62,10 +63,10 @@ def write_vtu_series(result, directory: str | Path, prefix: str = "step",
         index; each step's load is in the VTU field data ``load``.
     """
     check_file_prefix("prefix", prefix)
+    d = check_folder("directory", directory)
     problem = problem if problem is not None else result.problem
     if problem is None:
         raise ValueError("problem is None: pass the PlateProblem that produced the result")
-    d = Path(directory)
     d.mkdir(parents=True, exist_ok=True)
     files = []
     for i, st in enumerate(result.steps):
@@ -91,11 +92,28 @@ def write_xdmf(result, path: str | Path, problem=None) -> Path:
     The XDMF "time" is the step index; the load pairs are not stored in XDMF.  The data
     are written inline (``data_format="XML"``): meshio's HDF5 variant needs ``h5py`` and
     writes the ``.h5`` file into the working directory.
+
+    Parameters
+    ----------
+    result
+        :class:`~skfem_dielectric.solvers.ramp.RampResult` (its ``problem`` is used unless
+        ``problem`` is given).
+    path
+        The ``.xdmf`` file (overwritten if it exists; its folder is created if missing).
+        ``ValueError`` naming ``path`` if it is an existing folder or a folder on its path
+        is an existing file.
+    problem
+        Problem override.
+
+    Returns
+    -------
+    Path
+        ``path``.
     """
+    path = check_file_path("path", path)
     problem = problem if problem is not None else result.problem
     if problem is None:
         raise ValueError("problem is None: pass the PlateProblem that produced the result")
-    path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
     meshes = [step_mesh(problem, st.x, st.load) for st in result.steps]
     if not meshes:

@@ -2,6 +2,7 @@
 
 import meshio
 import numpy as np
+import pytest
 
 from skfem_dielectric.export import write_vtu_series, write_xdmf
 from skfem_dielectric.gallery.drivers import equibiaxial_plate
@@ -31,3 +32,26 @@ def test_vtu_series_and_xdmf_hold_the_homogeneous_state(tmp_path):
         _, pd, cd = r.read_data(r.num_steps - 1)
     np.testing.assert_allclose(pd["displacement"], last.point_data["displacement"], atol=1e-12)
     np.testing.assert_allclose(cd["P33"][0], s / lam, rtol=1e-9)
+
+
+def test_export_to_a_path_that_is_a_file_is_a_value_error_naming_it(tmp_path):
+    """docs/fe.md: export raises a ``ValueError`` naming the parameter and its value."""
+    res = equibiaxial_plate(1.5, [2.0], elements=(2, 1, 2), preload_steps=2,
+                            linear_solver="superlu")
+    a_file = tmp_path / "a_file"
+    a_file.write_text("not a folder\n")
+    for call, name, value in [
+            (lambda: write_vtu_series(res, a_file), "directory", a_file),
+            (lambda: write_vtu_series(res, a_file / "sub"), "directory", a_file / "sub"),
+            (lambda: write_xdmf(res, a_file / "ramp.xdmf"), "path", a_file / "ramp.xdmf"),
+            (lambda: write_xdmf(res, tmp_path), "path", tmp_path)]:
+        with pytest.raises(ValueError) as err:
+            call()
+        assert str(err.value).startswith(f"{name} must be")
+        assert str(value) in str(err.value)
+    assert a_file.read_text() == "not a folder\n"
+    # an existing XDMF file is overwritten
+    assert write_xdmf(res, a_file) == a_file
+    with meshio.xdmf.TimeSeriesReader(a_file) as r:
+        r.read_points_cells()
+        assert r.num_steps == len(res.steps)
