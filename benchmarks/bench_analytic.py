@@ -1,8 +1,13 @@
 """Time 10^6 points of every analytic loading curve (target: each under 1 s).
 
-Run ``python benchmarks/bench_analytic.py [--n N] [--repeat R]``. Prints, per curve and
-model, the best wall time of R repetitions for N points, and whether it is under 1 s
-per 10^6 points. Timings are machine dependent and noisy on a loaded machine.
+Prints, per curve and model, the best wall time of R repetitions for N points, and
+whether it is under 1 s per 10^6 points. Timings are machine dependent and noisy on a
+loaded machine.
+
+Usage::
+
+    python benchmarks/bench_analytic.py [--n N] [--repeat R]
+    python benchmarks/bench_analytic.py --smoke    # 1000 points, one repetition
 """
 
 from __future__ import annotations
@@ -44,7 +49,12 @@ def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--n", type=int, default=10**6, help="points per curve (default 10^6)")
     parser.add_argument("--repeat", type=int, default=3, help="repetitions, best is kept")
+    parser.add_argument("--smoke", action="store_true",
+                        help="the same code path on 1000 points, one repetition (a check that "
+                             "the script runs, not a measurement)")
     args = parser.parse_args(argv)
+    if args.smoke:
+        args.n, args.repeat = 1000, 1
     print(f"{'curve':45s} {'points':>9s} {'best s':>8s}  per 1e6 pts")
     runs = [(args.n, c) for c in cases(args.n)] + [(args.n // 10, c) for c in locus_cases(args.n // 10)]
     for n, (label, fun) in runs:

@@ -13,8 +13,12 @@ and the ramp ``D0`` at which each first fires is printed beside ``D0_b``.
 Usage::
 
     python benchmarks/bench_clamp_wrinkle.py [--alpha 0.3 0.7 1 1.5] [--mesh 10x1x5 14x1x7]
+    python benchmarks/bench_clamp_wrinkle.py --smoke    # alpha = 1 on 4 x 1 x 2
 
-Prints one line per alpha x mesh and the CPU seconds of each.
+Prints two lines (the centroid and the most compressive clamp-side point) per alpha x mesh
+and the CPU seconds of each.  ``--smoke`` runs the same code path for ``alpha = 1`` on
+the 4 x 1 x 2 eighth model in steps of 0.5 up to the ``D0_b`` of the 10 x 1 x 5 mesh (a
+check that the script runs; its numbers are not the study's).
 """
 
 from __future__ import annotations
@@ -34,20 +38,41 @@ D0_B = {(0.3, "10x1x5"): 1.5607, (0.3, "14x1x7"): 1.4949, (0.3, "20x1x10"): 1.47
         (1.5, "10x1x5"): 4.2027, (1.5, "14x1x7"): 3.9908, (1.5, "20x1x10"): 4.4008}
 
 
-def run(alpha: float, mesh: str, D0_max: float = 5.0, solver: str = "auto") -> list[dict]:
-    """One alpha x mesh: the mode at D0_b and the local criteria's onsets at two points."""
+def run(alpha: float, mesh: str, D0_max: float = 5.0, solver: str = "auto",
+        D0_step: float = 0.25, D0_b: float | None = None) -> list[dict]:
+    """One alpha x mesh: the mode at D0_b and the local criteria's onsets at two points.
+
+    Parameters
+    ----------
+    alpha, mesh
+        Weight fraction and eighth-model mesh (``"10x1x5"``).
+    D0_max, D0_step
+        The charge ramp: ``D0 = D0_step, 2 D0_step, ..., D0_max`` and ``D0_b``.
+    solver
+        Linear solver of the ramp.
+    D0_b
+        The reference charge; default the study's buckling load of ``alpha`` and ``mesh``
+        (:data:`D0_B`).
+
+    Returns
+    -------
+    list of dict
+        The centroid's row and the most compressive clamp-side point's row.
+    """
     import skfem_dielectric as fe
     from skfem_dielectric.models.plate.modes import lowest_physical
     from validation.fe.model import BUCKLING_GRAD_DIV
     from validation.studies.local_theory import energy_centroid, half_waves, local_state
 
     el = tuple(int(v) for v in mesh.split("x"))
-    D0_b = D0_B[(alpha, mesh)]
-    targets = np.unique(np.append(np.round(np.arange(0.25, D0_max + 1e-9, 0.25), 10), D0_b))
+    D0_b = D0_B[(alpha, mesh)] if D0_b is None else D0_b
+    targets = np.unique(np.append(np.round(np.arange(D0_step, D0_max + 1e-9, D0_step), 10),
+                                  D0_b))
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         res = fe.keplinger_plate(alpha, D0=targets, elements=el, symmetry="eighth",
-                                 grad_div=BUCKLING_GRAD_DIV, linear_solver=solver,
+                                 options=fe.PlateOptions(grad_div=BUCKLING_GRAD_DIV),
+                                 linear_solver=solver,
                                  settings=replace(fe.gallery.KEPLINGER_SETTINGS,
                                                   max_cutbacks=6, max_iter=25))
     pb = res.problem
@@ -105,14 +130,22 @@ def main(argv=None) -> int:
     ap.add_argument("--alpha", type=float, nargs="*", default=[0.3, 0.7, 1.0, 1.5])
     ap.add_argument("--mesh", nargs="*", default=["10x1x5", "14x1x7"])
     ap.add_argument("--solver", default="auto")
+    ap.add_argument("--smoke", action="store_true",
+                    help="alpha = 1 on the 4 x 1 x 2 mesh in D0 steps of 0.5 up to the D0_b of "
+                         "10 x 1 x 5 (a check that the script runs, not a measurement)")
     a = ap.parse_args(argv)
+    ramp = {}
+    if a.smoke:
+        a.alpha, a.mesh = [1.0], ["4x1x2"]
+        D0_b = D0_B[(1.0, "10x1x5")]
+        ramp = {"D0_step": 0.5, "D0_max": D0_b, "D0_b": D0_b}
     print("alpha  mesh      D0_b  n_half  point        X1    X3  lam1  lam2  lam3     J  D0_loc "
           " sig33  thin_b thick_b  kh_fe  half-wave/mm  kh_pref | fires at D0: thin  kh_fe  thick"
           "  thin-par.  CPU s")
     for mesh in a.mesh:
         for alpha in a.alpha:
             t0 = time.process_time()
-            rows = run(alpha, mesh, solver=a.solver)
+            rows = run(alpha, mesh, solver=a.solver, **ramp)
             cpu = time.process_time() - t0
             for r in rows:
                 print(f"{r['alpha']:5.2f}  {r['mesh']:7s} {r['D0_b']:6.4f}  {r['half_waves']:5d}  "

@@ -4,6 +4,7 @@ min P33 on the centre line / near the clamp, stability verdict, and where the ra
 Usage::
 
     python benchmarks/bench_fe_alpha_scan.py [--n1 20 --n3 10] [--dD0 0.5] [--alpha 1.0 ...]
+    python benchmarks/bench_fe_alpha_scan.py --smoke    # alpha = 1, 2 x 1 x 1, D0 = 1
 
 Prints one table per alpha.  Reference: Eq. (DEuniax), ``lam1^2 (lam1 - s) =
 sqrt(1 + D0^2)`` (largest real root), and ``lam1 - lam1^-2 = s`` before charging.
@@ -34,7 +35,12 @@ def main(argv=None) -> int:
     ap.add_argument("--D0max", type=float, default=6.0)
     ap.add_argument("--alpha", type=float, nargs="*", default=[0.05, 0.3, 0.7, 1.0, 1.5])
     ap.add_argument("--solver", default="auto")
+    ap.add_argument("--smoke", action="store_true",
+                    help="alpha = 1 on 2 x 1 x 1 elements up to D0 = 1 (a check that the "
+                         "script runs, not a measurement)")
     a = ap.parse_args(argv)
+    if a.smoke:
+        a.n1, a.n3, a.dD0, a.D0max, a.alpha = 2, 1, 1.0, 1.0, [1.0]
     D0 = np.arange(a.dD0, a.D0max + 1e-9, a.dD0)
     for alpha in a.alpha:
         s = keplinger_s(alpha, g=9.81)

@@ -4,8 +4,10 @@ Usage::
 
     python benchmarks/bench_fe_corner_failure.py [--alpha 0.05] [--n1 40 --n3 20]
         [--grading 1] [--D0 1 1.5 2 ...] [--cutbacks 4 --max-iter 12] [--eig-from 1.5]
+        [--solver pardiso|superlu|auto]
+    python benchmarks/bench_fe_corner_failure.py --smoke    # 2 x 1 x 1, default solver
 
-Ramps the eighth model (PARDISO) and prints per converged step: the centre stretch, the
+Ramps the eighth model (PARDISO by default) and prints per converged step: the centre stretch, the
 inertia verdict, ``min det F`` and the ``S33/mu`` of largest magnitude at the quadrature
 points with their positions (``skfem_dielectric.models.plate.failure.plate_failure_cause``), and
 from ``--eig-from`` on the lowest eigenvalues of the reduced stiffness with, per mode, the
@@ -14,6 +16,11 @@ fraction of its displacement norm within two thicknesses of the clamp/free-edge 
 point has a vanishing eigenvalue whose mode is not orthogonal to the load).  If the ramp
 stops, the failed Newton attempt is replayed from the last converged state with its
 residual history and the ``det F > 0`` step limits (``PlateProblem.max_step``) it met.
+
+``--smoke`` runs the same code path on 2 x 1 x 1 elements with the default solver: one
+charge step with the eigenvalues, then a jump to ``D0 = 8`` without cut-backs that Newton
+cannot make, so that the replay runs too (a check that the script runs, not a
+measurement).
 """
 
 from __future__ import annotations
@@ -46,7 +53,15 @@ def main(argv=None) -> int:
     ap.add_argument("--max-iter", type=int, default=12)
     ap.add_argument("--eig-from", type=float, default=np.inf)
     ap.add_argument("--k", type=int, default=3)
+    ap.add_argument("--solver", choices=["pardiso", "superlu", "auto"], default="pardiso")
+    ap.add_argument("--smoke", action="store_true",
+                    help="2 x 1 x 1 elements, D0 = 1 (with the eigenvalues) and 8 (fails, "
+                         "replayed), default solver (a check that the script runs, not a "
+                         "measurement)")
     a = ap.parse_args(argv)
+    if a.smoke:
+        a.n1, a.n3, a.D0, a.cutbacks, a.max_iter = 2, 1, [1.0, 8.0], 0, 6
+        a.eig_from, a.solver = 1.0, "auto"
     t0 = time.perf_counter()
     prob = keplinger_problem(elements=(a.n1, 1, a.n3), grading=a.grading)
     pm = prob.plate
@@ -79,7 +94,7 @@ def main(argv=None) -> int:
           f"grading {a.grading}, cut-backs {a.cutbacks}, max_iter {a.max_iter}")
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", RuntimeWarning)
-        res = run_ramp(prob, preload_then_charge(s, a.D0, 3), linear_solver="pardiso",
+        res = run_ramp(prob, preload_then_charge(s, a.D0, 3), linear_solver=a.solver,
                        on_step=lambda st: st.load[1] > 0 and report(st),
                        settings=RampSettings(atol=0.0, rtol=1e-9, max_cutbacks=a.cutbacks,
                                                     max_iter=a.max_iter))
@@ -93,7 +108,7 @@ def main(argv=None) -> int:
 
         nr = newton(lambda xx: prob.assemble(xx, res.failed_at), res.steps[-1].x,
                     residual=lambda xx: prob.residual(xx, res.failed_at),
-                    linear_solver=get_linear_solver("pardiso"),
+                    linear_solver=get_linear_solver(a.solver),
                     settings=NewtonSettings(atol=0.0, rtol=1e-9, max_iter=a.max_iter),
                     scale=prob.residual_scale(res.failed_at),
                     step_limit=limit,

@@ -4,6 +4,7 @@ Usage::
 
     python benchmarks/bench_fe_isochoric.py [--n1 20 --n3 10] [--kappa 1000] [--alpha 1.0]
         [--D0 0 1 2 3] [--solver pardiso]
+    python benchmarks/bench_fe_isochoric.py --smoke    # 2 x 1 x 1, D0 = 0, 1
 
 Prints ``lam1`` at the plate centre for the exactly incompressible mixed form (the
 reference) and, at the finite ``kappa``, the isochoric (COMSOL) energy
@@ -65,7 +66,12 @@ def main(argv=None) -> int:
                     default=["mixed-isochoric", "isochoric", "mixed", "penalty"],
                     help="formulations with the finite kappa (the reference, the mixed form "
                          "with kappa = inf, is always run first)")
+    ap.add_argument("--smoke", action="store_true",
+                    help="every form on 2 x 1 x 1 elements at D0 = 0, 1 (a check that the "
+                         "script runs, not a measurement)")
     a = ap.parse_args(argv)
+    if a.smoke:
+        a.n1, a.n3, a.D0 = 2, 1, [0.0, 1.0]
     s = keplinger_s(a.alpha, g=9.81)
     forms = [("mixed", float("inf"))] + [(f, a.kappa) for f in a.forms]
     lam = {}

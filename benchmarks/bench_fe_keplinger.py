@@ -15,7 +15,8 @@ no inertia and always runs until Newton fails.
 Usage::
 
     python benchmarks/bench_fe_keplinger.py [--solver pardiso|superlu] [--n1 40 --n3 20]
-                                            [--no-stop]
+                                            [--D0-max 6] [--no-stop]
+    python benchmarks/bench_fe_keplinger.py --smoke    # SuperLU, 2 x 1, D0 = 1
 """
 
 from __future__ import annotations
@@ -30,7 +31,8 @@ import time
 import warnings
 
 
-def run(solver: str, n1: int, n3: int, threads: int | None, stop_unstable: bool) -> dict:
+def run(solver: str, n1: int, n3: int, threads: int | None, stop_unstable: bool,
+        D0_max: int = 6) -> dict:
     import numpy as np
 
     from skfem_dielectric import PlateOptions, keplinger_plate
@@ -45,7 +47,7 @@ def run(solver: str, n1: int, n3: int, threads: int | None, stop_unstable: bool)
 
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        res = keplinger_plate(1.0, D0=[1, 2, 3, 4, 5, 6], elements=(n1, 1, n3),
+        res = keplinger_plate(1.0, D0=list(range(1, D0_max + 1)), elements=(n1, 1, n3),
                               linear_solver=solver, options=PlateOptions(threads=threads),
                               on_step=on_step,
                               settings=replace(KEPLINGER_SETTINGS,
@@ -88,22 +90,29 @@ def main(argv=None) -> int:
                     help="run one solver in this process (default: both, in subprocesses)")
     ap.add_argument("--n1", type=int, default=40)
     ap.add_argument("--n3", type=int, default=20)
+    ap.add_argument("--D0-max", type=int, default=6, help="last charge target (D0 = 1, 2, ...)")
     ap.add_argument("--threads", type=int, default=None, help="assembly threads")
     ap.add_argument("--json", action="store_true", help="print a JSON line (internal)")
     ap.add_argument("--no-stop", action="store_true",
                     help="do not stop at the first unstable step (PARDISO inertia); the ramp "
                          "then spends its cut-backs trying to pass the breakdown")
+    ap.add_argument("--smoke", action="store_true",
+                    help="the same code path with SuperLU only on 2 x 1 elements up to D0 = 1 "
+                         "(a check that the script runs, not a measurement)")
     a = ap.parse_args(argv)
+    solvers = ("pardiso", "superlu")
+    if a.smoke:
+        a.n1, a.n3, a.D0_max, solvers = 2, 1, 1, ("superlu",)
     if a.solver is not None:
-        out = run(a.solver, a.n1, a.n3, a.threads, not a.no_stop)
+        out = run(a.solver, a.n1, a.n3, a.threads, not a.no_stop, a.D0_max)
         print(json.dumps(out) if a.json else out)
         return 0
     print("Keplinger plate, alpha = 1 (s = 2.993, g = 9.81), eighth model, "
-          f"{a.n1} x {a.n3} in-plane Q2 elements, D0 = 0 -> 6")
+          f"{a.n1} x {a.n3} in-plane Q2 elements, D0 = 0 -> {a.D0_max}")
     print("NOTE: 2-core machine shared with other jobs: timings are noisy.")
-    for solver in ("pardiso", "superlu"):
+    for solver in solvers:
         cmd = [sys.executable, __file__, "--solver", solver, "--n1", str(a.n1),
-               "--n3", str(a.n3), "--json"]
+               "--n3", str(a.n3), "--D0-max", str(a.D0_max), "--json"]
         if a.threads is not None:
             cmd += ["--threads", str(a.threads)]
         if a.no_stop:

@@ -20,6 +20,7 @@ Usage::
     python benchmarks/bench_fe_memory.py --D0-max 0.5         # pre-load + two charge steps
     python benchmarks/bench_fe_memory.py --elements 80 1 40   # the 160k-unknown plate
     python benchmarks/bench_fe_memory.py --solver superlu     # the default install
+    python benchmarks/bench_fe_memory.py --smoke              # 2 x 1 x 1, 2 load steps
 """
 
 from __future__ import annotations
@@ -208,7 +209,12 @@ def main(argv=None) -> int:
     ap.add_argument("--chord", type=float, default=0.1)
     ap.add_argument("--predictor", choices=["none", "secant"], default="secant")
     ap.add_argument("--json", action="store_true", help="run here, print JSON (internal)")
+    ap.add_argument("--smoke", action="store_true",
+                    help="2 x 1 x 1 elements, the pre-load in one step and D0 = 0.25, default "
+                         "solver (a check that the script runs, not a measurement)")
     a = ap.parse_args(argv)
+    if a.smoke:
+        a.elements, a.preload_steps, a.D0_step, a.D0_max = [2, 1, 1], 1, 0.25, 0.25
     if a.json:
         print(json.dumps(run(a)))
         return 0

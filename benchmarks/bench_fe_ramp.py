@@ -19,6 +19,11 @@ Usage::
     python benchmarks/bench_fe_ramp.py --plain               # every iteration factorises
     python benchmarks/bench_fe_ramp.py --scaling             # s/iteration vs unknowns
     python benchmarks/bench_fe_ramp.py --save ramp.npz       # lam1, fields per step
+    python benchmarks/bench_fe_ramp.py --smoke               # 2 x 1 x 1, 2 load steps
+
+``--smoke`` runs the same code path on the full plate of 2 x 1 x 1 elements, the pre-load
+in one step and ``D0 = 0.25`` with the default solver: a check that the script runs, its
+numbers are not measurements.
 
 ``--scaling`` runs the pre-load and the first charge steps (``--D0-max 0.5``) on four
 meshes (20 x 10, 40 x 20, 56 x 28, 80 x 40) and fits ``t = c n^k`` to the time per
@@ -160,7 +165,13 @@ def main(argv=None) -> int:
     ap.add_argument("--scaling", action="store_true",
                     help="time per iteration on four meshes and the fitted exponent")
     ap.add_argument("--json", action="store_true", help="run here, print JSON (internal)")
+    ap.add_argument("--smoke", action="store_true",
+                    help="2 x 1 x 1 elements, the pre-load in one step and D0 = 0.25, default "
+                         "solver (a check that the script runs, not a measurement)")
     a = ap.parse_args(argv)
+    if a.smoke:
+        a.elements, a.preload_steps, a.D0_step, a.D0_max = [2, 1, 1], 1, 0.25, 0.25
+        a.scaling = False
     if a.json:
         print(json.dumps(run(a)))
         return 0

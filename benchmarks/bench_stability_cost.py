@@ -15,7 +15,8 @@ largest differences.
 Usage::
 
     python benchmarks/bench_stability_cost.py [--n1 40 --n2 1 --n3 20] [--solver pardiso|superlu]
-                                              [--symmetry quarter] [--check]
+                                              [--symmetry quarter] [--D0-max 5] [--check]
+    python benchmarks/bench_stability_cost.py --smoke    # 2 x 1 x 1, D0 = 0.5, --check
 """
 
 from __future__ import annotations
@@ -37,7 +38,7 @@ def run(a, monitor):
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         t0, c0 = time.perf_counter(), time.process_time()
-        res = keplinger_plate(1.0, D0=np.arange(0.5, 5.0001, 0.5),
+        res = keplinger_plate(1.0, D0=np.arange(0.5, a.D0_max + 1e-4, 0.5),
                               elements=(a.n1, a.n2, a.n3), symmetry=a.symmetry,
                               linear_solver=a.solver, state_analysis=monitor)
         return res, time.perf_counter() - t0, time.process_time() - c0
@@ -50,8 +51,14 @@ def main(argv=None) -> None:
     ap.add_argument("--n3", type=int, default=20)
     ap.add_argument("--symmetry", default="quarter")
     ap.add_argument("--solver", default="auto")
+    ap.add_argument("--D0-max", type=float, default=5.0, help="last charge target (steps of 0.5)")
     ap.add_argument("--check", action="store_true")
+    ap.add_argument("--smoke", action="store_true",
+                    help="2 x 1 x 1 elements up to D0 = 0.5 with --check (a check that the "
+                         "script runs, not a measurement)")
     a = ap.parse_args(argv)
+    if a.smoke:
+        a.n1, a.n2, a.n3, a.D0_max, a.check = 2, 1, 1, 0.5, True
     runs = {}
     for name, mon in (("plain", None), ("count", StabilityMonitor(k=0)),
                       ("count + 5 modes", StabilityMonitor(k=5))):

@@ -15,6 +15,11 @@ Usage::
 
     python benchmarks/bench_validate.py --quick
     python benchmarks/bench_validate.py --solver pardiso [--case uni-axial-ideal zs22]
+    python benchmarks/bench_validate.py --smoke    # --quick --case figde
+
+``--smoke`` runs the same code path on the cheapest case of the quick job (``figde``,
+SuperLU unless ``--solver`` says otherwise): a check that the script runs, its numbers
+are not measurements.
 """
 
 from __future__ import annotations
@@ -60,7 +65,12 @@ def main(argv=None) -> int:
     ap.add_argument("--solver", choices=("auto", "superlu", "pardiso"), default="superlu")
     ap.add_argument("--case", nargs="+", default=None, help="cases (default: all)")
     ap.add_argument("--out", default=None, help="output folder (default: a temporary one)")
+    ap.add_argument("--smoke", action="store_true",
+                    help="--quick with the cheapest case, figde, unless --case is given (a "
+                         "check that the script runs, not a measurement)")
     args = ap.parse_args(argv)
+    if args.smoke:
+        args.quick, args.case = True, args.case or ["figde"]
 
     tmp = None
     if args.out is None:

@@ -7,9 +7,13 @@ Target: under 1 s per curve. Prints the best of 3 wall times per
 curve, the number of roots found and the end values against the thin/thick
 limits.
 
-Run: ``python benchmarks/bench_wrinkling.py``
+Usage::
+
+    python benchmarks/bench_wrinkling.py [--n 200] [--repeat 3]
+    python benchmarks/bench_wrinkling.py --smoke    # 20 values of kh, once
 """
 
+import argparse
 import time
 
 import numpy as np
@@ -26,8 +30,17 @@ def best_of(fun, repeat=3):
     return best, out
 
 
-def main() -> None:
-    kh = np.logspace(-2, 2, 200)
+def main(argv=None) -> None:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--n", type=int, default=200, help="values of kh per curve")
+    ap.add_argument("--repeat", type=int, default=3, help="repetitions, best is kept")
+    ap.add_argument("--smoke", action="store_true",
+                    help="the same code path on 20 values of kh, one repetition (a check "
+                         "that the script runs, not a measurement)")
+    a = ap.parse_args(argv)
+    if a.smoke:
+        a.n, a.repeat = 20, 1
+    kh = np.logspace(-2, 2, a.n)
     lam = 1.5
     print(f"dispersion curves: lam = {lam}, {kh.size} values of kh in [1e-2, 1e2]")
     print(f"{'model':>12} {'mode':>14} {'control':>8} {'seconds':>8} {'roots':>6} "
@@ -36,7 +49,8 @@ def main() -> None:
     for model in (NeoHookean(), Gent(Jm=97.2)):
         for mode in ("antisymmetric", "symmetric"):
             for control in ("charge", "voltage"):
-                t, D = best_of(lambda: critical_D0(lam, kh, model, mode=mode, control=control))
+                t, D = best_of(lambda: critical_D0(lam, kh, model, mode=mode, control=control),
+                               a.repeat)
                 worst = max(worst, t)
                 print(f"{model.name:>12} {mode:>14} {control:>8} {t:8.3f} {np.isfinite(D).sum():6d} "
                       f"{D[0]:12.6f} {thin_limit_D0(lam, model):9.5f} {D[-1]:11.6f} "
