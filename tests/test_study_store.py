@@ -169,6 +169,73 @@ def test_a_half_written_last_row_is_recomputed(fake, tmp_path, capsys):
     assert fake == []
 
 
+def test_a_missing_value_is_an_empty_cell_and_said_in_words(tmp_path, capsys, monkeypatch):
+    """docs/cli.md: ``P33_onset_<set>`` "empty if never", ``newton_limit`` "empty" when the
+    ramp reached ``--D0-max``; the printed line says so, and a rerun reads the cells back."""
+    calls = []
+    one, plain = fake_buckling(calls)
+    nan = float("nan")
+    never = {f"P33_onset_{k}": nan for k in bk.P33_SETS}
+
+    def one_without(*a, **k):
+        row, scan = one(*a, **k)
+        row.update(never, D0_b=nan, newton_limit=nan, lowest_eig=nan, **{"class": ""})
+        return row, scan
+
+    monkeypatch.setattr(bk, "run_one", one_without)
+    monkeypatch.setattr(bk, "run_plain", lambda *a, **k: {**plain(*a, **k), **never,
+                                                          "newton_limit": nan})
+    monkeypatch.setattr(bk, "buckling_figure", lambda *a, **k: None)
+    argv = ["buckling", "--alpha", "1", "--meshes", "2x1x1", "--D0-step", "0.5",
+            "--D0-max", "1", "--solver", "superlu"]
+    code, o, err = run(argv, tmp_path, capsys)
+    assert code == 0 and err == ""
+    assert ("alpha = 1 2x1x1: no D0_b found, no P33 onset (interior) up to D0 = 1, "
+            "no Newton limit up to D0 = 1, 1 s") in o
+    assert "nan" not in o
+    empty = ["D0_b", "lowest_eig", "newton_limit"] + list(never)
+    for name in ("buckling.csv", "buckling-plain.csv"):
+        with open(tmp_path / name, newline="") as fh:
+            (row,) = list(csv.DictReader(fh))
+        assert "nan" not in (tmp_path / name).read_text()
+        assert all(row[c] == "" for c in empty if c in row), row
+        assert all(v != v for c, v in read_rows(tmp_path / name)[0].items() if c in empty)
+    ref = files_of(tmp_path, "buckling")
+    calls.clear()
+    code, o, err = run(argv, tmp_path, capsys)       # the rerun reads its own CSVs back
+    assert code == 0 and err == "" and calls == []
+    assert files_of(tmp_path, "buckling") == ref
+    # a table of an earlier version with "nan" cells is read and rewritten with empty ones
+    table = tmp_path / "buckling.csv"
+    with open(table, newline="") as fh:
+        lines = list(csv.reader(fh))
+    lines[1] = ["nan" if c in empty else v for c, v in zip(lines[0], lines[1])]
+    table.write_text("".join(",".join(r) + "\n" for r in lines))
+    code, o, err = run(argv[:2] + ["1", "2"] + argv[3:], tmp_path, capsys)
+    assert code == 0 and err == "" and len(calls) == 1          # alpha = 2 only
+    assert "nan" not in table.read_text()
+    assert table.read_text().splitlines()[1] == ref["buckling.csv"].decode().splitlines()[1]
+
+
+def test_a_post_buckling_unit_without_a_branch_is_said_in_words(tmp_path, capsys,
+                                                                 monkeypatch):
+    nan = float("nan")
+    none = dict(D0_b=nan, D0_b_pitchfork=nan, b=nan, D0_last=nan, deflection_last=nan,
+                reason="no negative eigenvalue of the own class")
+    one = fake_post([])
+    monkeypatch.setattr(pb, "run_one", lambda *a, **k: ({**one(*a, **k)[0], **none},
+                                                         one(*a, **k)[1]))
+    monkeypatch.setattr(pb, "post_buckling_figure", lambda *a, **k: None)
+    code, o, err = run(["post-buckling", "--alpha", "0.05", "--meshes", "2x2x1", "--D0-step",
+                        "0.5", "--D0-max", "1", "--solver", "superlu"], tmp_path, capsys)
+    assert code == 0 and err == ""
+    assert ("alpha = 0.05 quarter 2x2x1: no D0_b found, none from the branch; no buckled "
+            "state; 1 s (no negative eigenvalue of the own class)") in o
+    with open(tmp_path / "post-buckling-summary.csv", newline="") as fh:
+        (row,) = list(csv.DictReader(fh))
+    assert all(row[c] == "" for c in none if c != "reason")
+
+
 def test_a_damaged_row_is_exit_3_naming_the_file_and_row(fake, tmp_path, capsys):
     argv = STUDIES["buckling"]["argv"]
     assert run(argv, tmp_path, capsys)[0] == 0

@@ -29,6 +29,9 @@ def test_voltage_control_case_csv_figure_and_report(tmp_path, one_run):
         assert (out / f"voltage-control.{ext}").is_file()
     with open(out / "voltage-control.csv", newline="") as fh:
         rows = list(csv.DictReader(fh))
+    # a value the point does not have is an empty cell (docs/cli.md), never "nan"
+    assert "nan" not in (out / "voltage-control.csv").read_text().lower()
+    assert vvc._fmt(float("nan")) == "" and vvc._fmt(None) == ""
     assert set(CONTRACT) <= set(rows[0])
     branch = [r["branch"] for r in rows]
     k = branch.index("limit")

@@ -16,9 +16,12 @@ from __future__ import annotations
 import csv
 import io
 import json
+import math
 import shutil
 from dataclasses import dataclass
 from pathlib import Path
+
+import numpy as np
 
 from .files import FolderLock, dumps, write_csv_atomic, write_text_atomic
 
@@ -62,10 +65,20 @@ class DamagedFileError(OSError):
 
 
 def _text(v) -> str:
-    """The cell of a row value: ``""`` for ``None``, floats with 10 significant digits."""
+    """The cell of a row value: ``""`` for ``None`` and ``nan`` (no value), floats with 10
+    significant digits."""
     if v is None:
         return ""
-    return f"{v:.10g}" if isinstance(v, float) else str(v)
+    if isinstance(v, (float, np.floating)):
+        return "" if math.isnan(v) else f"{float(v):.10g}"
+    return str(v)
+
+
+def _cells(columns, cells: list[str]) -> list[str]:
+    """``cells`` of a row read back, a ``nan`` in a number column as the empty cell that
+    :func:`_text` now writes for it (files of earlier versions)."""
+    return ["" if c not in TEXT_COLUMNS and t.strip().lower() == "nan" else t
+            for c, t in zip(columns, cells)]
 
 
 def _value(path, line: int, column: str, text: str):
@@ -267,6 +280,7 @@ class StudyStore:
                                            f"{len(f.columns)}")
                 for c, t in zip(f.columns, r):
                     _value(path, line, c, t)
+                r = _cells(f.columns, r)
                 k = f.key_of(r)
                 if f is self.table and k in by:
                     self.note(f"{path}: row {line} repeats the unit {', '.join(k)}; dropped")
@@ -348,7 +362,9 @@ def _cell(text: str):
 class KeyedRows:
     """Rows of one CSV, kept by key (the first ``nkey`` cells as written), rewritten
     atomically after every new row.  Rows of an existing file with the same header are
-    reused; a file with other columns is ignored (and replaced).
+    reused (a ``nan`` cell of an earlier version as an empty one); a last row cut short
+    (no line end) and rows with another number of cells are dropped, to be recomputed,
+    and a file with other columns is ignored (and replaced), each with a ``note``.
 
     Parameters
     ----------
@@ -360,17 +376,52 @@ class KeyedRows:
         The first ``nkey`` cells of a row are its key.
     fmt : callable
         ``fmt(value) -> str``, the text of a cell.
+    note : callable, optional
+        ``note(message)``: one line naming the file for each repair (the messages of
+        :class:`StudyStore`).
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> path = Path(tempfile.mkdtemp()) / "rows.csv"
+    >>> _ = path.write_text("kh,D0\\n0.5,1.25\\n2,3.")         # the last row cut short
+    >>> rows = KeyedRows(path, ["kh", "D0"], 1, str, note=print)  # doctest: +ELLIPSIS
+    /.../rows.csv: its last row is incomplete (no line end); dropped
+    >>> rows.get((0.5,), lambda: [0.5, 9.0]), rows.get((2,), lambda: [2, 3.5])
+    ([0.5, 1.25], [2.0, 3.5])
     """
 
-    def __init__(self, path: Path | None, columns: list[str], nkey: int, fmt):
+    def __init__(self, path: Path | None, columns: list[str], nkey: int, fmt, note=None):
         self.path, self.columns, self.nkey, self.fmt = path, columns, nkey, fmt
+        self.note = note or (lambda msg: None)
         self.known: dict[tuple, list[str]] = {}
         if path is not None and path.is_file():
-            with open(path, newline="") as fh:
-                lines = list(csv.reader(fh))
-            if lines and lines[0] == columns:
-                self.known = {tuple(r[:nkey]): r for r in lines[1:] if len(r) == len(columns)}
+            self.known = self._read(Path(path))
         self.rows: list[list[str]] = []
+
+    def _read(self, path: Path) -> dict[tuple, list[str]]:
+        try:
+            header, rows, cut = _parse(path, _read_text(path))
+        except DamagedFileError as exc:
+            self.note(f"{path}: {exc.strerror}; its rows are recomputed")
+            return {}
+        if header is None:
+            return {}
+        if header != self.columns:
+            self.note(f"{path} has other columns than {', '.join(self.columns)}; its rows "
+                      f"are recomputed")
+            return {}
+        if cut:
+            self.note(f"{path}: its last row is incomplete (no line end); dropped")
+        known = {}
+        for line, r in rows:
+            if len(r) != len(self.columns):
+                self.note(f"{path}: row {line - 1} (line {line}) has {len(r)} cells, the "
+                          f"header {len(self.columns)}; dropped")
+                continue
+            known[tuple(r[:self.nkey])] = ["" if c.strip().lower() == "nan" else c
+                                           for c in r]     # no value: an empty cell
+        return known
 
     def get(self, key: tuple, compute) -> list:
         """The row of ``key`` (cells formatted as the CSV's): reused, or computed and

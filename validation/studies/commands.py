@@ -17,7 +17,7 @@ from .postbuckling import charge_targets as post_targets, study_window
 from .wrinkling import run_wrinkling_fe
 
 __all__ = ["add_study_commands", "STUDY_COMMANDS", "cmd_wrinkling", "cmd_buckling",
-           "cmd_post_buckling"]
+           "cmd_post_buckling", "buckling_line"]
 
 
 def add_study_commands(add) -> None:
@@ -111,6 +111,40 @@ def _study_options(args, quick: dict, full: dict) -> dict:
     return opts
 
 
+def _given(value) -> bool:
+    """Whether a row value is a number (an empty cell, ``None`` or ``nan``, is none)."""
+    return value is not None and value == value
+
+
+def _number(fmt: str, value, missing: str) -> str:
+    """``fmt.format(value)``, or ``missing`` where the row has no value (an empty cell)."""
+    return fmt.format(value) if _given(value) else missing
+
+
+def buckling_line(row: dict) -> str:
+    """The line ``skfem-dielectric buckling`` prints for a finished alpha x mesh (a row of
+    ``buckling.csv``); a value the row does not have (an empty cell) is said in words:
+    ``no D0_b found``, ``no P33 onset (interior) up to D0 = <D0_max>``, ``no Newton limit
+    up to D0 = <D0_max>`` (every target converged).
+
+    Examples
+    --------
+    >>> nan = float("nan")
+    >>> buckling_line({"alpha": 1.0, "mesh": "10x1x5", "D0_b": 2.91472, "class": "AS",
+    ...                "P33_onset_interior": 2.5, "newton_limit": nan, "D0_max": 5.0,
+    ...                "seconds": 12.0})
+    'alpha = 1 10x1x5: D0_b = 2.9147 (AS), P33 onset (interior) 2.500, no Newton limit up to D0 = 5, 12 s'
+    """
+    top = f"up to D0 = {row['D0_max']:g}" if _given(row.get("D0_max")) else "at any target"
+    return (f"alpha = {row['alpha']:g} {row['mesh']}: "
+            + (f"D0_b = {row['D0_b']:.4f} ({row['class'] or 'none found'})"
+               if _given(row["D0_b"]) else "no D0_b found") + ", "
+            + _number("P33 onset (interior) {:.3f}", row["P33_onset_interior"],
+                      f"no P33 onset (interior) {top}") + ", "
+            + _number("Newton limit {:.3f}", row["newton_limit"], f"no Newton limit {top}")
+            + f", {row['seconds']:.0f} s")
+
+
 def cmd_post_buckling(args) -> int:
     """``skfem-dielectric post-buckling``: :func:`~.postbuckling.run_post_buckling` with the
     options of ``args``, one line per finished alpha x mesh; returns the exit code 0."""
@@ -124,10 +158,13 @@ def cmd_post_buckling(args) -> int:
         post_targets(opts["D0_step"], top, start)
 
     def show(row):
+        last = (f"deflection {row['deflection_last']:.3f} mm at D0 = {row['D0_last']:.3g}"
+                if _given(row["D0_last"]) else "no buckled state")
         print(f"alpha = {row['alpha']:g} {row['model']} {row['mesh']}: "
-              f"D0_b = {row['D0_b']:.4f}, from the "
-              f"branch {row['D0_b_pitchfork']:.4f}; deflection {row['deflection_last']:.3f} "
-              f"mm at D0 = {row['D0_last']:.3g}; {row['seconds']:.0f} s"
+              + _number("D0_b = {:.4f}", row["D0_b"], "no D0_b found")
+              + ", " + _number("from the branch {:.4f}", row["D0_b_pitchfork"],
+                               "none from the branch")
+              + f"; {last}; {row['seconds']:.0f} s"
               + (f" ({row['reason']})" if row["reason"] else ""), flush=True)
 
     run_post_buckling(args.out, **opts, solver=args.solver, model=args.model,
@@ -143,10 +180,7 @@ def cmd_buckling(args) -> int:
     buckling_targets(opts["D0_step"], opts["D0_max"])          # bounded before any work
 
     def show(row):
-        print(f"alpha = {row['alpha']:g} {row['mesh']}: D0_b = {row['D0_b']:.4f} "
-              f"({row['class'] or 'none found'}), P33 onset (interior) "
-              f"{row['P33_onset_interior']:.3f}, Newton limit {row['newton_limit']:.3f}, "
-              f"{row['seconds']:.0f} s", flush=True)
+        print(buckling_line(row), flush=True)
 
     run_buckling(args.out, **opts, solver=args.solver, progress=show, note=notice)
     print(f"wrote {args.out / 'buckling.csv'}, {args.out / 'buckling.png'} (and .pdf)")
@@ -170,7 +204,7 @@ def cmd_wrinkling(args) -> int:
 
     with command_lock(args.out, "wrinkling-fe", f"case 'wrinkling-fe' in {args.out}"):
         paths = run_wrinkling_fe(args.out, quick=args.quick, on_row=show,
-                                 on_elastic_row=show_elastic)
+                                 on_elastic_row=show_elastic, note=notice)
     print("wrote " + ", ".join(str(p) for p in paths))
     return 0
 

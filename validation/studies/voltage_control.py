@@ -331,7 +331,8 @@ def _fmt(v) -> str:
         return str(bool(v))
     if isinstance(v, str):
         return v
-    return format(float(v), ".12g")
+    v = float(v)
+    return "" if math.isnan(v) else format(v, ".12g")     # nan: no value, an empty cell
 
 
 def run_voltage_control(out, quick: bool = False, on_run=None) -> tuple[list[Path], dict]:

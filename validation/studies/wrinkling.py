@@ -32,6 +32,7 @@ from ..figures import MODEL_NAME, add_caption, mesh_caption, run_caption, save_f
 from ..store import KeyedRows, write_csv_atomic
 
 __all__ = ["WRINKLING_COLUMNS", "ELASTIC_COLUMNS", "wrinkling_grid", "wrinkling_rows",
+           "wrinkling_fe_runs",
            "elastic_grid", "elastic_rows", "stroh_critical_stretch", "run_wrinkling_fe",
            "wrinkling_figure", "wrinkling_caption"]
 
@@ -47,6 +48,25 @@ def wrinkling_grid(quick: bool = False) -> dict:
     if quick:
         return {"lam": (1.5,), "kh": (0.5, 2.0), "n1": 8}
     return {"lam": (1.2, 1.5, 2.0), "kh": (0.5, 1.0, 2.0, 5.0), "n1": 8}
+
+
+def wrinkling_fe_runs(quick: bool = False) -> list[str]:
+    """The FE runs of the grid: every point of :func:`wrinkling_grid` and
+    :func:`elastic_grid` where the dispersion relation has a root (a point without one is
+    a row of the CSV, but no FE run), named as in ``summary.json``'s
+    ``max_rel_error_by_run``.  ``skfem-dielectric list`` and the report count these.
+
+    Examples
+    --------
+    >>> len(wrinkling_fe_runs(quick=True))   # the symmetric charge mode at kh = 0.5: no root
+    9
+    """
+    g = wrinkling_grid(quick)
+    runs = [f"{control} {mode} lam={_fmt(lam)} kh={_fmt(kh)}"
+            for control in CONTROLS for mode in MODES for lam in g["lam"] for kh in g["kh"]
+            if math.isfinite(float(an.critical_D0(lam, kh, mode=mode, control=control)))]
+    return runs + [f"D0=0 {mode} kh={_fmt(kh)}" for mode, kh in elastic_grid(quick)["rows"]
+                   if math.isfinite(stroh_critical_stretch(kh, mode))]
 
 
 def stroh_unstable_below(control, mode, lam, kh, n1, D0) -> int:
@@ -84,11 +104,14 @@ def _row(control, mode, lam, kh, n1) -> list:
     return base + [d0, ref, d0 / ref - 1.0, f"{n1}x{n2}", r.n_negative_below, n_ref, ""]
 
 
-def wrinkling_rows(quick: bool = False, on_row=None, path: Path | None = None) -> list[list]:
+def wrinkling_rows(quick: bool = False, on_row=None, path: Path | None = None,
+                   note=None) -> list[list]:
     """Every row of the grid (``on_row(row)`` after each, e.g. for progress); with
-    ``path`` the CSV is written after every row and the rows already in it are reused."""
+    ``path`` the CSV is written after every row and the rows already in it are reused
+    (``note(message)``: one line naming the file for a row dropped to be recomputed, e.g.
+    a last row cut short; :class:`validation.store.KeyedRows`)."""
     g = wrinkling_grid(quick)
-    store = KeyedRows(path, WRINKLING_COLUMNS, 4, _fmt)
+    store = KeyedRows(path, WRINKLING_COLUMNS, 4, _fmt, note=note)
     rows = []
     for control in CONTROLS:
         for mode in MODES:
@@ -145,11 +168,12 @@ def _elastic_row(mode, kh, n1) -> list:
     return [mode, kh, lam, ref, lam / ref - 1.0, f"{n1}x{n2}", ""]
 
 
-def elastic_rows(quick: bool = False, on_row=None, path: Path | None = None) -> list[list]:
-    """The rows of :func:`elastic_grid` (``on_row(row)`` after each; ``path`` as in
-    :func:`wrinkling_rows`)."""
+def elastic_rows(quick: bool = False, on_row=None, path: Path | None = None,
+                 note=None) -> list[list]:
+    """The rows of :func:`elastic_grid` (``on_row(row)`` after each; ``path`` and ``note``
+    as in :func:`wrinkling_rows`)."""
     g = elastic_grid(quick)
-    store = KeyedRows(path, ELASTIC_COLUMNS, 2, _fmt)
+    store = KeyedRows(path, ELASTIC_COLUMNS, 2, _fmt, note=note)
     rows = []
     for mode, kh in g["rows"]:
         rows.append(store.get((mode, kh), lambda: _elastic_row(mode, kh, g["n1"])))
@@ -163,7 +187,8 @@ def _fmt(v) -> str:
         return ""
     if isinstance(v, str):
         return v
-    return format(float(v), ".10g")
+    v = float(v)
+    return "" if math.isnan(v) else format(v, ".10g")     # nan: no value, an empty cell
 
 
 def _elastic_panel(a, rows):
@@ -285,15 +310,17 @@ def wrinkling_figure(rows: list[list], ax=None, elastic: list[list] | None = Non
 
 
 def run_wrinkling_fe(out, quick: bool = False, on_row=None,
-                     on_elastic_row=None) -> list[Path]:
+                     on_elastic_row=None, note=None) -> list[Path]:
     """Write ``out/wrinkling-fe.csv``, ``out/wrinkling-fe-elastic.csv`` and the figure
-    ``out/wrinkling-fe.png`` and ``.pdf``; return their paths (in this order)."""
+    ``out/wrinkling-fe.png`` and ``.pdf``; return their paths (in this order).  Rows
+    already in the CSVs are reused; ``note(message)`` gets one line naming the file for
+    each row dropped to be recomputed (e.g. a last row cut short)."""
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
     csv_path, csv_elastic = out / "wrinkling-fe.csv", out / "wrinkling-fe-elastic.csv"
-    rows = wrinkling_rows(quick, on_row, path=csv_path)
+    rows = wrinkling_rows(quick, on_row, path=csv_path, note=note)
     write_csv_atomic(csv_path, WRINKLING_COLUMNS, [[_fmt(v) for v in r] for r in rows])
-    elastic = elastic_rows(quick, on_elastic_row, path=csv_elastic)
+    elastic = elastic_rows(quick, on_elastic_row, path=csv_elastic, note=note)
     write_csv_atomic(csv_elastic, ELASTIC_COLUMNS, [[_fmt(v) for v in r] for r in elastic])
     ax = wrinkling_figure(rows, elastic=elastic, quick=quick)
     return [csv_path, csv_elastic] + save_figure(ax[0].figure, out, "wrinkling-fe")
