@@ -381,3 +381,84 @@ def test_buckling_load_is_the_located_value_of_its_row(tmp_path):
                        tmp_path / "b" / "uni-axial-ideal.csv", shallow=False)
     t = read_table(tmp_path / "b" / "uni-axial-ideal.csv")
     assert np.isfinite(t["D0_b"]).sum() == 1 and t["D0"][np.isfinite(t["D0_b"])][0] == 2.5
+
+
+def fake_wrinkling(monkeypatch, calls=None):
+    """Stand-ins of the wrinkling-fe rows: the Stroh value times ``1 + 1e-5`` where the
+    dispersion relation has a root, its "no root" row elsewhere (the real rows' shape)."""
+    import math
+
+    import analytic as an
+    import validation.studies.wrinkling as wr
+
+    calls = [] if calls is None else calls
+
+    def row(control, mode, lam, kh, n1):
+        calls.append((control, mode, lam, kh))
+        ref = float(an.critical_D0(lam, kh, mode=mode, control=control))
+        if not math.isfinite(ref):
+            return [control, mode, lam, kh, None, None, None, "", None, None,
+                    "no root of the dispersion relation"]
+        return [control, mode, lam, kh, ref * (1 + 1e-5), ref, 1e-5, f"{n1}x2", 0, 0, ""]
+
+    def elastic(mode, kh, n1):
+        calls.append((mode, kh))
+        ref = wr.stroh_critical_stretch(kh, mode)
+        return [mode, kh, ref * (1 + 1e-5), ref, 1e-5, f"{n1}x2", ""]
+
+    monkeypatch.setattr(wr, "_row", row)
+    monkeypatch.setattr(wr, "_elastic_row", elastic)
+    return calls
+
+
+def test_report_links_every_figure_and_summary_names_files_in_its_folder(tmp_path,
+                                                                          monkeypatch,
+                                                                          capsys):
+    """report.md links every PNG the run wrote (the breakdown map of docs/breakdown.md
+    too); every ``csv`` of summary.json is relative to the folder of summary.json; the
+    FE runs of wrinkling-fe are the number ``skfem-dielectric list`` shows."""
+    import re
+
+    import matplotlib
+
+    from validation.studies.extra_cases import EXTRA_CASES
+
+    matplotlib.use("Agg")
+    names = ["uni-axial-ideal", "nh-d-e"]
+    monkeypatch.setitem(vc.CASES, names[0], uni_case(alphas=(1.0,)))
+    monkeypatch.setitem(vc.CASES, names[1], eq_case(n_s=1))
+    fake_wrinkling(monkeypatch)
+    monkeypatch.chdir(tmp_path)
+    out = Path("res")                          # relative: as the CLI's --out res
+    validate(names + ["wrinkling-fe"], out, quick=True, runner=FakeRunner(), progress=False)
+    pngs = sorted(p.name for p in out.glob("*.png"))
+    assert pngs == ["breakdown-map.png", "nh-d-e.png", "uni-axial-ideal.png",
+                    "wrinkling-fe.png"]
+    report = (out / "report.md").read_text()
+    linked = re.findall(r"!\[[^\]]*\]\(([^)]+)\)", report)
+    assert sorted(linked) == pngs
+    assert all((out / f).is_file() for f in linked)
+    summary = json.loads((out / "summary.json").read_text())["cases"]
+    assert set(summary) == set(names) | {"wrinkling-fe"}
+    for name, case in summary.items():
+        assert not Path(case["csv"]).is_absolute(), case["csv"]
+        assert (out / case["csv"]).is_file(), (name, case["csv"])
+        assert (out / case["csv"]).resolve() == (tmp_path / "res" / f"{name}.csv").resolve()
+    # one count of the FE runs: the quick grid has 10 points, 9 with a Stroh root
+    n = EXTRA_CASES["wrinkling-fe"].count(True)
+    assert summary["wrinkling-fe"]["n_runs"] == n == 9
+    assert summary["wrinkling-fe"]["n_steps"] == 10
+    assert f"| wrinkling-fe | Sec. 3 (Stroh) | {n} | 10 |" in report
+    from validation.cli import main
+
+    capsys.readouterr()
+    assert main(["list"]) == 0
+    (line,) = [ln for ln in capsys.readouterr().out.splitlines()
+               if ln.startswith("wrinkling-fe ")]
+    assert f" {n}/{EXTRA_CASES['wrinkling-fe'].count(False)} " in line
+    # a later run of another case keeps the earlier cases' figures and paths
+    validate(["nh-d-e"], out, quick=True, runner=FakeRunner(), progress=False)
+    report = (out / "report.md").read_text()
+    assert sorted(re.findall(r"!\[[^\]]*\]\(([^)]+)\)", report)) == pngs
+    summary = json.loads((out / "summary.json").read_text())["cases"]
+    assert all((out / c["csv"]).is_file() for c in summary.values())

@@ -60,6 +60,9 @@ def test_wrinkling_rows_resume_from_the_csv(tmp_path, monkeypatch):
 
     def fake_row(control, mode, lam, kh, n1):
         calls.append((control, mode, lam, kh))
+        if kh == 2.0 and mode == "symmetric":         # no value: an empty cell
+            return [control, mode, lam, kh, float("nan"), 1.0, float("nan"), f"{n1}x2",
+                    0, 0, "no FE root"]
         return [control, mode, lam, kh, 1.0 + lam * kh / 7, 1.0, lam * kh / 7, f"{n1}x2",
                 0, 0, ""]
 
@@ -70,6 +73,10 @@ def test_wrinkling_rows_resume_from_the_csv(tmp_path, monkeypatch):
     assert len(calls) == n == 8      # 2 controls x 2 modes x 1 lam x 2 kh
     lines = path.read_text().splitlines()
     assert len(lines) == n + 1       # written as it went: header and every row
+    assert "nan" not in path.read_text()
+    assert [r[4] for r in first if r[-1]] == [None, None]             # read back as empty
+    t = read_table(path)
+    assert [math.isnan(v) for v in t["D0_fe"]] == [note == "no FE root" for note in t["note"]]
     path.write_text("\n".join(lines[:-3]) + "\n")    # a run killed three rows early
     calls.clear()
     again = wr.wrinkling_rows(quick=True, path=path)
@@ -117,3 +124,56 @@ def test_caption_gives_the_run_and_the_mesh_range():
                     "2D cross-section: 8 x 2 to 8 x 30 elements (per half-wave x modelled "
                     "thickness).")
     assert wr.wrinkling_caption([], quick=None).endswith("FE run; meshes: unknown.")
+
+
+def test_a_cut_last_row_is_recomputed_with_a_note_naming_the_file(tmp_path, monkeypatch,
+                                                                  capsys):
+    """docs/cli.md (the result folder): a last row cut short (no line end) is dropped and
+    recomputed, with one line on stderr naming the file; validate --case wrinkling-fe and
+    the wrinkling-fe command alike.  The FE rows are cheap stand-ins of the real ones."""
+    import json
+
+    calls = []
+
+    def fake_row(control, mode, lam, kh, n1):
+        calls.append((control, mode, lam, kh))
+        ref = float(an.critical_D0(lam, kh, mode=mode, control=control))
+        if not math.isfinite(ref):
+            return [control, mode, lam, kh, None, None, None, "", None, None,
+                    "no root of the dispersion relation"]
+        return [control, mode, lam, kh, ref * (1 + 1e-5), ref, 1e-5, f"{n1}x2", 0, 0, ""]
+
+    def fake_elastic(mode, kh, n1):
+        calls.append((mode, kh))
+        ref = wr.stroh_critical_stretch(kh, mode)
+        return [mode, kh, ref * (1 + 1e-5), ref, 1e-5, f"{n1}x2", ""]
+
+    monkeypatch.setattr(wr, "_row", fake_row)
+    monkeypatch.setattr(wr, "_elastic_row", fake_elastic)
+    out = tmp_path / "res"
+    argv = ["validate", "--quick", "--case", "wrinkling-fe", "--out", str(out),
+            "--no-progress"]
+    assert main(argv) == 0
+    capsys.readouterr()
+    path = out / "wrinkling-fe.csv"
+    ref = path.read_bytes()
+    assert len(calls) == 10
+    path.write_bytes(ref[:-9])                        # the last row cut short
+    calls.clear()
+    assert main(argv) == 0
+    err = capsys.readouterr().err
+    note = f"skfem-dielectric: {path}: its last row is incomplete (no line end); dropped"
+    assert err.splitlines() == [note]
+    assert calls == [("voltage", "antisymmetric", 1.5, 2.0)]    # only that row recomputed
+    assert path.read_bytes() == ref
+    summary = json.loads((out / "summary.json").read_text())["cases"]["wrinkling-fe"]
+    assert summary["repairs"] == [note.removeprefix("skfem-dielectric: ")]
+    # the command wrinkling-fe: the same note for its second CSV
+    elastic = out / "wrinkling-fe-elastic.csv"
+    elastic.write_bytes(elastic.read_bytes()[:-3])
+    calls.clear()
+    assert main(["wrinkling-fe", "--quick", "--out", str(out)]) == 0
+    err = capsys.readouterr().err
+    assert err.splitlines() == [f"skfem-dielectric: {elastic}: its last row is incomplete "
+                                f"(no line end); dropped"]
+    assert calls == [("antisymmetric", 20.0)]

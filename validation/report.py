@@ -11,7 +11,8 @@ from .figures import PAPER_FIGURE
 from .store import write_text_atomic
 from .studies.extra_cases import EXTRA_CASES
 
-__all__ = ["summary_dict", "write_summary", "write_report", "verdict_lines", "HOMOGENEOUS_TOL", "CLAMPED_TOL"]
+__all__ = ["summary_dict", "write_summary", "write_report", "verdict_lines", "HOMOGENEOUS_TOL",
+           "CLAMPED_TOL", "CASE_FIGURES", "case_figures"]
 
 
 def summary_dict(results, *, quick: bool) -> dict:
@@ -83,6 +84,30 @@ _ERROR_DEFINITION = (
     "error below 1e-11 is shown as < 1e-11.")
 
 
+#: The figures a case's results draw besides its own ``<case>.png``: ``{case: ((stem,
+#: caption), ...)}``; ``validate`` draws the breakdown map from the uni-axial-ideal case
+#: (:func:`validation.sweep.make_breakdown_map`, docs/breakdown.md).
+CASE_FIGURES = {
+    "uni-axial-ideal": (("breakdown-map", "the breakdown map: the run's P33 breakdowns, "
+                         "buckling loads and solver failures per weight against the "
+                         "converged buckling loads (docs/breakdown.md)"),),
+}
+
+
+def case_figures(name: str) -> list[tuple[str, str]]:
+    """``(file name, caption)`` of every PNG the results of case ``name`` draw into the
+    output folder: ``<case>.png`` and those of :data:`CASE_FIGURES`.
+
+    Examples
+    --------
+    >>> [f for f, _ in case_figures("uni-axial-ideal")]
+    ['uni-axial-ideal.png', 'breakdown-map.png']
+    """
+    return ([(f"{name}.png", f"{name}: {_title(name)}")]
+            + [(f"{stem}.png", f"{stem}: {caption}")
+               for stem, caption in CASE_FIGURES.get(name, ())])
+
+
 def _title(name: str) -> str:
     return EXTRA_CASES[name].title if name in EXTRA_CASES else get_case(name).title
 
@@ -132,7 +157,8 @@ def verdict_lines(results) -> list[str]:
 
 def write_report(results, folder, *, quick: bool) -> Path:
     """Write ``folder/report.md``: what the error is, one table row per case with its
-    verdict against the stated tolerance, the breakdown points and the figures.
+    verdict against the stated tolerance, the breakdown points and a link to every figure
+    of the cases in the folder (:func:`case_figures`).
 
     Parameters
     ----------
@@ -187,9 +213,12 @@ def write_report(results, folder, *, quick: bool) -> Path:
         lines += [f"- {name} / {k}: {v}" for name, k, v in fails]
     lines += ["", "## Figures", ""]
     for r in results:
-        png = Path(folder) / f"{r.name}.png"
-        if png.exists():
-            lines += [f"![{r.name}: {_title(r.name)}]({png.name})", ""]
+        for png, caption in case_figures(r.name):
+            if (Path(folder) / png).exists():
+                lines += [f"![{caption}]({png})", ""]
     lines += ["Files: `<case>.csv` (one row per FE step), `<case>.png|pdf`, "
-              "`summary.json`; `.state/` holds resume states."]
+              + "".join(f"`{stem}.png|pdf` (with {name}), " for name in CASE_FIGURES
+                        if any(r.name == name for r in results)
+                        for stem, _ in CASE_FIGURES[name])
+              + "`summary.json`; `.state/` holds resume states."]
     return write_text_atomic(Path(folder) / "report.md", "\n".join(lines) + "\n")

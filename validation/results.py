@@ -135,10 +135,12 @@ def folder_results(out, results=()) -> list[CaseResult]:
         old = prev.get(name)
         if name not in fresh and isinstance(old, dict) and (out / f"{name}.csv").is_file():
             try:
-                every.append(CaseResult(**{k: old[k] for k in CaseResult.__dataclass_fields__
-                                           if k in old}))
+                r = CaseResult(**{k: old[k] for k in CaseResult.__dataclass_fields__
+                                  if k in old})
             except TypeError:
-                pass
+                continue
+            r.csv = f"{name}.csv"       # relative to the folder (an earlier version's path)
+            every.append(r)
     return every
 
 

@@ -43,7 +43,7 @@ from .figures.common import mesh_text
 from .figures.breakdown_map import breakdown_map_figure
 from .progress import Progress, notice
 from .records import StepRecord
-from .report import write_report, write_summary
+from .report import CASE_FIGURES, write_report, write_summary
 from .results import CaseResult, folder_results, summarise_case
 from .store import (CaseFiles, FolderLock, RowDigest, case_manifest, command_lock,
                     resume_plan, save_state, spec_sig, state_path, write_text_atomic)
@@ -370,9 +370,9 @@ def validate(cases: Iterable[Case | str] | None, out, *, quick: bool = False,
                         executor=executor, runner=runner, progress=progress)
     for r in results:
         make_figure(r.name, out)
-    if any(r.name == "uni-axial-ideal" for r in results):
-        make_breakdown_map(next(r for r in results if r.name == "uni-axial-ideal"), out,
-                           quick=quick)
+    for r in results:                   # the figures report.md links (CASE_FIGURES)
+        if "breakdown-map" in dict(CASE_FIGURES.get(r.name, ())):
+            make_breakdown_map(r, out, quick=quick)
     for name in (c for c in cases if c in EXTRA_CASES):
         cpu = time.process_time()
         results.append(extra_case_result(name, out, quick=quick))
@@ -395,6 +395,9 @@ def extra_case_result(name: str, out, *, quick: bool = False) -> CaseResult:
     case = EXTRA_CASES[name]
     with command_lock(out, name, f"case {name!r} in {out}"):
         paths, summ = case.run(out, quick=quick)
-    return CaseResult(name, case.figure, str(paths[0]), summ["n_runs"], summ["n_points"],
+    # the CSV as every case names it: relative to the folder of summary.json
+    csv_name = os.path.relpath(paths[0], out)
+    return CaseResult(name, case.figure, csv_name, summ["n_runs"], summ["n_points"],
                       summ["max_rel_error"], max_rel_error_by_run=summ["max_rel_error_by_run"],
-                      reasons=summ["reasons"], runtime_s=summ["runtime_s"], quick=quick)
+                      reasons=summ["reasons"], runtime_s=summ["runtime_s"], quick=quick,
+                      repairs=list(summ.get("repairs", [])))

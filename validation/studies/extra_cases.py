@@ -11,6 +11,7 @@ error measure with its own tolerance.  Each writes ``DIR/<name>.csv`` and the fi
 
 from __future__ import annotations
 
+import csv
 import math
 import time
 from dataclasses import dataclass
@@ -18,8 +19,8 @@ from typing import Callable
 
 from .voltage_control import (LIMIT_TOL, VOLTAGE_CONTROL, VOLTAGE_TITLE, run_voltage_control,
                               voltage_runs)
-from .wrinkling import (ELASTIC_COLUMNS, WRINKLING_COLUMNS, elastic_grid, run_wrinkling_fe,
-                        wrinkling_grid)
+from ..progress import notice
+from .wrinkling import run_wrinkling_fe, wrinkling_fe_runs
 
 __all__ = ["ExtraCase", "EXTRA_CASES", "WRINKLING_FE", "WRINKLING_TOL"]
 
@@ -43,7 +44,8 @@ class ExtraCase:
     run
         ``run(out, quick) -> (paths, summary)`` with ``summary`` holding ``n_runs``,
         ``n_points``, ``max_rel_error``, ``max_rel_error_by_run``, ``reasons``,
-        ``runtime_s``.
+        ``runtime_s`` and optionally ``repairs`` (one line per row a resume dropped and
+        recomputed, each also written to stderr).
     count
         ``count(quick) -> int``: its number of FE runs (for ``skfem-dielectric list``).
     """
@@ -59,33 +61,37 @@ class ExtraCase:
 
 def _run_wrinkling(out, quick: bool = False):
     t0 = time.perf_counter()
-    paths = run_wrinkling_fe(out, quick=quick)
-    col = {c: i for i, c in enumerate(WRINKLING_COLUMNS)}
+    repairs: list[str] = []
+
+    def note(msg: str) -> None:
+        repairs.append(msg)
+        notice(msg)
+
+    paths = run_wrinkling_fe(out, quick=quick, note=note)
+    with open(paths[0], newline="") as fh:
+        lines = list(csv.DictReader(fh))
+    with open(paths[1], newline="") as fh:
+        elastic = list(csv.DictReader(fh))
+    runs = [(f"{r['control']} {r['mode']} lam={r['lam']} kh={r['kh']}", r["rel_error"],
+             r["note"]) for r in lines]
+    runs += [(f"D0=0 {r['mode']} kh={r['kh']}", r["rel_error"], r["note"]) for r in elastic]
     errors, reasons = {}, {}
-    with open(paths[0]) as fh:
-        lines = [ln.rstrip("\n").split(",") for ln in fh][1:]
-    with open(paths[1]) as fh:
-        elastic = [ln.rstrip("\n").split(",") for ln in fh][1:]
-    ecol = {c: i for i, c in enumerate(ELASTIC_COLUMNS)}
-    runs = [(f"{r[0]} {r[1]} lam={r[2]} kh={r[3]}", r[col["rel_error"]], r[col["note"]])
-            for r in lines]
-    runs += [(f"D0=0 {r[0]} kh={r[1]}", r[ecol["rel_error"]], r[ecol["note"]])
-             for r in elastic]
-    for key, err, note in runs:
+    for key, err, why in runs:
         if err:
             errors[key] = abs(float(err))
-        elif not note.startswith("no root"):
-            reasons[key] = note
+        elif not why.startswith("no root"):
+            reasons[key] = why
             errors[key] = math.inf
-    return paths, {"n_runs": len(errors), "n_points": len(runs),
+    return paths, {"n_runs": _wrinkling_count(quick), "n_points": len(runs),
                    "max_rel_error": max(errors.values()) if errors else None,
                    "max_rel_error_by_run": errors, "reasons": reasons,
-                   "runtime_s": time.perf_counter() - t0}
+                   "runtime_s": time.perf_counter() - t0, "repairs": repairs}
 
 
 def _wrinkling_count(quick: bool) -> int:
-    g = wrinkling_grid(quick)
-    return 4 * len(g["lam"]) * len(g["kh"]) + len(elastic_grid(quick)["rows"])
+    """The FE runs of the case (:func:`~.wrinkling.wrinkling_fe_runs`): the number that
+    ``skfem-dielectric list`` shows and ``summary.json``/``report.md`` report."""
+    return len(wrinkling_fe_runs(quick))
 
 
 EXTRA_CASES: dict[str, ExtraCase] = {c.name: c for c in (
