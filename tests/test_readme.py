@@ -1,7 +1,11 @@
-"""The README's two set-up commands: the test command is what CI runs, the main job parses."""
+"""The README's two set-up commands: the test command is what CI runs, the main job parses,
+and the package they install declares its licence as current build tools read it."""
 
+import re
 import shlex
 from pathlib import Path
+
+import pytest
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -30,3 +34,20 @@ def test_readme_main_job_is_a_valid_validate_call():
     assert argv[0] == "skfem-dielectric"
     args = build_parser().parse_args(argv[1:])
     assert args.command == "validate" and args.quick and args.out == Path("results")
+
+
+def test_pyproject_license_is_an_spdx_expression():
+    """``project.license`` as a TOML table is deprecated by setuptools (a warning on every
+    ``pip install``/``pip wheel``): an SPDX string with ``license-files``, which needs
+    setuptools >= 77 in the build system."""
+    tomllib = pytest.importorskip("tomllib")          # Python >= 3.11
+    meta = tomllib.loads(ROOT.joinpath("pyproject.toml").read_text())
+    project = meta["project"]
+    assert project["license"] == "BSD-3-Clause"
+    assert ROOT.joinpath("LICENSE").read_text().startswith("BSD 3-Clause License\n")
+    assert project["license-files"] == ["LICENSE"]
+    assert not any(c.startswith("License ::") for c in project.get("classifiers", []))
+    (setuptools,) = [r for r in meta["build-system"]["requires"] if r.startswith("setuptools")]
+    low = re.fullmatch(r"setuptools>=(\d+)(\.\d+)*", setuptools.replace(" ", ""))
+    assert low and int(low.group(1)) >= 77, setuptools
+    assert project["requires-python"] == ">=3.10"
