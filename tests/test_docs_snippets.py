@@ -134,3 +134,33 @@ def test_not_run_markers_give_a_reason():
     for page in PAGES:
         for m in re.finditer(r"<!--\s*not run\b(?P<rest>[^>]*)-->", page.read_text()):
             assert _NOT_RUN.search(m.group(0)), f"{page.name}: 'not run' without a reason"
+
+
+#: a command of the pages and the path it is given (``--out``, ``--export``, ``--results``)
+_PATH_OPTION = re.compile(r"skfem-dielectric\s+(?P<cmd>[\w-]+)[^\n`|]*?"
+                          r"--(?P<opt>out|export|results)\s+(?P<path>[^\s`|)\]]+)")
+_PLACEHOLDERS = {"DIR", "FILE.html", "''"}
+
+
+def test_commands_write_into_ignored_folders():
+    """Every path a command of the README or docs writes (``--out``, ``--export``) lies in a
+    folder that ``.gitignore`` ignores, so that running the pages leaves the checkout
+    clean; every ``--results`` folder is one that a ``validate`` of the pages writes."""
+    ignored = {ln.strip().strip("/") for ln in ROOT.joinpath(".gitignore").read_text()
+               .splitlines() if ln.strip().endswith("/") and ln[:1] not in "!#"}
+    written, read, outside = set(), [], []
+    for page in PAGES:
+        text = page.read_text().replace("\\\n", " ")         # continued command lines
+        for m in _PATH_OPTION.finditer(text):
+            path = m["path"]
+            if path in _PLACEHOLDERS:
+                continue
+            if m["opt"] == "results":
+                read.append((page.name, path))
+                continue
+            if Path(path).parts[0] not in ignored:
+                outside.append(f"{page.name}: {m.group(0)}")
+            if m["cmd"] == "validate":
+                written.add(path)
+    assert not outside, "writes into the checkout: " + "; ".join(outside)
+    assert read and all(path in written for _, path in read), (read, written)
