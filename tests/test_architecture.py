@@ -66,12 +66,13 @@ VALIDATION_LAYERS = (
     ("clash", "progress", "specs", "records",   # package guard, progress; run data, records;
      "buckling_data"),               # the measured buckling loads
     ("cases",),                      # the validation cases, one per paper figure
-    ("table",),                      # the tidy CSV of a case
+    ("table", "checker"),            # the tidy CSV of a case; scores of another code's CSVs
     ("store",),                      # lock, atomic files, checksums, resume
     ("fe", "figures"),               # the FE runner; the paper's figures
     ("options",),                    # checks of the command-line options
     ("studies",),                    # buckling, post-buckling, wrinkling, snap-through
-    ("results", "report", "explore"),  # case summaries; summary.json, report.md; the page
+    ("results", "report", "explore",   # case summaries; summary.json, report.md; the page;
+     "check_report"),                # the figures and files of `check`
     ("sweep",),                      # the harness: run_case, run_cases, validate
     ("cli",),                        # the command line
     ("validation",),                 # the package namespace

@@ -8,9 +8,10 @@ the FE ramps of every :data:`CASES` entry (one per figure of the paper), writes 
 CSVs step by step (resumable), draws the figures and writes ``summary.json``
 and ``report.md``.  This namespace holds what describes the cases and reads their tables
 and imports no finite elements (:mod:`validation.specs`, :mod:`validation.cases`,
-:mod:`validation.records`, :mod:`validation.table`); the FE runner (:mod:`validation.fe`),
-the harness (:mod:`validation.sweep`), the figures, the studies and the CLI are imported
-from their modules (docs/architecture.md).
+:mod:`validation.records`, :mod:`validation.table`), and :func:`check`, which scores
+another code's results CSVs against the closed forms (:mod:`validation.checker`); the FE
+runner (:mod:`validation.fe`), the harness (:mod:`validation.sweep`), the figures, the
+studies and the CLI are imported from their modules (docs/architecture.md).
 """
 
 from .clash import PackageClash, check_packages
@@ -18,6 +19,7 @@ from .clash import PackageClash, check_packages
 check_packages()       # before anything imports analytic / skfem_dielectric
 
 from .cases import CASES, get_case  # noqa: E402
+from .checker import CheckResult, check  # noqa: E402
 from .records import RunOutcome, StepRecord  # noqa: E402
 from .specs import ALPHAS, KEPLINGER, Case, RunSpec  # noqa: E402
 from .table import BREAKDOWN_TOL, read_table  # noqa: E402
@@ -25,4 +27,5 @@ from .table import BREAKDOWN_TOL, read_table  # noqa: E402
 __all__ = [
     "ALPHAS", "CASES", "KEPLINGER", "Case", "RunSpec", "get_case", "BREAKDOWN_TOL",
     "RunOutcome", "StepRecord", "read_table", "PackageClash", "check_packages",
+    "check", "CheckResult",
 ]

@@ -1,5 +1,5 @@
-"""The ``skfem-dielectric`` command line: ``list | curves | simulate | validate | bench |
-explore | wrinkling-fe | buckling | post-buckling``.
+"""The ``skfem-dielectric`` command line: ``list | curves | simulate | validate | check |
+bench | explore | wrinkling-fe | buckling | post-buckling``.
 
 Every subcommand has ``--help``. Only this module prints, and it writes files
 only into the folder given by ``--out``.
@@ -23,6 +23,8 @@ from importlib.metadata import PackageNotFoundError, version
 from pathlib import Path
 
 from .cases import CASES
+from .check_report import write_check_report
+from .checker import CHECK_CASES, TOLERANCES, check
 from .fe import bench, run_fe, simulate
 from .figures import case_figure, save_figure
 from .specs import MODELS, VARIANTS
@@ -47,7 +49,8 @@ def _version() -> str:
 #: Exit codes of :func:`main` (docs/cli.md).
 EXIT_CODES = {
     0: "success",
-    1: "validate: a case with FE runs produced no FE step",
+    1: "validate: a case with FE runs produced no FE step; check: a case fails its "
+       "tolerance",
     2: "bad input: an invalid option or value (the message names it), an option that does "
        "not apply to the chosen geometry, a missing optional dependency, or another "
        "process writing the same case into the same --out (the message names it)",
@@ -147,6 +150,23 @@ def build_parser() -> argparse.ArgumentParser:
                         "fine meshes, needs the 'fast' extra; multi-threaded, so the last "
                         "digits may differ between runs)")
     v.add_argument("--no-progress", action="store_true", help="no progress bars")
+
+    k = add("check", "score another code's results CSVs against the closed forms",
+            "Read the results CSVs of PATH (a folder, or one CSV) written in the results "
+            "contract of validate (docs/check.md: per case the columns case, D0 or E0, s or "
+            "alpha and the checked quantity, e.g. lam1), score each case against the closed "
+            "forms (loading curves, Hessian verdicts, voltage limit points, the Stroh "
+            "critical D0, the converged buckling load D0_b) and print a verdict per case; "
+            "exit code 1 if a case fails. With --out, also <case>.png (their dots on our "
+            "curves), check.md and check.json, written only after every file was read.")
+    k.add_argument("path", metavar="PATH", help="folder of <case>.csv files, or one CSV")
+    k.add_argument("--case", nargs="+", choices=list(CHECK_CASES), metavar="NAME",
+                   help=f"cases to check (default: every case found; {', '.join(CHECK_CASES)})")
+    k.add_argument("--tol", nargs="+", metavar="NAME=VALUE", default=None,
+                   help="replace a tolerance (measures and defaults: "
+                        + ", ".join(f"{n}={v:g}" for n, v in TOLERANCES.items()) + ")")
+    k.add_argument("--out", type=out_dir, default=None,
+                   help="report folder (not PATH): <case>.png, check.md, check.json")
 
     s = add("simulate", "run one FE ramp and export VTU/XDMF", SIM_HELP)
     s.add_argument("--geometry", choices=["equibiaxial", "uniaxial"], default="uniaxial",
@@ -300,6 +320,19 @@ def _cmd_validate(args) -> int:
     return 0 if all(r.n_steps or not r.n_runs for r in results) else 1
 
 
+def _cmd_check(args) -> int:
+    result = check(args.path, cases=args.case, tol=args.tol or [])
+    paths = write_check_report(result, args.out) if args.out is not None else []
+    for line in result.lines():
+        print(line)
+    for note in result.notes:
+        print(f"note: {note}")
+    if paths:
+        print(f"report: {args.out / 'check.md'} (figures: "
+              f"{', '.join(p.name for p in paths if p.suffix == '.png')})")
+    return 0 if result.passed else 1
+
+
 def _write_pvd(path: Path, files, times) -> Path:
     """A ParaView collection: each ``.vtu`` of ``files`` at the time value in ``times``."""
     items = "".join(f'    <DataSet timestep="{t}" group="" part="0" file="{f.name}"/>\n'
@@ -430,14 +463,16 @@ def main(argv: list[str] | None = None) -> int:
     -------
     int
         One of :data:`EXIT_CODES`: 0 success, 1 a validation case produced no FE
-        step, 2 bad input (also: another process writes the same case), 3 a path
-        cannot be created, read or written, 130 interrupted by SIGINT, 143 by SIGTERM
-        (rerun the same command to resume). Every error is one line on stderr.
+        step (``validate``) or a checked case fails (``check``), 2 bad input (also:
+        another process writes the same case), 3 a path cannot be created, read or
+        written, 130 interrupted by SIGINT, 143 by SIGTERM (rerun the same command to
+        resume). Every error is one line on stderr.
     """
     parser = build_parser()
     args = parser.parse_args(argv)
     cmd = {"list": _cmd_list, "curves": _cmd_curves, "validate": _cmd_validate,
-           "simulate": _cmd_simulate, "bench": _cmd_bench, "explore": _cmd_explore,
+           "check": _cmd_check, "simulate": _cmd_simulate, "bench": _cmd_bench,
+           "explore": _cmd_explore,
            **STUDY_COMMANDS}[args.command]
     prefix = f"skfem-dielectric {args.command}: error:"
     atexit.unregister(_remove_openmp_registration)      # once per process

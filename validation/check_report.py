@@ -1,0 +1,354 @@
+"""The figures and files of ``skfem-dielectric check``: *their* dots on *our* curves.
+
+:func:`check_figure` draws one figure per case of a :class:`~validation.checker.CheckResult`
+with the closed-form curves of the paper's figure (the plotting functions of
+:mod:`validation.figures`: Figs. nh-d-e, gent-d-e, gent-equi-biaxial, figde,
+uni-axial-ideal) and, on top, the checked rows: a dot in the colour of its curve, a red
+cross for a row beyond its tolerance.  :func:`write_check_report` renders every figure
+first and then writes ``<case>.png``, ``check.md`` and ``check.json`` into the report
+folder, each file atomically, so that a failure leaves no half of a report.
+"""
+
+from __future__ import annotations
+
+import io
+import json
+import math
+import os
+from pathlib import Path
+
+import matplotlib.pyplot as plt
+import numpy as np
+from matplotlib.lines import Line2D
+from matplotlib.ticker import NullFormatter, ScalarFormatter
+
+import analytic as an
+from analytic.units import keplinger_s
+
+from .buckling_data import buckling_loads
+from .cases import analytic_model
+from .checker import TOLERANCE_SOURCES, CaseCheck, CheckResult
+from .figures import (BUCKLING_NAME, LIMIT_NAME, add_caption, plot_equibiaxial_loading,
+                      plot_equibiaxial_wrinkling, plot_uniaxial_loading,
+                      plot_uniaxial_wrinkling, tag_panels)
+from .figures.common import colors
+from .specs import KEPLINGER
+from .store import write_text_atomic
+
+__all__ = ["check_figure", "report_markdown", "report_json", "write_check_report"]
+
+_DOT = dict(marker="o", ms=5, mec="k", mew=0.6, ls="none", zorder=6, clip_on=False)
+_BAD = dict(marker="X", ms=11, color="red", mec="darkred", mew=0.8, ls="none", zorder=8,
+            clip_on=False)
+
+
+def _legend_extra(case: CaseCheck) -> list:
+    files = ", ".join(case.files)
+    out = [Line2D([], [], color="0.6", label=f"checked: {files}"[:60], **_DOT)]
+    if not case.passed:
+        out.append(Line2D([], [], label="beyond its tolerance", **_BAD))
+    return out
+
+
+def _relegend(ax, case, loc="lower right"):
+    handles, _ = ax.get_legend_handles_labels()
+    if ax.get_legend() is not None:
+        handles = list(ax.get_legend().legend_handles)
+    ax.legend(handles=handles + _legend_extra(case), fontsize=7, loc=loc)
+
+
+def _dots(ax, x, y, ok, color):
+    ok = np.asarray(ok, dtype=bool)
+    if ok.any():
+        ax.plot(np.asarray(x)[ok], np.asarray(y)[ok], color=color, **_DOT)
+    if (~ok).any():
+        ax.plot(np.asarray(x)[~ok], np.asarray(y)[~ok], **_BAD)
+
+
+def _s_values(s) -> list[float]:
+    return sorted({round(float(v), 9) for v in s})
+
+
+def _loading_panels(case: CaseCheck):
+    pt = case.points
+    models = sorted(set(pt["model"]))
+    wrinkling = case.name == "gent-equi-biaxial"
+    ncol = len(models) * (1 if wrinkling else 2)
+    fig, axes = plt.subplots(1, ncol, figsize=(6.2 * ncol, 4.8), layout="constrained",
+                             squeeze=False)
+    axes = list(axes.ravel())
+    E0 = pt["D0"] / (pt["lam1"] * pt["lam3"]) ** 2
+    k = 0
+    for model in models:
+        sel = pt["model"] == model
+        s_values = _s_values(pt["s"][sel])
+        lam_max = max(5.0, 1.05 * float(np.max(pt["lam1"][sel])))
+        quantities = (None,) if wrinkling else ("D0", "E0")
+        for q in quantities:
+            ax = axes[k]
+            k += 1
+            if wrinkling:
+                plot_equibiaxial_wrinkling(model, s_values, ax=ax,
+                                           D0max=max(8.0, 1.05 * float(np.max(pt["D0"][sel]))))
+            elif pt["kind"] == "equibiaxial":
+                plot_equibiaxial_loading(model, s_values, q, ax=ax, lam_max=lam_max)
+            else:
+                plot_uniaxial_loading(model, s_values, q, ax=ax, lam1_max=max(6.0, lam_max))
+            for s, c in zip(s_values, colors(len(s_values))):
+                rows = sel & np.isclose(pt["s"], s, rtol=0, atol=1e-9)
+                y = pt["D0"] if q in (None, "D0") else E0
+                _dots(ax, pt["lam1"][rows], y[rows], pt["ok"][rows], c)
+            y = pt["D0"][sel] if q in (None, "D0") else E0[sel]
+            lo, hi = ax.get_ylim()
+            ax.set_ylim(lo, max(hi, 1.05 * float(np.max(y))))
+            _relegend(ax, case, "lower right" if q != "E0" else "upper right")
+    tag_panels(axes)
+    return fig
+
+
+def _clamped_panel(case: CaseCheck):
+    pt = case.points
+    buck = pt.get("buckling", [])
+    alphas = sorted({round(float(a), 9) for a in pt.get("alpha", ())}
+                    | {round(float(a), 9) for a, _, _ in buck})
+    fig, ax = plt.subplots(figsize=(10, 5.4), layout="constrained")
+    D0max = max([7.0] + [1.05 * float(v) for v in pt.get("D0", ())])
+    plot_uniaxial_wrinkling(fe=None, alphas=tuple(alphas), ax=ax, D0max=D0max)
+    m = analytic_model("neo-Hookean")
+    handles = list(ax.get_legend().legend_handles)
+    for a, c in zip(alphas, colors(len(alphas))):
+        if "alpha" in pt:
+            rows = np.isclose(pt["alpha"], a, rtol=0, atol=1e-9)
+            _dots(ax, pt["lam1"][rows], pt["D0"][rows], pt["ok"][rows], c)
+    if buck:
+        drawn = False
+        for e in buckling_loads():
+            if e.converged and any(np.isclose(e.alpha, a) for a in alphas):
+                s = float(keplinger_s(e.alpha, g=KEPLINGER["g"]))
+                ax.errorbar(float(an.uniaxial_lam1(e.D0_b, s, m)), e.D0_b, yerr=e.error,
+                            fmt="D", color="k", ms=6, capsize=3, zorder=7)
+                drawn = True
+        if drawn:
+            handles.append(Line2D([], [], ls="none", color="k", marker="D", ms=6,
+                                  label=f"{BUCKLING_NAME} $D_{{0b}}$, converged (error bar)"))
+        for a, D0b, ok in buck:
+            s = float(keplinger_s(a, g=KEPLINGER["g"]))
+            x = float(an.uniaxial_lam1(D0b, s, m))
+            ax.plot(x, D0b, **(_BAD if not ok else dict(marker="P", ms=10, color="C2",
+                                                         mec="k", ls="none", zorder=8)))
+        handles.append(Line2D([], [], ls="none", marker="P", ms=10, color="C2", mec="k",
+                              label=f"checked {BUCKLING_NAME} $D_{{0b}}$ (on the "
+                                    f"homogeneous curve)"))
+    ax.legend(handles=handles + _legend_extra(case), fontsize=7, loc="center left",
+              bbox_to_anchor=(1.01, 0.5))
+    return fig
+
+
+def _voltage_panels(case: CaseCheck):
+    pt = case.points
+    keys = sorted({(ld, mo) for ld, mo in zip(pt["loading"], pt["model"])})
+    fig, axes = plt.subplots(1, len(keys), figsize=(6.2 * len(keys), 4.8),
+                             layout="constrained", squeeze=False)
+    axes = list(axes.ravel())
+    E0 = pt["D0"] / (pt["lam1"] * pt["lam3"]) ** 2
+    for ax, (ld, mo) in zip(axes, keys):
+        sel = (pt["loading"] == ld) & (pt["model"] == mo)
+        s_values = _s_values(pt["s"][sel])
+        lam_max = max(5.0 if ld == "equibiaxial" else 6.0,
+                      1.05 * float(np.max(pt["lam1"][sel])))
+        if ld == "equibiaxial":
+            plot_equibiaxial_loading(mo, s_values, "E0", ax=ax, lam_max=lam_max)
+        else:
+            plot_uniaxial_loading(mo, s_values, "E0", ax=ax, lam1_max=lam_max)
+        for s, c in zip(s_values, colors(len(s_values))):
+            rows = sel & np.isclose(pt["s"], s, rtol=0, atol=1e-9)
+            _dots(ax, pt["lam1"][rows], E0[rows], pt["ok"][rows], c)
+        for l_, m_, s_, l1, e0, ok in pt.get("limits", ()):
+            if l_ == ld and m_ == mo and math.isfinite(e0):
+                ax.plot(l1, e0, **(dict(marker="*", ms=15, color="gold", mec="k",
+                                        ls="none", zorder=9) if ok else _BAD))
+        handles = list(ax.get_legend().legend_handles)
+        handles.append(Line2D([], [], marker="*", ms=12, color="gold", mec="k", ls="none",
+                              label=f"checked {LIMIT_NAME}"))
+        ax.legend(handles=handles + _legend_extra(case), fontsize=7, loc="lower right")
+    tag_panels(axes)
+    return fig
+
+
+def _wrinkling_panels(case: CaseCheck):
+    pt = case.points
+    controls = [c for c in ("charge", "voltage") if c in set(pt["control"])]
+    fig, axes = plt.subplots(1, len(controls), figsize=(6.2 * len(controls), 4.8),
+                             layout="constrained", squeeze=False)
+    axes = list(axes.ravel())
+    lams = sorted(set(pt["lam"]))
+    palette = dict(zip(lams, colors(len(lams))))
+    kh = np.geomspace(min(0.3, 0.8 * float(pt["kh"].min())),
+                      max(8.0, 1.25 * float(pt["kh"].max())), 60)
+    styles = {"symmetric": "-", "antisymmetric": "--"}
+    for ax, control in zip(axes, controls):
+        for lam in lams:
+            for mode in sorted(set(pt["mode"])):
+                ax.plot(kh, an.critical_D0(lam, kh, mode=mode, control=control),
+                        styles[mode], color=palette[lam], lw=1.2,
+                        label=f"Stroh, $\\lambda = {lam:g}$, {mode}")
+                rows = (pt["control"] == control) & (pt["lam"] == lam) & (pt["mode"] == mode)
+                _dots(ax, pt["kh"][rows], pt["D0"][rows], pt["ok"][rows], palette[lam])
+        ax.set_xscale("log")
+        ax.xaxis.set_major_formatter(ScalarFormatter())
+        ax.xaxis.set_minor_formatter(NullFormatter())
+        ax.set_xlabel(r"$kh$ (deformed thickness)")
+        ax.set_ylabel(r"critical $D_0$")
+        ax.set_title(f"{control} control", fontsize=10)
+        _relegend(ax, case, "upper right")
+    tag_panels(axes)
+    return fig
+
+
+_PANELS = {"equibiaxial": _loading_panels, "uniaxial-free": _loading_panels,
+           "clamped": _clamped_panel, "voltage": _voltage_panels,
+           "wrinkling": _wrinkling_panels}
+
+
+def check_figure(case: CaseCheck):
+    """The figure of one checked case: our closed-form curves with their rows on top.
+
+    The curves are those of the paper's figure of the case (Eq. loading_gent and
+    Eq. DEuniax with the ``det H* = 0`` locus, the wrinkling limits, the Keplinger plate's
+    curves with the converged buckling loads; the dispersion relation for
+    ``wrinkling-fe``), drawn by :mod:`validation.figures` at the file's own ``s`` (or
+    ``alpha``) values; a red cross marks a row beyond its tolerance.  The caption line
+    names the files and the verdict.
+
+    Parameters
+    ----------
+    case : CaseCheck
+
+    Returns
+    -------
+    matplotlib Figure
+    """
+    fig = _PANELS[case.points["kind"]](case)
+    fig.suptitle(f"skfem-dielectric check: {case.name} -- "
+                 f"{'pass' if case.passed else 'FAIL'}", fontsize=11)
+    m = case.worst
+    add_caption(fig, f"Lines: the closed forms; dots: the rows of {', '.join(case.files)}; "
+                     f"worst measure {m.name}: {m.error_text()} (tolerance {m.tol:g}).")
+    return fig
+
+
+def _png(fig) -> bytes:
+    buf = io.BytesIO()
+    fig.savefig(buf, format="png", dpi=110, metadata={"Software": None})
+    plt.close(fig)
+    return buf.getvalue()
+
+
+def report_markdown(result: CheckResult, figures=()) -> str:
+    """The text of ``check.md``: the verdicts, every measure with its worst row, what a
+    failure looks like, the rows and files not scored, the tolerances and their sources,
+    the figures.
+
+    Parameters
+    ----------
+    result : CheckResult
+    figures : iterable of str
+        The PNG names to show.
+
+    Returns
+    -------
+    str
+    """
+    n = sum(c.passed for c in result.cases)
+    lines = [f"# skfem-dielectric check of {result.path}", "",
+             f"{n} of {len(result.cases)} cases pass.  Each row of a results CSV is scored "
+             "against the closed forms at its own loads; a measure's error is that of its "
+             "worst row (docs/check.md).", "", result.table(), ""]
+    fails = [(c, m) for c in result.cases for m in c.measures if not m.passed]
+    if fails:
+        lines += ["## Failures", ""]
+        lines += [f"- {c.name} / {m.name}: {m.n_failed} of {m.n} rows beyond {m.tol:g}; "
+                  f"worst {m.where}: {m.detail}. {m.diagnosis}" for c, m in fails]
+        lines.append("")
+    if result.notes:
+        lines += ["## Not scored", ""] + [f"- {note}" for note in result.notes] + [""]
+    lines += ["## Tolerances", ""]
+    lines += [f"- `{k}` = {v:g}: {TOLERANCE_SOURCES[k]}" for k, v in result.tolerances.items()]
+    lines.append("")
+    if figures:
+        lines += ["## Figures", ""] + [f"![{f[:-4]}]({f})\n" for f in figures]
+    return "\n".join(lines).rstrip() + "\n"
+
+
+def _finite(x):
+    return x if isinstance(x, float) and math.isfinite(x) else (None if isinstance(x, float)
+                                                                else x)
+
+
+def report_json(result: CheckResult) -> str:
+    """The text of ``check.json``: per case its verdict, files, measures (error, tolerance,
+    worst row, detail, diagnosis; an infinite error is ``null``) and notes."""
+    cases = {c.name: {"passed": c.passed, "files": list(c.files), "notes": list(c.notes),
+                      "measures": [{"name": m.name, "what": m.what, "rows": m.n,
+                                    "error": _finite(m.error), "tolerance": m.tol,
+                                    "failed_rows": m.n_failed, "passed": m.passed,
+                                    "worst_row": m.where, "detail": m.detail,
+                                    "diagnosis": m.diagnosis} for m in c.measures]}
+             for c in result.cases}
+    return json.dumps({"path": result.path, "passed": result.passed,
+                       "tolerances": result.tolerances, "cases": cases,
+                       "notes": list(result.notes)}, indent=2) + "\n"
+
+
+def _write_bytes_atomic(path: Path, data: bytes) -> Path:
+    tmp = path.with_name(f".{path.name}.tmp{os.getpid()}")
+    try:
+        with open(tmp, "wb") as fh:
+            fh.write(data)
+            fh.flush()
+            os.fsync(fh.fileno())
+        os.replace(tmp, path)
+    finally:
+        if tmp.exists():
+            tmp.unlink()
+    return path
+
+
+def write_check_report(result: CheckResult, out) -> list[Path]:
+    """Write the report of ``result`` into ``out``: ``<case>.png`` per case, ``check.md``
+    and ``check.json``.
+
+    Every figure and text is made before the folder is created or a file written, and
+    each file is written atomically (temporary file, ``fsync``, rename).
+
+    Parameters
+    ----------
+    result : CheckResult
+    out : path-like
+        The report folder (created); it may not be the checked folder, whose
+        ``<case>.png`` are the figures of ``validate``.
+
+    Returns
+    -------
+    list of Path
+        The files written.
+
+    Raises
+    ------
+    ValueError
+        ``out`` is the checked folder.
+    OSError
+        A file cannot be written.
+    """
+    out = Path(out)
+    checked = Path(result.path)
+    checked = checked if checked.is_dir() else checked.parent
+    if out.resolve() == checked.resolve():
+        raise ValueError(f"--out must not be the checked folder {result.path}: its "
+                         f"<case>.png would be overwritten; give another folder")
+    pngs = {f"{c.name}.png": _png(check_figure(c)) for c in result.cases}
+    texts = {"check.md": report_markdown(result, list(pngs)), "check.json": report_json(result)}
+    out.mkdir(parents=True, exist_ok=True)
+    paths = [_write_bytes_atomic(out / name, data) for name, data in pngs.items()]
+    paths += [write_text_atomic(out / name, text) for name, text in texts.items()]
+    return paths
