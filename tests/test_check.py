@@ -404,6 +404,56 @@ def test_the_report_folder(ours, tmp_path, capsys):
     assert f"report: {out / 'check.md'}" in stdout
 
 
+LAYOUTS = {"nh-d-e": ["s", "D0", "lam1", "stable"],
+           "gent-equi-biaxial": ["model", "s", "E0", "lam1"],
+           "figde": ["s", "D0", "lam1", "lam3"], "zs22": ["alpha", "D0", "lam1", "D0_b"],
+           "voltage-control": ["loading", "model", "s", "lam1", "E0", "kind", "stable"],
+           "wrinkling-fe": ["mode", "lam", "kh", "D0_fe", "control"]}
+CHOICES = {"model": ["Gent", "neo-Hookean"], "loading": ["equibiaxial", "uniaxial-free"],
+           "kind": ["limit", "regular"], "stable": ["True", "False"],
+           "mode": ["symmetric", "antisymmetric"], "control": ["charge", "voltage"]}
+NUMBERS = ["0", "1", "2.5", "1e300", "1e-300", "0.5", "3", "-1", "1e5", "7"]
+
+
+def test_generated_files_end_in_a_verdict_or_one_line(tmp_path):
+    """Seeded random files (columns of every case, numbers, words, nan, huge values) give a
+    result or a one-line ``ValueError``, never another exception (a quarter second)."""
+    import random
+
+    rng = random.Random(20261205)
+    cols = ["case", "s", "alpha", "D0", "E0", "lam1", "lam1_fe", "lam3", "model", "converged",
+            "stable", "stable_charge", "loading", "kind", "run", "D0_b", "D0_b_error", "mode",
+            "lam", "kh", "D0_fe", "control", "lam1_max_fe", "E0_max_fe", "x"]
+    vals = ["", "0", "1", "-1", "2.5", "1e300", "nan", "inf", "abc", "True", "False", "Gent",
+            "neo-Hookean", "equibiaxial", "uniaxial-free", "uniaxial", "limit", "symmetric",
+            "antisymmetric", "voltage", "1e-300", "0.5", "3"] + list(CHECK_CASES)
+    outcomes = {"result": 0, "error": 0}
+    for trial in range(300):
+        d = tmp_path / str(trial)
+        d.mkdir()
+        if trial % 2:                                 # a case's columns, numbers in them
+            name, header = rng.choice(list(LAYOUTS.items()))
+            rows = [",".join(rng.choice(CHOICES.get(c, NUMBERS)) for c in header)
+                    for _ in range(rng.randint(1, 4))]
+            name += ".csv"
+        else:                                         # any columns, anything in them
+            header = rng.sample(cols, rng.randint(1, 10))
+            rows = [",".join(rng.choice(list(CHECK_CASES)) if c == "case" and
+                             rng.random() < 0.8 else rng.choice(vals) for c in header)
+                    for _ in range(rng.randint(0, 5))]
+            name = rng.choice(["x.csv", "nh-d-e.csv", "figde.csv", "voltage-control.csv",
+                               "wrinkling-fe.csv", "zs22.csv"])
+        (d / name).write_text(",".join(header) + "\n" + "\n".join(rows) + "\n")
+        try:
+            result = validation.check(d)
+            result.table(), result.lines(), result.worst
+            outcomes["result"] += 1
+        except ValueError as exc:
+            assert "\n" not in str(exc), str(exc)
+            outcomes["error"] += 1
+    assert min(outcomes.values()) > 0, outcomes       # both kinds were generated
+
+
 def test_read_csv_rows_names_lines(tmp_path):
     f = tmp_path / "x.csv"
     f.write_text("# one\n\ncase, s ,D0\n# two\nnh-d-e,0,1\n")

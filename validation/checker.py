@@ -398,7 +398,25 @@ def _measure(case, name, what, rows, err, tol, details, diagnose=None) -> Measur
                    rows[i].where, details(i), int(failed.sum()), diagnosis)
 
 
-def _lam1_closed(D0, s, model, loading) -> np.ndarray:
+def _closed(rows, fn, *arrays) -> np.ndarray:
+    """``fn(*arrays)`` as a float array (one entry per row of ``rows``); a ``ValueError`` of
+    the closed form (a value out of its range, e.g. one whose square overflows) becomes a
+    :class:`CheckInputError` naming the first row it comes from."""
+    try:
+        with np.errstate(all="ignore"):
+            return np.atleast_1d(np.asarray(fn(*arrays), dtype=float))
+    except ValueError as exc:
+        for i, row in enumerate(rows):
+            try:
+                with np.errstate(all="ignore"):
+                    fn(*(a[i:i + 1] for a in arrays))
+            except ValueError as one:
+                raise CheckInputError(f"{row.where}: out of the range of the closed form "
+                                      f"({' '.join(str(one).split())})") from None
+        raise CheckInputError(f"{rows[0].where}: {' '.join(str(exc).split())}") from None
+
+
+def _lam1_closed(D0, s, model, loading, rows) -> np.ndarray:
     """Closed-form ``lam1`` per row: Eq. (loading_gent) inverted (``equibiaxial_lam``) or
     Eq. (DEuniax) inverted (``uniaxial_lam1``)."""
     out = np.full(D0.shape, np.nan)
@@ -409,12 +427,12 @@ def _lam1_closed(D0, s, model, loading) -> np.ndarray:
                 continue
             am = analytic_model(m)
             f = an.equibiaxial_lam if ld == "equibiaxial" else an.uniaxial_lam1
-            with np.errstate(all="ignore"):
-                out[sel] = np.atleast_1d(np.asarray(f(D0[sel], s[sel], am), dtype=float))
+            out[sel] = _closed([r for r, k in zip(rows, sel) if k],
+                               lambda d, s_: f(d, s_, am), D0[sel], s[sel])
     return out
 
 
-def _lam3_state(lam1, lam3, s, model, loading) -> np.ndarray:
+def _lam3_state(lam1, lam3, s, model, loading, rows) -> np.ndarray:
     """``lam3`` of each row: the file's where given, else ``lam1`` equi-biaxially and
     Eq. (uni-axial-loading) (``uniaxial_lam3(lam1, s)``) uni-axially."""
     out = lam3.copy()
@@ -423,9 +441,9 @@ def _lam3_state(lam1, lam3, s, model, loading) -> np.ndarray:
     for m in set(model):
         sel = need & (loading != "equibiaxial") & (model == m)
         if sel.any():
-            with np.errstate(all="ignore"):
-                out[sel] = np.atleast_1d(np.asarray(
-                    an.uniaxial_lam3(lam1[sel], s[sel], analytic_model(m)), dtype=float))
+            am = analytic_model(m)
+            out[sel] = _closed([r for r, k in zip(rows, sel) if k],
+                               lambda l1, s_: an.uniaxial_lam3(l1, s_, am), lam1[sel], s[sel])
     return out
 
 
@@ -451,7 +469,7 @@ class _Loading:
 
 
 def _lam1_errors(p: _Loading) -> tuple[np.ndarray, np.ndarray]:
-    ref = _lam1_closed(p.D0, p.s, p.model, p.loading)
+    ref = _lam1_closed(p.D0, p.s, p.model, p.loading, p.rows)
     with np.errstate(all="ignore"):
         return ref, np.abs(p.lam1 - ref) / ref
 
@@ -459,7 +477,7 @@ def _lam1_errors(p: _Loading) -> tuple[np.ndarray, np.ndarray]:
 def _hypotheses(p: _Loading) -> list[tuple[str, Callable[[], _Loading]]]:
     """Mix-ups of conventions that a failing loading measure is tried with: ``(what it
     would mean, the rows read that way)``."""
-    lam3 = _lam3_state(p.lam1, p.lam3, p.s, p.model, p.loading)
+    lam3 = _lam3_state(p.lam1, p.lam3, p.s, p.model, p.loading, p.rows)
     from_E0 = np.isfinite(p.E0)
     out = []
     if np.any(p.s != 0):
@@ -501,8 +519,11 @@ def _diagnose(p: _Loading, tol: float, err_of=None) -> str:
     """The first mix-up of :func:`_hypotheses` under which every row passes."""
     err_of = err_of or (lambda q: _lam1_errors(q)[1])
     for what, read in _hypotheses(p):
-        with np.errstate(all="ignore"):
-            err = err_of(read())
+        try:
+            with np.errstate(all="ignore"):
+                err = err_of(read())
+        except ValueError:              # read that way a row leaves the closed form's range
+            continue
         err = np.where(np.isfinite(err), err, np.inf)
         if err.size and np.all(err <= tol):
             return (f"looks like {what}: read that way the largest error would be "
@@ -707,8 +728,9 @@ def _loading_rows(case, tables, kind) -> tuple[_Loading | None, list]:
     p = _Loading(rows, s, D0, lam1, lam3, model.astype(str), loading, E0, alpha,
                  from_alpha.astype(bool))
     if np.any(np.isfinite(E0)):                       # D0 = lam1^2 lam3^2 E0 (Eq. DLEL)
-        l3 = _lam3_state(p.lam1, p.lam3, p.s, p.model, p.loading)
-        p = p.replace(D0=np.where(np.isfinite(E0), E0 * (p.lam1 * l3) ** 2, p.D0))
+        l3 = _lam3_state(p.lam1, p.lam3, p.s, p.model, p.loading, p.rows)
+        with np.errstate(all="ignore"):
+            p = p.replace(D0=np.where(np.isfinite(E0), E0 * (p.lam1 * l3) ** 2, p.D0))
     return p, notes
 
 
@@ -719,8 +741,10 @@ def _stable_measure(case, rows, lam1, lam3, D0, model, control, theirs, exclude=
     ours = np.zeros(len(rows), dtype=bool)
     for m in set(model):
         sel = model == m
-        ours[sel] = np.atleast_1d(an.stability_verdict(lam1[sel], lam3[sel], D0[sel],
-                                                       analytic_model(m), control=control))
+        am = analytic_model(m)
+        ours[sel] = _closed([r for r, k in zip(rows, sel) if k],
+                            lambda a, b, c: an.stability_verdict(a, b, c, am, control=control),
+                            lam1[sel], lam3[sel], D0[sel]) > 0.5
     keep = np.ones(len(rows), dtype=bool) if exclude is None else ~exclude
     idx = np.flatnonzero(keep)
     if not idx.size:
@@ -759,7 +783,7 @@ def _check_loading(case, tables, tol) -> CaseCheck:
     stable = _stability_rows(case, tables, p)
     given = np.array([v is not None for v in stable])
     if given.any():
-        lam3 = _lam3_state(p.lam1, p.lam3, p.s, p.model, p.loading)
+        lam3 = _lam3_state(p.lam1, p.lam3, p.s, p.model, p.loading, p.rows)
         sel = np.flatnonzero(given)
         m = _stable_measure(case, [p.rows[i] for i in sel], p.lam1[sel], lam3[sel],
                             p.D0[sel], p.model[sel], "charge",
@@ -767,7 +791,7 @@ def _check_loading(case, tables, tol) -> CaseCheck:
         measures.append(m)
     _, err = _lam1_errors(p)
     points = dict(kind=kind, s=p.s, D0=p.D0, lam1=p.lam1, model=p.model,
-                  lam3=_lam3_state(p.lam1, p.lam3, p.s, p.model, p.loading),
+                  lam3=_lam3_state(p.lam1, p.lam3, p.s, p.model, p.loading, p.rows),
                   ok=err <= tol["lam1"])
     return CaseCheck(case, _file_names(tables), tuple(measures), tuple(notes), points)
 
@@ -927,8 +951,9 @@ def _check_voltage(case, tables, tol) -> CaseCheck:
     p = _Loading(rows, s, D0, lam1, np.full(len(rows), np.nan), model, ld,
                  np.where(np.isfinite(D0), np.nan, E0), np.full(len(rows), np.nan),
                  np.zeros(len(rows), dtype=bool))
-    lam3 = _lam3_state(p.lam1, p.lam3, p.s, p.model, p.loading)
-    p = p.replace(D0=np.where(np.isfinite(D0), D0, E0 * (lam1 * lam3) ** 2))
+    lam3 = _lam3_state(p.lam1, p.lam3, p.s, p.model, p.loading, p.rows)
+    with np.errstate(all="ignore"):
+        p = p.replace(D0=np.where(np.isfinite(D0), D0, E0 * (lam1 * lam3) ** 2))
     measures = [_loading_measure(case, p, "lam1", tol["lam1"],
                                  "the loading curve, Eq. (loading_gent) or Eq. (DEuniax)")]
     # the limit point of each row's path, and the rows within tolerance of it
@@ -937,8 +962,9 @@ def _check_voltage(case, tables, tol) -> CaseCheck:
         for l_ in set(ld):
             sel = (model == m_) & (ld == l_)
             if sel.any():
-                lim_lam[sel] = np.atleast_1d(np.asarray(an.max_E0(
-                    s[sel], analytic_model(m_), loading=l_)[0], dtype=float))
+                am = analytic_model(m_)
+                lim_lam[sel] = _closed([r for r, k in zip(rows, sel) if k],
+                                       lambda s_: an.max_E0(s_, am, loading=l_)[0], s[sel])
     with np.errstate(invalid="ignore"):
         marginal = np.abs(lam1 / lim_lam - 1) <= tol["lam1_limit"]
     marginal |= np.array([r.cells.get("kind", "") == "limit" for r in rows])
@@ -958,9 +984,9 @@ def _check_voltage(case, tables, tol) -> CaseCheck:
     if limits:
         lrows, lerr, Eerr, linfo = [], [], [], []
         for run, (r, l1, e0, s_, m_, l_) in limits.items():
-            lam_ref, E0_ref = (float(v) for v in an.max_E0(
-                s_, analytic_model(m_), loading="equibiaxial" if l_ == "equibiaxial"
-                else "uniaxial"))
+            lam_ref, E0_ref = (float(v[0]) for v in _closed(
+                [r], lambda x: np.array(an.max_E0(x, analytic_model(m_), loading=(
+                    "equibiaxial" if l_ == "equibiaxial" else "uniaxial"))), np.array([s_])))
             lrows.append(r)
             lerr.append(abs(l1 / lam_ref - 1) if math.isfinite(lam_ref) else math.inf)
             Eerr.append(abs(e0 / E0_ref - 1) if math.isfinite(E0_ref) and math.isfinite(e0)
@@ -1039,9 +1065,11 @@ def _check_wrinkling(case, tables, tol) -> CaseCheck:
                 for mo in set(model):
                     sel = (control == c) & (mode_ == md) & (model == mo)
                     if sel.any():
-                        ref[sel] = np.atleast_1d(np.asarray(an.critical_D0(
-                            lam_[sel], kh_[sel], analytic_model(mo), mode=md, control=c),
-                            dtype=float))
+                        am = analytic_model(mo)
+                        ref[sel] = _closed(
+                            [r for r, k in zip(rows, sel) if k],
+                            lambda a, b: an.critical_D0(a, b, am, mode=md, control=c),
+                            lam_[sel], kh_[sel])
         return ref
 
     ref = reference(lam, kh, mode)
@@ -1067,8 +1095,11 @@ def _check_wrinkling(case, tables, tol) -> CaseCheck:
                       "thickness)", lambda: np.abs(D0 - reference(lam, kh, other))
                       / reference(lam, kh, other)))
         for what, e in tries:
-            with np.errstate(all="ignore"):
-                ee = e()
+            try:
+                with np.errstate(all="ignore"):
+                    ee = e()
+            except ValueError:
+                continue
             if np.all(np.isfinite(ee) & (ee <= t)):
                 return f"looks like {what}: read that way the largest error would be " \
                        f"{_g(float(ee.max()))}"
