@@ -35,7 +35,12 @@ def test_homogeneous_equibiaxial_plate_has_no_buckling_load():
     assert not out.found and np.isnan(out.D0_b) and "no negative physical" in out.reason
     # no negative eigenvalue of any kind on the whole plate (exact count, inertia)
     assert [r["n_negative"] for r in out.scan] == [0, 0, 0, 0]
-    assert out.eigenvalue > 0
+    # the event-driven scan computes no mode where no count changes; the full scan's
+    # lowest physical eigenvalue at the last state is positive, its counts the same
+    assert np.isnan(out.eigenvalue) and all(r["back_substitutions"] == 0 for r in out.scan)
+    full = buckling_load(pb, states, scan="full")
+    assert not full.found and full.eigenvalue > 0
+    assert [r["n_negative"] for r in full.scan] == [0, 0, 0, 0]
     # the analytic side: the loading curve stays below the thin-plate limit of the
     # Stroh analysis at every state (independent of the FE)
     lam = [pb.postprocess(x, ld)["lam1"] for x, ld in states[1:]]
@@ -75,6 +80,26 @@ def test_buckling_load_is_the_full_plates_eigenvalue_crossing(end_compression):
     # mesh's to 1e-8 (tests/test_symmetry_classes.py): agreement to twice the tolerance
     assert abs(out.load[0] - ref.load[0]) <= 2e-5
     assert out.load[1] == 1.0 and out.D0_b == 1.0
+
+
+def test_event_scan_locates_the_full_scans_load_with_its_counts(end_compression):
+    # the event-driven scan (counts at every state, modes where a count changes) and the
+    # full scan (every negative mode classified at every state) see the same counts
+    # (Sylvester, exact) and locate the same crossing: each to tol = 1e-5, trial states
+    # solved alike, so they agree to twice the tolerance
+    pb, states = end_compression
+    ev = buckling_load(pb, states, tol=1e-5)
+    full = buckling_load(pb, states, tol=1e-5, scan="full")
+    assert ev.found and full.found
+    assert [r["n_negative"] for r in ev.scan] == [r["n_negative"] for r in full.scan]
+    assert abs(ev.load[0] - full.load[0]) <= 2e-5
+    assert ev.label.symmetry == full.label.symmetry and ev.label.kind == "physical"
+    # where no class's count changed, the event scan computed no mode
+    for a, b in zip(ev.scan[:-1], ev.scan[1:]):
+        if a["n_negative"] == b["n_negative"] == 0:
+            assert b["back_substitutions"] == 0 and b["changed"] == ""
+    with pytest.raises(ValueError, match="scan must be one of"):
+        buckling_load(pb, states, scan="some")
 
 
 def test_class_stability_in_threads_is_the_serial_one(end_compression):

@@ -12,6 +12,7 @@ from validation import cases as vc
 from skfem_dielectric.gallery.loads import keplinger_s
 from validation.fe import (buckling_problem, build_problem, pardiso_installed, run_fe,
                            stability_columns, whole_plate_verdict)
+from skfem_dielectric.models.plate.modes import lowest_physical
 from validation.fe.model import BUCKLING_TOL
 from validation.records import StepRecord
 from validation.sweep import run_case
@@ -194,12 +195,22 @@ def test_stable_column_never_true_on_a_buckled_state(tmp_path, monkeypatch):
     run_case(case, tmp_path, quick=True, runner=runner, progress=False)
     t = read_table(tmp_path / "uni-axial-ideal.csv")
     ev, stable = t["physical_eig"], list(t["stable"])
-    assert np.isfinite(ev).all() and (ev < 0).any() and (ev > 0).any(), ev
+    # the event-driven scan classifies only the modes that crossed zero: a physical one
+    # first at D0 = 3, none before (the column is empty there)
+    assert np.isnan(ev[:2]).all() and ev[2] < 0, ev
+    problem = buckling_problem(spec)
+    # reference: the full scan (every negative mode of every class classified) of the
+    # same states: its lowest physical eigenvalue is positive at 2.5 and at 3 the one the
+    # event scan found (same class, to the Lanczos tolerance)
+    full = [lowest_physical(problem, st["x_stab"], st["load"]) for _, st in seen[1:]]
+    assert full[0].eigenvalue > 0 and full[1].eigenvalue < 0
+    assert ev[2] == pytest.approx(full[1].eigenvalue, rel=1e-6)
+    assert t["physical_class"][2] == full[1].label.symmetry
+    assert list(t["n_negative_plate"][1:]) == [f.n_negative for f in full]
     # the column is the whole plate's verdict: False exactly where a physical mode is negative
-    assert stable == [not bool(e < 0) for e in ev], (list(ev), stable)
+    assert stable == [True, True, False], stable
     # ... and the symmetric class alone would have said True everywhere (what the column
     # must not report): the rule is what makes the difference
-    problem = buckling_problem(spec)
     own = [stability_columns(spec, problem, st["x_stab"], st["load"])["stable"]
            for _, st in seen]
     assert own == [True] * len(ev)
@@ -214,7 +225,8 @@ def test_stable_column_never_true_on_a_buckled_state(tmp_path, monkeypatch):
     assert np.isnan(located[:2]).all() and 2.5 < located[2] < 3.0, located
     # a linear interpolation of the two rows' eigenvalues would put it at 2.68: the
     # eigenvalue is far from linear there, the located value is not that
-    assert abs(located[2] - (2.5 + 0.5 * ev[1] / (ev[1] - ev[2]))) > 10 * BUCKLING_TOL
+    e25, e3 = full[0].eigenvalue, full[1].eigenvalue
+    assert abs(located[2] - (2.5 + 0.5 * e25 / (e25 - e3))) > 10 * BUCKLING_TOL
     # interrupted after the state before the crossing and resumed: both ramps continue
     # from the saved vectors and D0_b is located from the saved grad-div state, so the
     # file is the uninterrupted run's, byte for byte

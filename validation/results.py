@@ -69,7 +69,7 @@ def summarise_case(case: Case, csv_path: Path, n_runs: int) -> CaseResult:
             variant = str(t["variant"][sel][0])
             res.breakdown_D0_by_alpha.setdefault(variant, {})[format(t["alpha"][sel][0], "g")] = \
                 res.breakdown_D0[key]
-        if "D0_b" in t and np.isfinite(t["physical_eig"][sel]).any():
+        if "D0_b" in t and np.isfinite(t["n_negative_plate"][sel]).any():
             located = t["D0_b"][sel][np.isfinite(t["D0_b"][sel])]
             res.buckling_D0[key] = float(located[0]) if located.size else None
             res.buckling_D0_by_alpha.setdefault(str(t["variant"][sel][0]), {})[

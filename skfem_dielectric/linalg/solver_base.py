@@ -17,10 +17,11 @@ import scipy.sparse.linalg as spla
 from .symmetric import SymmetricUpper
 
 __all__ = ["LinearSolver", "SuperLUSolver", "whole_matrix", "splu", "factorisation_count",
-           "count_factorisation"]
+           "count_factorisation", "back_substitution_count", "count_back_substitution"]
 
 
 _FACTORISATIONS = [0]
+_BACK_SUBSTITUTIONS = [0]
 _COUNT_LOCK = threading.Lock()
 
 
@@ -37,6 +38,21 @@ def factorisation_count() -> int:
     the measure of the cost of a stability analysis along a path (docs/performance.md)."""
     with _COUNT_LOCK:
         return _FACTORISATIONS[0]
+
+
+def count_back_substitution(n: int = 1) -> None:
+    """Add ``n`` to :func:`back_substitution_count` (the eigenvalue iterations of the
+    stability analysis call it once per solve with a factorisation they hold)."""
+    with _COUNT_LOCK:
+        _BACK_SUBSTITUTIONS[0] += int(n)
+
+
+def back_substitution_count() -> int:
+    """Back-substitutions of the stability analysis's eigenvalue iterations (each Lanczos
+    step applies the inverse of a factorised tangent once) in this process so far, over
+    all threads: with :func:`factorisation_count`, the cost of a spectrum along a path."""
+    with _COUNT_LOCK:
+        return _BACK_SUBSTITUTIONS[0]
 
 
 def splu(A: sp.spmatrix, **options):

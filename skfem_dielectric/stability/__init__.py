@@ -5,10 +5,10 @@ monitor that records them for every converged state of a ramp
 """
 
 from .analysis import (StabilityResult, stability_analysis, tangent_stability, metric_matrix,
-                       lowest_modes)
+                       lowest_modes, modes_near_zero)
 from .monitor import StabilityMonitor
 
 __all__ = [
     "StabilityResult", "stability_analysis", "tangent_stability", "metric_matrix",
-    "lowest_modes", "StabilityMonitor",
+    "lowest_modes", "modes_near_zero", "StabilityMonitor",
 ]

@@ -39,11 +39,11 @@ import scipy.sparse.linalg as spla
 from ..linalg.inertia import (DENSE_LIMIT, counted_inertia, inertia_factors, reusable_factors,
                               symmetric_lu, tangent_inertia)
 from ..linalg.linear import PardisoSolver, pardiso_available
-from ..linalg.solver_base import LinearSolver, splu
+from ..linalg.solver_base import LinearSolver, count_back_substitution, splu
 from ..problem import Problem
 
 __all__ = ["StabilityResult", "stability_analysis", "tangent_stability", "metric_matrix",
-           "lowest_modes"]
+           "lowest_modes", "modes_near_zero"]
 
 
 def metric_matrix(problem: Problem) -> sp.csr_matrix:
@@ -92,7 +92,7 @@ def _below(Ks: sp.spmatrix, n_m: int, use_pardiso: bool, solver: PardisoSolver |
 
 
 def _eig_near(solve, sigma: float, d: np.ndarray, sq: np.ndarray, n: int, m: int,
-              which: str, tol: float, v0: np.ndarray | None):
+              which: str, tol: float, v0: np.ndarray | None, ncv: int | None = None):
     """``m`` eigenpairs of ``C = M^1/2 P (K - sigma M)^-1 P M^1/2`` (``solve`` applies the
     inverse; ``which`` as ARPACK's, on ``theta = 1/(lambda - sigma)``): ascending
     ``lambda`` and the full modes, unit ``M``-norm."""
@@ -101,6 +101,7 @@ def _eig_near(solve, sigma: float, d: np.ndarray, sq: np.ndarray, n: int, m: int
     def solve_d(v):
         b = np.zeros(n)
         b[d] = sq * v
+        count_back_substitution()
         return solve(b)
 
     op = spla.LinearOperator((nd, nd), matvec=lambda v: sq * solve_d(v)[d], dtype=float)
@@ -119,7 +120,8 @@ def _eig_near(solve, sigma: float, d: np.ndarray, sq: np.ndarray, n: int, m: int
         # Lanczos basis 2m + 1, at least 8 (ARPACK's default 20 costs 22 back-
         # substitutions for one well-separated eigenvalue; 8: 10, same eigenvalue)
         theta, V = spla.eigsh(op, m, which=which, tol=tol, v0=start,
-                              ncv=min(nd - 1, max(2 * m + 1, 8)))
+                              ncv=min(nd - 1, max(2 * m + 1, 8) if ncv is None else
+                                      max(ncv, m + 2)))
     vals = sigma + 1.0 / theta
     order = np.argsort(vals)
     vecs = np.column_stack([solve_d(V[:, j]) * theta[j] for j in order]) if m else \
@@ -300,6 +302,76 @@ def lowest_modes(K: sp.spmatrix, M: sp.spmatrix, k: int, n_negative: int = 0,
     vecs = np.column_stack([p[1] for p in parts])
     order = np.argsort(vals)[:k]
     return vals[order], vecs[:, order]
+
+
+#: ARPACK's ``which`` of the shift-invert operator at 0 for the eigenvalues nearest to
+#: zero on one side (``theta = 1/lambda``: the negative ones nearest to zero have the most
+#: negative ``theta``, the positive ones the largest) or on both
+_SIDES = {"negative": "SA", "positive": "LA", "both": "LM"}
+
+
+def modes_near_zero(K: sp.spmatrix, M: sp.spmatrix, k: int, *, side: str = "both",
+                    factors: LinearSolver | None = None, tol: float = 1e-10,
+                    v0: np.ndarray | None = None):
+    """The ``k`` finite eigenpairs of the pencil ``K w = lambda M w`` nearest to zero: of
+    either sign, or on one side of zero.
+
+    Shift-invert Lanczos at the shift 0 (``theta = 1/lambda``: the largest ``|theta|``
+    for ``side="both"``, the most negative ``theta`` for the negative eigenvalues nearest
+    to zero, the largest for the positive ones -- each an end of the spectrum of the
+    operator, where Lanczos converges fastest), on the
+    factors of ``K`` itself where ``factors`` holds them (e.g. the factorisation that
+    counted its inertia, :func:`~skfem_dielectric.linalg.inertia.inertia_factors`): then
+    the modes cost back-substitutions only, no factorisation.  Without usable factors
+    (none given, or a singular ``K``) ``K`` is factorised with a shift just below zero.
+    This is what an eigenvalue that has just crossed zero needs -- it is among the
+    nearest to zero -- whereas :func:`lowest_modes` has to reach the most negative ones
+    first, past every other negative eigenvalue.
+
+    Parameters
+    ----------
+    K, M
+        As :func:`lowest_modes` (``M`` diagonal, zero on the multipliers).
+    k
+        Number of eigenpairs, ``1 <= k <= nd - 1`` (``nd`` displacement-like unknowns);
+        with ``side="negative"`` at most the number of negative eigenvalues (past them
+        Lanczos would have to resolve the cluster of ``theta`` near 0).
+    side
+        ``"both"``, ``"negative"`` or ``"positive"``.
+    factors
+        A solver holding the factorisation of ``K`` (its ``resolve`` solves with it).
+    tol
+        ARPACK's relative tolerance on ``theta``.
+    v0
+        Lanczos start vector (length ``nd``), default a fixed random one.
+
+    Returns
+    -------
+    vals : ndarray, shape (k,)
+        Ascending eigenvalues.
+    vecs : ndarray, shape (n, k)
+        Modes (all unknowns), unit ``M``-norm.
+
+    Raises
+    ------
+    ValueError
+        ``k`` out of range or an unknown ``side``.
+    """
+    if side not in _SIDES:
+        raise ValueError(f"side must be one of {sorted(_SIDES)}, got {side!r}")
+    n = K.shape[0]
+    md = M.diagonal()
+    d = np.flatnonzero(md > 0)
+    nd = d.size
+    if int(k) != k or not 1 <= k <= nd - 1:
+        raise ValueError(f"k must be an integer between 1 and {nd - 1} (the finite "
+                         f"eigenvalues of this system less one), got {k!r}")
+    if factors is not None and factors.resolve(np.zeros(n)) is not None:
+        solve, sigma = factors.resolve, 0.0
+    else:                       # a shift just below zero: K itself may be singular
+        sigma = -1e-8 * float(abs(K).max())
+        solve = _pencil_solve(K - sigma * M, pardiso_available() and n > DENSE_LIMIT)
+    return _eig_near(solve, sigma, d, np.sqrt(md[d]), n, int(k), _SIDES[side], tol, v0)
 
 
 @dataclass

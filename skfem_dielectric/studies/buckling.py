@@ -27,12 +27,22 @@ from ..checks import check_count, check_nonnegative_int, check_positive
 from ..gallery.drivers import newton_guards
 from ..models.plate.modes import (ModeLabel, classify_mode, corner_radius, lowest_physical,
                                   physical_modes)
+from ..linalg.inertia import inertia_factors, reusable_factors
 from ..models.plate.problem import PlateProblem
-from ..models.plate.symmetry_classes import class_mode_full, class_stability
+from ..models.plate.scan import PlateScan, ScanRow
+from ..models.plate.symmetry_classes import (class_mode_full, class_stability, class_tangent,
+                                             union_tangent)
 from ..solvers.critical import CriticalLoad, critical_load
 from ..solvers.ramp import RampResult
+from ..stability.analysis import modes_near_zero
 
-__all__ = ["BucklingLoad", "buckling_load"]
+__all__ = ["BucklingLoad", "buckling_load", "locate_buckling", "SCANS"]
+
+#: how :func:`buckling_load` scans the states: ``"events"`` (counts at every state, modes
+#: where a class's count changes, :class:`~skfem_dielectric.models.plate.scan.PlateScan`)
+#: or ``"full"`` (the lowest physical mode at every state,
+#: :func:`~skfem_dielectric.models.plate.modes.lowest_physical`)
+SCANS = ("events", "full")
 
 
 @dataclass
@@ -94,11 +104,31 @@ def _scan_row(load, lowest) -> dict:
             "mesh_scale": phys.mesh_scale if phys else np.nan}
 
 
+def _event_row(row: ScanRow) -> dict:
+    """The scan row of an event-driven state: the counts at every state, the modes where
+    they changed (``nan``/empty where none was computed or none is physical)."""
+    s, d = (float(v) for v in row.load)
+    phys = [m for m in row.labels if m.kind == "physical"]
+    low = row.labels[0] if row.labels else None
+    p = phys[0] if phys else None
+    return {"s": s, "D0": d, "n_negative": row.n_negative,
+            "lowest": low.eigenvalue if low else np.nan,
+            "lowest_class": low.symmetry if low else "",
+            "n_flagged": row.n_negative - row.n_physical,
+            "physical": p.eigenvalue if p else np.nan,
+            "physical_class": p.symmetry if p else "",
+            "corner_share": p.corner_share if p else np.nan,
+            "mesh_scale": p.mesh_scale if p else np.nan,
+            "n_physical": row.n_physical, "changed": "; ".join(row.changed),
+            "factorisations": row.factorisations,
+            "back_substitutions": row.back_substitutions}
+
+
 def buckling_load(result: RampResult | PlateProblem,
                   states: Sequence[tuple[np.ndarray, Any]] | None = None, *,
                   extra: int = 2, grad_div: float | None = None, method: str = "auto",
                   radius: float | None = None, tol: float = 1e-4, maxiter: int = 30,
-                  **ramp_options) -> BucklingLoad:
+                  scan: str = "events", **ramp_options) -> BucklingLoad:
     """Scan converged states for the first physical buckling load and locate it.
 
     Parameters
@@ -114,6 +144,14 @@ def buckling_load(result: RampResult | PlateProblem,
     tol, maxiter
         Location of the zero crossing in the load
         (:func:`~skfem_dielectric.solvers.critical.critical_load`).
+    scan
+        ``"events"`` (default): one factorisation per symmetry class per state and its
+        negative count; modes only where a class's count changes, to classify what
+        crossed zero (:class:`~skfem_dielectric.models.plate.scan.PlateScan`); the first
+        state with a negative mode labelled physical ends the scan.  ``"full"``: the
+        lowest physical mode of the whole plate at every state
+        (:func:`~skfem_dielectric.models.plate.modes.lowest_physical`), every negative
+        mode classified -- the same load at many times the cost, for checking.
     **ramp_options
         Newton settings of the trial states (``linear_solver``, ``max_cutbacks``,
         ``rtol``, ...); the plate's ``det F > 0`` guards are added
@@ -163,7 +201,11 @@ def buckling_load(result: RampResult | PlateProblem,
     maxiter = check_nonnegative_int("maxiter", maxiter)
     if radius is not None:
         radius = check_positive("radius", radius)
+    if scan not in SCANS:
+        raise ValueError(f"scan must be one of {SCANS}, got {scan!r}")
     opts = dict(extra=extra, grad_div=grad_div, method=method, radius=radius)
+    if scan == "events":
+        return _event_scan(problem, pairs, opts, tol, maxiter, ramp_options)
     scan: list[dict] = []
     prev = None
     for x, load in pairs:
@@ -183,6 +225,143 @@ def buckling_load(result: RampResult | PlateProblem,
     return BucklingLoad(np.nan, None, last, None, None, scan,
                         reason=f"no negative physical eigenvalue up to "
                                f"D0 = {scan[-1]['D0']:g}")
+
+
+def _event_scan(problem, pairs, opts, tol, maxiter, ramp_options) -> BucklingLoad:
+    """:func:`buckling_load` with the event-driven scan."""
+    scanner = PlateScan(problem, extra=opts["extra"], grad_div=opts["grad_div"],
+                        method=opts["method"], radius=opts["radius"])
+    rows: list[dict] = []
+    prev = None
+    for x, load in pairs:
+        before = scanner.state
+        row = scanner.analyse(x, load)
+        rows.append(_event_row(row))
+        if row.n_physical > 0:
+            phys = row.new_physical
+            if prev is None or phys is None:
+                reason = ("the first state already has a negative physical eigenvalue"
+                          if prev is None else "a negative physical mode whose crossing "
+                          "was not seen (its class's count did not change)")
+                return BucklingLoad(np.nan, None, phys.eigenvalue if phys else np.nan, phys,
+                                    None, rows, reason=reason)
+            bl = locate_buckling(problem, prev, (x, load), phys, counts=before, tol=tol,
+                                 maxiter=maxiter, **opts, **ramp_options)
+            bl.scan = rows
+            return bl
+        prev = (x, load)
+    return BucklingLoad(np.nan, None, np.nan, None, None, rows,
+                        reason=f"no negative physical eigenvalue up to D0 = {rows[-1]['D0']:g}")
+
+
+def _near_zero_physical(problem, c, K, ref, n_u, radius, k0, xf):
+    """Among the eigenpairs of class ``c`` nearest to zero, the physical mode most like
+    ``ref``: ``(eigenvalue, mode)`` or ``None`` when none of up to 32 nearest is physical."""
+    Kc = class_tangent(c, K)
+    inertia, factors = inertia_factors(Kc, "auto", c.orders)
+    usable = reusable_factors(factors, inertia)
+    nd = int(np.count_nonzero(c.metric.diagonal() > 0))
+    k = min(k0, nd - 1)
+    while True:
+        vals, vecs = modes_near_zero(Kc, c.metric, k, side="both", factors=usable, tol=1e-10)
+        best, out = -1.0, None
+        for j in np.argsort(np.abs(vals), kind="stable"):
+            w = class_mode_full(c, vecs[:, j])
+            ov = abs(ref @ w[:n_u]) / max(np.linalg.norm(w[:n_u]), 1e-300)
+            if ov > best and classify_mode(problem, xf, w, radius=radius)["kind"] == \
+                    "physical":
+                best, out = ov, (float(vals[j]), w)
+        if out is not None or k >= min(32, nd - 1):
+            return out
+        k = min(2 * k, nd - 1)
+
+
+def locate_buckling(problem: PlateProblem, a: tuple[np.ndarray, Any],
+                    b: tuple[np.ndarray, Any], mode: ModeLabel, *, counts: dict | None = None,
+                    extra: int = 2, grad_div: float | None = None, method: str = "auto",
+                    radius: float | None = None, tol: float = 1e-4, maxiter: int = 30,
+                    **ramp_options) -> BucklingLoad:
+    """Locate the zero crossing of a physical mode between two states of a scan.
+
+    The indicator is the eigenvalue of the mode of ``mode``'s symmetry class that is
+    classified physical and overlaps most with ``mode``, among the eigenpairs of that
+    class nearest to zero (:func:`~skfem_dielectric.stability.analysis.modes_near_zero`,
+    on the factors that count the class: a mode near its crossing is among them), located
+    by :func:`~skfem_dielectric.solvers.critical.critical_load` with every trial solved
+    from ``a``.  At the located load every class is counted against ``counts`` (the
+    scan's state at ``a``); a class whose new negative mode there is physical crossed
+    first and is located in turn (each class once).
+
+    Parameters
+    ----------
+    problem
+        The plate of the scan.
+    a, b
+        ``(x, load)`` of the last state without and the first with the negative physical
+        ``mode``.
+    mode
+        The :class:`~skfem_dielectric.models.plate.modes.ModeLabel` found at ``b``.
+    counts
+        :attr:`~skfem_dielectric.models.plate.scan.PlateScan.state` at ``a`` (``None``:
+        the other classes are not checked).
+    extra, grad_div, method, radius
+        As :func:`buckling_load`.
+    tol, maxiter
+        As :func:`buckling_load`.
+    **ramp_options
+        Newton settings of the trial states, as :func:`buckling_load`.
+
+    Returns
+    -------
+    BucklingLoad
+        Without ``scan`` rows.
+
+    Raises
+    ------
+    ValueError
+        The indicator does not change sign between ``a`` and ``b``, or a trial state
+        cannot be solved.
+    """
+    for key, value in newton_guards(problem).items():
+        ramp_options.setdefault(key, value)
+    n_u = problem.n_u
+    r = corner_radius(problem) if radius is None else check_positive("radius", radius)
+    k0 = max(6, 2 * check_count("extra", extra) + 2)
+    target, end, seen = mode, np.asarray(b[1], float), set()
+    last: dict = {}
+    while True:
+        seen.add(target.symmetry)
+        ref = target.mode[:n_u] / np.linalg.norm(target.mode[:n_u])
+
+        def eig(x, load, ref=ref, name=target.symmetry):
+            classes, K = union_tangent(problem, x, load, grad_div)
+            c = next(c for c in classes if c.name == name)
+            found = _near_zero_physical(problem, c, K, ref, n_u, r, k0,
+                                        problem.full(x, load))
+            if found is None:
+                return np.inf
+            last["mode"], last["class"] = found[1], c
+            return found[0]
+
+        crit = critical_load(problem, a[0], np.asarray(a[1], float), end, eig, tol=tol,
+                             maxiter=maxiter, **ramp_options)
+        earlier = None
+        if counts is not None:
+            scanner = PlateScan(problem, extra=extra, grad_div=grad_div, method=method,
+                                radius=r, state=counts)
+            row = scanner.analyse(crit.x, crit.load)
+            earlier = next((m for m in row.labels if m.kind == "physical"
+                            and m.eigenvalue < 0 and m.symmetry not in seen), None)
+        if earlier is None:
+            break
+        target, end = earlier, np.asarray(crit.load, float)
+    eig(crit.x, crit.load)              # the located mode itself
+    c = last["class"]
+    lab = classify_mode(problem, problem.full(crit.x, crit.load), last["mode"], radius=r)
+    label = ModeLabel(float(crit.eigenvalue), c.name, dict(c.increments), lab["corner_share"],
+                      lab["mesh_scale"], lab["kind"], last["mode"])
+    return BucklingLoad(float(crit.load[1]), crit.load, crit.eigenvalue, label, crit.x, [],
+                        crit)
 
 
 def _locate(problem, a, b, phys_b, opts, scan, tol, maxiter, ramp_options) -> BucklingLoad:

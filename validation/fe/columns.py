@@ -176,47 +176,45 @@ def _interior_min(x1_mm, P33) -> float:
     return float(np.min(np.asarray(P33)[keep])) if keep.any() else float("nan")
 
 
-def plate_buckling_columns(spec: RunSpec, problem, x, load) -> dict:
+def plate_buckling_columns(spec: RunSpec, scan, x, load) -> dict:
     """The whole plate's columns of a state of a run with ``spec.buckling``.
 
-    ``problem`` is the run's grad-div form (:func:`~validation.fe.model.buckling_problem`)
-    and ``x`` its own state at ``load``: the spectrum is of that state's own tangent, the
-    Hessian of the energy whose equilibrium it is.  ``n_negative_plate`` (negative
-    eigenvalues over every symmetry class of the eighth model), ``physical_eig`` (the
-    lowest eigenvalue whose mode is classified physical,
-    :func:`skfem_dielectric.models.plate.modes.lowest_physical`; ``nan`` if none of the
-    computed ones is), ``physical_class`` (its symmetry class) and ``stable``
-    (:func:`whole_plate_verdict` of that state: its own-tangent verdict,
-    :func:`stability_columns`, and the whole plate's spectrum).  Empty for other runs,
-    and where the spectrum cannot be computed (a ``ValueError``, e.g. a class tangent too
-    large to be counted without PARDISO).
+    ``scan`` is the run's :class:`~skfem_dielectric.models.plate.scan.PlateScan` of its
+    grad-div form (:func:`~validation.fe.model.buckling_problem`) and ``x`` that form's own
+    state at ``load``: the spectrum is of that state's own tangent, the Hessian of the
+    energy whose equilibrium it is.  The scan counts the negative eigenvalues of every
+    symmetry class of the eighth model at every state and classifies the modes that
+    crossed zero since the previous state (where a class's count changed).  Columns:
+    ``n_negative_plate`` (the whole plate's count), ``physical_eig`` and
+    ``physical_class`` (the lowest mode classified physical *at this state* -- one that
+    crossed zero here; empty where none did), ``stable`` (no negative mode labelled
+    physical on the whole plate, labels carried along the path, and a non-singular
+    tangent; the eighth model's own tangent is one of the classes).  Empty for other
+    runs, and where the spectrum cannot be computed (a ``ValueError``, e.g. a class
+    tangent too large to be counted without PARDISO).
 
     Parameters
     ----------
     spec : RunSpec
-    problem : PlateProblem
-        The grad-div form of the run's plate.
+    scan : PlateScan
+        The run's scan, its previous state the run's previous row.
     x, load
-        Its converged reduced state and the load.
+        The grad-div form's converged reduced state and the load.
 
     Returns
     -------
     dict
     """
-    if not (spec.buckling and spec.geometry == "uniaxial" and not is_membrane(spec)
-            and problem.symmetric):
+    if not (spec.buckling and spec.geometry == "uniaxial" and not is_membrane(spec)):
         return {}
     try:
-        lowest = fe_modes.lowest_physical(problem, x, load)
+        row = scan.analyse(x, load)
     except ValueError:
         return {}
-    cols = {"n_negative_plate": int(lowest.n_negative), "physical_eig": lowest.eigenvalue,
-            "physical_class": lowest.label.symmetry if lowest.label is not None else ""}
-    own = stability_columns(spec, problem, x, load)["stable"]
-    verdict = StepRecord(D0=float(np.asarray(load)[1]), lam1=np.nan, lam3=np.nan,
-                         min_P33=np.nan, stable=own, n_negative_plate=cols["n_negative_plate"],
-                         physical_eig=cols["physical_eig"])
-    return {**cols, "stable": whole_plate_verdict(spec, problem, verdict)}
+    phys = [m for m in row.labels if m.kind == "physical"]
+    return {"n_negative_plate": row.n_negative,
+            "physical_eig": phys[0].eigenvalue if phys else float("nan"),
+            "physical_class": phys[0].symmetry if phys else "", "stable": row.stable}
 
 
 def whole_plate_verdict(spec: RunSpec, problem, rec: StepRecord) -> bool | None:

@@ -10,12 +10,15 @@ solution vector and its load, so a resumed ramp continues bit for bit.
 A run analysed for buckling (``RunSpec.buckling``) ramps twice to the same loads: the plain
 form (:func:`~validation.fe.model.build_problem`), which gives every column a plain run has
 (stretches, ``P33``, ``breakdown``, the model's own stability counts), and before it the
-grad-div form (:func:`~validation.fe.model.buckling_problem`), whose states give the whole
-plate's spectrum and ``stable`` (:func:`~validation.fe.columns.plate_buckling_columns`) and
-the buckling load ``D0_b``, located at the first of its states whose lowest physical
-eigenvalue is negative, between that state and the one before it (:func:`_located_D0_b`).
-The saved state holds both ramps' vectors (``x``, ``x_stab``) and whether ``D0_b`` is
-located, so a resumed run continues both ramps bit for bit and locates the same value.
+grad-div form (:func:`~validation.fe.model.buckling_problem`), whose states are scanned
+event by event (:class:`~skfem_dielectric.models.plate.scan.PlateScan`: every symmetry
+class counted at every state, modes only where a count changes) for the whole plate's
+columns and ``stable`` (:func:`~validation.fe.columns.plate_buckling_columns`), and the
+buckling load ``D0_b``, located at the first of its states with a negative mode labelled
+physical, between that state and the one before it (:func:`_located_D0_b`).  The saved
+state holds both ramps' vectors (``x``, ``x_stab``), the scan's counts and labels and
+whether ``D0_b`` is located, so a resumed run continues both ramps and the scan bit for
+bit and locates the same value.
 """
 
 from __future__ import annotations
@@ -26,7 +29,8 @@ import numpy as np
 
 import skfem_dielectric as fe
 
-from skfem_dielectric.studies.buckling import buckling_load
+from skfem_dielectric.models.plate.scan import PlateScan
+from skfem_dielectric.studies.buckling import locate_buckling
 
 from ..records import RunOutcome
 from .columns import plate_buckling_columns, step_record, stability_monitor
@@ -49,17 +53,19 @@ def _analysis(monitor, step, load):
     return monitor.last
 
 
-def _located_D0_b(problem, prev, cur, linear_solver) -> float:
+def _located_D0_b(problem, prev, cur, mode, counts, linear_solver) -> float:
     """The buckling load between the grad-div form's states ``prev`` and ``cur``
-    (``(x, load)`` pairs), or ``nan`` when there is no ``prev``: the study ``buckling``'s
-    location (:func:`skfem_dielectric.studies.buckling.buckling_load` on the same form, to
+    (``(x, load)`` pairs) where the scan found the physical ``mode`` (``counts``: the scan's
+    state at ``prev``), or ``nan`` when there is no ``prev``: the study ``buckling``'s
+    location (:func:`skfem_dielectric.studies.buckling.locate_buckling`, to
     :data:`~validation.fe.model.BUCKLING_TOL`, trial states solved from ``prev`` with
     :data:`~validation.fe.model.BUCKLING_NEWTON`)."""
-    if prev is None:
+    if prev is None or mode is None:
         return float("nan")
     method = "pardiso" if linear_solver == "pardiso" else "auto"
-    bl = buckling_load(problem, [prev, cur], method=method, tol=BUCKLING_TOL,
-                       linear_solver=linear_solver, settings=BUCKLING_NEWTON)
+    bl = locate_buckling(problem, prev, cur, mode, counts=counts, method=method,
+                         tol=BUCKLING_TOL, linear_solver=linear_solver,
+                         settings=BUCKLING_NEWTON)
     return float(bl.D0_b)
 
 
@@ -127,6 +133,11 @@ def run_fe(spec, start, state, on_step, linear_solver="superlu"):
     track = {"prev": None if state is None or "x_stab" not in state
              else (np.asarray(state["x_stab"], dtype=float), start_load),
              "located": state is not None and bool(state.get("located", False))}
+    # the event-driven scan of the grad-div form's states, continued from the saved state
+    scan = None if stab is None else PlateScan(stab["problem"], state=None if state is None
+                                               or "scan_counts" not in state else
+                                               {"counts": state["scan_counts"],
+                                                "physical": state["scan_physical"]})
 
     def cb(step):
         load = np.asarray(step.load, dtype=float)
@@ -140,15 +151,18 @@ def run_fe(spec, start, state, on_step, linear_solver="superlu"):
         if stab is not None:
             xs = stab["x"].get(float(load[1]))
             if xs is not None:
-                for k, v in plate_buckling_columns(spec, stab["problem"], xs, load).items():
+                before, scan.last = scan.state, None
+                for k, v in plate_buckling_columns(spec, scan, xs, load).items():
                     setattr(rec, k, v)
-                if not track["located"] and np.isfinite(rec.physical_eig) \
-                        and rec.physical_eig < 0:
+                row = scan.last
+                if not track["located"] and row is not None and row.n_physical > 0:
                     rec.D0_b = _located_D0_b(stab["problem"], track["prev"], (xs, load),
-                                             linear_solver)
+                                             row.new_physical, before, linear_solver)
                     track["located"] = True
                 track["prev"] = (xs, load)
                 saved["x_stab"] = xs
+                saved["scan_counts"] = scan.state["counts"]
+                saved["scan_physical"] = scan.state["physical"]
             saved["located"] = np.array(track["located"])
         if on_step(i, rec, saved):
             raise _Stop
