@@ -41,3 +41,39 @@ def _assert_tangent_columns(residual, K, x, load, cols, h=1e-6, floor=0.0):
 def assert_tangent_columns():
     """Checker of assembled tangent columns against central differences."""
     return _assert_tangent_columns
+
+
+def _fake_wrinkling(monkeypatch, calls=None):
+    """Stand-ins of the wrinkling-fe rows: the Stroh value times ``1 + 1e-5`` where the
+    dispersion relation has a root, its "no root" row elsewhere (the real rows' shape).
+    Returns the list of the calls made (appended to ``calls`` when given)."""
+    import math
+
+    import analytic as an
+    import validation.studies.wrinkling as wr
+
+    calls = [] if calls is None else calls
+
+    def row(control, mode, lam, kh, n1):
+        calls.append((control, mode, lam, kh))
+        ref = float(an.critical_D0(lam, kh, mode=mode, control=control))
+        if not math.isfinite(ref):
+            return [control, mode, lam, kh, None, None, None, "", None, None,
+                    "no root of the dispersion relation"]
+        return [control, mode, lam, kh, ref * (1 + 1e-5), ref, 1e-5, f"{n1}x2", 0, 0, ""]
+
+    def elastic(mode, kh, n1):
+        calls.append((mode, kh))
+        ref = wr.stroh_critical_stretch(kh, mode)
+        return [mode, kh, ref * (1 + 1e-5), ref, 1e-5, f"{n1}x2", ""]
+
+    monkeypatch.setattr(wr, "_row", row)
+    monkeypatch.setattr(wr, "_elastic_row", elastic)
+    return calls
+
+
+@pytest.fixture
+def fake_wrinkling():
+    """``fake_wrinkling(monkeypatch, calls=None)``: cheap stand-ins of the wrinkling-fe FE
+    rows (:func:`_fake_wrinkling`)."""
+    return _fake_wrinkling

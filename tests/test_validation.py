@@ -383,37 +383,10 @@ def test_buckling_load_is_the_located_value_of_its_row(tmp_path):
     assert np.isfinite(t["D0_b"]).sum() == 1 and t["D0"][np.isfinite(t["D0_b"])][0] == 2.5
 
 
-def fake_wrinkling(monkeypatch, calls=None):
-    """Stand-ins of the wrinkling-fe rows: the Stroh value times ``1 + 1e-5`` where the
-    dispersion relation has a root, its "no root" row elsewhere (the real rows' shape)."""
-    import math
-
-    import analytic as an
-    import validation.studies.wrinkling as wr
-
-    calls = [] if calls is None else calls
-
-    def row(control, mode, lam, kh, n1):
-        calls.append((control, mode, lam, kh))
-        ref = float(an.critical_D0(lam, kh, mode=mode, control=control))
-        if not math.isfinite(ref):
-            return [control, mode, lam, kh, None, None, None, "", None, None,
-                    "no root of the dispersion relation"]
-        return [control, mode, lam, kh, ref * (1 + 1e-5), ref, 1e-5, f"{n1}x2", 0, 0, ""]
-
-    def elastic(mode, kh, n1):
-        calls.append((mode, kh))
-        ref = wr.stroh_critical_stretch(kh, mode)
-        return [mode, kh, ref * (1 + 1e-5), ref, 1e-5, f"{n1}x2", ""]
-
-    monkeypatch.setattr(wr, "_row", row)
-    monkeypatch.setattr(wr, "_elastic_row", elastic)
-    return calls
-
-
 def test_report_links_every_figure_and_summary_names_files_in_its_folder(tmp_path,
                                                                           monkeypatch,
-                                                                          capsys):
+                                                                          capsys,
+                                                                          fake_wrinkling):
     """report.md links every PNG the run wrote (the breakdown map of docs/breakdown.md
     too); every ``csv`` of summary.json is relative to the folder of summary.json; the
     FE runs of wrinkling-fe are the number ``skfem-dielectric list`` shows."""

@@ -127,29 +127,13 @@ def test_caption_gives_the_run_and_the_mesh_range():
 
 
 def test_a_cut_last_row_is_recomputed_with_a_note_naming_the_file(tmp_path, monkeypatch,
-                                                                  capsys):
+                                                                  capsys, fake_wrinkling):
     """docs/cli.md (the result folder): a last row cut short (no line end) is dropped and
     recomputed, with one line on stderr naming the file; validate --case wrinkling-fe and
     the wrinkling-fe command alike.  The FE rows are cheap stand-ins of the real ones."""
     import json
 
-    calls = []
-
-    def fake_row(control, mode, lam, kh, n1):
-        calls.append((control, mode, lam, kh))
-        ref = float(an.critical_D0(lam, kh, mode=mode, control=control))
-        if not math.isfinite(ref):
-            return [control, mode, lam, kh, None, None, None, "", None, None,
-                    "no root of the dispersion relation"]
-        return [control, mode, lam, kh, ref * (1 + 1e-5), ref, 1e-5, f"{n1}x2", 0, 0, ""]
-
-    def fake_elastic(mode, kh, n1):
-        calls.append((mode, kh))
-        ref = wr.stroh_critical_stretch(kh, mode)
-        return [mode, kh, ref * (1 + 1e-5), ref, 1e-5, f"{n1}x2", ""]
-
-    monkeypatch.setattr(wr, "_row", fake_row)
-    monkeypatch.setattr(wr, "_elastic_row", fake_elastic)
+    calls = fake_wrinkling(monkeypatch)
     out = tmp_path / "res"
     argv = ["validate", "--quick", "--case", "wrinkling-fe", "--out", str(out),
             "--no-progress"]

@@ -254,7 +254,21 @@ def _event_scan(problem, pairs, opts, tol, maxiter, ramp_options) -> BucklingLoa
                         reason=f"no negative physical eigenvalue up to D0 = {rows[-1]['D0']:g}")
 
 
-def _near_zero_physical(problem, c, K, ref, n_u, radius, k0, xf):
+def _most_like(problem, c, vals, vecs, order, ref, radius, xf):
+    """Among the eigenpairs ``vals``, ``vecs`` of class ``c`` (visited in ``order``), the
+    mode classified physical that overlaps most with ``ref`` (the unit displacement part
+    of the followed mode): ``(eigenvalue, full mode)``, or ``None`` if none is physical."""
+    n_u = ref.size
+    best, out = -1.0, None
+    for j in order:
+        w = class_mode_full(c, vecs[:, j])
+        ov = abs(ref @ w[:n_u]) / max(np.linalg.norm(w[:n_u]), 1e-300)
+        if ov > best and classify_mode(problem, xf, w, radius=radius)["kind"] == "physical":
+            best, out = ov, (float(vals[j]), w)
+    return out
+
+
+def _near_zero_physical(problem, c, K, ref, radius, k0, xf):
     """Among the eigenpairs of class ``c`` nearest to zero, the physical mode most like
     ``ref``: ``(eigenvalue, mode)`` or ``None`` when none of up to 32 nearest is physical."""
     Kc = class_tangent(c, K)
@@ -264,13 +278,8 @@ def _near_zero_physical(problem, c, K, ref, n_u, radius, k0, xf):
     k = min(k0, nd - 1)
     while True:
         vals, vecs = modes_near_zero(Kc, c.metric, k, side="both", factors=usable, tol=1e-10)
-        best, out = -1.0, None
-        for j in np.argsort(np.abs(vals), kind="stable"):
-            w = class_mode_full(c, vecs[:, j])
-            ov = abs(ref @ w[:n_u]) / max(np.linalg.norm(w[:n_u]), 1e-300)
-            if ov > best and classify_mode(problem, xf, w, radius=radius)["kind"] == \
-                    "physical":
-                best, out = ov, (float(vals[j]), w)
+        out = _most_like(problem, c, vals, vecs, np.argsort(np.abs(vals), kind="stable"),
+                         ref, radius, xf)
         if out is not None or k >= min(32, nd - 1):
             return out
         k = min(2 * k, nd - 1)
@@ -336,8 +345,7 @@ def locate_buckling(problem: PlateProblem, a: tuple[np.ndarray, Any],
         def eig(x, load, ref=ref, name=target.symmetry):
             classes, K = union_tangent(problem, x, load, grad_div)
             c = next(c for c in classes if c.name == name)
-            found = _near_zero_physical(problem, c, K, ref, n_u, r, k0,
-                                        problem.full(x, load))
+            found = _near_zero_physical(problem, c, K, ref, r, k0, problem.full(x, load))
             if found is None:
                 return np.inf
             last["mode"], last["class"] = found[1], c
@@ -355,8 +363,7 @@ def locate_buckling(problem: PlateProblem, a: tuple[np.ndarray, Any],
         if earlier is None:
             break
         target, end = earlier, np.asarray(crit.load, float)
-    eig(crit.x, crit.load)              # the located mode itself
-    c = last["class"]
+    c = last["class"]                   # the located mode: the last trial's, at crit.x
     lab = classify_mode(problem, problem.full(crit.x, crit.load), last["mode"], radius=r)
     label = ModeLabel(float(crit.eigenvalue), c.name, dict(c.increments), lab["corner_share"],
                       lab["mesh_scale"], lab["kind"], last["mode"])
@@ -391,14 +398,9 @@ def _locate(problem, a, b, phys_b, opts, scan, tol, maxiter, ramp_options) -> Bu
             cs = class_stability(problem, x, load, k=0, all_negative=True, only=[cls],
                                  **spec)
             c, vals, vecs = cs.classes[0], cs.results[0].eigenvalues, cs.results[0].modes
-            xf = problem.full(x, load)
-            best, value = -1.0, np.inf
-            for j in range(vals.size):
-                w = class_mode_full(c, vecs[:, j])
-                ov = abs(ref @ w[:n_u]) / max(np.linalg.norm(w[:n_u]), 1e-300)
-                if ov > best and classify_mode(problem, xf, w, radius=r)["kind"] == "physical":
-                    best, value = ov, float(vals[j])
-            return value
+            found = _most_like(problem, c, vals, vecs, range(vals.size), ref, r,
+                               problem.full(x, load))
+            return np.inf if found is None else found[0]
 
         crit = critical_load(problem, a[0], np.asarray(a[1], float), end, eig, tol=tol,
                              maxiter=maxiter, **ramp_options)

@@ -161,8 +161,8 @@ def run_fe(spec, start, state, on_step, linear_solver="superlu"):
                     track["located"] = True
                 track["prev"] = (xs, load)
                 saved["x_stab"] = xs
-                saved["scan_counts"] = scan.state["counts"]
-                saved["scan_physical"] = scan.state["physical"]
+                after = scan.state
+                saved["scan_counts"], saved["scan_physical"] = after["counts"], after["physical"]
             saved["located"] = np.array(track["located"])
         if on_step(i, rec, saved):
             raise _Stop

@@ -33,22 +33,21 @@ available to check it.
 
 from __future__ import annotations
 
-import os
 import time
 from concurrent.futures import ThreadPoolExecutor
-from dataclasses import dataclass, field
-from typing import Any, Sequence
+from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
 from ...checks import check_count, check_positive
 from ...linalg.inertia import inertia_factors, reusable_factors
-from ...linalg.linear import pardiso_available
 from ...linalg.solver_base import back_substitution_count, factorisation_count
 from ...stability.analysis import lowest_modes, modes_near_zero
 from .modes import ModeLabel, classify_mode, corner_radius
 from .problem import PlateProblem
-from .symmetry_classes import class_mode_full, class_tangent, symmetry_classes, union_tangent
+from .symmetry_classes import (class_mode_full, class_tangent, class_threads, symmetry_classes,
+                               union_tangent)
 
 __all__ = ["ScanRow", "PlateScan"]
 
@@ -179,11 +178,6 @@ class PlateScan:
         self.physical = dict(zip(names, map(int, phys)))
 
     # ------------------------------------------------------------------ one state
-    def _threads(self) -> int:
-        uses_pardiso = self.method == "pardiso" or (self.method == "auto"
-                                                    and pardiso_available())
-        return 1 if uses_pardiso else max(1, min(2, os.cpu_count() or 1))
-
     def _class_modes(self, c, K, prev: int | None):
         """Count of class ``c`` and, where it changed, the eigenpairs that crossed:
         ``(inertia, vals, vecs, side)`` with ``side`` -1 (new negative ones), +1 (ones
@@ -247,7 +241,7 @@ class PlateScan:
         def work(c):
             return self._class_modes(c, K, None if prev is None else prev[c.name])
 
-        threads = self._threads()
+        threads = class_threads(self.method)
         if threads == 1:
             results = [work(c) for c in classes]
         else:
@@ -282,7 +276,3 @@ class PlateScan:
                             factorisation_count() - f0, back_substitution_count() - b0,
                             time.process_time() - t0)
         return self.last
-
-    def scan(self, states: Sequence[tuple[np.ndarray, Any]]) -> list[ScanRow]:
-        """:meth:`analyse` every ``(x, load)`` of ``states`` in order."""
-        return [self.analyse(x, load) for x, load in states]

@@ -33,7 +33,7 @@ from ...stability.analysis import StabilityResult, tangent_stability
 from .problem import PlateProblem, increment_classes, plate_reduction
 
 __all__ = ["SymmetryClass", "ClassStability", "symmetry_classes", "class_stability",
-           "class_mode_full", "union_tangent", "class_tangent"]
+           "class_mode_full", "union_tangent", "class_tangent", "class_threads"]
 
 #: per base problem: the union-space problem and its classes (built once)
 _CACHE: "weakref.WeakKeyDictionary[PlateProblem, tuple]" = weakref.WeakKeyDictionary()
@@ -174,7 +174,7 @@ def symmetry_classes(problem: PlateProblem) -> list[SymmetryClass]:
     return _union(problem)[1]
 
 
-def _class_threads(method: str) -> int:
+def class_threads(method: str) -> int:
     """Worker threads of :func:`class_stability`: two (at most the cores) where SuperLU or a
     dense count factorises the classes (single-threaded, and they release the GIL: two
     classes at once use both cores), one where PARDISO does (its MKL threads already use
@@ -234,7 +234,7 @@ def class_stability(problem: PlateProblem, x: np.ndarray, load: Any, *, k: int =
         A non-symmetric (Maxwell) coupling, ``x`` of the wrong size, ``threads`` below 1,
         or a negative ``extra``.
     """
-    threads = _class_threads(method) if threads is None else check_count("threads", threads)
+    threads = class_threads(method) if threads is None else check_count("threads", threads)
     classes, K = union_tangent(problem, x, load, grad_div)
 
     def analyse(c):
