@@ -311,3 +311,48 @@ def test_plate_options_reach_the_plate():
     # PlateProblem records the options it was built with: exactly the ones given
     assert {k: pb.options[k] for k in opts.as_kwargs()} == opts.as_kwargs()
     assert pb.load_names == ("s", "E0") and pb.grad_div == 3.0
+
+
+def test_column_targets_only_is_one_entry_per_charge_target():
+    """``column(..., targets_only=True)`` leaves the pre-load steps out: one stretch per
+    ``D0`` (the zero charge is the pre-loaded state), equal to Eq. (loading_gent)."""
+    s, D0 = 1.5, [0.0, 2.0, 4.0, 6.0]
+    res = equibiaxial_plate(s, D0, preload_steps=4, linear_solver="superlu")
+    assert res.converged, res.reason
+    assert len(res.column("lam1")) == 4 + 3                 # 4 pre-load steps, 3 charges
+    lam1 = res.column("lam1", targets_only=True)
+    assert res.column("load", targets_only=True).tolist() == [[s, d] for d in D0]
+    ref = np.array([lam_closed_form(d, s, "neo-Hookean") for d in D0])
+    assert np.abs(lam1 - ref).max() < 1e-10
+    assert res.column("iterations", targets_only=True).dtype.kind == "i"
+    # resumed after D0 = 2: only the targets of this ramp
+    at2 = res.target_steps()[1]
+    rest = equibiaxial_plate(s, D0, preload_steps=4, linear_solver="superlu",
+                             x0=at2.x, start=at2.load)
+    assert rest.column("load", targets_only=True)[:, 1].tolist() == [4.0, 6.0]
+    assert np.abs(rest.column("lam1", targets_only=True) - ref[2:]).max() < 1e-10
+    with pytest.raises(ValueError, match="targets_only"):
+        res.column("lam1", targets_only="yes")
+    with pytest.raises(ValueError, match="name"):
+        res.column("nope", targets_only=True)
+
+
+def test_target_steps_match_loads_once_in_ramp_order():
+    """The selection by hand-made steps: a stopped ramp (the intermediate last step is no
+    target), a repeated load taken once per target, no targets: every reached one."""
+    from skfem_dielectric.solvers.ramp import RampResult, StepResult
+
+    def step(load, reached=True):
+        return StepResult(load=np.array(load, float), converged=True, iterations=1,
+                          substeps=1, cutbacks=0, residual_norms=[], x=np.zeros(1),
+                          quantities={"q": load[1]}, target_reached=reached)
+
+    steps = [step([0.5, 0]), step([1.0, 0]), step([1.0, 2]), step([1.0, 2]),
+             step([1.0, 2.5], reached=False)]
+    res = RampResult(steps=steps, converged=False,
+                     targets=[np.array([1.0, 0.0]), np.array([1.0, 2.0]), np.array([1.0, 3.0])])
+    assert res.column("q", targets_only=True).tolist() == [0.0, 2.0]
+    assert [st.load[0] for st in res.target_steps()] == [1.0, 1.0]
+    res.targets = None
+    assert res.column("q", targets_only=True).tolist() == [0.0, 0.0, 2.0, 2.0]
+    assert res.column("q").tolist() == [0.0, 0.0, 2.0, 2.0, 2.5]

@@ -51,3 +51,26 @@ def test_pyproject_license_is_an_spdx_expression():
     low = re.fullmatch(r"setuptools>=(\d+)(\.\d+)*", setuptools.replace(" ", ""))
     assert low and int(low.group(1)) >= 77, setuptools
     assert project["requires-python"] == ">=3.10"
+
+
+def test_readme_fe_snippet_has_one_stretch_per_charge_target(tmp_path, monkeypatch):
+    """The README's finite-element block run as written (after its theory block, one
+    namespace as a reader's session): ``lam1`` has one entry per ``D0`` and equals the
+    equi-biaxial loading curve ``lam^6 - s lam^5 - 1 = D0^2`` (Eq. (loading_gent),
+    neo-Hookean) solved here with brentq, independently of ``analytic``."""
+    from scipy.optimize import brentq
+    from test_docs_snippets import blocks
+
+    monkeypatch.chdir(tmp_path)
+    python = [b for b in blocks(ROOT / "README.md") if b["lang"] == "python"]
+    fe_block = next(b for b in python if "equibiaxial_plate" in b["body"])
+    assert "targets_only=True" in fe_block["body"] and "assert" in fe_block["body"]
+    ns: dict = {}
+    for b in python[:python.index(fe_block) + 1]:
+        exec(compile(b["body"], f"README.md:{b['line']}", "exec"), ns)
+    s = 1.5
+    ref = [brentq(lambda lam, d=d: lam**6 - s * lam**5 - 1 - d**2, 1.0, 10.0, xtol=1e-15)
+           for d in ns["D0"]]
+    assert len(ns["lam1"]) == len(ns["D0"]) == 4
+    assert max(abs(a - b) for a, b in zip(ns["lam1"], ref)) < 1e-10
+    assert len(ns["res"].column("lam1")) == 7

@@ -182,6 +182,15 @@ def run_ramp(problem: Problem, targets: Sequence[Any], *,
     return out
 
 
+def _charge_loads(s: float, D0: Sequence[float]) -> list[np.ndarray]:
+    """The charge targets of a plate driver as loads, in ramp order: the pre-loaded state
+    ``(s, 0)`` if ``D0`` holds a zero, then ``(s, D0_i)`` for the others
+    (:attr:`~skfem_dielectric.solvers.ramp.RampResult.targets`)."""
+    vals = np.atleast_1d(np.asarray(D0, dtype=float))
+    zero = [np.array([s, 0.0])] if np.any(vals == 0.0) else []
+    return zero + [np.array([s, v]) for v in vals if v != 0.0]
+
+
 def equibiaxial_problem(*, model: Any = "neo-Hookean", Jm: float = GENT_JM,
                         size: tuple[float, float, float] = EQUIBIAXIAL_SIZE,
                         elements: tuple[int, int, int] = (1, 1, 1), symmetry: str = "eighth",
@@ -286,8 +295,10 @@ def equibiaxial_plate(s: float, D0: Sequence[float], *, model: Any = "neo-Hookea
     extra = {"model": type(prob.material).__name__}
     if options.coupling == "maxwell":
         extra["variant"] = f"maxwell-{options.field}"
-    return run_ramp(prob, preload_then_charge(s, D0, preload_steps), on_step=on_step, x0=x0,
+    out = run_ramp(prob, preload_then_charge(s, D0, preload_steps), on_step=on_step, x0=x0,
                     start=start, linear_solver=linear_solver, extra=extra, settings=settings)
+    out.targets = _charge_loads(s, D0)
+    return out
 
 
 def keplinger_plate(alpha: float | None = 1.0, D0: Sequence[float] = (1, 2, 3, 4, 5, 6), *,
@@ -358,9 +369,11 @@ def keplinger_plate(alpha: float | None = 1.0, D0: Sequence[float] = (1, 2, 3, 4
     extra = {"alpha": alpha if alpha is not None else float("nan"), "g": g}
     if options.coupling == "maxwell":
         extra["variant"] = f"maxwell-{options.field}"
-    return run_ramp(prob, preload_then_charge(s, D0, preload_steps), on_step=on_step, x0=x0,
+    out = run_ramp(prob, preload_then_charge(s, D0, preload_steps), on_step=on_step, x0=x0,
                     start=start, linear_solver=linear_solver, extra=extra, settings=settings,
                     state_analysis=state_analysis)
+    out.targets = _charge_loads(s, D0)
+    return out
 
 
 def maxwell_equibiaxial(s: float, D0, *, field: str = "electrostatic",

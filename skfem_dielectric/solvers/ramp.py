@@ -188,6 +188,12 @@ class RampResult:
     failure
         Where a model's driver diagnoses a Newton failure (the 3D plate:
         :func:`~skfem_dielectric.gallery.drivers.run_ramp`), its measured cause, else empty.
+    targets
+        The loads the caller asked for, set by the drivers whose ramp passes through loads
+        of its own (the plate drivers of :mod:`skfem_dielectric.gallery.drivers`: the
+        charge targets ``(s, D0_i)``, with the pre-loaded state ``(s, 0)`` for a zero
+        ``D0_i``, not the pre-load steps before it); ``None``: every load of the ramp is
+        one.  :meth:`column` with ``targets_only=True`` selects their steps.
     """
 
     steps: list[StepResult]
@@ -208,21 +214,66 @@ class RampResult:
     residual_times: list[float] = field(default_factory=list)
     chord_times: list[float] = field(default_factory=list)
     failure: dict[str, Any] = field(default_factory=dict)
+    targets: list[Any] | None = None
 
-    def column(self, name: str) -> np.ndarray:
-        """Array of quantity ``name`` over the converged steps (``"load"`` and
-        ``"iterations"`` are also accepted)."""
+    def column(self, name: str, *, targets_only: bool = False) -> np.ndarray:
+        """Quantity ``name`` over the converged steps, in ramp order.
+
+        Parameters
+        ----------
+        name
+            ``"load"``, ``"iterations"``, ``"factorisations"`` or a post-processed quantity
+            of the steps (e.g. ``"lam1"``).
+        targets_only
+            False: every converged step, the pre-load steps of a driver included (and the
+            last, intermediate step of a ramp that stopped).  True: only the steps at
+            :attr:`targets` (every reached target load where ``targets`` is ``None``): for
+            a plate driver one entry per charge target, e.g. 4 for ``D0=[0, 2, 4, 6]``, to
+            compare with a closed form evaluated at those ``D0``.  Fewer entries where the
+            ramp stopped before a target (``converged`` False) or was resumed after one.
+
+        Returns
+        -------
+        ndarray
+            One entry per selected step (``"load"``: one row per step).
+
+        Raises
+        ------
+        ValueError
+            If ``name`` is not a quantity of the steps or ``targets_only`` is not a bool.
+        """
+        if not isinstance(targets_only, (bool, np.bool_)):
+            raise ValueError(f"targets_only must be True or False, got {targets_only!r}")
+        steps = self.target_steps() if targets_only else self.steps
         if name == "load":
-            return np.array([st.load for st in self.steps], dtype=float)
+            return np.array([st.load for st in steps], dtype=float)
         if name in ("iterations", "factorisations"):
-            return np.array([getattr(st, name) for st in self.steps], dtype=int)
+            return np.array([getattr(st, name) for st in steps], dtype=int)
         known = set().union(*(st.quantities for st in self.steps)) if self.steps else set()
         if name not in known:
             raise ValueError(
                 f"name must be 'load', 'iterations', 'factorisations' or a post-processed "
                 f"quantity "
                 f"{sorted(known)}, got {name!r}")
-        return np.array([st.quantities[name] for st in self.steps])
+        return np.array([st.quantities[name] for st in steps])
+
+    def target_steps(self) -> list[StepResult]:
+        """The converged steps at :attr:`targets`, in ramp order (each target at most
+        once; a load matches to a relative 1e-12), or every step with ``target_reached``
+        where ``targets`` is ``None``."""
+        reached = [st for st in self.steps if st.target_reached]
+        if self.targets is None:
+            return reached
+        left = [np.atleast_1d(np.asarray(t, dtype=float)) for t in self.targets]
+        out = []
+        for st in reached:
+            load = np.atleast_1d(np.asarray(st.load, dtype=float))
+            for i, t in enumerate(left):
+                if t.shape == load.shape and np.allclose(load, t, rtol=1e-12, atol=1e-12):
+                    out.append(st)
+                    del left[i]
+                    break
+        return out
 
     @property
     def x(self) -> np.ndarray | None:
