@@ -30,7 +30,7 @@ from .figures import case_figure, save_figure
 from .specs import MODELS, VARIANTS
 from .report import verdict_lines
 from .store import write_text_atomic
-from .sweep import validate
+from .sweep import remove_openmp_registration, validate
 from .studies.commands import STUDY_COMMANDS, add_study_commands
 from .studies.extra_cases import EXTRA_CASES
 from .options import check_mesh, load_targets, out_dir, positive, solver_name
@@ -441,16 +441,6 @@ def _on_sigterm(signum, frame):
     raise _Terminated()
 
 
-def _remove_openmp_registration(pid: int | None = None) -> None:
-    """Remove Intel OpenMP's ``/dev/shm/__KMP_REGISTERED_LIB_<pid>_0`` of this process
-    (loaded with PARDISO for the inertia), which a process stopped by a signal leaves."""
-    path = Path(f"/dev/shm/__KMP_REGISTERED_LIB_{pid or os.getpid()}_0")
-    try:
-        path.unlink()
-    except OSError:
-        pass
-
-
 def main(argv: list[str] | None = None) -> int:
     """Entry point of the console script; returns the exit code.
 
@@ -475,8 +465,8 @@ def main(argv: list[str] | None = None) -> int:
            "explore": _cmd_explore,
            **STUDY_COMMANDS}[args.command]
     prefix = f"skfem-dielectric {args.command}: error:"
-    atexit.unregister(_remove_openmp_registration)      # once per process
-    atexit.register(_remove_openmp_registration, os.getpid())
+    atexit.unregister(remove_openmp_registration)      # once per process
+    atexit.register(remove_openmp_registration, os.getpid())
     main_thread = threading.current_thread() is threading.main_thread()
     previous = signal.signal(signal.SIGTERM, _on_sigterm) if main_thread else None
     try:

@@ -28,7 +28,10 @@ from __future__ import annotations
 import errno
 import json
 import os
+import signal
 import shutil
+import sys
+import threading
 import time
 from concurrent.futures import Executor, ProcessPoolExecutor
 from pathlib import Path
@@ -51,7 +54,7 @@ from .table import FIELD_KEYS, case_row, format_cell, is_breakdown, read_table
 from .studies.extra_cases import EXTRA_CASES
 
 __all__ = ["run_case", "run_cases", "validate", "make_figure", "make_breakdown_map",
-           "extra_case_result"]
+           "extra_case_result", "remove_openmp_registration"]
 
 
 def run_case(case: Case | str, out, *, quick: bool = False, force: bool = False,
@@ -289,9 +292,10 @@ def run_cases(cases: Iterable[Case | str], out, *, quick: bool = False, force: b
         return [run_case(c, out, quick=quick, force=force, runner=runner, progress=progress)
                 for c in cases]
     own = executor is None
-    ex = ProcessPoolExecutor(max_workers=jobs) if own else executor
+    ex = ProcessPoolExecutor(max_workers=jobs, initializer=_init_worker) if own else executor
+    task = _run_case_in_worker if own else run_case
     try:
-        futures = [ex.submit(run_case, c, str(out), quick=quick, force=force, runner=runner,
+        futures = [ex.submit(task, c, str(out), quick=quick, force=force, runner=runner,
                              progress=False) for c in cases]
         with Progress(len(futures), "cases", enabled=progress) as bar:
             results = []
@@ -301,9 +305,105 @@ def run_cases(cases: Iterable[Case | str], out, *, quick: bool = False, force: b
                 bar.line(f"{c.name}: {results[-1].n_steps} FE steps, "
                          f"{results[-1].runtime_s:.1f} s")
         return results
+    except KeyboardInterrupt:               # Ctrl-C, or SIGTERM as the CLI raises it
+        if own:
+            _stop_workers(ex)
+        raise
     finally:
         if own:
             ex.shutdown()
+
+
+# --------------------------------------------------------------------------- workers
+#: seconds a stopped worker has to unwind its case before it is killed
+WORKER_GRACE_S = 60.0
+#: whether this worker process is running a case (signals raise) or idle (signals exit)
+_in_case = False
+
+
+class _WorkerStopped(KeyboardInterrupt):
+    """SIGTERM or SIGINT in a worker of :func:`run_cases`, raised in its main thread so that
+    its case unwinds like Ctrl-C: lock released, temporary files removed."""
+
+
+def _on_worker_signal(signum, frame):
+    if _in_case:
+        raise _WorkerStopped(signum)
+    _exit_worker(signum)                # idle: nothing to release
+
+
+def _init_worker() -> None:
+    """Initializer of the worker processes: SIGTERM and SIGINT stop the case and the
+    worker quietly (no traceback; the parent prints the one line)."""
+    signal.signal(signal.SIGTERM, _on_worker_signal)
+    signal.signal(signal.SIGINT, _on_worker_signal)
+
+
+def _exit_worker(signum: int) -> None:
+    """End this worker by ``signum`` with its default action (what the signal would have
+    done without the handler), once its case has unwound."""
+    for stream in (sys.stdout, sys.stderr):
+        try:
+            stream.flush()
+        except (OSError, ValueError):
+            pass
+    remove_openmp_registration()
+    signal.signal(signum, signal.SIG_DFL)
+    os.kill(os.getpid(), signum)
+
+
+def _run_case_in_worker(*args, **kwargs) -> CaseResult:
+    """:func:`run_case` in a worker process; a stopped case ends the worker (it takes no
+    further case), after the case has unwound."""
+    global _in_case
+    try:
+        _in_case = True
+        return run_case(*args, **kwargs)
+    except _WorkerStopped as exc:
+        _in_case = False
+        _exit_worker(exc.args[0])
+    finally:
+        _in_case = False
+
+
+def _stop_workers(ex: ProcessPoolExecutor, grace: float = WORKER_GRACE_S) -> None:
+    """Cancel the cases not started and stop every worker of ``ex`` (SIGTERM: each unwinds
+    its case, then exits); wait for them, killing one that takes longer than ``grace``
+    seconds.  Further SIGTERM and SIGINT are ignored meanwhile, so that the clean-up ends."""
+    procs = list((getattr(ex, "_processes", None) or {}).values())
+    signals = (signal.SIGTERM, signal.SIGINT)
+    main = threading.current_thread() is threading.main_thread()
+    before = [signal.getsignal(s) for s in signals] if main else []
+    for s in signals if main else ():
+        signal.signal(s, signal.SIG_IGN)
+    try:
+        ex.shutdown(wait=False, cancel_futures=True)
+        for p in procs:
+            try:
+                os.kill(p.pid, signal.SIGTERM)
+            except ProcessLookupError:                  # gone already
+                pass
+        deadline = time.monotonic() + grace
+        for p in procs:
+            p.join(max(0.0, deadline - time.monotonic()))
+            if p.is_alive():
+                p.kill()
+                p.join()
+    finally:
+        for s, handler in zip(signals, before):
+            if handler is not None:
+                signal.signal(s, handler)
+
+
+def remove_openmp_registration(pid: int | None = None) -> None:
+    """Remove Intel OpenMP's ``/dev/shm/__KMP_REGISTERED_LIB_<pid>_0`` of the process
+    ``pid`` (default: this one; loaded with PARDISO for the inertia), which a process
+    stopped by a signal leaves."""
+    path = Path(f"/dev/shm/__KMP_REGISTERED_LIB_{pid or os.getpid()}_0")
+    try:
+        path.unlink()
+    except OSError:
+        pass
 
 
 def make_figure(case: Case | str, out) -> list[Path]:
