@@ -64,7 +64,7 @@ LAYERS = (
 #: below ``fe`` import no finite elements
 VALIDATION_LAYERS = (
     ("clash", "progress", "specs", "records",   # package guard, progress; run data, records;
-     "buckling_data"),               # the measured buckling loads
+     "buckling_data", "markers"),    # the measured buckling loads; the markers' vocabulary
     ("cases",),                      # the validation cases, one per paper figure
     ("table", "checker"),            # the tidy CSV of a case; scores of another code's CSVs
     ("store",),                      # lock, atomic files, checksums, resume

@@ -32,6 +32,7 @@ from .figures import (BUCKLING_NAME, LIMIT_NAME, add_caption, plot_equibiaxial_l
                       plot_equibiaxial_wrinkling, plot_uniaxial_loading,
                       plot_uniaxial_wrinkling, tag_panels)
 from .figures.common import colors
+from .markers import CONVERGED_BUCKLING
 from .specs import KEPLINGER
 from .store import write_text_atomic
 
@@ -159,7 +160,7 @@ def _clamped_panel(case: CaseCheck):
                 drawn = True
         if drawn:
             handles.append(Line2D([], [], ls="none", color="k", marker="D", ms=6,
-                                  label=f"{BUCKLING_NAME} $D_{{0b}}$, converged (error bar)"))
+                                  label=f"{CONVERGED_BUCKLING.name} (error bar)"))
         for a, D0b, ok in buck:
             s = float(keplinger_s(a, g=KEPLINGER["g"]))
             x = float(an.uniaxial_lam1(D0b, s, m))

@@ -22,8 +22,10 @@ from analytic.units import keplinger_s
 from ..buckling_data import buckling_loads
 from ..cases import ALPHAS, analytic_model
 from ..specs import KEPLINGER
-from .common import (BREAKDOWN_MARKER, BREAKDOWN_NAME, BUCKLING_NAME, MODEL_NAME, NEWTON_NAME,
-                     add_caption)
+from ..markers import (CONVERGED_BUCKLING, MESH_BUCKLING, NEWTON_LIMIT, NOT_CONVERGED_NOTE,
+                       P33_BREAKDOWN, P33_SHAPES, RUN_BUCKLING, RUN_NEWTON,
+                       WRINKLING_NOT_REACHED, legend_style)
+from .common import MODEL_NAME, add_caption
 
 __all__ = ["homogeneous_wrinkling_D0", "plot_breakdown_map", "breakdown_map_figure"]
 
@@ -106,17 +108,21 @@ def plot_breakdown_map(p33=None, run_buckling=None, run_newton=None, loads=None,
         ``{variant: {alpha: D0}}``: the first step of a run with ``P33/mu < -0.01`` near
         the clamps (the paper's criterion, Sec. 6; ``None`` values: none in the run), as
         :class:`validation.results.CaseResult` ``breakdown_D0_by_alpha`` holds it.
-        Red open markers of the run's model shape (:data:`BREAKDOWN_MARKER`).
+        :data:`~validation.markers.P33_BREAKDOWN` (red open markers of the run's model
+        shape).
     run_buckling : dict, optional
-        ``{alpha: D0_b}`` located by the run on its own mesh ``run_mesh`` (red crosses).
+        ``{alpha: D0_b}`` located by the run on its own mesh ``run_mesh``
+        (:data:`~validation.markers.RUN_BUCKLING`, red crosses, on top of every other marker).
     run_newton : dict, optional
-        ``{alpha: D0}``: the first target a run's Newton solver could not reach (red open
-        triangles down).
+        ``{alpha: D0}``: the first target a run's Newton solver could not reach
+        (:data:`~validation.markers.RUN_NEWTON`).
     loads : sequence of BucklingEntry, optional
         The measured buckling loads (default :func:`validation.buckling_data.buckling_loads`):
-        the converged ``D0_b`` with its error bar (black diamonds), each mesh's value
-        (small grey dots: where the diamonds are missing, the meshes disagree) and the
-        plain form's Newton limit on the finest mesh (black triangles down).
+        the converged ``D0_b`` with its error bar (:data:`~validation.markers.CONVERGED_BUCKLING`;
+        the legend says that the bars hide behind the diamonds), each mesh's value
+        (:data:`~validation.markers.MESH_BUCKLING`; a weight without a diamond gets a note
+        in the figure, :data:`~validation.markers.NOT_CONVERGED_NOTE`) and the plain form's
+        Newton limit on the finest mesh (:data:`~validation.markers.NEWTON_LIMIT`).
     alphas : sequence of float, optional
         The weights of the homogeneous wrinkling limits (:func:`homogeneous_wrinkling_D0`):
         a blue line where a path reaches one, else a blue arrow at the top of the axes.
@@ -135,37 +141,46 @@ def plot_breakdown_map(p33=None, run_buckling=None, run_newton=None, loads=None,
     loads = buckling_loads() if loads is None else loads
     fine = loads[0].meshes[-1] if loads else ""
     for k, e in enumerate(loads):                      # every mesh, converged or not
-        ax.plot([e.alpha] * len(e.D0_b_mesh), e.D0_b_mesh, ls="none", marker=".", ms=5,
-                color="0.55", zorder=2, gid="buckling-mesh",
-                label=(f"{BUCKLING_NAME} $D_{{0b}}$ on each mesh ({', '.join(e.meshes)})"
-                       if k == 0 else None))
+        ax.plot([e.alpha] * len(e.D0_b_mesh), e.D0_b_mesh, ls="none", gid="buckling-mesh",
+                label=(f"{MESH_BUCKLING.name} ({', '.join(e.meshes)})" if k == 0 else None),
+                **legend_style(MESH_BUCKLING))
     conv = [e for e in loads if e.converged]
     if conv:
+        err = max(e.error for e in conv)
+        st = legend_style(CONVERGED_BUCKLING)
         ax.errorbar([e.alpha for e in conv], [e.D0_b for e in conv],
-                    yerr=[e.error for e in conv], fmt="D-", color="k", ms=6, lw=1.0,
-                    capsize=3, zorder=4, gid="buckling-converged",
-                    label=f"{BUCKLING_NAME} $D_{{0b}}$, converged (extrapolated, error bar)")
+                    yerr=[e.error for e in conv], fmt="-", lw=1.0, capsize=3,
+                    gid="buckling-converged", color=st.pop("color"), **st,
+                    label=f"{CONVERGED_BUCKLING.name} (extrapolated; error bar "
+                          f"$\\leq {err:.2g}$, hidden by the diamond)")
+    for e in loads:                                    # a weight without a diamond says why
+        if not e.converged and len(e.D0_b_mesh):
+            ax.annotate(f"$\\alpha = {e.alpha:g}$: {NOT_CONVERGED_NOTE}",
+                        (e.alpha, max(e.D0_b_mesh)), xytext=(-6, 10),
+                        textcoords="offset points", ha="right", fontsize=7, color="0.3",
+                        gid="not-converged")
     nl = [e for e in loads if math.isfinite(e.newton_limit)]
     if nl:
-        ax.plot([e.alpha for e in nl], [e.newton_limit for e in nl], ls="none", marker="v",
-                ms=8, color="k", zorder=4, gid="newton-limit",
-                label=f"{NEWTON_NAME}, plain form ({fine})")
+        ax.plot([e.alpha for e in nl], [e.newton_limit for e in nl], ls="none",
+                gid="newton-limit", label=f"{NEWTON_LIMIT.name} ({fine})",
+                **legend_style(NEWTON_LIMIT))
     for v, per in (p33 or {}).items():
         pts = [(float(a), d) for a, d in per.items() if d is not None]
         if pts:
-            mk = dict(BREAKDOWN_MARKER.get(v, BREAKDOWN_MARKER["coupled"]))
-            mk["ms"] = 0.6 * mk["ms"]
-            ax.plot(*zip(*pts), ls="none", color="red", mfc="none", mew=1.5, zorder=5,
-                    gid=f"p33-{v}", label=f"{BREAKDOWN_NAME} ($P_{{33}}/\\mu < -0.01$), "
-                                          f"{MODEL_NAME.get(v, v)}", **mk)
+            shape = dict(P33_SHAPES.get(v, P33_SHAPES["coupled"]))
+            shape["ms"] = 0.6 * shape["ms"]
+            ax.plot(*zip(*pts), ls="none", gid=f"p33-{v}",
+                    label=f"{P33_BREAKDOWN.name} ($P_{{33}}/\\mu < -0.01$), "
+                          f"{MODEL_NAME.get(v, v)}", **legend_style(P33_BREAKDOWN, shape))
     pts = [(float(a), d) for a, d in (run_buckling or {}).items() if d is not None]
     if pts:
-        ax.plot(*zip(*pts), ls="none", color="red", marker="x", ms=9, mew=2.2, zorder=6,
-                gid="buckling-run", label=f"{BUCKLING_NAME} of this run ({run_mesh or 'its mesh'})")
+        ax.plot(*zip(*pts), ls="none", gid="buckling-run",
+                label=f"{RUN_BUCKLING.name} ({run_mesh or 'its mesh'})",
+                **legend_style(RUN_BUCKLING))
     pts = [(float(a), d) for a, d in (run_newton or {}).items() if d is not None]
     if pts:
-        ax.plot(*zip(*pts), ls="none", color="red", marker="v", mfc="none", ms=8, mew=1.5,
-                zorder=6, gid="newton-run", label=f"{NEWTON_NAME} of this run")
+        ax.plot(*zip(*pts), ls="none", gid="newton-run", label=RUN_NEWTON.name,
+                **legend_style(RUN_NEWTON))
     limits = np.array([homogeneous_wrinkling_D0(a, D0_max=D0max) for a in alphas])
     first = np.fmin(limits[:, 0], limits[:, 1]) if len(alphas) else np.zeros(0)
     reached = np.isfinite(first)
@@ -175,9 +190,9 @@ def plot_breakdown_map(p33=None, run_buckling=None, run_newton=None, loads=None,
                 label="homogeneous wrinkling limit (thin/thick plate)")
     if (~reached).any():
         ax.plot(np.asarray(alphas)[~reached], np.full((~reached).sum(), D0max), ls="none",
-                marker=r"$\uparrow$", ms=14, color="tab:blue", clip_on=False, zorder=6,
-                gid="wrinkling-not-reached",
-                label=f"homogeneous wrinkling limit: not reached up to $D_0 = {D0max:g}$")
+                clip_on=False, gid="wrinkling-not-reached",
+                label=f"{WRINKLING_NOT_REACHED.name} up to $D_0 = {D0max:g}$",
+                **legend_style(WRINKLING_NOT_REACHED))
     ax.set_xlim(0, max(alphas) * 1.08 if len(alphas) else 1.6)
     ax.set_ylim(0, D0max)
     ax.set_xlabel(r"weight fraction $\alpha$ ($s = 2.99\,\alpha$)")

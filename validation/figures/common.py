@@ -9,9 +9,9 @@ at the first figure, so importing this module sets none).
 FE data are the tidy tables of :func:`validation.table.read_table` (``None``
 draws the analytic curves alone).
 
-The names of the FE models and markers in legends and caption lines
-(:data:`MODEL_NAME`, :data:`BREAKDOWN_NAME`, :data:`BUCKLING_NAME`, :data:`NEWTON_NAME`,
-:data:`LIMIT_NAME`)
+The names of the FE models in legends and caption lines (:data:`MODEL_NAME`), the
+markers of the breakdown and stability results (:mod:`validation.markers`, whose names
+:data:`BREAKDOWN_NAME`, :data:`BUCKLING_NAME`, :data:`NEWTON_NAME`, :data:`LIMIT_NAME` repeat)
 and the caption line itself (:func:`run_caption`, :func:`add_caption`) are shared by
 every figure of ``skfem-dielectric validate``, also those of ``voltage-control`` and
 ``wrinkling-fe``, so that one set of names stands in the figures and the docs.
@@ -26,6 +26,8 @@ import numpy as np
 from matplotlib.lines import Line2D
 
 import analytic as an
+
+from ..markers import LIMIT_POINT, P33_BREAKDOWN, P33_SHAPES
 
 __all__ = [
     "PAPER_FIGURE", "MODEL_NAME", "BREAKDOWN_NAME", "BUCKLING_NAME", "NEWTON_NAME", "LIMIT_NAME",
@@ -46,8 +48,8 @@ VARIANT_MARKER = {"coupled": dict(marker="o", mfc="none", ms=12, mew=1.3),
                    "maxwell": dict(marker="s", mfc="none", ms=7.5, mew=1.2),
                    "membrane": dict(marker="^", mfc="none", ms=5.5, mew=1.1),
                    "membrane-maxwell": dict(marker="D", ms=3.4, mew=0.6)}
-BREAKDOWN_MARKER = {"coupled": dict(marker="o", ms=19), "maxwell": dict(marker="s", ms=14),
-                     "membrane": dict(marker="^", ms=12)}
+#: the shape of each FE model's ``P33 breakdown`` marker (:data:`validation.markers.P33_SHAPES`)
+BREAKDOWN_MARKER = P33_SHAPES
 
 #: The names of the FE models in every legend and caption line (docs/gallery.md and
 #: docs/cli.md use the same): the keys are the ``variant`` values of the CSVs, plus
@@ -57,15 +59,17 @@ MODEL_NAME = {"coupled": "3D fully coupled", "maxwell": "3D Maxwell traction",
               "membrane": "2D membrane", "membrane-maxwell": "2D membrane (local-field Maxwell)",
               "section": "2D cross-section"}
 #: Legend name of the red open marker: the paper's criterion, the first step with
-#: compressive ``P33`` near the clamps (``P33/mu < -0.01``; the red crosses of its Fig. 5).
-BREAKDOWN_NAME = "P33 breakdown"
-#: Legend name of the buckling load ``D0_b``: the zero crossing of the lowest physical
-#: eigenvalue of the whole plate (red cross: a run's own mesh; black diamond: converged).
+#: compressive ``P33`` near the clamps (:data:`validation.markers.P33_BREAKDOWN`).
+BREAKDOWN_NAME = P33_BREAKDOWN.name
+#: The quantity ``D0_b``, the zero crossing of the lowest physical eigenvalue of the whole
+#: plate; each legend name of its markers starts with it
+#: (:data:`validation.markers.RUN_BUCKLING`, ``CONVERGED_BUCKLING``, ``MESH_BUCKLING``).
 BUCKLING_NAME = "buckling load"
-#: Legend name of the triangle down: the first charge target a Newton ramp cannot reach.
+#: The first charge target a Newton ramp cannot reach; each legend name of its markers starts
+#: with it (:data:`validation.markers.NEWTON_LIMIT`, ``RUN_NEWTON``).
 NEWTON_NAME = "Newton limit"
-#: Legend name of the star of ``voltage-control``: the maximum of ``E0`` on a path.
-LIMIT_NAME = "limit point (snap-through)"
+#: Legend name of the star of ``voltage-control`` (:data:`validation.markers.LIMIT_POINT`).
+LIMIT_NAME = LIMIT_POINT.name
 
 
 def new_axes(ax, n=1, figsize=None):

@@ -15,8 +15,9 @@ from analytic.units import keplinger_s
 from ..buckling_data import buckling_loads
 from ..cases import ALPHAS, analytic_model
 from ..specs import KEPLINGER
-from .common import (BREAKDOWN_MARKER, BREAKDOWN_NAME, BUCKLING_NAME, MODEL_NAME, NEWTON_NAME,
-                     VARIANT_MARKER, colors, new_axes, refine_start, uniaxial_curve,
+from ..markers import (AFTER_BREAKDOWN, CONVERGED_BUCKLING, NEWTON_LIMIT, NOT_CONVERGED_NOTE,
+                       P33_BREAKDOWN, P33_SHAPES, RUN_BUCKLING, legend_style)
+from .common import (MODEL_NAME, VARIANT_MARKER, colors, new_axes, refine_start, uniaxial_curve,
                      variant_legend, wrinkling_zone)
 
 __all__ = ["uniaxial_thick_limit_curve", "RunMarks", "keplinger_run_marks", "plot_uniaxial_wrinkling"]
@@ -74,30 +75,40 @@ def uniaxial_thick_limit_curve(lam1, model="neo-Hookean", direction="parallel"):
 
 
 def _measured_loads(ax, alphas, m, D0max):
-    """The converged buckling loads of :mod:`validation.buckling_data` (black diamonds with
-    error bars) and the plain form's Newton limits (black triangles down), on each
-    weight's homogeneous loading curve; returns their legend entries."""
+    """The converged buckling loads of :mod:`validation.buckling_data`
+    (:data:`~validation.markers.CONVERGED_BUCKLING`, error bars hidden by the diamonds, as
+    the legend says) and the plain form's Newton limits
+    (:data:`~validation.markers.NEWTON_LIMIT`), on each weight's homogeneous loading curve;
+    returns their legend entries, with a note for each weight whose load is not converged
+    (no diamond)."""
     out = []
-    conv, newton = [], []
+    conv, newton, missing = [], [], []
     for e in buckling_loads():
         if not any(np.isclose(e.alpha, a) for a in alphas):
             continue
         s = float(keplinger_s(e.alpha, g=KEPLINGER["g"]))
         if e.converged:
             conv.append((float(an.uniaxial_lam1(e.D0_b, s, m)), e.D0_b, e.error))
+        else:
+            missing.append(f"{e.alpha:g}")
         if np.isfinite(e.newton_limit) and e.newton_limit <= D0max:
             newton.append((float(an.uniaxial_lam1(e.newton_limit, s, m)), e.newton_limit))
     if conv:
         x, y, err = zip(*conv)
-        ax.errorbar(x, y, yerr=err, fmt="D", color="k", ms=6, capsize=3, zorder=7,
-                    gid="buckling-converged")
-        out.append(Line2D([], [], ls="none", color="k", marker="D", ms=6,
-                          label=f"{BUCKLING_NAME} $D_{{0b}}$, converged (error bar)"))
+        st = legend_style(CONVERGED_BUCKLING)
+        ax.errorbar(x, y, yerr=err, fmt="none", color=st["color"], capsize=3,
+                    zorder=st["zorder"], gid="buckling-converged")
+        ax.plot(x, y, ls="none", gid="buckling-converged", **st)
+        out.append(Line2D([], [], ls="none", **st,
+                          label=f"{CONVERGED_BUCKLING.name} (error bar "
+                                f"$\\leq {max(err):.2g}$, hidden by the diamond)"))
     if newton:
-        ax.plot(*zip(*newton), ls="none", color="k", marker="v", ms=8, zorder=7,
-                gid="newton-limit")
-        out.append(Line2D([], [], ls="none", color="k", marker="v", ms=8,
-                          label=f"{NEWTON_NAME}, plain form (20 x 1 x 10)"))
+        ax.plot(*zip(*newton), ls="none", gid="newton-limit", **legend_style(NEWTON_LIMIT))
+        out.append(Line2D([], [], ls="none", **legend_style(NEWTON_LIMIT),
+                          label=f"{NEWTON_LIMIT.name} (20 x 1 x 10)"))
+    if missing and conv:
+        out.append(Line2D([], [], ls="none", label=rf"$\alpha = {', '.join(missing)}$: "
+                                                    f"{NOT_CONVERGED_NOTE}"))
     return out
 
 
@@ -114,14 +125,20 @@ class RunMarks:
         ``P33/mu < -0.01`` near the clamps, else the last converged row before a target
         the solver could not reach; ``None`` if the run has neither.
     buckling : tuple of float or None
-        ``(lam1, D0_b)`` of the "buckling load" (:data:`BUCKLING_NAME`), the located zero
-        crossing of the whole plate's lowest physical eigenvalue (column ``D0_b``);
-        ``None`` if the run has no such crossing.
+        ``(lam1, D0_b)`` of the "buckling load of this run"
+        (:data:`~validation.markers.RUN_BUCKLING`), the located zero crossing of the whole
+        plate's lowest physical eigenvalue (column ``D0_b``); ``None`` if the run has no
+        such crossing.
+    after : tuple of ndarray
+        ``(lam1_fe, D0)`` of the converged rows past a ``P33`` breakdown (a run that goes
+        on for its spectrum, :data:`~validation.markers.AFTER_BREAKDOWN`): part of
+        ``dots``; empty where the run stops at its breakdown.
     """
 
     dots: tuple
     breakdown: tuple | None
     buckling: tuple | None
+    after: tuple = (np.zeros(0), np.zeros(0))
 
 
 def keplinger_run_marks(fe, alpha: float, variant: str) -> RunMarks | None:
@@ -137,18 +154,21 @@ def keplinger_run_marks(fe, alpha: float, variant: str) -> RunMarks | None:
     brk = np.array([bool(x) for x in fe["breakdown"][sel]])
     lam_fe, D0_fe = fe["lam1_fe"][sel], fe["D0"][sel]
     breakdown = None
+    past = np.zeros(conv.size, dtype=bool)
     if brk.any() or not conv.all():
         # the first compressive step, else the last converged one before the failure
         i = int(np.argmax(brk)) if brk.any() else max(int(np.argmin(conv)) - 1, 0)
         x = lam_fe[i] if np.isfinite(lam_fe[i]) else fe["lam1_analytic"][sel][i]
         breakdown = (x, D0_fe[i])
+        past[i + 1:] = True
     located = fe["D0_b"][sel][np.isfinite(fe["D0_b"][sel])] if "D0_b" in fe else np.zeros(0)
     buckling = None
     if located.size:
         D0b = float(located[0])
         ok = conv & np.isfinite(lam_fe)
         buckling = (np.interp(D0b, D0_fe[ok], lam_fe[ok]), D0b)
-    return RunMarks((lam_fe[conv], D0_fe[conv]), breakdown, buckling)
+    return RunMarks((lam_fe[conv], D0_fe[conv]), breakdown, buckling,
+                    (lam_fe[conv & past], D0_fe[conv & past]))
 
 
 def plot_uniaxial_wrinkling(fe=None, alphas=ALPHAS, ax=None, D0max=7.0):
@@ -157,17 +177,21 @@ def plot_uniaxial_wrinkling(fe=None, alphas=ALPHAS, ax=None, D0max=7.0):
     Neo-Hookean loading curves Eq. (DEuniax) for ``s = alpha m g/(mu A)``, the
     thick-plate limit (dashed blue, Eq. thick-uni-axial), the thin-plate limit
     (dashed black, Eq. thin-uni-axial, the ``s = 0`` curve), the wrinkling zone
-    between them, the FE dots of the clamped plate, per run a red open marker of the
-    shape of its FE model around the dot of its "P33 breakdown" (:data:`BREAKDOWN_NAME`:
-    the first step with ``P33/mu < -0.01`` near the clamps or that the solver could not
-    reach), and a red cross at the "buckling load"
-    ``D0_b`` (:data:`BUCKLING_NAME`) of the runs analysed with the whole plate's spectrum
-    (the located zero crossing of the lowest physical eigenvalue, column ``D0_b``).
-    With FE data, also the converged buckling load ``D0_b`` of each weight
-    (:func:`validation.buckling_data.buckling_loads`, black diamond with its error bar)
-    and the plain form's Newton limit (black triangle down), both on the weight's
-    homogeneous curve (docs/breakdown.md).
-    The FE models are named by :data:`MODEL_NAME` in the legend.
+    between them and the FE dots of the clamped plate.  The markers of the breakdown and
+    stability results are those of :mod:`validation.markers`: per run its
+    :data:`~validation.markers.P33_BREAKDOWN` (a red open marker of the shape of its FE
+    model around the dot of the first step with ``P33/mu < -0.01`` near the clamps or
+    that the solver could not reach), the dots of a run that goes on past it faded
+    (:data:`~validation.markers.AFTER_BREAKDOWN`), and the
+    :data:`~validation.markers.RUN_BUCKLING` (red cross, on top of every other marker) of
+    the runs analysed with the whole plate's spectrum (column ``D0_b``).  With FE data,
+    also the converged buckling load ``D0_b`` of each weight
+    (:func:`validation.buckling_data.buckling_loads`,
+    :data:`~validation.markers.CONVERGED_BUCKLING`; a legend line names the weights
+    without one) and the plain form's Newton limit
+    (:data:`~validation.markers.NEWTON_LIMIT`), both on the weight's homogeneous curve
+    (docs/breakdown.md).  The FE models are named by :data:`MODEL_NAME` in the legend.
+    The ``lam1`` axis ends just past the last curve or dot below ``D0max``.
 
     Returns
     -------
@@ -180,7 +204,7 @@ def plot_uniaxial_wrinkling(fe=None, alphas=ALPHAS, ax=None, D0max=7.0):
     lk, thick = refine_start(lam1, uniaxial_thick_limit_curve)
     wrinkling_zone(ax, lk, thick, ln, thin, D0max)
     ax.plot(ln, thin, "--", color="k", label="thin-plate limit ($s = 0$)")
-    broken = set()
+    broken, faded = set(), set()
     buckled = []
     for a, c in zip(alphas, colors(len(alphas))):
         s = float(keplinger_s(a, g=KEPLINGER["g"]))   # the analytic curve's own load
@@ -192,33 +216,54 @@ def plot_uniaxial_wrinkling(fe=None, alphas=ALPHAS, ax=None, D0max=7.0):
             marks = keplinger_run_marks(fe, a, v)
             if marks is None:
                 continue
-            ax.plot(*marks.dots, ls="none", color=c, **VARIANT_MARKER[v])
+            later = np.isin(marks.dots[1], marks.after[1])
+            ax.plot(marks.dots[0][~later], marks.dots[1][~later], ls="none", color=c,
+                    **VARIANT_MARKER[v])
+            if later.any():
+                ax.plot(*marks.after, ls="none", gid="after-breakdown",
+                        **{**VARIANT_MARKER[v], **legend_style(AFTER_BREAKDOWN), "color": c})
+                faded.add(v)
             if marks.breakdown is not None:
-                ax.plot(*marks.breakdown, ls="none", color="red", mfc="none", mew=1.6,
-                        zorder=5, clip_on=False,
-                        **BREAKDOWN_MARKER.get(v, BREAKDOWN_MARKER["coupled"]))
+                ax.plot(*marks.breakdown, ls="none", clip_on=False, gid=f"p33-{v}",
+                        **legend_style(P33_BREAKDOWN, P33_SHAPES.get(v, P33_SHAPES["coupled"])))
                 broken.add(v)
-            if marks.buckling is not None:       # the stability-based breakdown: a red cross
-                ax.plot(*marks.buckling, ls="none", color="red", marker="x", ms=11, mew=2.4,
-                        zorder=6, clip_on=False)
+            if marks.buckling is not None:
+                ax.plot(*marks.buckling, ls="none", clip_on=False, gid="buckling-run",
+                        **legend_style(RUN_BUCKLING))
                 buckled.append(f"{a:g}")
     drawn = _measured_loads(ax, alphas, m, D0max) if fe is not None and len(
         fe.get("run", [])) else []
-    ax.set_xlim(0.4, 6.0)
+    ax.set_xlim(0.4, _right_end(ax, D0max))
     ax.set_ylim(0, D0max)
     ax.set_xlabel(r"$\lambda_1$")
     ax.set_ylabel(r"$D_0$")
     handles, _ = ax.get_legend_handles_labels()
-    crosses = [Line2D([], [], ls="none", color="red", mfc="none", mew=1.6,
-                      label=f"{BREAKDOWN_NAME} ($P_{{33}}/\\mu < -0.01$), {MODEL_NAME[v]}",
-                      **dict(BREAKDOWN_MARKER[v], ms=0.6 * BREAKDOWN_MARKER[v]["ms"]))
-               for v in BREAKDOWN_MARKER if v in broken]
+    keys = [Line2D([], [], ls="none", label=f"{P33_BREAKDOWN.name} ($P_{{33}}/\\mu < -0.01$), "
+                                            f"{MODEL_NAME[v]}",
+                   **legend_style(P33_BREAKDOWN, dict(P33_SHAPES[v],
+                                                      ms=0.6 * P33_SHAPES[v]["ms"])))
+            for v in P33_SHAPES if v in broken]
+    keys += [Line2D([], [], ls="none", label=f"{AFTER_BREAKDOWN.name}, {MODEL_NAME[v]}",
+                    **{**VARIANT_MARKER[v], **legend_style(AFTER_BREAKDOWN)})
+             for v in VARIANT_MARKER if v in faded]
     if buckled:
-        crosses.insert(0, Line2D([], [], ls="none", color="red", marker="x", ms=8, mew=2.2,
-                                 label=f"{BUCKLING_NAME} on this run's mesh, "
-                                 + r"$\alpha = $" + ", ".join(buckled)))
-    crosses += drawn
-    ax.legend(handles=handles + variant_legend(ax, fe) + crosses, fontsize=8,
+        keys.insert(0, Line2D([], [], ls="none", **legend_style(RUN_BUCKLING, ms=9, mew=2.2),
+                              label=f"{RUN_BUCKLING.name}, " + r"$\alpha = $"
+                              + ", ".join(buckled)))
+    ax.legend(handles=handles + variant_legend(ax, fe) + keys + drawn, fontsize=8,
               loc="center left", bbox_to_anchor=(1.01, 0.5))
     ax.set_title("Keplinger plate, uni-axial dead load (neo-Hookean)", fontsize=10)
     return ax
+
+
+def _right_end(ax, D0max: float, step: float = 0.25) -> float:
+    """The right end of the ``lam1`` axis: the largest ``lam1`` of a line point with
+    ``0 <= D0 <= D0max``, rounded up to ``step`` after a 2 % margin."""
+    right = 1.0
+    for line in ax.lines:
+        xy = np.asarray(line.get_xydata(), dtype=float)
+        if xy.size:
+            ok = np.isfinite(xy).all(axis=1) & (xy[:, 1] >= 0) & (xy[:, 1] <= D0max)
+            if ok.any():
+                right = max(right, float(xy[ok, 0].max()))
+    return float(np.ceil(1.02 * right / step) * step)

@@ -38,8 +38,9 @@ from skfem_dielectric.gallery.loads import keplinger_s
 from skfem_dielectric.studies import SNAP_THROUGH_SETTINGS
 
 from ..cases import analytic_model
-from ..figures import (LIMIT_NAME, MODEL_NAME, PAPER_FIGURE, add_caption, mesh_caption,
+from ..figures import (MODEL_NAME, PAPER_FIGURE, add_caption, mesh_caption,
                       run_caption, save_figure, tag_panels)
+from ..markers import LIMIT_POINT, STABLE_STATE, UNSTABLE_STATE, legend_style
 from ..specs import ALPHAS, KEPLINGER
 from ..store import write_csv_atomic
 
@@ -250,7 +251,7 @@ def voltage_figure(rows: list[list], ax=None, quick: bool | None = None):
     Panel (a) the equi-biaxial, (b) the uni-axial dead load: the FE points of the
     voltage-controlled continuation (:data:`validation.figures.MODEL_NAME` ``"coupled"``;
     filled: stable under voltage control, open: unstable), red stars at the located
-    limit points (:data:`validation.figures.LIMIT_NAME`), the analytic loading curves
+    limit points (:data:`validation.markers.LIMIT_POINT`), the analytic loading curves
     of the homogeneous paths (solid: neo-Hookean, dashed: Gent) and the neo-Hookean
     voltage-control limit locus ``det H* = 0`` (dotted).  Titles and legends name only
     what is drawn; the caption line is :func:`voltage_caption`.
@@ -287,13 +288,14 @@ def voltage_figure(rows: list[list], ax=None, quick: bool | None = None):
             stable = np.array([r[col["stable"]] is True for r in rr])
             label = (f"Keplinger plate, $\\alpha = {p['alpha']:g}$" if p["alpha"] is not None
                      else f"{p['model']}, $s = {p['s']:g}$")
-            a.plot(E0[stable], D0[stable], "o", color=colour, ms=5)
-            a.plot(E0[~stable], D0[~stable], "o", mfc="none", color=colour, ms=5)
+            a.plot(E0[stable], D0[stable], ls="none", **legend_style(STABLE_STATE, color=colour))
+            a.plot(E0[~stable], D0[~stable], ls="none",
+                   **legend_style(UNSTABLE_STATE, color=colour))
             # the legend entry: the path's colour, with its analytic curve's style if drawn
             a.plot([], [], "o", ls=style if p["alpha"] is None else "none", color=colour,
                    ms=5, label=label)
             lim = [j for j, r in enumerate(rr) if r[col["kind"]] == "limit"]
-            a.plot(E0[lim], D0[lim], "*", color="crimson", ms=12, mec="k", mew=0.5, zorder=4)
+            a.plot(E0[lim], D0[lim], ls="none", **legend_style(LIMIT_POINT))
             drawn[i]["unstable"] |= bool((~stable).any())
             drawn[i]["limit"] |= bool(lim)
         a.set_title(_panel_title(mine, i == 0), fontsize=10)
@@ -305,14 +307,14 @@ def voltage_figure(rows: list[list], ax=None, quick: bool | None = None):
     name = MODEL_NAME["coupled"]
     for a, d in zip(ax, drawn):
         handles, _ = a.get_legend_handles_labels()
-        keys = [Line2D([], [], ls="none", marker="o", color="k", ms=5,
-                       label=f"{name}, stable (voltage control)")]
+        keys = [Line2D([], [], ls="none", **legend_style(STABLE_STATE),
+                       label=f"{STABLE_STATE.name}, {name}")]
         if d["unstable"]:
-            keys.append(Line2D([], [], ls="none", marker="o", mfc="none", color="k", ms=5,
-                               label=f"{name}, unstable (voltage control)"))
+            keys.append(Line2D([], [], ls="none", **legend_style(UNSTABLE_STATE),
+                               label=f"{UNSTABLE_STATE.name}, {name}"))
         if d["limit"]:
-            keys.append(Line2D([], [], ls="none", marker="*", color="crimson", ms=12, mec="k",
-                               mew=0.5, label=LIMIT_NAME))
+            keys.append(Line2D([], [], ls="none", **legend_style(LIMIT_POINT),
+                               label=LIMIT_POINT.name))
         a.set_xlabel(r"$E_0$ (voltage)")
         a.set_ylabel(r"$D_0$ (charge, log scale)")
         a.set_xlim(0.0, 0.8)

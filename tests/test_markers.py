@@ -1,0 +1,255 @@
+"""One marker vocabulary (validation.markers) in the figures and the docs.
+
+The pages describe each marker in words (``Marker.look``, e.g. "red cross") and name it by
+its legend name (``Marker.name``, e.g. `buckling load of this run`); the figures draw it
+with ``Marker.style`` under a legend entry that starts with the name.  The tests read the
+pages as the reader does (paragraph by paragraph, table row by table row) and the
+legends as matplotlib holds them, so that a page calling the P33 breakdown a red cross,
+or a legend drawing it with another marker, fails.
+"""
+
+from __future__ import annotations
+
+import re
+from pathlib import Path
+
+import matplotlib
+import numpy as np
+import pytest
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+import analytic as an  # noqa: E402
+from analytic.units import keplinger_s  # noqa: E402
+from validation.buckling_data import buckling_loads  # noqa: E402
+from validation.figures import plot_breakdown_map, plot_uniaxial_wrinkling  # noqa: E402
+from validation.markers import (AFTER_BREAKDOWN, CONVERGED_BUCKLING, LIMIT_POINT,  # noqa: E402
+                                MESH_BUCKLING, NEWTON_LIMIT, NOT_CONVERGED_NOTE,
+                                P33_BREAKDOWN, PAPER_P33_WORDS, RUN_BUCKLING, RUN_NEWTON,
+                                STABLE_STATE, UNSTABLE_STATE, VOCABULARY,
+                                WRINKLING_NOT_REACHED, find_marker)
+from validation.studies.voltage_control import VOLTAGE_COLUMNS, voltage_figure  # noqa: E402
+
+DOCS = Path(__file__).resolve().parents[1] / "docs"
+PAGES = ("breakdown.md", "gallery.md", "validation.md", "cli.md")
+
+
+def _units(text: str) -> list[str]:
+    """The page as a reader meets it: each table row, list item and paragraph (code
+    blocks left out), with the paper's own marker (:data:`PAPER_P33_WORDS`) taken out."""
+    out, cur, code = [], [], False
+    for line in text.splitlines():
+        s = line.strip()
+        if s.startswith("```"):
+            code = not code
+            continue
+        if code:
+            continue
+        if not s or s.startswith(("|", "* ", "- ", "#")) or re.match(r"\d+\. ", s):
+            if cur:
+                out.append(" ".join(cur))
+            cur = []
+        if s.startswith("|"):
+            out.append(s)
+        elif s:
+            cur.append(s)
+    if cur:
+        out.append(" ".join(cur))
+    return [re.sub(re.escape(PAPER_P33_WORDS), "", u, flags=re.I) for u in out]
+
+
+def _look(marker) -> re.Pattern:
+    """The marker's words, each word also in the plural ("red crosses")."""
+    return re.compile(r"\b" + r"\s+".join(re.escape(w) + "(?:e?s)?" for w in marker.look.split())
+                      + r"\b", re.I)
+
+
+def _looks_in(unit: str):
+    """The vocabulary entries whose marker words a unit uses (the longest words win where
+    one entry's words hold another's)."""
+    hits = [(m, mt.span()) for m in VOCABULARY for mt in _look(m).finditer(unit)]
+    out = [m for m, (a, b) in hits
+           if not any((a2 <= a and b <= b2) and (b2 - a2) > (b - a) for _, (a2, b2) in hits)]
+    return list({m.name: m for m in out}.values())
+
+
+def test_the_vocabulary_is_one_to_one():
+    names = [m.name for m in VOCABULARY]
+    looks = [m.look for m in VOCABULARY]
+    assert len(set(names)) == len(names) and len(set(looks)) == len(looks)
+    # the P33 criterion is not the cross: the cross is the run's own buckling load
+    assert P33_BREAKDOWN.look == "red open marker" and RUN_BUCKLING.look == "red cross"
+    for m in VOCABULARY:
+        assert m.meaning and m.style.get("color") is not None
+
+
+@pytest.mark.parametrize("page", PAGES)
+def test_a_marker_described_on_a_page_is_named_by_its_legend_name(page):
+    """Where a page describes a marker in words, the same paragraph or table row names
+    it by its legend name (docs/validation.md once said the P33 breakdown "gets a red
+    cross", the run's buckling load's marker)."""
+    bad = []
+    for unit in _units((DOCS / page).read_text()):
+        for m in _looks_in(unit):
+            if m.name not in unit:
+                bad.append(f"{m.look!r} without {m.name!r}: {unit[:160]}")
+    assert not bad, "\n".join(bad)
+
+
+@pytest.mark.parametrize("page", PAGES)
+def test_a_legend_name_quoted_on_a_page_comes_with_its_marker(page):
+    """Where a page quotes a legend name (in backticks), the paragraph or table row
+    describes its marker with the vocabulary's words, and no other entry's words stand
+    for it there."""
+    bad = []
+    for unit in _units((DOCS / page).read_text()):
+        for m in VOCABULARY:
+            if f"`{m.name}`" in unit and not _look(m).search(unit):
+                bad.append(f"{m.name!r} without {m.look!r}: {unit[:160]}")
+    assert not bad, "\n".join(bad)
+
+
+@pytest.mark.parametrize("page", ["breakdown.md", "gallery.md"])
+def test_the_marker_tables_list_the_vocabulary(page):
+    """The marker tables of breakdown.md (the breakdown map's markers) and gallery.md
+    (every figure's): one row per marker, with its words and legend name."""
+    rows = [u for u in _units((DOCS / page).read_text()) if u.startswith("|")]
+    want = (VOCABULARY if page == "gallery.md" else
+            (P33_BREAKDOWN, RUN_BUCKLING, CONVERGED_BUCKLING, MESH_BUCKLING, NEWTON_LIMIT,
+             RUN_NEWTON, WRINKLING_NOT_REACHED))
+    for m in want:
+        assert any(f"`{m.name}`" in r and _look(m).search(r) for r in rows), m.name
+
+
+def _legend(ax):
+    """``(label, handle)`` of the axes' legend as drawn."""
+    leg = ax.get_legend()
+    return list(zip([t.get_text() for t in leg.get_texts()], leg.legend_handles))
+
+
+def _same_marker(handle, marker):
+    """The handle's marker has the vocabulary's shape, colour and face."""
+    from matplotlib.colors import same_color
+
+    st = marker.style
+    if st.get("marker") is not None:
+        assert handle.get_marker() == st["marker"]
+    assert same_color(handle.get_color(), st["color"])
+    if st.get("mfc") == "none":
+        assert handle.get_markerfacecolor() == "none"
+    elif marker is not AFTER_BREAKDOWN:
+        assert handle.get_markerfacecolor() != "none"
+
+
+def _fake_keplinger():
+    """A uni-axial-ideal table: alpha = 1 (3D fully coupled) on the homogeneous curve up to
+    D0 = 5 with its P33 breakdown at 3 and its own D0_b = 2.9147 (the quick run's), the
+    Maxwell-traction run stopping at its breakdown 3, alpha = 0.3 stopping at 1.5."""
+    cols = {k: [] for k in ("run", "alpha", "variant", "converged", "breakdown", "lam1_fe",
+                            "lam1_analytic", "D0", "D0_b")}
+    for a, var, stop in ((1.0, "coupled", 5.0), (1.0, "maxwell", 3.0), (0.3, "coupled", 1.5)):
+        s = float(keplinger_s(a, g=9.81))
+        brk = 1.5 if a == 0.3 else 3.0
+        for d in np.arange(0.0, stop + 1e-9, 0.5):
+            lam = float(an.uniaxial_lam1(d, s, an.NeoHookean()))
+            for k, v in (("run", f"{a:g}_{var}"), ("alpha", a), ("variant", var),
+                         ("converged", True), ("breakdown", bool(np.isclose(d, brk))),
+                         ("lam1_fe", lam), ("lam1_analytic", lam), ("D0", d),
+                         ("D0_b", 2.9147 if (var == "coupled" and a == 1 and d == 3.0)
+                          else np.nan)):
+                cols[k].append(v)
+    return {k: np.array(v) for k, v in cols.items()}
+
+
+def test_the_keplinger_figure_draws_the_vocabulary():
+    fig, ax = plt.subplots()
+    plot_uniaxial_wrinkling(fe=_fake_keplinger(), ax=ax)
+    drawn = {}
+    for label, h in _legend(ax):
+        m = find_marker(label)
+        if m is not None:
+            _same_marker(h, m)
+            drawn[m.name] = label
+    assert set(drawn) == {P33_BREAKDOWN.name, AFTER_BREAKDOWN.name, RUN_BUCKLING.name,
+                          CONVERGED_BUCKLING.name, NEWTON_LIMIT.name}
+    # the error bars are at most the file's largest error, and the legend says so
+    err = max(e.error for e in buckling_loads() if e.converged)
+    assert f"{err:.2g}" in drawn[CONVERGED_BUCKLING.name]
+    assert "hidden by the diamond" in drawn[CONVERGED_BUCKLING.name]
+    # alpha = 1.5 has no converged load: the legend says why its diamond is missing
+    assert any(lab == rf"$\alpha = 1.5$: {NOT_CONVERGED_NOTE}" for lab, _ in _legend(ax))
+    # the dots past the breakdown (D0 = 3.5 ... 5 of alpha = 1) are the faded ones
+    (after,) = [ln for ln in ax.lines if ln.get_gid() == "after-breakdown"]
+    np.testing.assert_array_equal(after.get_ydata(), [3.5, 4.0, 4.5, 5.0])
+    assert after.get_alpha() == AFTER_BREAKDOWN.style["alpha"]
+    # the run's own D0_b: on its dots (lam1 of D0_b on the FE curve), above every marker
+    (cross,) = [ln for ln in ax.lines if ln.get_gid() == "buckling-run"]
+    s1 = float(keplinger_s(1.0, g=9.81))
+    np.testing.assert_allclose(cross.get_xydata(), [[np.interp(
+        2.9147, [2.5, 3.0], [an.uniaxial_lam1(d, s1, an.NeoHookean()) for d in (2.5, 3.0)]),
+        2.9147]], rtol=1e-12)
+    others = [a for a in ax.lines + ax.collections if a is not cross]
+    assert cross.get_zorder() > max(a.get_zorder() for a in others)
+    assert RUN_BUCKLING.style["ms"] > CONVERGED_BUCKLING.style["ms"]   # wider than the diamond
+    plt.close(fig)
+
+
+def test_the_keplinger_axis_ends_at_the_data():
+    """The lam1 axis ends just past the last curve point below D0 = 7 (alpha = 1.5 reaches
+    D0 = 7 at lam1 = 4.80 on its homogeneous curve, docs/gallery.md), not at 6."""
+    fig, ax = plt.subplots()
+    plot_uniaxial_wrinkling(ax=ax)
+    s = float(keplinger_s(1.5, g=9.81))
+    right = float(an.uniaxial_lam1(7.0, s, an.NeoHookean()))
+    assert right < ax.get_xlim()[1] <= 1.02 * right + 0.25
+    plt.close(fig)
+
+
+def test_the_breakdown_map_draws_the_vocabulary():
+    fig, ax = plt.subplots()
+    plot_breakdown_map(p33={"coupled": {0.05: 0.5, 1.0: 3.0}}, run_buckling={1.0: 2.9147},
+                       run_newton={0.3: 5.5}, run_mesh="10 x 1 x 5", ax=ax)
+    drawn = set()
+    labels, handles = ax.get_legend_handles_labels()[::-1]
+    for label, h in zip(labels, handles):
+        m = find_marker(label)
+        if m is None:
+            continue
+        h = getattr(h, "lines", [h])[0] or h        # an errorbar's data line
+        _same_marker(h, m)
+        drawn.add(m.name)
+    assert drawn == {P33_BREAKDOWN.name, RUN_BUCKLING.name, CONVERGED_BUCKLING.name,
+                     MESH_BUCKLING.name, NEWTON_LIMIT.name, RUN_NEWTON.name,
+                     WRINKLING_NOT_REACHED.name}
+    # alpha = 1.5 (three meshes, no diamond): a note in the figure says why
+    notes = [t for t in ax.texts if t.get_gid() == "not-converged"]
+    assert [t.get_text() for t in notes] == [rf"$\alpha = 1.5$: {NOT_CONVERGED_NOTE}"]
+    (cross,) = [ln for ln in ax.lines if ln.get_gid() == "buckling-run"]
+    assert cross.get_zorder() > max(a.get_zorder() for a in ax.lines + ax.collections
+                                    if a is not cross)
+    plt.close(fig)
+
+
+def test_the_voltage_control_figure_draws_the_vocabulary():
+    """Two points of one equi-biaxial path: stable, then a limit point (unstable)."""
+    col = {c: i for i, c in enumerate(VOLTAGE_COLUMNS)}
+    rows = []
+    for point, (E0, D0, stable, kind) in enumerate(((0.2, 0.25, True, "regular"),
+                                                   (0.69, 1.8, False, "limit"))):
+        r = [None] * len(VOLTAGE_COLUMNS)
+        for k, v in dict(case="voltage-control", run="eq", point=point, model="neo-Hookean",
+                         loading="equibiaxial", variant="coupled", s=0.0, alpha=None,
+                         kind=kind, E0=E0, D0=D0, lam1_fe=1.0 + E0, stable=stable).items():
+            if k in col:
+                r[col[k]] = v
+        rows.append(r)
+    ax = voltage_figure(rows)
+    drawn = set()
+    for label, h in _legend(ax[0]):
+        m = find_marker(label)
+        if m is not None:
+            _same_marker(h, m)
+            drawn.add(m.name)
+    assert drawn == {STABLE_STATE.name, UNSTABLE_STATE.name, LIMIT_POINT.name}
+    plt.close(ax[0].figure)

@@ -1,0 +1,151 @@
+"""One vocabulary for the markers of the breakdown and stability results.
+
+Every figure that draws one of these quantities (paper Fig. 5 ``uni-axial-ideal``, the
+breakdown map, the ``voltage-control`` figure) takes its marker, colour and legend name
+from here, and the pages docs/breakdown.md, docs/gallery.md, docs/validation.md and
+docs/cli.md describe each marker with the same words (:attr:`Marker.look`) next to the same
+legend name (:attr:`Marker.name`; tests/test_markers.py checks both).
+
+The paper's own marker of its ``P33`` criterion is a red cross (its Fig. 5); our figures
+draw that criterion as :data:`P33_BREAKDOWN` (a red open marker of the FE model's shape)
+and keep the red cross for the buckling load the run locates itself
+(:data:`RUN_BUCKLING`).  The pages quote the paper's marker only as
+:data:`PAPER_P33_WORDS`.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+__all__ = ["Marker", "P33_BREAKDOWN", "AFTER_BREAKDOWN", "RUN_BUCKLING", "CONVERGED_BUCKLING",
+           "MESH_BUCKLING", "NEWTON_LIMIT", "RUN_NEWTON", "WRINKLING_NOT_REACHED",
+           "STABLE_STATE", "UNSTABLE_STATE", "LIMIT_POINT", "VOCABULARY", "P33_SHAPES",
+           "PAPER_P33_WORDS", "NOT_CONVERGED_NOTE", "legend_style", "find_marker"]
+
+
+@dataclass(frozen=True)
+class Marker:
+    """One reported quantity as the figures draw it.
+
+    Attributes
+    ----------
+    name
+        The legend name (a legend entry starts with it; the docs quote it in backticks).
+    look
+        The marker in words, as the docs describe it (e.g. ``"red cross"``).
+    meaning
+        What the marker marks, in one line.
+    style
+        Matplotlib ``Line2D`` keywords of the marker (``marker``, ``color``, ``mfc``,
+        ``ms``, ``mew``, ``alpha``, ``zorder``); a ``marker`` of ``None`` takes the FE
+        model's shape (:data:`P33_SHAPES`, or the model's own dot marker).
+    """
+
+    name: str
+    look: str
+    meaning: str
+    style: dict = field(default_factory=dict)
+
+
+#: Shape and size of the :data:`P33_BREAKDOWN` marker per FE variant: around the model's
+#: own dot (validation.figures.common.VARIANT_MARKER), larger, so that the dot shows inside.
+P33_SHAPES = {"coupled": dict(marker="o", ms=19), "maxwell": dict(marker="s", ms=14),
+              "membrane": dict(marker="^", ms=12)}
+
+P33_BREAKDOWN = Marker(
+    "P33 breakdown", "red open marker",
+    "the paper's criterion (Sec. 6): the first step with P33/mu < -0.01 on the centre line "
+    "at least two thicknesses from the clamps, or a step the solver could not reach; "
+    "circle, square or triangle: the FE model's shape",
+    dict(marker=None, color="red", mfc="none", mew=1.6, zorder=5))
+AFTER_BREAKDOWN = Marker(
+    "after the breakdown", "faded dot",
+    "a state of a run that goes on past its P33 breakdown (the run analysed for buckling, "
+    "alpha = 1): drawn faded, since the paper's ramp stops at the breakdown",
+    dict(marker=None, color="0.45", mfc="none", alpha=0.35))
+RUN_BUCKLING = Marker(
+    "buckling load of this run", "red cross",
+    "D0_b located by the run itself on its own (coarse) mesh: the zero crossing of the "
+    "whole plate's lowest physical eigenvalue (column D0_b)",
+    dict(marker="x", color="red", ms=13, mew=2.8, zorder=9))
+CONVERGED_BUCKLING = Marker(
+    "buckling load, converged", "black diamond",
+    "D0_b converged over three meshes (extrapolated; validation/data/buckling_loads.csv); "
+    "its error bar (at most 0.012) is smaller than the diamond",
+    dict(marker="D", color="k", ms=6, zorder=7))
+MESH_BUCKLING = Marker(
+    "buckling load on each mesh", "small grey dot",
+    "D0_b on each of the three meshes; where they scatter without a diamond the load is "
+    "not converged",
+    dict(marker=".", color="0.55", ms=5, zorder=2))
+NEWTON_LIMIT = Marker(
+    "Newton limit, plain form", "black triangle down",
+    "where the plain form's Newton ramp stops on the finest mesh (the clamp/free-edge "
+    "corner), long after D0_b",
+    dict(marker="v", color="k", ms=8, zorder=7))
+RUN_NEWTON = Marker(
+    "Newton limit of this run", "red open triangle down",
+    "the first charge target the run's own Newton solver could not reach",
+    dict(marker="v", color="red", mfc="none", ms=8, mew=1.5, zorder=6))
+WRINKLING_NOT_REACHED = Marker(
+    "homogeneous wrinkling limit: not reached", "blue arrow",
+    "the paper's homogeneous wrinkling limits (thin and thick plate) on the weight's path "
+    "lie above the axes: never reached for s > 0",
+    dict(marker=r"$\uparrow$", color="tab:blue", ms=14, zorder=6))
+STABLE_STATE = Marker(
+    "stable (voltage control)", "filled dot",
+    "a point of a voltage-controlled path whose reduced stiffness is positive definite",
+    dict(marker="o", color="k", ms=5))
+UNSTABLE_STATE = Marker(
+    "unstable (voltage control)", "open dot",
+    "a point of a voltage-controlled path with a negative eigenvalue of its reduced "
+    "stiffness (past a limit point)",
+    dict(marker="o", color="k", mfc="none", ms=5))
+LIMIT_POINT = Marker(
+    "limit point (snap-through)", "red star",
+    "the located maximum of E0 on a voltage-controlled path",
+    dict(marker="*", color="crimson", ms=12, mec="k", mew=0.5, zorder=4))
+
+#: Every marker, in the order the docs' tables list them.
+VOCABULARY = (P33_BREAKDOWN, AFTER_BREAKDOWN, RUN_BUCKLING, CONVERGED_BUCKLING,
+              MESH_BUCKLING, NEWTON_LIMIT, RUN_NEWTON, WRINKLING_NOT_REACHED, STABLE_STATE,
+              UNSTABLE_STATE, LIMIT_POINT)
+
+#: How the pages name the paper's own marker of its P33 criterion (not one of ours).
+PAPER_P33_WORDS = "the paper's red crosses"
+
+#: The note of a weight whose buckling load is not converged (no diamond).
+NOT_CONVERGED_NOTE = "no diamond: the three meshes disagree (not converged)"
+
+
+def legend_style(marker: Marker, shape: dict | None = None, **extra) -> dict:
+    """The ``Line2D`` keywords of ``marker`` (for a legend handle or a drawn point):
+    its :attr:`~Marker.style` with the FE model's ``shape`` where the style leaves the
+    shape open, updated by ``extra``.
+
+    Examples
+    --------
+    >>> legend_style(RUN_BUCKLING)["marker"]
+    'x'
+    >>> legend_style(P33_BREAKDOWN, P33_SHAPES["maxwell"])["marker"]
+    's'
+    """
+    out = {k: v for k, v in marker.style.items() if not (k == "marker" and v is None)}
+    if marker.style.get("marker", "") is None:
+        out.update(shape or {})
+    out.update(extra)
+    return out
+
+
+def find_marker(label: str) -> Marker | None:
+    """The vocabulary entry a legend label starts with (the longest name), else ``None``.
+
+    Examples
+    --------
+    >>> find_marker("buckling load of this run (10 x 1 x 5)").look
+    'red cross'
+    >>> find_marker("wrinkling zone") is None
+    True
+    """
+    hits = [m for m in VOCABULARY if label.startswith(m.name)]
+    return max(hits, key=lambda m: len(m.name)) if hits else None
