@@ -103,6 +103,21 @@ def check_analytic(out: str) -> None:
     assert [int(n) for _, n in rows] == [1000] * 16 + [100] * 2
 
 
+def check_buckling_scan(out: str) -> None:
+    # the unknowns of the 4 x 1 x 2 eighth model against the count by formula; one row per
+    # charge target asked for (0, 1, 2); after the first state one factorisation per class
+    # and state (the inertia count), back-substitutions only where a class's count changed;
+    # the event scan of buckling_load gives the counts of the full-spectrum scan
+    assert int(_one(r"mesh 4x1x2  (\d+) DOFs", out)[0]) == plate_unknowns((4, 1, 2), "eighth")
+    rows = re.findall(r"^\s+(\d\.\d{3})\s+(\d+)\s+(\d+)\s+(\S+)\s+(\d+)\s", out, re.M)
+    assert [float(r[0]) for r in rows] == [0.0, 1.0, 2.0]
+    for _, _, changed, per_class, back in rows[1:]:
+        assert float(per_class) == 1.0
+        assert (int(back) == 0) == (int(changed) == 0)
+    counts = dict(re.findall(r"scan=(\w+): D0_b \S+  counts (\[.*?\])", out))
+    assert counts["events"] == counts["full"] == "[" + ", ".join(r[1] for r in rows) + "]"
+
+
 def check_clamp_wrinkle(out: str) -> None:
     # two rows (centroid, compressive point) for the one alpha x mesh asked for; in each the
     # local J equals lam1 lam2 lam3 (det F of the principal stretches) within the rounding
@@ -197,6 +212,26 @@ def check_stability_cost(out: str) -> None:
     assert float(de) <= 1e-6
 
 
+def check_costs(out: str) -> None:
+    # the table printed by the smoke run has one row per command the README shows (parsed
+    # from README.md by tests/test_readme.py); the two commands --smoke measures have
+    # numbers, exit code 0 and this machine's core count, and only they were run
+    from test_readme import readme_commands
+
+    rows = {}
+    for ln in out.splitlines():
+        if ln.startswith("| `"):
+            cells = [c.strip() for c in ln.strip().strip("|").split("|")]
+            rows[cells[0].split("`")[1]] = cells[1:]
+    assert sorted(rows) == sorted(readme_commands())
+    ran = re.findall(r"^(\S+)\s+CPU\s+" + _NUMBER + r" s .* exit (\d+)$", out, re.M)
+    assert ran == [("list", "0"), ("simulate-help", "0")]
+    for cmd in ("skfem-dielectric list", "skfem-dielectric simulate --help"):
+        cpu, wall, load, peak, measured = rows[cmd]
+        assert float(cpu) > 0 and float(wall) > 0 and float(peak.split()[0]) > 0, rows[cmd]
+        assert f", {os.cpu_count()} CPUs, " in measured, measured
+
+
 def check_validate(out: str) -> None:
     # one row, the one case asked for, and its verdict
     rows = re.findall(rf"^(\S+)\s+{_NUMBER}\s+\d+\s+\d+\s+\d*\s+(\S+)$", out, re.M)
@@ -234,7 +269,9 @@ def check_explore_redraw(out: str) -> None:
 
 CHECKS = {
     "bench_analytic.py": check_analytic,
+    "bench_buckling_scan.py": check_buckling_scan,
     "bench_clamp_wrinkle.py": check_clamp_wrinkle,
+    "bench_costs.py": check_costs,
     "bench_fe_alpha_scan.py": check_fe_alpha_scan,
     "bench_fe_corner_failure.py": check_fe_corner_failure,
     "bench_fe_isochoric.py": check_fe_isochoric,

@@ -74,3 +74,59 @@ def test_readme_fe_snippet_has_one_stretch_per_charge_target(tmp_path, monkeypat
     assert len(ns["lam1"]) == len(ns["D0"]) == 4
     assert max(abs(a - b) for a, b in zip(ns["lam1"], ref)) < 1e-10
     assert len(ns["res"].column("lam1")) == 7
+
+
+#: a cost figure in prose: a number with a time unit ("74 s CPU", "3 minutes", "2 CPU minutes")
+_COST = re.compile(r"\b\d+(?:\.\d+)?\s*(?:CPU\s+)?(?:s|sec|seconds?|min|minutes?|h|hours?)\b")
+
+
+def readme_commands() -> list[str]:
+    """The commands the README shows, as written: the last command of each set-up line
+    (the main job, the test suite), the site build and every ``skfem-dielectric`` line of
+    the command-line block (comments dropped)."""
+    text = ROOT.joinpath("README.md").read_text()
+    cmds = [c.split("&&")[-1].strip() for c in _readme_commands()]
+    cmds += [ln.split("&&")[-1].strip() for ln in text.splitlines()
+             if ln.startswith("pip install") and "sphinx-build" in ln]
+    cmds += [ln.split("#")[0].strip() for ln in text.splitlines()
+             if ln.startswith("skfem-dielectric ")]
+    return cmds
+
+
+def costs_table() -> dict[str, list[str]]:
+    """The rows of docs/costs.md: command -> the other cells."""
+    rows = {}
+    for ln in ROOT.joinpath("docs", "costs.md").read_text().splitlines():
+        if ln.startswith("| `"):
+            cells = [c.strip() for c in ln.strip().strip("|").split("|")]
+            rows[cells[0].split("`")[1]] = cells[1:]
+    return rows
+
+
+def test_readme_states_no_costs_and_the_table_has_every_command():
+    """Costs are stated once, in the generated docs/costs.md: the README points to it and
+    quotes no CPU or wall time; the table has a row (measured, or saying how to measure it)
+    for every command the README shows, and counts the tests."""
+    text = ROOT.joinpath("README.md").read_text()
+    assert not _COST.findall(text), _COST.findall(text)
+    assert "(docs/costs.md)" in text
+    cmds = readme_commands()
+    assert "skfem-dielectric validate --quick --out results" in cmds
+    assert "python -m pytest" in cmds and len(cmds) == 10, cmds
+    table = costs_table()
+    assert sorted(table) == sorted(cmds)
+    for cmd, cells in table.items():
+        if cells[0] != "not measured":
+            cpu, wall = float(cells[0]), float(cells[1])
+            assert cpu > 0 and wall > 0 and cells[3].endswith(" MB"), (cmd, cells)
+    count = re.search(r"runs (\d+) tests; `python -m pytest -m slow` runs the other (\d+)",
+                      " ".join(ROOT.joinpath("docs", "costs.md").read_text().split()))
+    assert count and int(count[1]) > 1000, "docs/costs.md: no test count"
+
+
+def test_cost_pattern_catches_the_figures_it_should():
+    for prose in ("(74 s CPU)", "about 3 minutes of CPU", "2 CPU minutes", "44 min CPU",
+                  "170.4 s"):
+        assert _COST.search(prose), prose
+    for prose in ("100 x 50 x 1 mm", "150 g", "1e-12", "fourteen examples", "D0 = 5.1"):
+        assert not _COST.search(prose), prose
