@@ -102,6 +102,44 @@ def test_event_scan_locates_the_full_scans_load_with_its_counts(end_compression)
         buckling_load(pb, states, scan="some")
 
 
+def test_the_trials_trace_the_indicator_through_zero_at_the_located_load(end_compression):
+    """The trial states of the location (BucklingLoad.trials, drawn in buckling.png):
+    they start at the last stable scanned state and the first unstable one, end at the
+    located load, and the line through them crosses zero there, while the straight line
+    between the two scanned states crosses elsewhere.  Reference for each trial's
+    eigenvalue: the lowest physical mode of the whole plate at that state re-solved from
+    the stable state (lowest_physical: every class, every negative mode classified)."""
+    pb, states = end_compression
+    out = buckling_load(pb, states, tol=1e-5)
+    tr = out.trials
+    s_scan = [float(ld[0]) for _, ld in states]
+    k = next(i for i, v in enumerate(s_scan) if abs(v - tr[1]["s"]) <= 1e-12)
+    assert tr[0]["s"] == pytest.approx(s_scan[k - 1], abs=1e-12)
+    assert tr[0]["eigenvalue"] > 0 > tr[1]["eigenvalue"]
+    assert tr[-1]["s"] == out.load[0] and tr[-1]["eigenvalue"] == out.eigenvalue
+    assert {t["class"] for t in tr} == {out.label.symmetry}
+    assert all(t["D0"] == 1.0 for t in tr)
+    # the polyline through the trials (by load) crosses zero within tol of the located s
+    pts = sorted((t["s"], t["eigenvalue"]) for t in tr)
+    (j,) = [i for i in range(len(pts) - 1) if pts[i][1] * pts[i + 1][1] < 0]
+    (s0, v0), (s1, v1) = pts[j], pts[j + 1]
+    assert abs(s0 - v0 * (s1 - s0) / (v1 - v0) - out.load[0]) <= 1e-5
+    # the straight line between the two scanned states (the full scan's lowest physical
+    # eigenvalues there) misses it by more than ten times that
+    full = buckling_load(pb, states, tol=1e-5, scan="full")
+    (sa, va), (sb, vb) = [(r["s"], r["physical"]) for r in full.scan[k - 1:k + 1]]
+    assert abs(sa - va * (sb - sa) / (vb - va) - out.load[0]) > 1e-4
+    # each trial's eigenvalue is its state's lowest physical one (the same mode)
+    for t in (tr[2], tr[-1]):
+        res = fe.ramp(pb, [np.array([t["s"], 1.0])], x0=states[k - 1][0],
+                      start=np.asarray(states[k - 1][1], float),
+                      settings=fe.RampSettings(rtol=1e-10, atol=0.0))
+        assert res.converged
+        ref = lowest_physical(pb, res.x, np.array([t["s"], 1.0])).label
+        assert ref.symmetry == t["class"]
+        assert ref.eigenvalue == pytest.approx(t["eigenvalue"], rel=1e-4, abs=1e-9)
+
+
 def test_class_stability_in_threads_is_the_serial_one(end_compression):
     # the classes are independent problems: analysed two at a time (SuperLU releases the
     # GIL) they give the serial result bit for bit, in the order of the classes

@@ -74,6 +74,14 @@ class BucklingLoad:
         The :class:`~skfem_dielectric.solvers.critical.CriticalLoad` search, else ``None``.
     reason
         Why none was found (empty if found).
+    trials
+        The states the location solved, one dict per evaluation of the located crossing's
+        indicator (the last :attr:`critical` search), in the order solved: ``s``, ``D0``,
+        ``eigenvalue`` (of the followed physical mode; ``nan`` where none of its class's
+        modes near zero was physical) and ``class`` (its symmetry class).  The first is the
+        stable state the search starts from, the second the end of its bracket, the last
+        the located load: with the scanned states they trace the indicator through zero at
+        ``D0_b``, which a straight line between two scanned states does not.
     """
 
     D0_b: float
@@ -84,11 +92,24 @@ class BucklingLoad:
     scan: list[dict] = field(default_factory=list)
     critical: CriticalLoad | None = None
     reason: str = ""
+    trials: list[dict] = field(default_factory=list)
 
     @property
     def found(self) -> bool:
         """A buckling load was located."""
         return bool(np.isfinite(self.D0_b))
+
+
+def _trials(crit: CriticalLoad, load_a, load_b, name: str) -> list[dict]:
+    """The evaluations of a :func:`critical_load` search on the path ``load_a -> load_b``
+    as :attr:`BucklingLoad.trials` rows (``t`` back to the load)."""
+    la, lb = np.asarray(load_a, dtype=float), np.asarray(load_b, dtype=float)
+    out = []
+    for t, v in crit.evaluations:
+        s, d = (float(c) for c in la + t * (lb - la))
+        out.append({"s": s, "D0": d, "eigenvalue": float(v) if np.isfinite(v) else np.nan,
+                    "class": name})
+    return out
 
 
 def _scan_row(load, lowest) -> dict:
@@ -368,7 +389,7 @@ def locate_buckling(problem: PlateProblem, a: tuple[np.ndarray, Any],
     label = ModeLabel(float(crit.eigenvalue), c.name, dict(c.increments), lab["corner_share"],
                       lab["mesh_scale"], lab["kind"], last["mode"])
     return BucklingLoad(float(crit.load[1]), crit.load, crit.eigenvalue, label, crit.x, [],
-                        crit)
+                        crit, trials=_trials(crit, a[1], end, target.symmetry))
 
 
 def _locate(problem, a, b, phys_b, opts, scan, tol, maxiter, ramp_options) -> BucklingLoad:
@@ -414,4 +435,4 @@ def _locate(problem, a, b, phys_b, opts, scan, tol, maxiter, ramp_options) -> Bu
     ov = [abs(ref @ m.mode[:n_u]) / np.linalg.norm(m.mode[:n_u]) for m in same]
     label = same[int(np.argmax(ov))] if same else None
     return BucklingLoad(float(crit.load[1]), crit.load, crit.eigenvalue, label, crit.x, scan,
-                        crit)
+                        crit, trials=_trials(crit, a[1], end, target.symmetry))
