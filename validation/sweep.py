@@ -176,6 +176,8 @@ def _run_locked(case, runs, csv_path, fields_path, state_dir, runner, progress,
     files = CaseFiles(case, runs, csv_path, fields_path)
     plan, resumed = resume_plan(case, runs, files, state_dir, note)
     files.rewrite()
+    if resumed and progress is not False:
+        notice(_resumed_line(case.name, len(runs), [start for _, start, *_ in plan], resumed))
     total = sum(len(spec.D0) - start for spec, start, *_ in plan)
     with Progress(total, case.name, enabled=progress) as bar:
         for i, (spec, start, state, rows, frows) in enumerate(plan):
@@ -195,6 +197,21 @@ def _run_locked(case, runs, csv_path, fields_path, state_dir, runner, progress,
     result = summarise_case(case, csv_path, n_runs=len(runs))
     result.resumed_steps = resumed
     return result
+
+
+def _resumed_line(name: str, n_runs: int, starts: list[int], rows: int) -> str:
+    """What a resumed case kept: its converged steps (one CSV row each) and runs (``starts``:
+    the first target of each run still to compute, 0 for a run computed from the start).
+
+    Examples
+    --------
+    >>> _resumed_line("zs22", 4, [1, 0], 14)
+    'case zs22: resumed with 14 steps kept; runs: 2 of 4 complete, 1 continued from its last saved step, 1 from the start'
+    """
+    continued = sum(1 for s in starts if s > 0)
+    return (f"case {name}: resumed with {rows} steps kept; runs: {n_runs - len(starts)} of "
+            f"{n_runs} complete, {continued} continued from its last saved step, "
+            f"{len(starts) - continued} from the start")
 
 
 class _ResumeFailed(Exception):

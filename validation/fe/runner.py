@@ -32,6 +32,7 @@ import skfem_dielectric as fe
 from skfem_dielectric.models.plate.scan import PlateScan
 from skfem_dielectric.studies.buckling import locate_buckling
 
+from ..progress import report_step
 from ..records import RunOutcome
 from .columns import plate_buckling_columns, step_record, stability_monitor
 from .model import (BUCKLING_NEWTON, BUCKLING_TOL, buckling_problem, build_problem,
@@ -85,6 +86,8 @@ def _stabilised_states(spec, targets, state, linear_solver) -> dict:
         load = np.asarray(step.load, dtype=float)
         if load[0] == spec.s and step.target_reached:
             states[float(load[1])] = step.x
+            report_step(f"{spec.key} D0={load[1]:.3g} (grad-div form, for the whole "
+                        f"plate's spectrum)")
 
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", RuntimeWarning)       # its rows show the failure
