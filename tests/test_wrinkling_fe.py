@@ -6,6 +6,7 @@ import math
 
 import analytic as an
 from validation.cli import main
+from validation.store import StudyStore
 from validation.table import read_table
 import validation.studies.wrinkling as wr
 from validation.studies.wrinkling import ELASTIC_COLUMNS, WRINKLING_COLUMNS
@@ -68,22 +69,37 @@ def test_wrinkling_rows_resume_from_the_csv(tmp_path, monkeypatch):
 
     monkeypatch.setattr(wr, "_row", fake_row)
     path = tmp_path / "wrinkling-fe.csv"
-    first = wr.wrinkling_rows(quick=True, path=path)
+    notes = []
+
+    def rows():
+        with StudyStore(tmp_path, "wrinkling-fe", {"quick": True, "n1": 8}, wr.TABLE,
+                        plan=wr._grid_keys(True), note=notes.append) as store:
+            return wr.wrinkling_rows(quick=True, store=store)
+
+    first = rows()
     n = len(first)
     assert len(calls) == n == 8      # 2 controls x 2 modes x 1 lam x 2 kh
-    lines = path.read_text().splitlines()
-    assert len(lines) == n + 1       # written as it went: header and every row
-    assert "nan" not in path.read_text()
+    text = path.read_text()
+    lines = text.splitlines()
+    assert len(lines) == n + 1       # header and every row
+    assert "nan" not in text
     assert [r[4] for r in first if r[-1]] == [None, None]             # read back as empty
+    # the cells written: 1 + lam kh / 7 with 10 significant digits
+    assert [r[4] for r in first if not r[-1]] == [
+        float(f"{1 + lam * kh / 7:.10g}") for _, m, lam, kh in wr._grid_keys(True)
+        if not (kh == 2.0 and m == "symmetric")]
     t = read_table(path)
     assert [math.isnan(v) for v in t["D0_fe"]] == [note == "no FE root" for note in t["note"]]
     path.write_text("\n".join(lines[:-3]) + "\n")    # a run killed three rows early
     calls.clear()
-    again = wr.wrinkling_rows(quick=True, path=path)
-    assert len(calls) == 3 and again == first
+    again = rows()
+    assert len(calls) == 3 and again == first and notes == []
+    assert path.read_text() == text
     path.write_text("control,mode,other\n")          # another file: recomputed
     calls.clear()
-    assert wr.wrinkling_rows(quick=True, path=path) == first and len(calls) == n
+    assert rows() == first and len(calls) == n
+    assert notes == [f"{path} has other columns than {', '.join(wr.WRINKLING_COLUMNS)}; its "
+                     f"results are discarded and recomputed"]
 
 
 def test_the_mode_near_zero_is_the_mode_of_the_full_search():
@@ -129,8 +145,9 @@ def test_caption_gives_the_run_and_the_mesh_range():
 def test_a_cut_last_row_is_recomputed_with_a_note_naming_the_file(tmp_path, monkeypatch,
                                                                   capsys, fake_wrinkling):
     """docs/cli.md (the result folder): a last row cut short (no line end) is dropped and
-    recomputed, with one line on stderr naming the file; validate --case wrinkling-fe and
-    the wrinkling-fe command alike.  The FE rows are cheap stand-ins of the real ones."""
+    recomputed, with one line on stderr naming the file, and a resumed run says how many
+    rows it kept; validate --case wrinkling-fe and the wrinkling-fe command alike.  The FE
+    rows are cheap stand-ins of the real ones."""
     import json
 
     calls = fake_wrinkling(monkeypatch)
@@ -147,17 +164,25 @@ def test_a_cut_last_row_is_recomputed_with_a_note_naming_the_file(tmp_path, monk
     assert main(argv) == 0
     err = capsys.readouterr().err
     note = f"skfem-dielectric: {path}: its last row is incomplete (no line end); dropped"
-    assert err.splitlines() == [note]
+    elastic = out / "wrinkling-fe-elastic.csv"
+    assert err.splitlines() == [
+        note, f"skfem-dielectric: {path}: kept 7 of 8 rows of an earlier run",
+        f"skfem-dielectric: {elastic}: kept 2 of 2 rows of an earlier run"]
     assert calls == [("voltage", "antisymmetric", 1.5, 2.0)]    # only that row recomputed
     assert path.read_bytes() == ref
     summary = json.loads((out / "summary.json").read_text())["cases"]["wrinkling-fe"]
     assert summary["repairs"] == [note.removeprefix("skfem-dielectric: ")]
+    assert summary["resumed_steps"] == 9
     # the command wrinkling-fe: the same note for its second CSV
-    elastic = out / "wrinkling-fe-elastic.csv"
-    elastic.write_bytes(elastic.read_bytes()[:-3])
+    ref = elastic.read_bytes()
+    elastic.write_bytes(ref[:-3])
     calls.clear()
     assert main(["wrinkling-fe", "--quick", "--out", str(out)]) == 0
     err = capsys.readouterr().err
     assert err.splitlines() == [f"skfem-dielectric: {elastic}: its last row is incomplete "
-                                f"(no line end); dropped"]
+                                f"(no line end); dropped",
+                                f"skfem-dielectric: {path}: kept 8 of 8 rows of an earlier run",
+                                f"skfem-dielectric: {elastic}: kept 1 of 2 rows of an earlier "
+                                f"run"]
     assert calls == [("antisymmetric", 20.0)]
+    assert elastic.read_bytes() == ref

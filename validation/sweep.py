@@ -48,7 +48,7 @@ from .progress import Progress, notice
 from .records import StepRecord
 from .report import CASE_FIGURES, write_report, write_summary
 from .results import CaseResult, folder_results, summarise_case
-from .store import (CaseFiles, FolderLock, RowDigest, case_manifest, command_lock,
+from .store import (CaseFiles, FolderLock, RowDigest, case_manifest,
                     resume_plan, save_state, spec_sig, state_path, write_text_atomic)
 from .table import FIELD_KEYS, case_row, format_cell, is_breakdown, read_table
 from .studies.extra_cases import EXTRA_CASES
@@ -492,7 +492,7 @@ def validate(cases: Iterable[Case | str] | None, out, *, quick: bool = False,
             make_breakdown_map(r, out, quick=quick)
     for name in (c for c in cases if c in EXTRA_CASES):
         cpu = time.process_time()
-        results.append(extra_case_result(name, out, quick=quick))
+        results.append(extra_case_result(name, out, quick=quick, force=force))
         Progress(1, name, enabled=progress).line(
             f"{results[-1].n_steps} FE points, {time.process_time() - cpu:.1f} s CPU")
     out = Path(out)
@@ -504,17 +504,20 @@ def validate(cases: Iterable[Case | str] | None, out, *, quick: bool = False,
     return results
 
 
-def extra_case_result(name: str, out, *, quick: bool = False) -> CaseResult:
-    """Run the case ``name`` of :data:`~validation.studies.extra_cases.EXTRA_CASES` (not a charge
-    ramp: the continuation through the snap-through, the FE wrinkling against Stroh) into
-    ``out`` and summarise it with its own error measure.  The case is locked like a
-    registered one (``out/.state/<name>.lock``): a second process writing it is refused."""
+def extra_case_result(name: str, out, *, quick: bool = False,
+                      force: bool = False) -> CaseResult:
+    """Run (or resume) the case ``name`` of :data:`~validation.studies.extra_cases.EXTRA_CASES`
+    (not a charge ramp: the continuation through the snap-through, the FE wrinkling
+    against Stroh) into ``out`` and summarise it with its own error measure.  The case is
+    locked like a registered one (``out/.state/<name>.lock``, held by its
+    :class:`~validation.store.StudyStore`): a second process writing it is refused;
+    ``force`` discards its earlier results."""
     case = EXTRA_CASES[name]
-    with command_lock(out, name, f"case {name!r} in {out}"):
-        paths, summ = case.run(out, quick=quick)
+    paths, summ = case.run(out, quick=quick, force=force)
     # the CSV as every case names it: relative to the folder of summary.json
     csv_name = os.path.relpath(paths[0], out)
     return CaseResult(name, case.figure, csv_name, summ["n_runs"], summ["n_points"],
                       summ["max_rel_error"], max_rel_error_by_run=summ["max_rel_error_by_run"],
                       reasons=summ["reasons"], runtime_s=summ["runtime_s"], quick=quick,
+                      resumed_steps=summ.get("resumed", 0),
                       repairs=list(summ.get("repairs", [])))

@@ -1,5 +1,5 @@
-"""The row files of the studies (``buckling``, ``post-buckling``, ``wrinkling-fe``) and the
-lock of a command that writes a folder.
+"""The row files of the studies (``buckling``, ``post-buckling``, ``wrinkling-fe``,
+``voltage-control``) and the lock of a command that writes a folder.
 
 * :class:`StudyStore` -- the files of one study: a table with one row per unit of work
   (an alpha x mesh), written last, and detail files with the unit's other rows; every
@@ -29,7 +29,9 @@ __all__ = ["read_rows", "KeyedRows", "command_lock", "DamagedFileError", "RowFil
            "StudyStore", "TEXT_COLUMNS"]
 
 #: the columns of the study CSVs that hold text; every other cell is a number
-TEXT_COLUMNS = frozenset({"mesh", "class", "physical_class", "branch", "reason", "model"})
+TEXT_COLUMNS = frozenset({"mesh", "class", "physical_class", "branch", "reason", "model",
+                          "control", "mode", "note", "case", "run", "loading", "variant",
+                          "kind", "stable", "stable_charge"})
 
 
 def command_lock(out, name: str, what: str) -> FolderLock:
@@ -180,6 +182,12 @@ class StudyStore:
         with the rows when these are discarded.
     note : callable
         ``note(message)``: one line for each repair (rows dropped, results discarded).
+    counts : dict, optional
+        ``{detail file name: table column}``: the table column that holds how many rows
+        the unit has in that detail file; a unit with another number of rows there (a
+        file cut short or edited) is dropped and recomputed, with a note.
+    force : bool
+        Discard the results present (and the ``derived`` files) without reading them.
 
     Raises
     ------
@@ -210,8 +218,10 @@ class StudyStore:
     """
 
     def __init__(self, out, name: str, settings: dict, table: RowFile,
-                 details: tuple = (), *, plan, derived: tuple = (), note=None):
+                 details: tuple = (), *, plan, derived: tuple = (), note=None,
+                 counts: dict | None = None, force: bool = False):
         self.out, self.name, self.settings = Path(out), name, settings
+        self.counts, self.force = dict(counts or {}), force
         self.table, self.details, self.derived = table, tuple(details), tuple(derived)
         self.plan = [tuple(_text(v) for v in k) for k in plan]
         self.note = note or (lambda msg: None)
@@ -236,13 +246,16 @@ class StudyStore:
 
     def _open(self) -> None:
         for f in self._files():                     # temporaries of a killed write
-            for tmp in self.out.glob(f".{f.name}.*.tmp"):
+            path = self.out / f.name
+            for tmp in path.parent.glob(f".{path.name}.*.tmp"):
                 tmp.unlink()
         man = self.out / ".state" / f"{self.name}.json"
         want = json.loads(dumps(self.settings))
         present = [f.name for f in self._files() if (self.out / f.name).exists()]
         why = ""
-        if man.exists():
+        if self.force:
+            self._discard()
+        elif man.exists():
             try:
                 saved = json.loads(man.read_text())
             except (ValueError, UnicodeDecodeError):
@@ -252,7 +265,7 @@ class StudyStore:
                        f"({dumps(saved)}) differ from these ({dumps(want)})")
         elif present:
             why = f"{', '.join(present)} in {self.out} have no saved settings ({man})"
-        if not why:
+        if not why and not self.force:
             why = self._read()
         if why:
             if present:
@@ -264,7 +277,7 @@ class StudyStore:
         """Read the files into memory; why they are discarded as a whole (empty: kept)."""
         self.cells: dict[str, dict[tuple, list]] = {}
         self.order: list[tuple] = []
-        repaired = False
+        repaired, cut_files = False, set()
         for f in self._files():
             path = self.out / f.name
             header, rows, cut = _parse(path, _read_text(path))
@@ -273,6 +286,7 @@ class StudyStore:
             if cut:
                 self.note(f"{path}: its last row is incomplete (no line end); dropped")
                 repaired = True
+                cut_files.add(f.name)
             by: dict[tuple, list] = {}
             for line, r in rows:
                 if len(r) != len(f.columns):
@@ -290,13 +304,32 @@ class StudyStore:
                 if f is self.table:
                     self.order.append(k)
             self.cells[f.name] = by
+        table, recounted = self.cells[self.table.name], set()
+        for name, column in self.counts.items():    # units missing rows of a detail file
+            i = self.table.columns.index(column)
+            short = [k for k in self.order
+                     if _value(self.out / self.table.name, 0, column, table[k][0][i])
+                     != len(self.cells[name].get(k, []))]
+            if short:
+                if name not in cut_files:       # the cut row's note says it
+                    self.note(f"{self.out / name}: the rows of {len(short)} unit(s) are "
+                              f"missing or extra ({'; '.join(', '.join(k) for k in short)}); "
+                              f"recomputed")
+                for k in short:
+                    del table[k]
+                recounted.update(short)
+                self.order = [k for k in self.order if k in table]
+                repaired = True
         done = set(self.order)
         for f in self.details:
             extra = [k for k in self.cells[f.name] if k not in done]
             if extra:
-                n = sum(len(self.cells[f.name].pop(k)) for k in extra)
-                self.note(f"{self.out / f.name}: {n} row(s) of {len(extra)} unfinished "
-                          f"unit(s) dropped")
+                rows = {k: self.cells[f.name].pop(k) for k in extra}
+                unfinished = [k for k in extra if k not in recounted]   # others: noted
+                if unfinished and f.name not in cut_files:
+                    self.note(f"{self.out / f.name}: "
+                              f"{sum(len(rows[k]) for k in unfinished)} row(s) of "
+                              f"{len(unfinished)} unfinished unit(s) dropped")
                 repaired = True
         if repaired:
             self._write()
@@ -313,6 +346,10 @@ class StudyStore:
         self.order = []
 
     # -- use -------------------------------------------------------------------------
+    def kept(self) -> int:
+        """How many units of ``plan`` are in the table (kept from an earlier run)."""
+        return sum(k in self.cells[self.table.name] for k in self.plan)
+
     def done(self, key) -> bool:
         """Whether the unit ``key`` (values of the table's key columns) is in the table."""
         return tuple(_text(v) for v in key) in self.cells[self.table.name]

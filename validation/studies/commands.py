@@ -9,7 +9,6 @@ from __future__ import annotations
 
 from ..options import mesh_triple, out_dir, positive, solver_name
 from ..progress import notice
-from ..store import command_lock
 from .buckling import FULL as BUCKLING_FULL, QUICK as BUCKLING_QUICK, run_buckling
 from .buckling import charge_targets as buckling_targets
 from .postbuckling import FULL as POST_FULL, QUICK as POST_QUICK, run_post_buckling
@@ -202,9 +201,8 @@ def cmd_wrinkling(args) -> int:
               + (f"lam_fe = {row[2]:.6g}, lam_stroh = {row[3]:.6g}  rel. error {row[4]:+.2e}"
                  if row[2] is not None else (row[6] or "no FE root")), flush=True)
 
-    with command_lock(args.out, "wrinkling-fe", f"case 'wrinkling-fe' in {args.out}"):
-        paths = run_wrinkling_fe(args.out, quick=args.quick, on_row=show,
-                                 on_elastic_row=show_elastic, note=notice)
+    paths = run_wrinkling_fe(args.out, quick=args.quick, on_row=show,
+                             on_elastic_row=show_elastic, note=notice, say=notice)
     print("wrote " + ", ".join(str(p) for p in paths))
     return 0
 

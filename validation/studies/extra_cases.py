@@ -42,10 +42,13 @@ class ExtraCase:
     error_note
         One sentence for the report: what its error measure is.
     run
-        ``run(out, quick) -> (paths, summary)`` with ``summary`` holding ``n_runs``,
-        ``n_points``, ``max_rel_error``, ``max_rel_error_by_run``, ``reasons``,
-        ``runtime_s`` and optionally ``repairs`` (one line per row a resume dropped and
-        recomputed, each also written to stderr).
+        ``run(out, quick, force) -> (paths, summary)`` with ``summary`` holding
+        ``n_runs``, ``n_points``, ``max_rel_error``, ``max_rel_error_by_run``,
+        ``reasons``, ``runtime_s``, ``repairs`` (one line per row a resume dropped and
+        recomputed, each also written to stderr) and ``resumed`` (rows kept from an
+        earlier run, said in one line on stderr).  It holds the case's lock
+        (``out/.state/<name>.lock``, a :class:`~validation.store.StudyStore`) while it
+        writes: a second process writing the case into ``out`` is refused.
     count
         ``count(quick) -> int``: its number of FE runs (for ``skfem-dielectric list``).
     """
@@ -59,15 +62,31 @@ class ExtraCase:
     count: Callable
 
 
-def _run_wrinkling(out, quick: bool = False):
-    t0 = time.perf_counter()
+def _notes() -> tuple[list[str], Callable]:
+    """The repairs of a run and ``note(message)``, which keeps one and writes it to
+    stderr."""
     repairs: list[str] = []
 
     def note(msg: str) -> None:
         repairs.append(msg)
         notice(msg)
 
-    paths = run_wrinkling_fe(out, quick=quick, note=note)
+    return repairs, note
+
+
+def _run_voltage(out, quick: bool = False, force: bool = False):
+    repairs, note = _notes()
+    paths, summary = run_voltage_control(out, quick=quick, note=note, say=notice, force=force)
+    return paths, {**summary, "repairs": repairs}
+
+
+def _run_wrinkling(out, quick: bool = False, force: bool = False):
+    t0 = time.perf_counter()
+    repairs, note = _notes()
+    computed = []
+    paths = run_wrinkling_fe(out, quick=quick, on_row=computed.append,
+                             on_elastic_row=computed.append, note=note, say=notice,
+                             force=force)
     with open(paths[0], newline="") as fh:
         lines = list(csv.DictReader(fh))
     with open(paths[1], newline="") as fh:
@@ -85,7 +104,8 @@ def _run_wrinkling(out, quick: bool = False):
     return paths, {"n_runs": _wrinkling_count(quick), "n_points": len(runs),
                    "max_rel_error": max(errors.values()) if errors else None,
                    "max_rel_error_by_run": errors, "reasons": reasons,
-                   "runtime_s": time.perf_counter() - t0, "repairs": repairs}
+                   "runtime_s": time.perf_counter() - t0, "repairs": repairs,
+                   "resumed": len(runs) - len(computed)}
 
 
 def _wrinkling_count(quick: bool) -> int:
@@ -98,7 +118,7 @@ EXTRA_CASES: dict[str, ExtraCase] = {c.name: c for c in (
     ExtraCase(VOLTAGE_CONTROL, "Hessian: nh-d-e, gent-d-e, figde", VOLTAGE_TITLE, LIMIT_TOL,
               f"For {VOLTAGE_CONTROL} the error is that of lam1 at the limit points (maximum "
               "of E0 under voltage control) of the homogeneous plates against "
-              "analytic.max_E0.", run_voltage_control,
+              "analytic.max_E0.", _run_voltage,
               lambda quick: len(voltage_runs(quick))),
     ExtraCase(WRINKLING_FE, "Sec. 3 (Stroh)", "FE wrinkling of the cross-section (sliding "
               "ends, one Fourier mode) against the Stroh dispersion relation: charge and "

@@ -17,7 +17,10 @@ homogeneous loading.  The limit point of each run is compared with
 :func:`analytic.max_E0`.  Written as ``DIR/voltage-control.csv`` (one row per point of
 a path) and ``DIR/voltage-control.png|pdf`` (charge against voltage: FE dots on the
 analytic loading curves and the ``det H* = 0`` locus; titles, legends and the caption
-line name only the paths drawn, with the names of :mod:`validation.figures`).
+line name only the paths drawn, with the names of :mod:`validation.figures`).  The rows
+are kept in a :class:`validation.store.StudyStore` (lock ``.state/voltage-control.lock``),
+one unit per path: a rerun with the same settings keeps the paths written and computes
+the others, so that an interrupted run resumes to the files of an uninterrupted one.
 """
 
 from __future__ import annotations
@@ -42,9 +45,10 @@ from ..figures import (MODEL_NAME, PAPER_FIGURE, add_caption, mesh_caption,
                       run_caption, save_figure, tag_panels)
 from ..markers import LIMIT_POINT, STABLE_STATE, UNSTABLE_STATE, legend_style
 from ..specs import ALPHAS, KEPLINGER
-from ..store import write_csv_atomic
+from ..store import RowFile, StudyStore
 
-__all__ = ["VOLTAGE_CONTROL", "VOLTAGE_COLUMNS", "LIMIT_TOL", "voltage_runs", "voltage_rows",
+__all__ = ["VOLTAGE_CONTROL", "VOLTAGE_COLUMNS", "RUN_COLUMNS", "POINTS", "RUNS", "LIMIT_TOL",
+           "voltage_runs", "voltage_rows",
            "voltage_figure", "voltage_caption", "run_voltage_control"]
 
 VOLTAGE_CONTROL = "voltage-control"
@@ -54,6 +58,11 @@ VOLTAGE_COLUMNS = ["case", "run", "point", "model", "loading", "variant", "s", "
                    "branch", "lam1_fe", "E0", "E0_analytic", "D0", "n_unstable",
                    "n_negative_charge", "stable", "stable_charge", "lam1_max_fe", "E0_max_fe",
                    "lam1_max_analytic", "E0_max_analytic", "iterations", "note"]
+#: the resume table (one row per path, written after the path's points; below ``.state``)
+RUN_COLUMNS = ["run", "model", "loading", "s", "alpha", "n_points"]
+#: the files of the case (:class:`~validation.store.StudyStore`), a path the unit
+POINTS = RowFile(f"{VOLTAGE_CONTROL}.csv", tuple(VOLTAGE_COLUMNS), ("run",))
+RUNS = RowFile(f".state/{VOLTAGE_CONTROL}-runs.csv", tuple(RUN_COLUMNS), ("run",))
 #: verdict tolerance on the relative lam1 error of the homogeneous limit points (the
 #: stated target is 1e-4 in lam1 and 1e-6 in E0; the limit point is located to
 #: ``|dE0/ds| <= 1e-9``, so the measured errors are near 1e-10)
@@ -337,8 +346,46 @@ def _fmt(v) -> str:
     return "" if math.isnan(v) else format(v, ".12g")     # nan: no value, an empty cell
 
 
-def run_voltage_control(out, quick: bool = False, on_run=None) -> tuple[list[Path], dict]:
+def _read_back(row: dict) -> list:
+    """A row of ``voltage-control.csv`` read back (:func:`validation.store.read_rows`) as
+    :func:`voltage_rows` gives it: ``stable`` and ``stable_charge`` as ``True``, ``False``
+    or ``None``, ``alpha`` ``None`` for a homogeneous plate, no value as ``nan``."""
+    out = []
+    for c in VOLTAGE_COLUMNS:
+        v = row[c]
+        if c in ("stable", "stable_charge"):
+            v = {"True": True, "False": False}.get(v)
+        elif c == "alpha" and math.isnan(v):
+            v = None
+        out.append(v)
+    return out
+
+
+def run_voltage_control(out, quick: bool = False, on_run=None, note=None, say=None,
+                        force: bool = False) -> tuple[list[Path], dict]:
     """Write ``out/voltage-control.csv`` and ``.png|pdf``.
+
+    The paths are the units of a :class:`~validation.store.StudyStore` (lock
+    ``out/.state/voltage-control.lock``, held until the figure is written; settings: quick
+    or full): the rows of a path are written (atomically, the whole file) when it ends,
+    then its line of the resume table ``out/.state/voltage-control-runs.csv`` with its
+    number of rows.  A rerun keeps the paths found whole and computes the others; a
+    path with a row missing, cut short or added is recomputed.
+
+    Parameters
+    ----------
+    out : path-like
+        The output folder.
+    quick : bool
+        The quick runs.
+    on_run : callable, optional
+        ``on_run(run, rows, seconds)`` after each path computed.
+    note, say : callable, optional
+        ``note(message)``: one line naming the file for each repair (a last row cut short,
+        a path's rows incomplete, other settings); ``say(message)``: one line for a
+        resumed run, how many paths and rows it kept.
+    force : bool
+        Discard the paths present.
 
     Returns
     -------
@@ -347,16 +394,43 @@ def run_voltage_control(out, quick: bool = False, on_run=None) -> tuple[list[Pat
         ``n_runs``, ``n_points``, ``max_rel_error`` (largest relative ``lam1`` error of
         the homogeneous limit points against :func:`analytic.max_E0`),
         ``max_rel_error_by_run``, ``E0_error_by_run`` (absolute), ``runtime_s``,
-        ``reasons`` (runs whose path stopped on a solver failure).
+        ``reasons`` (runs whose path stopped on a solver failure), ``resumed`` (rows
+        kept from an earlier run).
+
+    Raises
+    ------
+    validation.store.LockedError
+        Another process writes the case into ``out``.
+    validation.store.DamagedFileError
+        A complete row that cannot be read back (names the file and the row).
     """
     t0 = time.perf_counter()
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
-    rows = voltage_rows(quick, on_run)
-    csv_path = write_csv_atomic(out / f"{VOLTAGE_CONTROL}.csv", VOLTAGE_COLUMNS,
-                                [[_fmt(v) for v in r] for r in rows])
-    ax = voltage_figure(rows, quick=quick)
-    paths = [csv_path] + save_figure(ax[0].figure, out, VOLTAGE_CONTROL)
+    runs = voltage_runs(quick)
+    with StudyStore(out, VOLTAGE_CONTROL, {"quick": bool(quick)}, RUNS, (POINTS,),
+                    plan=[(_run_key(r),) for r in runs], counts={POINTS.name: "n_points"},
+                    derived=(f"{VOLTAGE_CONTROL}.png", f"{VOLTAGE_CONTROL}.pdf"), note=note,
+                    force=force) as store:
+        kept = sum(int(r["n_points"]) for r in store.rows() if store.done((r["run"],)))
+        if store.kept() and say is not None:
+            say(f"{out / POINTS.name}: kept {store.kept()} of {len(runs)} paths ({kept} rows) "
+                f"of an earlier run")
+        for r in runs:
+            if store.done((_run_key(r),)):
+                continue
+            t1 = time.perf_counter()
+            new = _rows_of(r, quick)
+            store.commit({**{c: _fmt(r[c]) for c in ("model", "loading", "s", "alpha")},
+                          "run": _run_key(r), "n_points": str(len(new))},
+                         {POINTS.name: [dict(zip(VOLTAGE_COLUMNS, map(_fmt, row)))
+                                        for row in new]})
+            if on_run is not None:
+                on_run(r, new, time.perf_counter() - t1)
+        rows = [_read_back(row) for row in store.rows(POINTS.name)]
+        csv_path = out / POINTS.name
+        ax = voltage_figure(rows, quick=quick)
+        paths = [csv_path] + save_figure(ax[0].figure, out, VOLTAGE_CONTROL)
     col = {c: VOLTAGE_COLUMNS.index(c) for c in VOLTAGE_COLUMNS}
     lam_err, E0_err, reasons = {}, {}, {}
     for run in dict.fromkeys(r[1] for r in rows):
@@ -375,5 +449,5 @@ def run_voltage_control(out, quick: bool = False, on_run=None) -> tuple[list[Pat
                "n_points": len(rows),
                "max_rel_error": max(lam_err.values()) if lam_err else None,
                "max_rel_error_by_run": lam_err, "E0_error_by_run": E0_err,
-               "runtime_s": time.perf_counter() - t0, "reasons": reasons}
+               "runtime_s": time.perf_counter() - t0, "reasons": reasons, "resumed": kept}
     return paths, summary

@@ -8,10 +8,11 @@ sliding ends (:func:`skfem_dielectric.studies.wrinkling_section`,
 Sec. 3 (under voltage control both are the critical ``D0 = lam^4 E0``).  Written as
 ``DIR/wrinkling-fe.csv`` (one row per grid point; a point without a Stroh root says so)
 and ``DIR/wrinkling-fe.png|pdf`` (FE dots on the dispersion curves, with the caption
-line and the model names of :mod:`validation.figures`).  The CSVs are rewritten
-(atomically) after every row, and a rerun into the same folder keeps the rows it finds
-there (same columns and grid point) and computes only the missing ones: an interrupted run
-resumes.
+line and the model names of :mod:`validation.figures`).  Both CSVs are the tables of a
+:class:`validation.store.StudyStore` (one row per grid point, each rewritten atomically
+after every row, under the lock ``.state/wrinkling-fe.lock``): a rerun into the same
+folder with the same grid keeps the rows it finds and computes only the missing ones, so
+that an interrupted run resumes to the files of an uninterrupted one.
 """
 
 from __future__ import annotations
@@ -29,9 +30,10 @@ import analytic as an
 import skfem_dielectric as fe
 
 from ..figures import MODEL_NAME, add_caption, mesh_caption, run_caption, save_figure, tag_panels
-from ..store import KeyedRows, write_csv_atomic
+from ..store import RowFile, StudyStore
 
-__all__ = ["WRINKLING_COLUMNS", "ELASTIC_COLUMNS", "wrinkling_grid", "wrinkling_rows",
+__all__ = ["WRINKLING_COLUMNS", "ELASTIC_COLUMNS", "TABLE", "ELASTIC", "wrinkling_grid",
+           "wrinkling_rows",
            "wrinkling_fe_runs",
            "elastic_grid", "elastic_rows", "stroh_critical_stretch", "run_wrinkling_fe",
            "wrinkling_figure", "wrinkling_caption"]
@@ -41,6 +43,9 @@ WRINKLING_COLUMNS = ["control", "mode", "lam", "kh", "D0_fe", "D0_stroh", "rel_e
 ELASTIC_COLUMNS = ["mode", "kh", "lam_fe", "lam_stroh", "rel_error", "mesh", "note"]
 MODES = ("symmetric", "antisymmetric")
 CONTROLS = ("charge", "voltage")
+#: the files (:class:`~validation.store.StudyStore`), one row per grid point
+TABLE = RowFile("wrinkling-fe.csv", tuple(WRINKLING_COLUMNS), ("control", "mode", "lam", "kh"))
+ELASTIC = RowFile("wrinkling-fe-elastic.csv", tuple(ELASTIC_COLUMNS), ("mode", "kh"))
 
 
 def wrinkling_grid(quick: bool = False) -> dict:
@@ -104,24 +109,41 @@ def _row(control, mode, lam, kh, n1) -> list:
     return base + [d0, ref, d0 / ref - 1.0, f"{n1}x{n2}", r.n_negative_below, n_ref, ""]
 
 
-def wrinkling_rows(quick: bool = False, on_row=None, path: Path | None = None,
-                   note=None) -> list[list]:
-    """Every row of the grid (``on_row(row)`` after each, e.g. for progress); with
-    ``path`` the CSV is written after every row and the rows already in it are reused
-    (``note(message)``: one line naming the file for a row dropped to be recomputed, e.g.
-    a last row cut short; :class:`validation.store.KeyedRows`)."""
+def _grid_keys(quick: bool) -> list[tuple]:
     g = wrinkling_grid(quick)
-    store = KeyedRows(path, WRINKLING_COLUMNS, 4, _fmt, note=note)
+    return [(control, mode, lam, kh) for control in CONTROLS for mode in MODES
+            for lam in g["lam"] for kh in g["kh"]]
+
+
+def _stored(store, table: RowFile, keys, compute, on_row) -> list[list]:
+    """The rows of ``keys``: those in ``store`` kept, the others computed
+    (``compute(key)``), committed one by one and passed to ``on_row``.  With a store every
+    row is returned as written (an empty cell as ``None``), so that what is drawn and
+    summarised from a resumed run is what an uninterrupted one gives."""
     rows = []
-    for control in CONTROLS:
-        for mode in MODES:
-            for lam in g["lam"]:
-                for kh in g["kh"]:
-                    rows.append(store.get((control, mode, lam, kh), lambda: _row(
-                        control, mode, lam, kh, g["n1"])))
-                    if on_row is not None:
-                        on_row(rows[-1])
-    return rows
+    for key in keys:
+        if store is not None and store.done(key):
+            continue
+        row = compute(key)
+        if store is not None:
+            store.commit({c: _fmt(v) for c, v in zip(table.columns, row)}, {})
+        if on_row is not None:
+            on_row(row)
+        rows.append(row)
+    if store is None:
+        return rows
+    written = {table.key_of(r): r for r in store.rows()}
+    return [[None if v == "" or (isinstance(v, float) and math.isnan(v)) else v
+             for v in written[tuple(_fmt(x) for x in key)].values()] for key in keys]
+
+
+def wrinkling_rows(quick: bool = False, on_row=None, store: StudyStore | None = None
+                   ) -> list[list]:
+    """Every row of the grid (``on_row(row)`` after each row computed, e.g. for progress);
+    with ``store`` (an open :class:`~validation.store.StudyStore` of :data:`TABLE`) the
+    rows in it are reused and each new row is committed (the CSV rewritten atomically)."""
+    n1 = wrinkling_grid(quick)["n1"]
+    return _stored(store, TABLE, _grid_keys(quick), lambda key: _row(*key, n1), on_row)
 
 
 def elastic_grid(quick: bool = False) -> dict:
@@ -168,18 +190,13 @@ def _elastic_row(mode, kh, n1) -> list:
     return [mode, kh, lam, ref, lam / ref - 1.0, f"{n1}x{n2}", ""]
 
 
-def elastic_rows(quick: bool = False, on_row=None, path: Path | None = None,
-                 note=None) -> list[list]:
-    """The rows of :func:`elastic_grid` (``on_row(row)`` after each; ``path`` and ``note``
-    as in :func:`wrinkling_rows`)."""
+def elastic_rows(quick: bool = False, on_row=None, store: StudyStore | None = None
+                 ) -> list[list]:
+    """The rows of :func:`elastic_grid` (``on_row`` and ``store``, of :data:`ELASTIC`, as
+    in :func:`wrinkling_rows`)."""
     g = elastic_grid(quick)
-    store = KeyedRows(path, ELASTIC_COLUMNS, 2, _fmt, note=note)
-    rows = []
-    for mode, kh in g["rows"]:
-        rows.append(store.get((mode, kh), lambda: _elastic_row(mode, kh, g["n1"])))
-        if on_row is not None:
-            on_row(rows[-1])
-    return rows
+    return _stored(store, ELASTIC, list(g["rows"]),
+                   lambda key: _elastic_row(*key, g["n1"]), on_row)
 
 
 def _fmt(v) -> str:
@@ -309,18 +326,41 @@ def wrinkling_figure(rows: list[list], ax=None, elastic: list[list] | None = Non
     return ax
 
 
-def run_wrinkling_fe(out, quick: bool = False, on_row=None,
-                     on_elastic_row=None, note=None) -> list[Path]:
+def run_wrinkling_fe(out, quick: bool = False, on_row=None, on_elastic_row=None,
+                     note=None, say=None, force: bool = False) -> list[Path]:
     """Write ``out/wrinkling-fe.csv``, ``out/wrinkling-fe-elastic.csv`` and the figure
-    ``out/wrinkling-fe.png`` and ``.pdf``; return their paths (in this order).  Rows
-    already in the CSVs are reused; ``note(message)`` gets one line naming the file for
-    each row dropped to be recomputed (e.g. a last row cut short)."""
+    ``out/wrinkling-fe.png`` and ``.pdf``; return their paths (in this order).
+
+    The two CSVs are the tables of :class:`~validation.store.StudyStore` ``wrinkling-fe``
+    and ``wrinkling-fe-elastic`` (their locks ``out/.state/<name>.lock``, held from
+    before anything is read until the figure is written; settings: the grid, quick or
+    full): rows already there are reused, a folder of the other grid is discarded and
+    recomputed.  ``note(message)`` gets one line naming the file for each repair (a last
+    row cut short, a row of another length, a file of other columns or settings),
+    ``say(message)`` one line per CSV of a resumed run: how many rows it kept.
+    ``force`` discards the rows present.
+
+    Raises
+    ------
+    validation.store.LockedError
+        Another process writes the case into ``out``.
+    validation.store.DamagedFileError
+        A complete row that cannot be read back (names the file and the row).
+    """
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
-    csv_path, csv_elastic = out / "wrinkling-fe.csv", out / "wrinkling-fe-elastic.csv"
-    rows = wrinkling_rows(quick, on_row, path=csv_path, note=note)
-    write_csv_atomic(csv_path, WRINKLING_COLUMNS, [[_fmt(v) for v in r] for r in rows])
-    elastic = elastic_rows(quick, on_elastic_row, path=csv_elastic, note=note)
-    write_csv_atomic(csv_elastic, ELASTIC_COLUMNS, [[_fmt(v) for v in r] for r in elastic])
-    ax = wrinkling_figure(rows, elastic=elastic, quick=quick)
-    return [csv_path, csv_elastic] + save_figure(ax[0].figure, out, "wrinkling-fe")
+    settings = {"quick": bool(quick), "n1": wrinkling_grid(quick)["n1"]}
+    kw = dict(note=note, force=force)
+    with StudyStore(out, "wrinkling-fe", settings, TABLE, plan=_grid_keys(quick),
+                    derived=("wrinkling-fe.png", "wrinkling-fe.pdf"), **kw) as st, \
+            StudyStore(out, "wrinkling-fe-elastic", settings, ELASTIC,
+                       plan=list(elastic_grid(quick)["rows"]), **kw) as se:
+        for store, table in ((st, TABLE), (se, ELASTIC)):
+            if store.kept() and say is not None:
+                say(f"{out / table.name}: kept {store.kept()} of {len(store.plan)} rows of "
+                    f"an earlier run")
+        rows = wrinkling_rows(quick, on_row, store=st)
+        elastic = elastic_rows(quick, on_elastic_row, store=se)
+        ax = wrinkling_figure(rows, elastic=elastic, quick=quick)
+        return ([out / TABLE.name, out / ELASTIC.name]
+                + save_figure(ax[0].figure, out, "wrinkling-fe"))
