@@ -252,3 +252,57 @@ def test_validate_and_buckling_quick_report_the_same_D0_b(tmp_path):
     summary = json.loads((tmp_path / "v" / "summary.json").read_text())
     assert summary["cases"]["uni-axial-ideal"]["buckling_D0"][spec.key] == D0_b
     assert f"D0_b = {D0_b:.4g}" in (tmp_path / "v" / "report.md").read_text()
+
+
+def test_the_study_figure_passes_through_zero_at_D0_b_and_names_the_forms(tmp_path):
+    """buckling.png: the eigenvalue panel joins the scanned states and the location's trial
+    states in D0 order, so its line crosses zero at the row's D0_b (the trials' closed
+    form: eigenvalue = 0 at 2.9147), not where the straight line between the two scanned
+    states would (2.857); the P33 panel names the grad-div stabilised form it draws and
+    marks both forms' interior onsets (0.645 and the plain form's 2.52)."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    import validation.studies.buckling as bk
+
+    nan = float("nan")
+    row = {c: nan for c in bk.COLUMNS} | {"alpha": 1.0, "mesh": "10x1x5", "D0_b": 2.9147,
+                                          "class": "x1 S", "P33_onset_interior": 0.645}
+    scan = [{c: nan for c in bk.SCAN_COLUMNS} | {"alpha": 1.0, "mesh": "10x1x5", "D0": d,
+                                                 "physical": v, **{f"P33_{k}": -0.02 * d
+                                                                   for k in bk.P33_SETS}}
+            for d, v in ((2.0, nan), (2.5, 0.05), (3.0, -0.02))]
+    trials = [{"alpha": 1.0, "mesh": "10x1x5", "D0": d, "eigenvalue": v,
+               "physical_class": "x1 S"}
+              for d, v in ((2.5, 0.05), (3.0, -0.02), (2.93, -0.003), (2.91, 0.0008),
+                           (2.9147, 0.0))]
+    plain = [{c: nan for c in bk.PLAIN_COLUMNS} | {"alpha": 1.0, "mesh": "10x1x5",
+                                                   "P33_onset_interior": 2.52}]
+    shown = {}
+    real_save = bk.save_figure
+
+    def keep(fig, *a, **k):
+        shown["axes"] = fig.axes
+        return real_save(fig, *a, **k)
+
+    bk.save_figure = keep
+    try:
+        bk.buckling_figure([row], scan, tmp_path, tmp_path / "buckling.png", trials=trials,
+                           plain=plain)
+    finally:
+        bk.save_figure = real_save
+    eig, p33 = shown["axes"][:2]
+    (line,) = [ln for ln in eig.lines if ln.get_label() == "10x1x5"]
+    x, y = line.get_xdata(), line.get_ydata()
+    np.testing.assert_array_equal(x, [2.5, 2.91, 2.9147, 2.93, 3.0])
+    assert y[2] == 0.0 and y[1] > 0 > y[3]               # through zero at D0_b, no jump
+    assert [ln.get_xdata()[0] for ln in eig.lines if ln.get_linestyle() == ":"] == [2.9147]
+    assert "grad-div stabilised form" in p33.get_title()
+    onsets = {ln.get_label(): ln.get_xdata()[0] for ln in p33.lines
+              if (ln.get_gid() or "").startswith("onset-")}
+    assert onsets == {"P33 onset (interior), grad-div stabilised form: 0.645": 0.645,
+                      "P33 onset (interior), plain form: 2.520": 2.52}
+    assert (tmp_path / "buckling.png").exists()
+    plt.close("all")

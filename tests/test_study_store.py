@@ -33,7 +33,7 @@ ROOT = Path(__file__).resolve().parents[1]
 def fake_buckling(calls):
     """Stand-ins of ``run_one``/``run_plain`` whose cells are closed forms of the inputs:
     ``D0_b = alpha N1 / 10 + D0_step``, one scan row per charge target with
-    ``lowest = alpha D0``."""
+    ``lowest = alpha D0``, three trial states at ``D0_b + d`` with ``eigenvalue = -d``."""
 
     def run_one(alpha, el, *, D0_step, D0_max, solver="auto", modes_dir=None):
         calls.append((alpha, tuple(el), D0_step, D0_max))
@@ -44,7 +44,9 @@ def fake_buckling(calls):
         scan = [{**{c: 0.25 for c in bk.SCAN_COLUMNS}, "alpha": alpha, "mesh": mesh,
                  "D0": float(d), "lowest": alpha * float(d), "physical_class": "x1 S"}
                 for d in bk.charge_targets(D0_step, D0_max)]
-        return row, scan
+        trials = [{"alpha": alpha, "mesh": mesh, "D0": row["D0_b"] + d, "eigenvalue": -d,
+                   "physical_class": "x1 S"} for d in (0.25, -0.125, 0.0)]
+        return row, scan, trials
 
     def run_plain(alpha, el, *, D0_step, D0_max, solver="auto"):
         return {**{c: 0.125 for c in bk.PLAIN_COLUMNS}, "alpha": alpha,
@@ -74,7 +76,7 @@ def fake_post(calls):
 
 STUDIES = {
     "buckling": dict(module=bk, files=("buckling.csv", "buckling-scan.csv",
-                                       "buckling-plain.csv"),
+                                       "buckling-trials.csv", "buckling-plain.csv"),
                      argv=["buckling", "--alpha", "1", "0.5", "--meshes", "2x1x1", "3x1x1",
                            "--D0-step", "0.5", "--D0-max", "1", "--solver", "superlu"]),
     "post-buckling": dict(module=pb, files=("post-buckling-summary.csv", "post-buckling.csv"),
@@ -104,7 +106,9 @@ def run(argv, out, capsys):
 
 
 def files_of(out, study):
-    return {f: (out / f).read_bytes() for f in STUDIES[study]["files"]}
+    """The bytes of the study's files (``None``: not written, e.g. no trial states)."""
+    return {f: (out / f).read_bytes() if (out / f).exists() else None
+            for f in STUDIES[study]["files"]}
 
 
 class _Killed(BaseException):
@@ -159,7 +163,7 @@ def test_a_half_written_last_row_is_recomputed(fake, tmp_path, capsys):
     fake.clear()
     code, _, err = run(argv, tmp_path, capsys)
     assert code == 0
-    assert err.count("\n") == 3     # the cut row dropped; its unit's scan and plain rows too
+    assert err.count("\n") == 4     # the cut row dropped; its unit's scan, trial and plain rows
     assert f"{table}: its last row is incomplete (no line end); dropped" in err
     assert fake == [(0.5, (3, 1, 1), 0.5, 1.0)]         # only that unit recomputed
     assert files_of(tmp_path, "buckling") == ref
@@ -178,9 +182,9 @@ def test_a_missing_value_is_an_empty_cell_and_said_in_words(tmp_path, capsys, mo
     never = {f"P33_onset_{k}": nan for k in bk.P33_SETS}
 
     def one_without(*a, **k):
-        row, scan = one(*a, **k)
+        row, scan, _ = one(*a, **k)
         row.update(never, D0_b=nan, newton_limit=nan, lowest_eig=nan, **{"class": ""})
-        return row, scan
+        return row, scan, []
 
     monkeypatch.setattr(bk, "run_one", one_without)
     monkeypatch.setattr(bk, "run_plain", lambda *a, **k: {**plain(*a, **k), **never,
@@ -190,8 +194,10 @@ def test_a_missing_value_is_an_empty_cell_and_said_in_words(tmp_path, capsys, mo
             "--D0-max", "1", "--solver", "superlu"]
     code, o, err = run(argv, tmp_path, capsys)
     assert code == 0 and err == ""
-    assert ("alpha = 1 2x1x1: no D0_b found, no P33 onset (interior) up to D0 = 1, "
-            "no Newton limit up to D0 = 1, 1 s") in o
+    # the stand-in's plain row has D0_max = 0.125 (every cell of fake_buckling's run_plain)
+    assert ("alpha = 1 2x1x1: no D0_b found; grad-div stabilised form: no P33 onset "
+            "(interior) up to D0 = 1, no Newton limit up to D0 = 1; plain form: no P33 onset "
+            "(interior) up to D0 = 0.125, no Newton limit up to D0 = 0.125; 1 s") in o
     assert "nan" not in o
     empty = ["D0_b", "lowest_eig", "newton_limit"] + list(never)
     for name in ("buckling.csv", "buckling-plain.csv"):
@@ -387,8 +393,10 @@ def test_buckling_killed_at_random_moments(tmp_path):
                    capture_output=True)
     for f in ("buckling.csv", "buckling-plain.csv"):
         assert _without_seconds(tmp_path / "k" / f) == _without_seconds(tmp_path / "ref" / f)
-    assert ((tmp_path / "k" / "buckling-scan.csv").read_bytes()
-            == (tmp_path / "ref" / "buckling-scan.csv").read_bytes())
+    k, ref = files_of(tmp_path / "k", "buckling"), files_of(tmp_path / "ref", "buckling")
+    assert ref["buckling-scan.csv"] is not None
+    for f in ("buckling-scan.csv", "buckling-trials.csv"):     # trials: none on 2x1x1
+        assert k[f] == ref[f]
 
 
 def test_discarded_results_take_the_summary_with_them(tmp_path, capsys, monkeypatch):

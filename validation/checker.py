@@ -94,6 +94,7 @@ _NOT_SCORED = {
     "wrinkling-fe-elastic.csv": "the uncharged plate's critical stretch (not scored)",
     "buckling.csv": "a study table of skfem-dielectric buckling (not scored)",
     "buckling-scan.csv": "a study table of skfem-dielectric buckling (not scored)",
+    "buckling-trials.csv": "a study table of skfem-dielectric buckling (not scored)",
     "buckling-plain.csv": "a study table of skfem-dielectric buckling (not scored)",
     "post-buckling.csv": "a study table of skfem-dielectric post-buckling (not scored)",
     "post-buckling-summary.csv": "a study table of skfem-dielectric post-buckling (not "

@@ -13,9 +13,14 @@ Sci., 2020, Sec. 6) on five sets of points, and where Newton stops.
 
 Files (all in ``out``): ``buckling.csv`` (one row per alpha x mesh, written as each is
 done, after its other rows; a rerun skips the rows present), ``buckling-scan.csv`` (every scanned state),
+``buckling-trials.csv`` (the states the location of ``D0_b`` solved between two scanned
+states, :attr:`~skfem_dielectric.studies.buckling.BucklingLoad.trials`),
 ``buckling-plain.csv`` (the same ramp without grad-div: its ``P33`` onsets and Newton
 limit), ``.modes/<alpha>_<mesh>.npz`` (the critical mode's top-face deflection) and
-``buckling.png``.
+``buckling.png``.  The ``P33`` columns of ``buckling.csv`` and ``buckling-scan.csv`` are
+of the grad-div stabilised form's states, those of ``buckling-plain.csv`` of the paper's
+plain form (docs/stability.md, "Which state each column is of"); the figure and the printed
+line name which.
 """
 
 from __future__ import annotations
@@ -38,8 +43,9 @@ from ..options import load_targets
 from ..store import RowFile, StudyStore, write_npz_atomic
 from ..table import BREAKDOWN_TOL
 
-__all__ = ["COLUMNS", "SCAN_COLUMNS", "PLAIN_COLUMNS", "P33_SETS", "p33_measures", "onset",
-           "TABLE", "SCAN", "PLAIN",
+__all__ = ["COLUMNS", "SCAN_COLUMNS", "TRIAL_COLUMNS", "PLAIN_COLUMNS", "P33_SETS",
+           "p33_measures", "onset", "TABLE", "SCAN", "TRIALS", "PLAIN", "GRAD_DIV_FORM",
+           "PLAIN_FORM",
            "charge_targets", "run_one", "run_plain", "run_buckling", "richardson", "buckling_figure"]
 
 #: where min P33/mu is taken: centre line, clamp line (one element inside the clamp),
@@ -51,6 +57,11 @@ COLUMNS = (["alpha", "mesh", "D0_b", "class", "lowest_eig", "corner_share", "mes
            + ["newton_limit", "D0_max", "seconds"])
 SCAN_COLUMNS = (["alpha", "mesh", "D0", "n_negative", "lowest", "physical", "physical_class",
                  "corner_share", "mesh_scale", "lam1"] + [f"P33_{k}" for k in P33_SETS])
+#: the trial states of the location: D0, the followed physical mode's eigenvalue, its class
+TRIAL_COLUMNS = ["alpha", "mesh", "D0", "eigenvalue", "physical_class"]
+#: the names of the two forms whose states the study reports (figure, printed line)
+GRAD_DIV_FORM = "grad-div stabilised form"
+PLAIN_FORM = "plain form"
 #: the same ramp without grad-div (the harness's form): its P33 onsets and Newton limit
 PLAIN_COLUMNS = (["alpha", "mesh"] + [f"P33_onset_{k}" for k in P33_SETS]
                  + ["newton_limit", "D0_max", "seconds"])
@@ -99,8 +110,9 @@ def _mesh_name(el) -> str:
 
 def run_one(alpha: float, elements, *, D0_step: float, D0_max: float,
             solver: str = "auto", modes_dir: Path | None = None
-            ) -> tuple[dict, list[dict]]:
-    """One alpha x mesh: ramp, P33 onsets, buckling load.  Returns the row and the scan."""
+            ) -> tuple[dict, list[dict], list[dict]]:
+    """One alpha x mesh: ramp, P33 onsets, buckling load.  Returns the row, the scan and
+    the trial states of the location (rows of :data:`TRIAL_COLUMNS`)."""
     t0 = time.time()
     D0 = charge_targets(D0_step, D0_max)
     res = fe.keplinger_plate(alpha, D0=D0, elements=tuple(elements), symmetry="eighth",
@@ -145,7 +157,9 @@ def run_one(alpha: float, elements, *, D0_step: float, D0_max: float,
         modes_dir.mkdir(parents=True, exist_ok=True)
         X1, X3, u2 = top_deflection(pb, lab.mode, lab.increments)
         write_npz_atomic(modes_dir / f"{alpha:g}_{mesh}.npz", X1=X1, X3=X3, u2=u2)
-    return row, scan
+    trials = [{"alpha": alpha, "mesh": mesh, "D0": t["D0"], "eigenvalue": t["eigenvalue"],
+               "physical_class": t["class"]} for t in bl.trials]
+    return row, scan, trials
 
 
 def run_plain(alpha: float, elements, *, D0_step: float, D0_max: float,
@@ -172,6 +186,7 @@ def run_plain(alpha: float, elements, *, D0_step: float, D0_max: float,
 #: the files of the study (:class:`~validation.store.StudyStore`): the table last
 TABLE = RowFile("buckling.csv", tuple(COLUMNS), ("alpha", "mesh"))
 SCAN = RowFile("buckling-scan.csv", tuple(SCAN_COLUMNS), ("alpha", "mesh"))
+TRIALS = RowFile("buckling-trials.csv", tuple(TRIAL_COLUMNS), ("alpha", "mesh"))
 PLAIN = RowFile("buckling-plain.csv", tuple(PLAIN_COLUMNS), ("alpha", "mesh"))
 
 
@@ -190,7 +205,8 @@ def run_buckling(out: Path, *, alphas, meshes, D0_step: float, D0_max: float,
     alpha x mesh is done when its row is in ``buckling.csv``, written after its scan and
     plain-form rows; a folder of another ``D0_step``, ``D0_max`` or ``solver`` is
     discarded and recomputed (``note(message)`` says so).  Repeated alphas and meshes
-    are computed once.
+    are computed once.  ``progress(row, plain)`` is called with the table row and the
+    plain form's row of each finished alpha x mesh.
     """
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
@@ -202,25 +218,28 @@ def run_buckling(out: Path, *, alphas, meshes, D0_step: float, D0_max: float,
               f"{D0_max:g}, linear solver {solver}")
     settings = {"D0_step": float(D0_step), "D0_max": float(D0_max), "solver": solver}
     plan = [(a, _mesh_name(el)) for a in alphas for el in meshes]
-    with StudyStore(out, "buckling", settings, TABLE, (SCAN, PLAIN), plan=plan,
+    with StudyStore(out, "buckling", settings, TABLE, (SCAN, TRIALS, PLAIN), plan=plan,
                     derived=("buckling.png", "buckling.pdf", ".modes"), note=note) as store:
+
+        def draw():
+            buckling_figure(store.rows(), store.rows(SCAN.name), out / ".modes",
+                            out / "buckling.png", footer=footer,
+                            trials=store.rows(TRIALS.name), plain=store.rows(PLAIN.name))
+
         for alpha in alphas:
             for el in meshes:
                 if store.done((alpha, _mesh_name(el))):
                     continue
-                row, scan = run_one(alpha, el, D0_step=D0_step, D0_max=D0_max,
-                                    solver=solver, modes_dir=out / ".modes")
+                row, scan, trials = run_one(alpha, el, D0_step=D0_step, D0_max=D0_max,
+                                            solver=solver, modes_dir=out / ".modes")
                 plain = run_plain(alpha, el, D0_step=D0_step, D0_max=D0_max, solver=solver)
-                store.commit(row, {SCAN.name: scan, PLAIN.name: [plain]})
-                # the figure follows the table: a long study shows every finished row
-                buckling_figure(store.rows(), store.rows(SCAN.name), out / ".modes",
-                                out / "buckling.png", footer=footer)
+                store.commit(row, {SCAN.name: scan, TRIALS.name: trials, PLAIN.name: [plain]})
+                draw()              # the figure follows the table: every finished row
                 if progress is not None:
-                    progress(row)
+                    progress(row, plain)
         rows = store.rows()
         if rows:
-            buckling_figure(rows, store.rows(SCAN.name), out / ".modes",
-                            out / "buckling.png", footer=footer)
+            draw()
     return rows
 
 
@@ -292,33 +311,67 @@ def richardson(h, values) -> tuple[float, float, float]:
     return ext, abs(ext - v[2]), float(p)
 
 
-def buckling_figure(rows, scan, modes_dir: Path, path: Path, footer: str = "") -> Path:
-    """One row of panels per alpha: lowest physical eigenvalue vs ``D0`` per mesh, the
-    ``P33`` minima vs ``D0`` on the finest mesh, the critical mode's deflection map;
-    written to ``path`` (PNG) and beside it as PDF, with ``footer`` under the panels."""
+def buckling_figure(rows, scan, modes_dir: Path, path: Path, footer: str = "",
+                    trials=(), plain=()) -> Path:
+    """One row of panels per alpha, written to ``path`` (PNG) and beside it as PDF, with
+    ``footer`` under the panels.
+
+    * The lowest physical eigenvalue against ``D0`` per mesh, the states of the
+      grad-div stabilised form: the scanned states where it was computed (dots) and the
+      trial states of the location (``trials``, rows of :data:`TRIAL_COLUMNS`: crosses;
+      the search starts at a scanned state and brackets with the next, and there the line
+      takes the followed mode's value), joined in ``D0`` order, so that the line passes
+      through zero at the located ``D0_b`` (dotted line); a straight line between two
+      scanned states would not.
+    * The ``P33`` minima against ``D0`` on the finest mesh, of the grad-div stabilised
+      form's states (:data:`GRAD_DIV_FORM`, as the scan holds them), with the interior
+      onset of both forms: the grad-div one and the paper's plain form's
+      (:data:`PLAIN_FORM`, ``plain``: rows of ``buckling-plain.csv``).
+    * The critical mode's deflection map.
+    """
     alphas = sorted({r["alpha"] for r in rows})
     fig, axes = plt.subplots(len(alphas), 3, figsize=(14, 3.4 * len(alphas)), squeeze=False,
                              constrained_layout=True)
     for ax3, alpha in zip(axes, alphas):
         mine = [r for r in rows if r["alpha"] == alpha]
         meshes = sorted({r["mesh"] for r in mine}, key=lambda m: int(m.split("x")[0]))
-        for m in meshes:
-            sc = [s for s in scan if s["alpha"] == alpha and s["mesh"] == m]
-            ax3[0].plot([s["D0"] for s in sc], [s["physical"] for s in sc], "o-", ms=3,
-                        label=m)
+        for k, m in enumerate(meshes):
+            sc = [(s["D0"], s["physical"]) for s in scan
+                  if s["alpha"] == alpha and s["mesh"] == m and np.isfinite(s["physical"])]
+            tr = [(t["D0"], t["eigenvalue"]) for t in trials
+                  if t["alpha"] == alpha and t["mesh"] == m and np.isfinite(t["eigenvalue"])]
+            both = sorted(dict(sc + tr).items())   # at a scanned state, the trial's value
+            line, = ax3[0].plot([p[0] for p in both], [p[1] for p in both], "-", lw=1.0,
+                                label=m)
+            c = line.get_color()
+            if sc:
+                ax3[0].plot(*zip(*sc), "o", ms=3.5, color=c, gid="scanned",
+                            label="scanned states" if k == 0 else None)
+            if tr:
+                ax3[0].plot(*zip(*tr), "x", ms=5, color=c, gid="trials",
+                            label="trial states of the location" if k == 0 else None)
             b = next(r for r in mine if r["mesh"] == m)["D0_b"]
             if np.isfinite(b):
-                ax3[0].axvline(b, ls=":", lw=0.8, color=ax3[0].lines[-1].get_color())
+                ax3[0].axvline(b, ls=":", lw=0.8, color=c)
         ax3[0].axhline(0, color="k", lw=0.6)
         ax3[0].set(xlabel="D0", ylabel="lowest physical eigenvalue",
-                   title=f"alpha = {alpha:g}")
+                   title=f"alpha = {alpha:g}: {GRAD_DIV_FORM} (dotted: D0_b)")
         ax3[0].legend(fontsize=7)
         fine = meshes[-1]
         sc = [s for s in scan if s["alpha"] == alpha and s["mesh"] == fine]
         for k in P33_SETS:
             ax3[1].plot([s["D0"] for s in sc], [s[f"P33_{k}"] for s in sc], ".-", label=k)
         ax3[1].axhline(-BREAKDOWN_TOL, color="k", lw=0.6, ls="--")
-        ax3[1].set(xlabel="D0", ylabel="min P33/mu", title=f"{fine}: P33 minima")
+        r = next(r for r in mine if r["mesh"] == fine)
+        pl = next((p for p in plain if p["alpha"] == alpha and p["mesh"] == fine), None)
+        for form, onset_D0, ls in ((GRAD_DIV_FORM, r["P33_onset_interior"], "-"),
+                                   (PLAIN_FORM, pl["P33_onset_interior"] if pl else np.nan,
+                                    "--")):
+            if np.isfinite(onset_D0):
+                ax3[1].axvline(onset_D0, color="0.3", lw=0.9, ls=ls, gid=f"onset-{form}",
+                               label=f"P33 onset (interior), {form}: {onset_D0:.3f}")
+        ax3[1].set(xlabel="D0", ylabel="min P33/mu",
+                   title=f"{fine}: P33 minima of the {GRAD_DIV_FORM}")
         ax3[1].legend(fontsize=7)
         f = modes_dir / f"{alpha:g}_{fine}.npz"
         if f.exists():
@@ -326,7 +379,6 @@ def buckling_figure(rows, scan, modes_dir: Path, path: Path, footer: str = "") -
             u2 = d["u2"] / max(np.abs(d["u2"]).max(), 1e-300)
             t = ax3[2].tricontourf(d["X1"], d["X3"], u2, 21, cmap="RdBu_r", vmin=-1, vmax=1)
             fig.colorbar(t, ax=ax3[2], shrink=0.8)
-            r = next(r for r in mine if r["mesh"] == fine)
             ax3[2].set(aspect="equal", xlabel="X1 (mm)", ylabel="X3 (mm)",
                        title=f"mode at D0_b = {r['D0_b']:.4f}: {r['class']}")
         else:                                 # no crossing in the scanned range

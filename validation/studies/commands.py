@@ -9,7 +9,8 @@ from __future__ import annotations
 
 from ..options import mesh_triple, out_dir, positive, solver_name
 from ..progress import notice
-from .buckling import FULL as BUCKLING_FULL, QUICK as BUCKLING_QUICK, run_buckling
+from .buckling import FULL as BUCKLING_FULL, GRAD_DIV_FORM, PLAIN_FORM, QUICK as BUCKLING_QUICK
+from .buckling import run_buckling
 from .buckling import charge_targets as buckling_targets
 from .postbuckling import FULL as POST_FULL, QUICK as POST_QUICK, run_post_buckling
 from .postbuckling import charge_targets as post_targets, study_window
@@ -43,7 +44,8 @@ def add_study_commands(add) -> None:
             "it) and compare it with "
             "the onsets of compressive P33 and the Newton limit: DIR/buckling.csv (one row "
             "per alpha x mesh, written as each is done; a rerun skips the rows present), "
-            "DIR/buckling-scan.csv, DIR/buckling-plain.csv (the plain form's P33 onsets) and "
+            "DIR/buckling-scan.csv, DIR/buckling-trials.csv (the states the location solved), "
+            "DIR/buckling-plain.csv (the plain form's P33 onsets) and "
             "DIR/buckling.png|pdf (redrawn after each row). "
             "Default: alpha = 1, 0.3, 1.5, 0.7, "
             "0.05 on 10x1x5, 20x1x10, 40x1x20, D0 step 0.25; --quick: alpha = 1 on 10x1x5 "
@@ -120,28 +122,36 @@ def _number(fmt: str, value, missing: str) -> str:
     return fmt.format(value) if _given(value) else missing
 
 
-def buckling_line(row: dict) -> str:
-    """The line ``skfem-dielectric buckling`` prints for a finished alpha x mesh (a row of
-    ``buckling.csv``); a value the row does not have (an empty cell) is said in words:
-    ``no D0_b found``, ``no P33 onset (interior) up to D0 = <D0_max>``, ``no Newton limit
-    up to D0 = <D0_max>`` (every target converged).
+def buckling_line(row: dict, plain: dict | None = None) -> str:
+    """The line ``skfem-dielectric buckling`` prints for a finished alpha x mesh: ``D0_b``
+    from a row of ``buckling.csv``, then the interior ``P33`` onset and the Newton limit
+    of each form, named: the grad-div stabilised form's states (the row, those analysed for
+    buckling) and, with ``plain`` (its row of ``buckling-plain.csv``), the paper's plain
+    form's.  A value a row does not have (an empty cell) is said in words: ``no D0_b
+    found``, ``no P33 onset (interior) up to D0 = <D0_max>``, ``no Newton limit up to D0 =
+    <D0_max>`` (every target converged).
 
     Examples
     --------
     >>> nan = float("nan")
     >>> buckling_line({"alpha": 1.0, "mesh": "10x1x5", "D0_b": 2.91472, "class": "AS",
-    ...                "P33_onset_interior": 2.5, "newton_limit": nan, "D0_max": 5.0,
-    ...                "seconds": 12.0})
-    'alpha = 1 10x1x5: D0_b = 2.9147 (AS), P33 onset (interior) 2.500, no Newton limit up to D0 = 5, 12 s'
+    ...                "P33_onset_interior": 0.645, "newton_limit": nan, "D0_max": 5.0,
+    ...                "seconds": 12.0},
+    ...               {"P33_onset_interior": 2.52, "newton_limit": nan, "D0_max": 5.0})
+    'alpha = 1 10x1x5: D0_b = 2.9147 (AS); grad-div stabilised form: P33 onset (interior) 0.645, no Newton limit up to D0 = 5; plain form: P33 onset (interior) 2.520, no Newton limit up to D0 = 5; 12 s'
     """
-    top = f"up to D0 = {row['D0_max']:g}" if _given(row.get("D0_max")) else "at any target"
+    def onsets(r: dict) -> str:
+        top = f"up to D0 = {r['D0_max']:g}" if _given(r.get("D0_max")) else "at any target"
+        return (_number("P33 onset (interior) {:.3f}", r["P33_onset_interior"],
+                        f"no P33 onset (interior) {top}") + ", "
+                + _number("Newton limit {:.3f}", r["newton_limit"], f"no Newton limit {top}"))
+
     return (f"alpha = {row['alpha']:g} {row['mesh']}: "
             + (f"D0_b = {row['D0_b']:.4f} ({row['class'] or 'none found'})"
-               if _given(row["D0_b"]) else "no D0_b found") + ", "
-            + _number("P33 onset (interior) {:.3f}", row["P33_onset_interior"],
-                      f"no P33 onset (interior) {top}") + ", "
-            + _number("Newton limit {:.3f}", row["newton_limit"], f"no Newton limit {top}")
-            + f", {row['seconds']:.0f} s")
+               if _given(row["D0_b"]) else "no D0_b found")
+            + f"; {GRAD_DIV_FORM}: {onsets(row)}"
+            + (f"; {PLAIN_FORM}: {onsets(plain)}" if plain is not None else "")
+            + f"; {row['seconds']:.0f} s")
 
 
 def cmd_post_buckling(args) -> int:
@@ -178,8 +188,8 @@ def cmd_buckling(args) -> int:
     opts = _study_options(args, BUCKLING_QUICK, BUCKLING_FULL)
     buckling_targets(opts["D0_step"], opts["D0_max"])          # bounded before any work
 
-    def show(row):
-        print(buckling_line(row), flush=True)
+    def show(row, plain):
+        print(buckling_line(row, plain), flush=True)
 
     run_buckling(args.out, **opts, solver=args.solver, progress=show, note=notice)
     print(f"wrote {args.out / 'buckling.csv'}, {args.out / 'buckling.png'} (and .pdf)")
