@@ -62,7 +62,8 @@ def test_keplinger_alpha1_follows_uniaxial_curve_on_coarse_mesh():
 def test_keplinger_resume_is_bitwise_identical():
     kw = dict(D0=[1, 2], elements=(4, 1, 2), preload_steps=2, linear_solver="superlu")
     full = keplinger_plate(1.0, **kw)
-    part = keplinger_plate(1.0, x0=full.steps[2].x, start=full.steps[2].load, **kw)
+    part = keplinger_plate(1.0, x0=full.steps[2].x, start=full.steps[2].load,
+                           back=full.steps[2].back, **kw)
     assert [st.load[1] for st in part.steps] == [2.0]
     # same targets from the same state with a deterministic solver: identical bits
     assert np.array_equal(part.steps[-1].x, full.steps[-1].x)

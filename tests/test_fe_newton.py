@@ -57,7 +57,8 @@ def test_ramp_resume_is_bitwise_identical(solver):
     assert full.converged
     np.testing.assert_allclose(full.column("x2"), cardano(5.0 * np.array(loads)), rtol=1e-11)
     part = ramp(prob, loads[2:], x0=full.steps[1].x, start=full.steps[1].load,
-                linear_solver=solver, settings=RampSettings(atol=1e-12, rtol=0))
+                back=full.steps[1].back, linear_solver=solver,
+                settings=RampSettings(atol=1e-12, rtol=0))
     if solver == "superlu":  # deterministic; PARDISO (threads) may differ in the last bit
         assert np.array_equal(part.steps[-1].x, full.steps[-1].x)
     np.testing.assert_allclose(part.steps[-1].x, full.steps[-1].x, rtol=1e-14)
@@ -247,7 +248,7 @@ def test_chord_steps_reach_the_same_root_with_fewer_factorisations(solver):
 def test_secant_predictor_ramp_matches_cardano_with_fewer_iterations():
     prob = Cubic()
     loads = np.linspace(1.0, 8.0, 8)
-    plain = ramp(prob, loads, settings=RampSettings(atol=1e-12, rtol=0))
+    plain = ramp(prob, loads, settings=RampSettings(atol=1e-12, rtol=0, predictor="none"))
     pred = ramp(prob, loads,
                 settings=RampSettings(atol=1e-12, rtol=0, predictor="secant", chord=0.1))
     ref = cardano(5.0 * loads)
@@ -257,6 +258,34 @@ def test_secant_predictor_ramp_matches_cardano_with_fewer_iterations():
     assert pred.factorisations < plain.factorisations
     assert pred.column("factorisations").sum() == pred.factorisations
     assert plain.factorisations == plain.iterations_total
+
+
+def test_secant_is_the_default_and_resume_needs_its_second_point():
+    # the secant start of the step after a resume depends on the state before x0: with
+    # back (StepResult.back) the resumed ramp repeats the uninterrupted one bit for bit,
+    # without it only within the Newton tolerance; each step's back is the previous step
+    prob = Cubic()
+    loads = [1.0, 2.0, 3.0, 4.0, 5.0]
+    assert RampSettings().predictor == "secant"
+    settings = RampSettings(atol=1e-10, rtol=0)
+    full = ramp(prob, loads, settings=settings)
+    assert full.steps[0].back is None
+    for before, st in zip(full.steps, full.steps[1:]):
+        assert st.substeps == 1 and st.back[0] is not None
+        assert np.array_equal(st.back[0], before.x) and st.back[1] == before.load
+    part = ramp(prob, loads[2:], x0=full.steps[1].x, start=full.steps[1].load,
+                back=full.steps[1].back, settings=settings)
+    assert all(np.array_equal(a.x, b.x) for a, b in zip(part.steps, full.steps[2:]))
+    cold = ramp(prob, loads[2:], x0=full.steps[1].x, start=full.steps[1].load,
+                settings=settings)
+    np.testing.assert_allclose(cold.steps[-1].x, full.steps[-1].x, rtol=0, atol=1e-9)
+    np.testing.assert_allclose(full.column("x2"), cardano(5.0 * np.array(loads)), atol=1e-10)
+    with pytest.raises(ValueError, match="back given without x0"):
+        ramp(prob, loads, back=full.steps[1].back)
+    with pytest.raises(ValueError, match="back must be a pair"):
+        ramp(prob, loads[2:], x0=full.steps[1].x, start=2.0, back=full.steps[1].x)
+    with pytest.raises(ValueError, match="back must be a finite vector of length 3"):
+        ramp(prob, loads[2:], x0=full.steps[1].x, start=2.0, back=(np.zeros(2), 1.0))
 
 
 def test_chord_and_predictor_bad_input():

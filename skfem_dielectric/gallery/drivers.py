@@ -14,8 +14,8 @@ load of every step is the pair
 post-processed values of the model plus ``phase`` (``"preload"`` or ``"charge"``) and
 ``stable`` (inertia verdict with PARDISO, else ``None``).
 
-Resuming: pass ``x0=step.x`` and ``start=step.load`` of a saved step together with the
-*same* arguments; targets up to and including ``start`` are skipped and the remaining steps
+Resuming: pass ``x0=step.x``, ``start=step.load`` and ``back=step.back`` of a saved step
+together with the *same* arguments; targets up to and including ``start`` are skipped and the remaining steps
 are bit-for-bit those of the uninterrupted run (deterministic linear solver).
 """
 
@@ -113,6 +113,7 @@ def newton_guards(problem: Problem) -> dict:
 def run_ramp(problem: Problem, targets: Sequence[Any], *,
              on_step: Callable[[StepResult], Any] | None = None,
              x0: np.ndarray | None = None, start: Any = None,
+             back: tuple[np.ndarray, Any] | None = None,
              linear_solver: str | LinearSolver = "auto", extra: dict | None = None,
              **ramp_options) -> RampResult:
     """Ramp ``problem`` through ``targets``, resuming after ``start``, and tag the steps.
@@ -124,9 +125,10 @@ def run_ramp(problem: Problem, targets: Sequence[Any], *,
         pairs (the second component 0 marks the pre-load).
     targets
         The whole load path (e.g. :func:`~skfem_dielectric.gallery.loads.preload_then_charge`).
-    on_step, x0, start
+    on_step, x0, start, back
         Callback and resume state: with ``start`` (the load of a saved step, which must be
-        one of ``targets``) and ``x0`` (its state) the ramp continues after ``start``.
+        one of ``targets``), ``x0`` (its state) and ``back`` (its ``StepResult.back``, the
+        secant predictor's second point) the ramp continues after ``start``.
     linear_solver
         Name or instance (:func:`~skfem_dielectric.linalg.linear.get_linear_solver`).
     extra
@@ -170,7 +172,7 @@ def run_ramp(problem: Problem, targets: Sequence[Any], *,
         if on_step is not None:
             on_step(step)
 
-    out = ramp(problem, targets, x0=x0, start=start, on_step=hook,
+    out = ramp(problem, targets, x0=x0, start=start, back=back, on_step=hook,
                linear_solver=linear_solver, **ramp_options)
     out.problem = problem
     if out.failed_at is not None and out.steps and isinstance(problem, PlateProblem):
@@ -255,6 +257,7 @@ def equibiaxial_plate(s: float, D0: Sequence[float], *, model: Any = "neo-Hookea
                       preload_steps: int = EQUIBIAXIAL_PRELOAD_STEPS, linear_solver: str = "auto",
                       on_step: Callable[[StepResult], Any] | None = None,
                       x0: np.ndarray | None = None, start: Any = None,
+                      back: tuple[np.ndarray, Any] | None = None,
                       settings: RampSettings = EQUIBIAXIAL_SETTINGS) -> RampResult:
     """Equi-biaxial dead-load plate: pre-load ``s``, then the charge ramp ``D0``.
 
@@ -274,7 +277,7 @@ def equibiaxial_plate(s: float, D0: Sequence[float], *, model: Any = "neo-Hookea
     linear_solver
         ``"auto"``, ``"superlu"`` or ``"pardiso"`` (for ``coupling="maxwell"`` PARDISO is
         its general LU).
-    on_step, x0, start
+    on_step, x0, start, back
         Callback and resume state, see the module docstring.
     settings
         How the load steps are solved (:class:`~skfem_dielectric.solvers.ramp.RampSettings`;
@@ -296,7 +299,7 @@ def equibiaxial_plate(s: float, D0: Sequence[float], *, model: Any = "neo-Hookea
     if options.coupling == "maxwell":
         extra["variant"] = f"maxwell-{options.field}"
     out = run_ramp(prob, preload_then_charge(s, D0, preload_steps), on_step=on_step, x0=x0,
-                    start=start, linear_solver=linear_solver, extra=extra, settings=settings)
+                    start=start, back=back, linear_solver=linear_solver, extra=extra, settings=settings)
     out.targets = _charge_loads(s, D0)
     return out
 
@@ -311,7 +314,8 @@ def keplinger_plate(alpha: float | None = 1.0, D0: Sequence[float] = (1, 2, 3, 4
                     settings: RampSettings = KEPLINGER_SETTINGS,
                     state_analysis: Callable[..., dict] | None = None,
                     on_step: Callable[[StepResult], Any] | None = None,
-                    x0: np.ndarray | None = None, start: Any = None) -> RampResult:
+                    x0: np.ndarray | None = None, start: Any = None,
+                    back: tuple[np.ndarray, Any] | None = None) -> RampResult:
     """The uni-axial Keplinger plate: weight on a rigid clamp, then the charge ramp.
 
     Parameters
@@ -338,16 +342,16 @@ def keplinger_plate(alpha: float | None = 1.0, D0: Sequence[float] = (1, 2, 3, 4
     settings
         How the load steps are solved (:class:`~skfem_dielectric.solvers.ramp.RampSettings`;
         default :data:`KEPLINGER_SETTINGS`: ``rtol = 1e-9``, ``atol = 0``, 4 cut-backs, 12
-        Newton iterations per attempt, chord steps at ``chord = 0.1``, no predictor).
+        Newton iterations per attempt, chord steps at ``chord = 0.1``, each Newton solve
+        started from the secant through the last two converged states).
         ``replace(KEPLINGER_SETTINGS, stop_on_instability=True)`` stops at the first step
         whose tangent inertia says unstable (PARDISO only): the discrete breakdown near the
-        clamps; ``predictor="secant"`` starts each Newton solve from the secant (a resumed
-        ramp then repeats the uninterrupted one only within the Newton tolerance).
+        clamps; ``predictor="none"`` starts each solve from the last converged state.
     state_analysis
         Analysis of every converged state on the factorisation of its tangent, e.g.
         ``StabilityMonitor(k=5)`` (:mod:`skfem_dielectric.stability.monitor`); see
         :func:`~skfem_dielectric.solvers.ramp.ramp`.
-    on_step, x0, start
+    on_step, x0, start, back
         Callback and resume state (see the module docstring).
 
     Returns
@@ -370,7 +374,7 @@ def keplinger_plate(alpha: float | None = 1.0, D0: Sequence[float] = (1, 2, 3, 4
     if options.coupling == "maxwell":
         extra["variant"] = f"maxwell-{options.field}"
     out = run_ramp(prob, preload_then_charge(s, D0, preload_steps), on_step=on_step, x0=x0,
-                    start=start, linear_solver=linear_solver, extra=extra, settings=settings,
+                    start=start, back=back, linear_solver=linear_solver, extra=extra, settings=settings,
                     state_analysis=state_analysis)
     out.targets = _charge_loads(s, D0)
     return out

@@ -5,9 +5,10 @@ array (e.g. ``(s, D0)``); between two consecutive targets the load is interpolat
 and sub-stepped adaptively: a sub-step whose Newton iteration fails is halved (cut-back) up
 to ``max_cutbacks`` times, and after a success the sub-step doubles again (never beyond the
 target).  Every target starts from the full interval, so a target's solution depends only on
-the state at the previous target: resuming a ramp with ``x0=step.x, start=step.load`` gives
-bit-for-bit the same subsequent steps as the uninterrupted run (for a deterministic linear
-solver such as SuperLU).
+the state at the previous target and the converged state before it (the secant
+predictor's second point, ``StepResult.back``): resuming a ramp with ``x0=step.x,
+start=step.load, back=step.back`` gives bit-for-bit the same subsequent steps as the
+uninterrupted run (for a deterministic linear solver such as SuperLU).
 
 After each converged target, ``problem.postprocess(x, load)`` gives a dict of quantities
 stored in the :class:`StepResult`, together with ``stable``, the verdict of
@@ -66,11 +67,12 @@ class RampSettings(NewtonSettings):
     max_cutbacks
         How many times a failing sub-step may be halved before the ramp stops, ``>= 0``.
     predictor
-        Start of each Newton solve: ``"none"`` (the last converged state) or ``"secant"``
-        (extrapolated through the last two converged states when the load keeps its
-        direction and the extrapolation lowers the residual).  The secant start depends on
-        the state before the last one, so a resumed ramp repeats the uninterrupted one only
-        within the Newton tolerance.
+        Start of each Newton solve: ``"secant"`` (the default: extrapolated through the
+        last two converged states when the load keeps its direction and the extrapolation
+        lowers the residual) or ``"none"`` (the last converged state).  The secant start
+        depends on the state before the last one, which every step keeps
+        (``StepResult.back``): a ramp resumed with it repeats the uninterrupted one bit for
+        bit.
     stop_on_instability
         Stop at the first converged sub-step that ``problem.stability(inertia)`` judges
         unstable (needs a solver that reports the inertia, i.e. PARDISO; otherwise the
@@ -85,7 +87,7 @@ class RampSettings(NewtonSettings):
     """
 
     max_cutbacks: int = 6
-    predictor: str = "none"
+    predictor: str = "secant"
     stop_on_instability: bool = False
 
     def __post_init__(self) -> None:
@@ -132,6 +134,11 @@ class StepResult:
     target_reached
         False for the last step of a ramp that stopped: the furthest converged sub-step on
         the way to the target that could not be reached (its ``load`` is intermediate).
+    back
+        The converged (sub-)step before this one, ``(x, load)``: the second point of the
+        secant predictor.  Pass it as ``back=`` together with ``x0=step.x`` and
+        ``start=step.load`` to resume a ramp bit for bit (``None`` for the first step of a
+        ramp started without ``back``: its start is a guess, not a converged state).
     """
 
     load: Any
@@ -147,6 +154,7 @@ class StepResult:
     inertia: tuple[int, int, int] | None = None
     target_reached: bool = True
     factorisations: int = 0
+    back: tuple[np.ndarray, Any] | None = None
 
     def __getitem__(self, key: str) -> Any:
         return self.quantities[key]
@@ -291,6 +299,18 @@ def _as_load(load: Any) -> Any:
     return float(arr) if arr.ndim == 0 else arr.copy()
 
 
+def _check_back(back: Any, x0: Any, n: int) -> tuple[np.ndarray, Any] | None:
+    """``back`` of :func:`ramp` checked: ``None`` or ``(x, load)`` with ``x`` a finite
+    vector of length ``n``; only with ``x0``."""
+    if back is None:
+        return None
+    if x0 is None:
+        raise ValueError("back given without x0 (it is the state before x0)")
+    if not isinstance(back, (tuple, list)) or len(back) != 2:
+        raise ValueError(f"back must be a pair (x, load) (StepResult.back), got {back!r:.80}")
+    return (np.array(check_vector("back", back[0], n), dtype=float), _as_load(back[1]))
+
+
 def _secant_guess(problem: Problem, x: np.ndarray, at: Any, back: tuple | None,
                   load: Any) -> np.ndarray:
     """Start of the Newton solve at ``load`` from the converged ``x`` at load ``at``: the
@@ -363,6 +383,7 @@ class _Ramp:
                         and getattr(solver, "reads_upper", False) else problem.assemble)
         self.x, self.load = x, load
         self.back = None     # the converged state before x and its load (secant predictor)
+        self.solved = False  # x is a solution (not the initial guess of a fresh ramp)
         self.reuse = False   # the solver holds the factors of the converged state's tangent
         self.no_verdict_warned = False
         self.out = RampResult(steps=[], converged=True)
@@ -383,7 +404,10 @@ class _Ramp:
                        if self.settings.predictor == "secant" else self.x)
             nr = self.solve(load, x_start, scale)
             if nr.converged:
-                self.back = (self.x, at)
+                # the secant's second point is a solution: a converged (sub-)step, or the
+                # resumed step whose own back was given (not a mere initial guess)
+                self.back = (self.x, at) if self.solved else None
+                self.solved = True
                 self.x = nr.x
                 ap.inertia = nr.inertia
                 ap.fraction = f_new
@@ -443,6 +467,18 @@ class _Ramp:
                           "(use linear_solver='pardiso')", RuntimeWarning, stacklevel=4)
         return verdict is False
 
+    def prime(self) -> None:
+        """Factorise the tangent of the starting state, as :meth:`analyse` did at that
+        state in the uninterrupted ramp, so that a resumed ramp with a
+        ``state_analysis`` starts with the same chord step on the same factors."""
+        K, _ = self.problem.assemble(self.x, self.load)
+        try:
+            self.solver.solve(K, np.zeros(K.shape[0]))
+        except Exception:   # a singular tangent: the first sub-step factorises its own
+            return
+        self.out.factorisations += 1
+        self.reuse = True
+
     def analyse(self, load: Any) -> tuple[dict, tuple[int, int, int] | None]:
         """``state_analysis`` of the converged ``x``: its tangent factorised by the ramp's
         solver (counted with the step); returns ``(quantities, inertia)``."""
@@ -477,7 +513,8 @@ class _Ramp:
                           residual_norms=ap.residual_norms, x=self.x.copy(),
                           assembly_seconds=ap.assembly_seconds,
                           solve_seconds=ap.solve_seconds, inertia=ap.inertia,
-                          target_reached=target_reached, factorisations=ap.factorisations)
+                          target_reached=target_reached, factorisations=ap.factorisations,
+                          back=self.back)
         step.quantities = dict(self.problem.postprocess(self.x, load))
         step.quantities.update(extra)
         step.quantities.setdefault("stable", self.problem.stability(ap.inertia))
@@ -499,7 +536,7 @@ def check_callbacks(options: dict[str, Any]) -> None:
 
 
 def ramp(problem: Problem, loads: Sequence[Any], *, x0: np.ndarray | None = None,
-         start: Any = None, on_step: Callable[[StepResult], Any] | None = None,
+         start: Any = None, back: tuple[np.ndarray, Any] | None = None, on_step: Callable[[StepResult], Any] | None = None,
          linear_solver: str | LinearSolver = "superlu",
          settings: RampSettings = RampSettings(),
          step_limit: Callable[[np.ndarray, np.ndarray, Any], float] | None = None,
@@ -516,8 +553,15 @@ def ramp(problem: Problem, loads: Sequence[Any], *, x0: np.ndarray | None = None
         post-processed.  Loads must be finite.
     x0, start
         State to start from: the reduced vector and its load.  Default:
-        ``problem.initial_state()`` at zero load.  To resume a ramp pass ``x0=step.x`` and
-        ``start=step.load`` of a saved :class:`StepResult` and the remaining loads.
+        ``problem.initial_state()`` at zero load.  To resume a ramp pass ``x0=step.x``,
+        ``start=step.load`` and ``back=step.back`` of a saved :class:`StepResult` and the
+        remaining loads.
+    back
+        The converged state before ``x0`` and its load, ``(x, load)``: the second point of
+        the secant predictor (``StepResult.back``).  Without it ``x0`` (or the initial
+        state) is taken as a guess, not as a solution: the secant starts from the second
+        converged sub-step, and a resumed ramp repeats the uninterrupted one only within
+        the Newton tolerance.
     on_step
         Called as ``on_step(step)`` after every converged target.
     linear_solver
@@ -554,7 +598,8 @@ def ramp(problem: Problem, loads: Sequence[Any], *, x0: np.ndarray | None = None
     ------
     ValueError
         Invalid arguments, each named: ``problem`` not a ``Problem``, non-finite loads,
-        ``x0`` not a finite vector of the problem's length, a callable that is not,
+        ``x0`` not a finite vector of the problem's length, ``back`` not a pair of such a
+        vector and a load (or given without ``x0``), a callable that is not,
         ``settings`` not a :class:`RampSettings`.
     """
     if not isinstance(problem, Problem):
@@ -577,6 +622,10 @@ def ramp(problem: Problem, loads: Sequence[Any], *, x0: np.ndarray | None = None
         start = 0.0 * np.asarray(targets[0], dtype=float) if targets else 0.0
     run = _Ramp(problem, solver, settings, step_limit, admissible, state_analysis, on_step,
                 x, _as_load(start))
+    run.back = _check_back(back, x0, len(x_init))
+    run.solved = run.back is not None
+    if x0 is not None and state_analysis is not None and targets:
+        run.prime()
     out = run.out
     for target in targets:
         ap = run.approach_target(target)

@@ -40,10 +40,10 @@ PRELOAD_STEPS = {"equibiaxial": EQUIBIAXIAL_PRELOAD_STEPS, "uniaxial": KEPLINGER
 RTOL = {"equibiaxial": EQUIBIAXIAL_RTOL, "uniaxial": KEPLINGER_RTOL}
 #: chord factor of the ramps' Newton solves (:func:`skfem_dielectric.solvers.newton.newton`),
 #: that of keplinger_plate: a factorisation is reused while the residual contracts at least
-#: tenfold per step.  No secant predictor: it depends on the state before the last one, so
-#: a resumed ramp would not repeat the uninterrupted one bit for bit (and past the
-#: breakdown it can jump to another branch of the clamped plate).  The FE dots move within
-#: the Newton tolerance (timings: docs/performance.md).
+#: tenfold per step.  Every Newton solve starts from the secant through the last two
+#: converged states (the ramp's default predictor); the state before the last one is saved
+#: with each row's state, so that a resumed ramp repeats the uninterrupted one bit for bit
+#: (timings: docs/performance.md).
 CHORD = KEPLINGER_CHORD
 #: grad-div stabilisation (units of mu) of the form ramped for the whole plate's spectrum
 #: and ``D0_b``: the second ramp of the uni-axial runs analysed for buckling

@@ -80,7 +80,7 @@ def _stabilised_states(spec, targets, state, linear_solver) -> dict:
         return {"problem": problem, "x": {}}      # that ramp had stopped before
     x0 = None if state is None else np.asarray(state["x_stab"], dtype=float)
     start = None if state is None else np.asarray(state["load"], dtype=float)
-    states = {}
+    states, backs = {}, {}
 
     def cb(step):
         load = np.asarray(step.load, dtype=float)
@@ -88,12 +88,30 @@ def _stabilised_states(spec, targets, state, linear_solver) -> dict:
             states[float(load[1])] = step.x
             report_step(f"{spec.key} D0={load[1]:.3g} (grad-div form, for the whole "
                         f"plate's spectrum)")
+            backs[float(load[1])] = step.back
 
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", RuntimeWarning)       # its rows show the failure
-        fe.ramp(problem, targets, x0=x0, start=start, on_step=cb,
-                **ramp_settings(spec, linear_solver), **fe.gallery.newton_guards(problem))
-    return {"problem": problem, "x": states}
+        fe.ramp(problem, targets, x0=x0, start=start, back=_saved_back(state, "stab_"),
+                on_step=cb, **ramp_settings(spec, linear_solver),
+                **fe.gallery.newton_guards(problem))
+    return {"problem": problem, "x": states, "back": backs}
+
+
+def _saved_back(state, prefix="") -> tuple | None:
+    """The secant predictor's second point saved with a row's state (``x_back`` and
+    ``load_back``, or those of the grad-div form with ``prefix="stab_"``), else ``None``."""
+    if state is None or f"x_{prefix}back" not in state:
+        return None
+    return (np.asarray(state[f"x_{prefix}back"], dtype=float),
+            np.asarray(state[f"load_{prefix}back"], dtype=float))
+
+
+def _save_back(saved: dict, back, prefix="") -> None:
+    """Add the secant predictor's second point ``back = (x, load)`` to a row's state."""
+    if back is not None:
+        saved[f"x_{prefix}back"] = back[0]
+        saved[f"load_{prefix}back"] = np.asarray(back[1], dtype=float)
 
 
 def run_fe(spec, start, state, on_step, linear_solver="superlu"):
@@ -151,6 +169,7 @@ def run_fe(spec, start, state, on_step, linear_solver="superlu"):
         i = spec.D0.index(float(load[1]))
         rec = step_record(spec, problem, step, _analysis(monitor, step, load))
         saved = {"x": step.x, "load": load}
+        _save_back(saved, step.back)
         if stab is not None:
             xs = stab["x"].get(float(load[1]))
             if xs is not None:
@@ -164,6 +183,7 @@ def run_fe(spec, start, state, on_step, linear_solver="superlu"):
                     track["located"] = True
                 track["prev"] = (xs, load)
                 saved["x_stab"] = xs
+                _save_back(saved, stab["back"].get(float(load[1])), "stab_")
                 after = scan.state
                 saved["scan_counts"], saved["scan_physical"] = after["counts"], after["physical"]
             saved["located"] = np.array(track["located"])
@@ -173,7 +193,8 @@ def run_fe(spec, start, state, on_step, linear_solver="superlu"):
     try:
         with warnings.catch_warnings():
             warnings.simplefilter("ignore", RuntimeWarning)   # the failure is recorded
-            res = fe.ramp(problem, targets, x0=x0, start=start_load, on_step=cb,
+            res = fe.ramp(problem, targets, x0=x0, start=start_load,
+                          back=_saved_back(state), on_step=cb,
                           state_analysis=monitor, **ramp_settings(spec, linear_solver),
                           **fe.gallery.newton_guards(problem))
     except _Stop:
