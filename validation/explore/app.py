@@ -13,7 +13,8 @@ from pathlib import Path
 
 import numpy as np
 
-from ..figures.common import BREAKDOWN_NAME, BUCKLING_NAME, MODEL_NAME, VARIANT_MARKER
+from ..figures.common import MODEL_NAME, VARIANT_MARKER
+from ..markers import P33_BREAKDOWN, RUN_BUCKLING
 from .curves import (D0_MAX, E0_MAX, KH, LAM1_MAX, LAM_MAX, PAPER, ExploreParameters,
                      dispersion_panel, equibiaxial_panel, uniaxial_panel)
 from .fe_layer import FEResults
@@ -125,10 +126,10 @@ class _Page:
         r = f.line("x", "y", source=source("uni", x=[], y=[]), color="#2ca02c", line_width=3,
                    legend_label="alpha curve", name="alpha curve")
         fe_glyphs(f, "uni_fe")
-        marks = {} if results.folder is None else {"legend_label": BREAKDOWN_NAME}
+        marks = {} if results.folder is None else {"legend_label": P33_BREAKDOWN.name}
         f.scatter("x", "y", source=source("uni_breakdown", x=[], y=[]), marker="circle",
                   size=22, fill_alpha=0.0, line_color="red", line_width=2, **marks)
-        marks = {} if results.folder is None else {"legend_label": BUCKLING_NAME}
+        marks = {} if results.folder is None else {"legend_label": RUN_BUCKLING.name}
         f.scatter("x", "y", source=source("uni_buckling", x=[], y=[]), marker="x", size=16,
                   line_color="red", line_width=3, **marks)
         hover(f, [r], "lam1", "D0")
