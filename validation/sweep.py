@@ -386,13 +386,20 @@ def _run_case_in_worker(*args, **kwargs) -> CaseResult:
 def _stop_workers(ex: ProcessPoolExecutor, grace: float = WORKER_GRACE_S) -> None:
     """Cancel the cases not started and stop every worker of ``ex`` (SIGTERM: each unwinds
     its case, then exits); wait for them, killing one that takes longer than ``grace``
-    seconds.  Further SIGTERM and SIGINT are ignored meanwhile, so that the clean-up ends."""
+    seconds.  A further SIGTERM or SIGINT meanwhile kills them at once (the clean-up
+    itself goes on to its end)."""
     procs = list((getattr(ex, "_processes", None) or {}).values())
     signals = (signal.SIGTERM, signal.SIGINT)
     main = threading.current_thread() is threading.main_thread()
     before = [signal.getsignal(s) for s in signals] if main else []
+
+    def kill_now(signum, frame):
+        for p in procs:
+            if p.is_alive():
+                p.kill()
+
     for s in signals if main else ():
-        signal.signal(s, signal.SIG_IGN)
+        signal.signal(s, kill_now)
     try:
         ex.shutdown(wait=False, cancel_futures=True)
         for p in procs:
