@@ -33,13 +33,17 @@ SCRIPT = textwrap.dedent("""
     multiprocessing.set_start_method("fork", force=True)
     from validation import cases as vc
     import validation.sweep as sweep
-    pause = float(sys.argv[2])
+    pause, unwind = float(sys.argv[2]), float(sys.argv[3])
     real = sweep.run_fe
     def runner(spec, start, state, on_step):
         def step(i, rec, st):
             stop = on_step(i, rec, st)
             print(f"worker {os.getpid()} saved step {i}", flush=True)
-            time.sleep(pause)
+            try:
+                time.sleep(pause)
+            except KeyboardInterrupt:
+                time.sleep(unwind)         # a case slow to unwind (a long C call)
+                raise
             return stop
         return real(spec, start, state, step)
     sweep.run_fe = runner
@@ -53,11 +57,12 @@ SCRIPT = textwrap.dedent("""
 """) % {"cases": CASES, "n": N_TARGETS}
 
 
-def _start(tmp, out, pause):
+def _start(tmp, out, pause, unwind=0.0):
     script = tmp / "validate_slow.py"
     script.write_text(SCRIPT)
     env = dict(os.environ, PYTHONPATH=str(ROOT))
-    return subprocess.Popen([sys.executable, str(script), str(out), str(pause)], env=env,
+    return subprocess.Popen([sys.executable, str(script), str(out), str(pause), str(unwind)],
+                            env=env,
                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
                             start_new_session=True)        # its own process group
 
@@ -84,6 +89,21 @@ def _left_over(out):
     return found
 
 
+def _workers(p) -> set:
+    """The pids of both workers, once each has saved a step."""
+    workers, t_end = set(), time.monotonic() + 60
+    while len(workers) < 2 and time.monotonic() < t_end:
+        text = p.stdout.readline()
+        if "saved step" in text:
+            workers.add(int(text.split()[1]))
+    assert len(workers) == 2
+    return workers
+
+
+def _alive(pid) -> bool:
+    return psutil.pid_exists(pid) and psutil.Process(pid).status() != psutil.STATUS_ZOMBIE
+
+
 @pytest.fixture(scope="module")
 def reference(tmp_path_factory):
     tmp = tmp_path_factory.mktemp("ref")
@@ -100,12 +120,7 @@ def reference(tmp_path_factory):
 def test_a_signal_stops_every_worker(sig, group, code, line, tmp_path, reference):
     out = tmp_path / "out"
     p = _start(tmp_path, out, 0.5)
-    workers, t_end = set(), time.monotonic() + 60
-    while len(workers) < 2 and time.monotonic() < t_end:   # both mid-ramp, a step saved
-        text = p.stdout.readline()
-        if "saved step" in text:
-            workers.add(int(text.split()[1]))
-    assert len(workers) == 2
+    workers = _workers(p)
     if group:
         os.killpg(p.pid, sig)
     else:
@@ -117,8 +132,7 @@ def test_a_signal_stops_every_worker(sig, group, code, line, tmp_path, reference
     assert time.monotonic() - t0 < 5.0
     assert p.returncode == code, err
     assert err.strip() == line
-    assert not any(psutil.pid_exists(w) and psutil.Process(w).status()
-                   != psutil.STATUS_ZOMBIE for w in workers)
+    assert not any(_alive(w) for w in workers)
     assert _left_over(out) == []
     assert not [f for f in out.rglob("*") if f.name.endswith(".tmp")]
     # stopped mid-ramp: each started case has fewer rows than targets, the third none
@@ -130,3 +144,23 @@ def test_a_signal_stops_every_worker(sig, group, code, line, tmp_path, reference
     assert _csvs(out) == reference
     summary = json.loads((out / "summary.json").read_text())["cases"]
     assert sum(summary[c]["resumed_steps"] for c in CASES) == sum(done)
+
+
+@pytest.mark.slow
+@pytest.mark.skipif(not hasattr(os, "fork"), reason="needs fork (POSIX)")
+def test_a_second_sigterm_kills_workers_slow_to_unwind(tmp_path):
+    # each worker takes 30 s to unwind its case: the first SIGTERM waits for them, the
+    # second kills them at once
+    out = tmp_path / "out"
+    p = _start(tmp_path, out, 0.5, unwind=30.0)
+    workers = _workers(p)
+    p.send_signal(signal.SIGTERM)
+    time.sleep(1.0)
+    assert p.poll() is None and all(_alive(w) for w in workers)
+    p.send_signal(signal.SIGTERM)
+    t0 = time.monotonic()
+    _, err = p.communicate(timeout=60)
+    assert time.monotonic() - t0 < 5.0
+    assert p.returncode == 143, err
+    assert err.strip() == "terminated (SIGTERM); rerun the same command to resume"
+    assert not any(_alive(w) for w in workers) and _left_over(out) == []
