@@ -9,7 +9,7 @@ import pytest
 import scipy.sparse as sp
 
 from skfem_dielectric import Layout, Problem
-from skfem_dielectric.solvers.critical import critical_load
+from skfem_dielectric.solvers.critical import brent, critical_load, illinois
 
 
 class Branch(Problem):
@@ -66,3 +66,23 @@ def test_vector_loads_and_bad_input():
         critical_load(pb, np.array([0.0, 0.5]), 0.5, 0.5, lowest(pb))
     with pytest.raises(ValueError, match="problem must be"):
         critical_load(object(), np.zeros(2), 0.5, 2.0, lowest(pb))
+
+
+@pytest.mark.parametrize("xtol", [1e-4, 1e-8, 1e-12])
+def test_brent_closes_the_bracket_with_fewer_evaluations_than_illinois(xtol):
+    # g(t) = cos t - t (positive at 0, negative at 1), root 0.739085133215160641655 (the
+    # Dottie number); the final bracket holds it and is no wider than asked; Brent needs at
+    # most as many evaluations as Illinois for the same width, and a curved g (the
+    # eigenvalue of a plate near its crossing bends like this) takes it fewer
+    root = 0.739085133215160641655
+    for g in (lambda t: math.cos(t) - t, lambda t: math.cos(3 * t) - t / 3 - 0.5):
+        f0, f1 = g(0.0), g(1.0)
+        c, fc, a, b, it = brent(g, 0.0, f0, 1.0, f1, xtol=xtol, maxiter=100)
+        assert g(a) > 0 > g(b) and abs(b - a) <= xtol and fc == g(c)
+        _, _, ia, ib, it_ill = illinois(g, 0.0, f0, 1.0, f1, maxiter=100,
+                                        done=lambda a, b, c: abs(b - a) <= xtol)
+        assert it <= it_ill
+        assert min(a, b) <= max(ia, ib) and min(ia, ib) <= max(a, b)   # same root
+    c, _, a, b, _ = brent(lambda t: math.cos(t) - t, 0.0, 1.0, 1.0, math.cos(1) - 1,
+                          xtol=xtol, maxiter=100)
+    assert min(a, b) <= root <= max(a, b)

@@ -13,8 +13,8 @@ parity of ``u2`` in ``X2``.
 
 :func:`section_mode_eigenvalue` gives the eigenvalue of the reduced stiffness
 (:mod:`skfem_dielectric.stability.analysis`) that belongs to the mode ``n = 1`` of the requested
-class; :func:`section_critical_load` finds where it vanishes by safeguarded secant
-(Illinois) iterations on the load -- the FE counterpart of the Stroh dispersion relation
+class; :func:`section_critical_load` finds where it vanishes by Brent's
+iterations on the load -- the FE counterpart of the Stroh dispersion relation
 of the paper's Sec. 3.
 """
 
@@ -28,7 +28,7 @@ import numpy as np
 from ..checks import check_choice, check_positive
 from ..materials import NeoHookeanDielectric
 from ..models.cross_section import CrossSection, section_mesh
-from ..solvers.critical import illinois
+from ..solvers.critical import brent
 from ..solvers.ramp import RampSettings, ramp
 from ..stability.analysis import lowest_modes, metric_matrix, tangent_stability
 
@@ -206,8 +206,9 @@ def section_critical_load(pb: CrossSection, mode: str, lo: float, hi: float, *,
                           tol: float = 1e-6, maxiter: int = 60) -> SectionBifurcation:
     """Load at which the mode ``n = 1`` of class ``mode`` loses stability.
 
-    Illinois (regula falsi) iterations on the load between ``lo`` (mode stable) and
-    ``hi`` (mode unstable), each state solved by Newton from the previous one.
+    Brent iterations (inverse quadratic interpolation, bisection) on the load between
+    ``lo`` (mode stable) and ``hi`` (mode unstable), each state solved by Newton from the
+    previous one.
 
     Raises
     ------
@@ -256,8 +257,8 @@ def section_critical_load(pb: CrossSection, mode: str, lo: float, hi: float, *,
     if not (fa > 0 > fb):
         raise ValueError(f"[{lo}, {hi}] does not bracket the bifurcation of the {mode} "
                          f"mode: eigenvalues {fa:.3e}, {fb:.3e}")
-    c, _, _, _, it = illinois(lambda v: g(v)[0], lo, fa, hi, fb, maxiter=maxiter,
-                              done=lambda a, b, c: abs(b - a) <= tol * max(1.0, abs(c)))
+    c, _, _, _, it = brent(lambda v: g(v)[0], lo, fa, hi, fb, maxiter=maxiter,
+                           xtol=lambda c: tol * max(1.0, abs(c)))
     res = solve(c)
     return SectionBifurcation(float(c), float(res.steps[-1]["D0"]), it, int(nneg_lo))
 
@@ -271,7 +272,7 @@ def section_critical_stretch(kh: float, mode: str, lo: float, hi: float, *, n1: 
     The compressed plate (``lam < 1``) buckles where the mode's eigenvalue vanishes: for
     every trial stretch the section of :func:`wrinkling_section` (``n1 x n2`` elements,
     the same for every trial, so that the eigenvalue is a smooth function of ``lam``) is
-    solved uncharged and its mode's eigenvalue computed; Illinois iterations on ``lam``
+    solved uncharged and its mode's eigenvalue computed; Brent iterations on ``lam``
     between ``lo`` (unstable, more compressed) and ``hi`` (stable).
 
     Returns
@@ -304,6 +305,5 @@ def section_critical_stretch(kh: float, mode: str, lo: float, hi: float, *, n1: 
     if not (fa > 0 > fb):
         raise ValueError(f"[{lo}, {hi}] does not bracket the buckling of the {mode} mode: "
                          f"eigenvalues {fb:.3e} at {lo}, {fa:.3e} at {hi}")
-    c, _, _, _, it = illinois(g, hi, fa, lo, fb, maxiter=maxiter,
-                              done=lambda a, b, c: abs(b - a) <= tol)
+    c, _, _, _, it = brent(g, hi, fa, lo, fb, maxiter=maxiter, xtol=tol)
     return float(c), it

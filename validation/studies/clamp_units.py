@@ -1,0 +1,275 @@
+"""The clamp-zone wrinkle, unit by unit: one weight fraction on one (graded) mesh per unit.
+
+A *unit* is the buckling run of the clamped Keplinger plate (eighth model, grad-div 10,
+neo-Hookean, ``g = 9.81``) for one weight fraction ``alpha`` on one mesh ``n1 x n2 x n3``
+with a geometric grading along ``x1`` towards the clamp (``grading`` = last / first element
+length, :func:`skfem_dielectric.fem.mesh.plate_mesh`): the charge ramp in steps of
+``D0_step``; every state scanned for the whole plate
+(:class:`~skfem_dielectric.models.plate.scan.PlateScan`, inertia counts per symmetry
+class, modes where a count changes); the ramp stops at the first physical crossing, which
+is located to ``1e-4`` (:func:`~skfem_dielectric.studies.buckling.locate_buckling`).  The
+unit's row holds what the mesh says about the mode there:
+
+* ``D0_b``, the mode's class, its share at the clamp corners and its mesh scale;
+* ``half_waves``: sign changes of its top-face deflection across the whole width, at its
+  energy centroid (``validation.studies.local_theory.half_waves``), and
+  ``elements_per_half_wave`` (the width's elements over the half-waves);
+* ``J_min_clamp``, ``J_max_clamp``: ``J = det F`` at the mid-plane centres of the elements
+  next to the clamp, at ``D0_b`` (an incompressible material has ``J = 1``; the discrete
+  clamp layer departs from it where the mesh does not resolve it);
+* ``n_flagged_b``: the negative eigenvalues of the whole plate that are not physical
+  (clamp corner or mesh scale) at the last scanned state;
+* the unknowns, factorisations, CPU seconds, peak memory, solver, date and command.
+
+Rows go to a CSV (default ``validation/data/clamp_units.csv``), one per unit, written
+atomically as soon as the unit is done; a unit whose key (``alpha``, mesh, ``grading``,
+``formulation``) is already there is skipped, so a list of units run in the background
+resumes where it stopped.
+
+Usage::
+
+    python -m validation.studies.clamp_units --alpha 1 --mesh 12x1x12 --grading 0.25
+    python -m validation.studies.clamp_units --alpha 1 0.7 --mesh 12x1x12 16x1x20 --grading 0.25
+"""
+
+from __future__ import annotations
+
+import argparse
+import csv
+import datetime
+import math
+import os
+import resource
+import shlex
+import sys
+import time
+import warnings
+from dataclasses import replace
+from pathlib import Path
+
+import numpy as np
+
+import skfem_dielectric as fe
+from skfem_dielectric.linalg.solver_base import factorisation_count
+from skfem_dielectric.models.plate.scan import PlateScan
+from skfem_dielectric.studies.buckling import locate_buckling
+
+from ..fe.model import BUCKLING_GRAD_DIV, BUCKLING_NEWTON, BUCKLING_TOL
+from ..store import write_text_atomic
+from .local_theory import energy_centroid, half_waves, local_state
+
+__all__ = ["COLUMNS", "DEFAULT_CSV", "run_unit", "read_units", "main"]
+
+#: where the study's rows are kept (provenance in its header lines)
+DEFAULT_CSV = Path(__file__).resolve().parents[1] / "data" / "clamp_units.csv"
+#: the columns of a unit's row, in order
+COLUMNS = ("alpha", "mesh", "grading", "formulation", "dofs", "D0_step", "D0_b", "class",
+           "corner_share", "mesh_scale", "half_waves", "elements_per_half_wave",
+           "J_min_clamp", "J_max_clamp", "n_flagged_b", "states", "factorisations",
+           "cpu_s", "peak_GB", "solver", "date", "command")
+_HEADER = """\
+# The clamp-zone wrinkle of the Keplinger plate, unit by unit (one alpha on one mesh per row).
+# Written by validation.studies.clamp_units (the module docstring defines every column):
+# eighth model, neo-Hookean, g = 9.81, grad-div 10, grading = last / first element length
+# along x1 (towards the clamp); D0_b located to 1e-4; J at the mid-plane centres of the
+# elements next to the clamp at D0_b; cpu_s and peak_GB of the unit's process.
+"""
+
+
+def _mesh_text(elements) -> str:
+    return "x".join(str(int(n)) for n in elements)
+
+
+def _clamp_J(pb, x, load) -> tuple[float, float]:
+    """Smallest and largest ``J`` at the mid-plane centres of the elements next to the
+    clamp (eighth model: the last element along ``x1``, every element across ``x3``)."""
+    g1, _, g3 = pb.plate.grids
+    X1 = 0.5 * (g1[-1] + g1[-2])
+    Js = [local_state(pb, x, load, np.array([X1, 0.0, 0.5 * (a + b)])).J
+          for a, b in zip(g3[:-1], g3[1:])]
+    return float(min(Js)), float(max(Js))
+
+
+class _Crossed(Exception):
+    pass
+
+
+def run_unit(alpha: float, elements, *, grading: float = 1.0, D0_step: float = 0.5,
+             D0_max: float = 6.0, formulation: str = "mixed", solver: str = "auto",
+             progress=None) -> dict:
+    """One unit of the study: the row of :data:`COLUMNS` (module docstring).
+
+    Parameters
+    ----------
+    alpha
+        Weight fraction (``> 0``).
+    elements
+        ``(n1, n2, n3)`` of the eighth model.
+    grading
+        Last / first element length along ``x1`` (``< 1``: finer at the clamp).
+    D0_step, D0_max
+        The charge targets ``D0_step, 2 D0_step, ..., D0_max``; the ramp stops at the
+        first scanned state with a negative physical mode.
+    formulation
+        How ``J = 1`` is imposed (:class:`~skfem_dielectric.gallery.plates.PlateOptions`).
+    solver
+        Linear solver of the ramps and trial states.
+    progress
+        Optional ``progress(text)`` called once per scanned state.
+
+    Returns
+    -------
+    dict
+        ``D0_b`` is ``nan`` (and the mode columns empty) when no physical mode crossed up
+        to ``D0_max`` or the ramp stopped first.
+    """
+    t0, f0 = time.process_time(), factorisation_count()
+    el = tuple(int(n) for n in elements)
+    D0 = np.round(np.arange(D0_step, D0_max + 1e-9, D0_step), 10)
+    scan = None
+    track = {"prev": None, "before": None, "row": None, "states": 0}
+
+    def on_step(step):
+        load = np.asarray(step.load, dtype=float)
+        before = scan[0].state
+        row = scan[0].analyse(step.x, load)
+        track["states"] += 1
+        if progress is not None:
+            progress(f"D0 = {load[1]:.3f}: {row.n_negative} negative, {row.n_physical} "
+                     f"physical, {row.cpu:.1f} CPU s")
+        if row.n_physical > 0 and track["prev"] is not None:
+            track["before"], track["row"] = before, row
+            track["cur"] = (step.x, load)
+            raise _Crossed
+        track["prev"] = (step.x, load)
+
+    options = fe.PlateOptions(grad_div=BUCKLING_GRAD_DIV, formulation=formulation)
+    pb = fe.gallery.keplinger_problem(elements=el, symmetry="eighth", grading=grading,
+                                      options=options)
+    scan = [PlateScan(pb)]
+    s = fe.gallery.keplinger_s(alpha, g=9.81)
+    targets = fe.gallery.preload_then_charge(s, D0, fe.gallery.KEPLINGER_PRELOAD_STEPS)
+    settings = replace(fe.gallery.KEPLINGER_SETTINGS, max_cutbacks=6, max_iter=25)
+    stopped = ""
+    try:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", RuntimeWarning)
+            res = fe.gallery.run_ramp(pb, targets, on_step=_only_targets(on_step, s),
+                                      linear_solver=solver, settings=settings)
+        stopped = "" if res.converged else f"ramp stopped at D0 = {np.asarray(res.failed_at)[-1]:g}"
+    except _Crossed:
+        pass
+    row = {"alpha": alpha, "mesh": _mesh_text(el), "grading": grading,
+           "formulation": formulation, "dofs": pb.ndofs, "D0_step": D0_step,
+           "states": track["states"]}
+    if track["row"] is not None:
+        method = "pardiso" if solver == "pardiso" else "auto"
+        bl = locate_buckling(pb, track["prev"], track["cur"], track["row"].new_physical,
+                             counts=track["before"], method=method, tol=BUCKLING_TOL,
+                             linear_solver=solver, settings=BUCKLING_NEWTON)
+        lab = bl.label
+        point = energy_centroid(pb, bl.x, bl.load, lab.mode)
+        n_half = half_waves(pb, lab.mode, lab.increments, point[0])
+        jmin, jmax = _clamp_J(pb, bl.x, bl.load)
+        n3 = el[2] * (2 if 3 in pb.plate.symmetry else 1)
+        row.update(D0_b=float(bl.D0_b), **{"class": lab.symmetry},
+                   corner_share=lab.corner_share, mesh_scale=lab.mesh_scale,
+                   half_waves=n_half, elements_per_half_wave=n3 / n_half,
+                   J_min_clamp=jmin, J_max_clamp=jmax,
+                   n_flagged_b=track["row"].n_negative - track["row"].n_physical)
+    else:
+        row.update(D0_b=math.nan, note=stopped or f"no physical crossing up to D0 = {D0_max:g}")
+    row.update(factorisations=factorisation_count() - f0,
+               cpu_s=round(time.process_time() - t0, 1),
+               peak_GB=round(resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024**2, 3),
+               solver=solver, date=datetime.date.today().isoformat())
+    return row
+
+
+def _only_targets(hook, s):
+    """The scan sees the converged charge targets (and the end of the pre-load)."""
+    def cb(step):
+        load = np.asarray(step.load, dtype=float)
+        if step.target_reached and load[0] == s:
+            hook(step)
+    return cb
+
+
+def _key(r: dict) -> tuple:
+    return (f"{float(r['alpha']):g}", str(r["mesh"]), f"{float(r['grading']):g}",
+            str(r["formulation"]))
+
+
+def read_units(path: Path = DEFAULT_CSV) -> list[dict]:
+    """The rows of the study's CSV (comment lines skipped), as dicts of strings."""
+    path = Path(path)
+    if not path.exists():
+        return []
+    with open(path, newline="") as fh:
+        return list(csv.DictReader(ln for ln in fh if not ln.startswith("#")))
+
+
+def _cell(v) -> str:
+    if isinstance(v, float):
+        return "" if not math.isfinite(v) else f"{v:.6g}"
+    return str(v)
+
+
+def _append(path: Path, row: dict) -> None:
+    rows = read_units(path) + [{k: _cell(row.get(k, "")) for k in COLUMNS}]
+    lines = [",".join(COLUMNS)]
+    for r in rows:
+        buf = []
+        for k in COLUMNS:
+            v = r.get(k, "")
+            buf.append(f'"{v}"' if "," in v or " " in v else v)
+        lines.append(",".join(buf))
+    write_text_atomic(path, _HEADER + "\n".join(lines) + "\n")
+
+
+def _mesh(text: str) -> tuple[int, int, int]:
+    try:
+        n = tuple(int(v) for v in text.split("x"))
+    except ValueError:
+        n = ()
+    if len(n) != 3 or min(n) < 1:
+        raise argparse.ArgumentTypeError(f"a mesh is n1xn2xn3 with positive counts, "
+                                         f"got {text!r}")
+    return n
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(prog="python -m validation.studies.clamp_units",
+                                 description=__doc__.splitlines()[0])
+    ap.add_argument("--alpha", type=float, nargs="+", required=True)
+    ap.add_argument("--mesh", type=_mesh, nargs="+", required=True)
+    ap.add_argument("--grading", type=float, default=1.0)
+    ap.add_argument("--formulation", default="mixed")
+    ap.add_argument("--D0-step", dest="D0_step", type=float, default=0.5)
+    ap.add_argument("--D0-max", dest="D0_max", type=float, default=6.0)
+    ap.add_argument("--solver", default="auto", choices=["auto", "superlu", "pardiso"])
+    ap.add_argument("--csv", type=Path, default=DEFAULT_CSV)
+    a = ap.parse_args(argv)
+    command = "python -m validation.studies.clamp_units " + " ".join(
+        shlex.quote(v) for v in (argv if argv is not None else sys.argv[1:]))
+    for alpha in a.alpha:
+        for el in a.mesh:
+            row_key = (f"{alpha:g}", _mesh_text(el), f"{a.grading:g}", a.formulation)
+            if any(_key(r) == row_key for r in read_units(a.csv)):
+                print(f"alpha = {alpha:g} {_mesh_text(el)} grading {a.grading:g}: kept",
+                      flush=True)
+                continue
+            row = run_unit(alpha, el, grading=a.grading, D0_step=a.D0_step,
+                           D0_max=a.D0_max, formulation=a.formulation, solver=a.solver,
+                           progress=lambda t: print("  " + t, flush=True))
+            row["command"] = command
+            _append(a.csv, row)
+            print(f"alpha = {alpha:g} {_mesh_text(el)} grading {a.grading:g}: D0_b "
+                  f"{row['D0_b']:.4f}, {row.get('half_waves', '')} half-waves, "
+                  f"{row['dofs']} DOFs, {row['cpu_s']} CPU s, {row['peak_GB']} GB",
+                  flush=True)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
