@@ -72,7 +72,7 @@ class RunSpec:
     buckling : bool
         Also analyse every converged state of the clamped plate with the whole plate's
         spectrum (every symmetry class of the eighth model,
-        :func:`skfem_dielectric.models.plate.modes.lowest_physical`): the columns
+        scanned event by event, :class:`skfem_dielectric.models.plate.scan.PlateScan`): the columns
         ``n_negative_plate``, ``physical_eig``, ``physical_class`` and ``stable``, and
         ``D0_b``, the stability-based breakdown where that eigenvalue crosses zero,
         located to ``1e-4`` (:func:`skfem_dielectric.studies.buckling.buckling_load`, as

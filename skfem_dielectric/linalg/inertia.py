@@ -25,7 +25,7 @@ from .solver_base import LinearSolver, splu
 
 __all__ = ["INERTIA_METHODS", "DENSE_LIMIT", "tangent_inertia", "constrained_order",
            "counted_inertia", "symmetric_lu", "SymmetricFactors", "inertia_factors",
-           "reusable_factors"]
+           "reusable_factors", "kept_order", "keep_order"]
 
 INERTIA_METHODS = ("auto", "superlu", "pardiso", "dense")
 #: systems up to this size may be counted densely
@@ -200,15 +200,35 @@ class SymmetricFactors(LinearSolver):
         return self._solve(b)
 
 
+def kept_order(orders: list | None, K: sp.spmatrix) -> np.ndarray | None:
+    """The elimination order kept in ``orders`` (see :func:`inertia_factors`) if it was
+    made for a matrix of ``K``'s pattern (same shape and number of stored entries), else
+    the constrained order of ``K`` (:func:`constrained_order`; minimum degree met a zero
+    pivot on the other pattern), or ``None`` when nothing is kept: an order made for a
+    sparser pattern (e.g. the tangent at ``D0 = 0``, whose electric coupling entries
+    vanish) can fill in badly on the full one."""
+    if orders and orders[0][0] == (K.shape, K.nnz):
+        return orders[0][1]
+    if orders:      # minimum degree failed on the other pattern: the constrained order at once
+        return constrained_order(K)
+    return None
+
+
+def keep_order(orders: list | None, K: sp.spmatrix, order: np.ndarray | None) -> None:
+    """Keep ``order`` (made for ``K``) in ``orders`` for the next matrices of its pattern."""
+    if orders is not None and order is not None:
+        orders[:] = [((K.shape, K.nnz), order)]
+
+
 def inertia_factors(K: sp.spmatrix, method: str = "auto", orders: list | None = None
                     ) -> tuple[tuple[int, int, int], LinearSolver | None]:
     """:func:`counted_inertia` of ``K`` and the sparse factorisation that counted it.
 
     ``orders`` (a list) keeps the SuperLU elimination order from one call to the next for
     matrices of one pattern and zero diagonal (e.g. the tangents of one symmetry class along
-    a load path): empty, it receives the constrained order where minimum degree met a zero
-    pivot (:func:`symmetric_lu`); holding one, that order is used at once, without the
-    minimum-degree factorisation that would fail again.
+    a load path): it receives the constrained order where minimum degree met a zero pivot
+    (:func:`symmetric_lu`); holding one made for ``K``'s pattern (:func:`kept_order`), that
+    order is used at once, without the minimum-degree factorisation that would fail again.
 
     Returns
     -------
@@ -230,11 +250,10 @@ def inertia_factors(K: sp.spmatrix, method: str = "auto", orders: list | None = 
         return solver.inertia, solver
     if method == "superlu":
         try:
-            inertia, solve, order = symmetric_lu(K, orders[0] if orders else None)
+            inertia, solve, order = symmetric_lu(K, kept_order(orders, K))
         except ValueError:
             return counted_inertia(K, method), None
-        if orders is not None and not orders and order is not None:
-            orders.append(order)
+        keep_order(orders, K, order)
         return inertia, SymmetricFactors(inertia, solve)
     return counted_inertia(K, method), None
 

@@ -37,7 +37,7 @@ import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
 from ..linalg.inertia import (DENSE_LIMIT, counted_inertia, inertia_factors, reusable_factors,
-                              symmetric_lu, tangent_inertia)
+                              keep_order, kept_order, symmetric_lu, tangent_inertia)
 from ..linalg.linear import PardisoSolver, pardiso_available
 from ..linalg.solver_base import LinearSolver, count_back_substitution, splu
 from ..problem import Problem
@@ -81,13 +81,12 @@ def _below(Ks: sp.spmatrix, n_m: int, use_pardiso: bool, solver: PardisoSolver |
         return tangent_inertia(Ks, "dense")[1] - n_m, None
     orders = [] if orders is None else orders
     try:
-        inertia, solve, order = symmetric_lu(Ks, orders[0] if orders else None)
+        inertia, solve, order = symmetric_lu(Ks, kept_order(orders, Ks))
     except ValueError:      # SuperLU without diagonal pivots
         if not pardiso_available():
             return 0, None  # keep this shift
         return tangent_inertia(Ks, "pardiso")[1] - n_m, None
-    if not orders:
-        orders.append(order)
+    keep_order(orders, Ks, order)
     return inertia[1] - n_m, solve
 
 

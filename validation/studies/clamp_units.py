@@ -19,7 +19,9 @@ unit's row holds what the mesh says about the mode there:
   clamp layer departs from it where the mesh does not resolve it);
 * ``n_flagged_b``: the negative eigenvalues of the whole plate that are not physical
   (clamp corner or mesh scale) at the last scanned state;
-* the unknowns, factorisations, CPU seconds, peak memory, solver, date and command.
+* the unknowns, factorisations, CPU seconds, peak memory, solver, date and command, and a
+  ``note`` where no ``D0_b`` was found (no crossing up to ``D0_max``, the ramp stopped, or a
+  crossing between two states that the location could not follow).
 
 Rows go to a CSV (default ``validation/data/clamp_units.csv``), one per unit, written
 atomically as soon as the unit is done; a unit whose key (``alpha``, mesh, ``grading``,
@@ -66,7 +68,7 @@ DEFAULT_CSV = Path(__file__).resolve().parents[1] / "data" / "clamp_units.csv"
 COLUMNS = ("alpha", "mesh", "grading", "formulation", "dofs", "D0_step", "D0_b", "class",
            "corner_share", "mesh_scale", "half_waves", "elements_per_half_wave",
            "J_min_clamp", "J_max_clamp", "n_flagged_b", "states", "factorisations",
-           "cpu_s", "peak_GB", "solver", "date", "command")
+           "cpu_s", "peak_GB", "solver", "date", "note", "command")
 _HEADER = """\
 # The clamp-zone wrinkle of the Keplinger plate, unit by unit (one alpha on one mesh per row).
 # Written by validation.studies.clamp_units (the module docstring defines every column):
@@ -162,11 +164,17 @@ def run_unit(alpha: float, elements, *, grading: float = 1.0, D0_step: float = 0
     row = {"alpha": alpha, "mesh": _mesh_text(el), "grading": grading,
            "formulation": formulation, "dofs": pb.ndofs, "D0_step": D0_step,
            "states": track["states"]}
+    bl = None
     if track["row"] is not None:
         method = "pardiso" if solver == "pardiso" else "auto"
-        bl = locate_buckling(pb, track["prev"], track["cur"], track["row"].new_physical,
-                             counts=track["before"], method=method, tol=BUCKLING_TOL,
-                             linear_solver=solver, settings=BUCKLING_NEWTON)
+        lo, hi = float(track["prev"][1][1]), float(track["cur"][1][1])
+        try:
+            bl = locate_buckling(pb, track["prev"], track["cur"], track["row"].new_physical,
+                                 counts=track["before"], method=method, tol=BUCKLING_TOL,
+                                 linear_solver=solver, settings=BUCKLING_NEWTON)
+        except ValueError as exc:       # a result: the crossing between lo and hi, unlocated
+            stopped = f"physical crossing between D0 = {lo:g} and {hi:g} not located: {exc}"
+    if bl is not None:
         lab = bl.label
         point = energy_centroid(pb, bl.x, bl.load, lab.mode)
         n_half = half_waves(pb, lab.mode, lab.increments, point[0])
@@ -178,7 +186,9 @@ def run_unit(alpha: float, elements, *, grading: float = 1.0, D0_step: float = 0
                    J_min_clamp=jmin, J_max_clamp=jmax,
                    n_flagged_b=track["row"].n_negative - track["row"].n_physical)
     else:
-        row.update(D0_b=math.nan, note=stopped or f"no physical crossing up to D0 = {D0_max:g}")
+        row.update(D0_b=math.nan, n_flagged_b=(track["row"].n_negative - track["row"].n_physical
+                                                if track["row"] is not None else ""),
+                   note=stopped or f"no physical crossing up to D0 = {D0_max:g}")
     row.update(factorisations=factorisation_count() - f0,
                cpu_s=round(time.process_time() - t0, 1),
                peak_GB=round(resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024**2, 3),
@@ -265,7 +275,7 @@ def main(argv=None) -> int:
             row["command"] = command
             _append(a.csv, row)
             print(f"alpha = {alpha:g} {_mesh_text(el)} grading {a.grading:g}: D0_b "
-                  f"{row['D0_b']:.4f}, {row.get('half_waves', '')} half-waves, "
+                  f"{row['D0_b']:.4f} {row.get('note', '')}, {row.get('half_waves', '')} half-waves, "
                   f"{row['dofs']} DOFs, {row['cpu_s']} CPU s, {row['peak_GB']} GB",
                   flush=True)
     return 0

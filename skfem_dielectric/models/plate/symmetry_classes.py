@@ -61,9 +61,10 @@ class SymmetryClass:
     orders
         The SuperLU elimination order of its tangents (``orders`` of
         :func:`~skfem_dielectric.linalg.inertia.inertia_factors`): filled at the first
-        analysis that needs the constrained order, used by every later one (the tangents of
-        all states have one pattern and one zero diagonal), so that each state's count
-        costs one factorisation.
+        analysis that needs the constrained order, used by every later one of the same
+        pattern (the tangents of all charged states have one pattern and one zero
+        diagonal; the uncharged one lacks the electric coupling entries), so that each
+        state's count costs one factorisation.
     """
 
     increments: dict[int, str]
