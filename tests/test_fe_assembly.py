@@ -86,6 +86,34 @@ def test_single_threaded_blas_restores_the_thread_count():
     assert blas_threads() == n
 
 
+def test_blas_thread_limit_reaches_scipys_openblas_and_restores_it():
+    # scipy's bundled OpenBLAS (SuperLU, ARPACK) and numpy's: at most n threads inside,
+    # the counts before restored after; the command line leaves no variable behind
+    import os
+
+    from skfem_dielectric.fem.assembly import _every_openblas, blas_thread_limit
+    from validation.cli import main
+
+    libs = _every_openblas()
+    if not libs:
+        pytest.skip("no bundled OpenBLAS here")
+    before = [get() for get, _ in libs]
+    with blas_thread_limit(1):
+        assert [get() for get, _ in libs] == [1] * len(libs)
+    assert [get() for get, _ in libs] == before
+    with pytest.raises(ValueError, match="n must be an integer >= 1, got 0"):
+        with blas_thread_limit(0):
+            pass
+    had = os.environ.pop("OPENBLAS_NUM_THREADS", None)
+    try:
+        assert main(["list"]) == 0
+        assert "OPENBLAS_NUM_THREADS" not in os.environ
+        assert [get() for get, _ in libs] == before
+    finally:
+        if had is not None:
+            os.environ["OPENBLAS_NUM_THREADS"] = had
+
+
 def test_ordered_sum_adds_the_chunks_in_order_whatever_the_threads():
     # chunks handed to the threads in reverse order still add in chunk order: the result
     # is the sequential sum bit for bit (and np.bincount's to round-off)

@@ -22,6 +22,8 @@ import webbrowser
 from importlib.metadata import PackageNotFoundError, version
 from pathlib import Path
 
+from skfem_dielectric.fem import blas_thread_limit
+
 from .cases import CASES
 from .check_report import write_check_report
 from .checker import CHECK_CASES, TOLERANCES, check
@@ -472,7 +474,16 @@ def main(argv: list[str] | None = None) -> int:
     try:
         if getattr(args, "jobs", 1) < 1:
             raise ValueError(f"--jobs must be >= 1, got {args.jobs}")
-        return cmd(args)
+        if "OPENBLAS_NUM_THREADS" in os.environ:    # the user's choice
+            return cmd(args)
+        # one OpenBLAS thread: SuperLU's and ARPACK's small BLAS calls spin the others
+        # (docs/performance.md, "BLAS threads"); worker processes read the variable
+        os.environ["OPENBLAS_NUM_THREADS"] = "1"
+        try:
+            with blas_thread_limit(1):
+                return cmd(args)
+        finally:
+            del os.environ["OPENBLAS_NUM_THREADS"]
     except _Terminated:
         print("\nterminated (SIGTERM); rerun the same command to resume", file=sys.stderr)
         return 143

@@ -7,12 +7,14 @@ quadrilateral meshes and batched point gradients of the 2D models
 """
 
 from .assembly import (BlockScatter, DofReduction, OrderedSum, ScatterMap, blas_threads,
+                       blas_thread_limit,
                        drop_spare_slots, single_threaded_blas, trim_heap)
 from .mesh import PlateMesh, plate_mesh, SYMMETRIES
 from .mesh2d import BatchedVectorForm, point_gradients, quarter_quad_mesh
 
 __all__ = [
     "BlockScatter", "DofReduction", "OrderedSum", "ScatterMap", "blas_threads",
+    "blas_thread_limit",
     "drop_spare_slots", "single_threaded_blas", "trim_heap", "PlateMesh", "plate_mesh",
     "SYMMETRIES", "BatchedVectorForm", "point_gradients", "quarter_quad_mesh",
 ]

@@ -25,6 +25,7 @@ import numpy as np
 import scipy.sparse as sp
 
 __all__ = ["BlockScatter", "DofReduction", "OrderedSum", "ScatterMap", "blas_threads",
+           "blas_thread_limit",
            "drop_spare_slots", "single_threaded_blas", "trim_heap"]
 
 _OPENBLAS: list = []      # [(get_num_threads, set_num_threads) or None], found on first use
@@ -92,6 +93,62 @@ def _openblas_threads():
                 break
         _OPENBLAS.append(found)
     return _OPENBLAS[0]
+
+
+_ALL_OPENBLAS: list = []  # [[(get, set), ...]] of numpy's and scipy's bundled OpenBLAS
+
+
+def _every_openblas() -> list:
+    """The thread-count functions of every OpenBLAS bundled with numpy and scipy (scipy's
+    serves SuperLU and ARPACK), each library once."""
+    if not _ALL_OPENBLAS:
+        import scipy
+        found, seen = [], set()
+        for pkg in (np, scipy):
+            here = os.path.dirname(pkg.__file__)
+            libs = os.path.join(os.path.dirname(here), f"{pkg.__name__}.libs")
+            for path in sorted(glob.glob(os.path.join(libs, "*openblas*"))
+                               + glob.glob(os.path.join(here, ".dylibs", "*openblas*"))):
+                try:
+                    lib = ctypes.CDLL(path)
+                except OSError:
+                    continue
+                for p_ in ("scipy_openblas", "openblas"):
+                    for s_ in ("64_", ""):
+                        get, put = f"{p_}_get_num_threads{s_}", f"{p_}_set_num_threads{s_}"
+                        if hasattr(lib, get) and hasattr(lib, put) and path not in seen:
+                            seen.add(path)
+                            found.append((getattr(lib, get), getattr(lib, put)))
+        _ALL_OPENBLAS.append(found)
+    return _ALL_OPENBLAS[0]
+
+
+@contextmanager
+def blas_thread_limit(n: int = 1):
+    """Run the block with at most ``n`` threads in every OpenBLAS bundled with numpy and
+    scipy (restored afterwards; a no-op for other BLAS libraries).
+
+    SuperLU's supernodes and ARPACK's vectors on the plates of this package are small:
+    OpenBLAS threads on them spin more than they compute (docs/performance.md, "BLAS
+    threads").  The command line runs its commands inside ``blas_thread_limit(1)``.
+
+    Parameters
+    ----------
+    n
+        Largest thread count, ``>= 1``.
+    """
+    if int(n) != n or n < 1:
+        raise ValueError(f"n must be an integer >= 1, got {n!r}")
+    libs = _every_openblas()
+    before = [int(get()) for get, _ in libs]
+    for (_, put), m in zip(libs, before):
+        if m > n:
+            put(int(n))
+    try:
+        yield
+    finally:
+        for (_, put), m in zip(libs, before):
+            put(m)
 
 
 def blas_threads() -> int | None:

@@ -346,6 +346,10 @@ def save_figure(fig, folder, stem: str, dpi: int = 130, bbox_inches=None) -> lis
     folder = Path(folder)
     paths = [folder / f"{stem}.png", folder / f"{stem}.pdf"]
     fig.savefig(paths[0], dpi=dpi, bbox_inches=bbox_inches, metadata={"Software": None})
+    # the layout the PNG's draw computed (constrained layout: fractions of the figure,
+    # text in points) serves the PDF as it is, instead of being solved a second time
+    if fig.get_layout_engine() is not None:
+        fig.set_layout_engine("none")
     fig.savefig(paths[1], bbox_inches=bbox_inches,
                 metadata={"CreationDate": None, "Creator": None, "Producer": None})
     plt.close(fig)
