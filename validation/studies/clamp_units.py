@@ -52,6 +52,7 @@ from pathlib import Path
 import numpy as np
 
 import skfem_dielectric as fe
+from skfem_dielectric.fem import blas_thread_limit
 from skfem_dielectric.linalg.solver_base import factorisation_count
 from skfem_dielectric.models.plate.scan import PlateScan
 from skfem_dielectric.studies.buckling import locate_buckling
@@ -111,7 +112,9 @@ def run_unit(alpha: float, elements, *, grading: float = 1.0, D0_step: float = 0
         Last / first element length along ``x1`` (``< 1``: finer at the clamp).
     D0_step, D0_max
         The charge targets ``D0_step, 2 D0_step, ..., D0_max``; the ramp stops at the
-        first scanned state with a negative physical mode.
+        first scanned state with a negative physical mode.  Where several physical modes
+        crossed in one step, or the location cannot follow the crossing, that step is
+        scanned again in four (at most twice: steps down to ``D0_step / 16``).
     formulation
         How ``J = 1`` is imposed (:class:`~skfem_dielectric.gallery.plates.PlateOptions`).
     solver
@@ -127,54 +130,76 @@ def run_unit(alpha: float, elements, *, grading: float = 1.0, D0_step: float = 0
     """
     t0, f0 = time.process_time(), factorisation_count()
     el = tuple(int(n) for n in elements)
-    D0 = np.round(np.arange(D0_step, D0_max + 1e-9, D0_step), 10)
-    scan = None
-    track = {"prev": None, "before": None, "row": None, "states": 0}
-
-    def on_step(step):
-        load = np.asarray(step.load, dtype=float)
-        before = scan[0].state
-        row = scan[0].analyse(step.x, load)
-        track["states"] += 1
-        if progress is not None:
-            progress(f"D0 = {load[1]:.3f}: {row.n_negative} negative, {row.n_physical} "
-                     f"physical, {row.cpu:.1f} CPU s")
-        if row.n_physical > 0 and track["prev"] is not None:
-            track["before"], track["row"] = before, row
-            track["cur"] = (step.x, load)
-            raise _Crossed
-        track["prev"] = (step.x, load)
-
     options = fe.PlateOptions(grad_div=BUCKLING_GRAD_DIV, formulation=formulation)
     pb = fe.gallery.keplinger_problem(elements=el, symmetry="eighth", grading=grading,
                                       options=options)
-    scan = [PlateScan(pb)]
     s = fe.gallery.keplinger_s(alpha, g=9.81)
-    targets = fe.gallery.preload_then_charge(s, D0, fe.gallery.KEPLINGER_PRELOAD_STEPS)
     settings = replace(fe.gallery.KEPLINGER_SETTINGS, max_cutbacks=6, max_iter=25)
-    stopped = ""
-    try:
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore", RuntimeWarning)
-            res = fe.gallery.run_ramp(pb, targets, on_step=_only_targets(on_step, s),
-                                      linear_solver=solver, settings=settings)
-        stopped = "" if res.converged else f"ramp stopped at D0 = {np.asarray(res.failed_at)[-1]:g}"
-    except _Crossed:
-        pass
+    track = {"prev": None, "before": None, "row": None, "cur": None, "states": 0}
+
+    def on_step(step):
+        load = np.asarray(step.load, dtype=float)
+        if not step.target_reached or load[0] != s:
+            return
+        before = scan.state
+        row = scan.analyse(step.x, load)
+        track["states"] += 1
+        if progress is not None:
+            progress(f"D0 = {load[1]:.4f}: {row.n_negative} negative, {row.n_physical} "
+                     f"physical, {row.cpu:.1f} CPU s")
+        if row.n_physical > 0 and track["prev"] is not None:
+            track.update(before=before, row=row, cur=(step.x, load, step.back))
+            raise _Crossed
+        track["prev"] = (step.x, load, step.back)
+
+    def ramp_to(targets, start=None):
+        track["row"] = None
+        try:
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore", RuntimeWarning)
+                res = fe.gallery.run_ramp(
+                    pb, targets, on_step=on_step, linear_solver=solver, settings=settings,
+                    **({} if start is None else dict(x0=start[0], start=start[1],
+                                                     back=start[2])))
+        except _Crossed:
+            return ""
+        return "" if res.converged else \
+            f"ramp stopped at D0 = {np.asarray(res.failed_at)[-1]:g}"
+
+    # the charge ramp in steps of D0_step, scanned at every target, up to the first state
+    # with a physical negative mode; then the located crossing.  A step in which several
+    # physical modes crossed, or whose crossing the location cannot follow, is scanned
+    # again in four steps (twice at most)
+    scan = PlateScan(pb)
+    D0 = np.round(np.arange(D0_step, D0_max + 1e-9, D0_step), 10)
+    stopped = ramp_to(fe.gallery.preload_then_charge(s, D0, fe.gallery.KEPLINGER_PRELOAD_STEPS))
+    bl, step = None, D0_step
+    method = "pardiso" if solver == "pardiso" else "auto"
+    for refine in range(3):
+        if track["row"] is None:
+            break
+        prev, cur, before, row = track["prev"], track["cur"], track["before"], track["row"]
+        lo, hi = float(prev[1][1]), float(cur[1][1])
+        try:
+            if row.n_physical > 1 and refine < 2:
+                raise ValueError(f"{row.n_physical} physical modes crossed at once")
+            bl = locate_buckling(pb, prev[:2], cur[:2], row.new_physical, counts=before,
+                                 method=method, tol=BUCKLING_TOL, linear_solver=solver,
+                                 settings=BUCKLING_NEWTON)
+            break
+        except ValueError as exc:   # a result: the crossing between lo and hi, unlocated
+            stopped = f"physical crossing between D0 = {lo:g} and {hi:g} not located: {exc}"
+            if refine == 2:
+                break
+            step /= 4.0
+            scan = PlateScan(pb, state=before)
+            fine = [np.array([s, d]) for d in np.round(lo + step * np.arange(0, 5), 10)]
+            stopped = ramp_to(fine, start=prev) or stopped
     row = {"alpha": alpha, "mesh": _mesh_text(el), "grading": grading,
            "formulation": formulation, "dofs": pb.ndofs, "D0_step": D0_step,
            "states": track["states"]}
-    bl = None
-    if track["row"] is not None:
-        method = "pardiso" if solver == "pardiso" else "auto"
-        lo, hi = float(track["prev"][1][1]), float(track["cur"][1][1])
-        try:
-            bl = locate_buckling(pb, track["prev"], track["cur"], track["row"].new_physical,
-                                 counts=track["before"], method=method, tol=BUCKLING_TOL,
-                                 linear_solver=solver, settings=BUCKLING_NEWTON)
-        except ValueError as exc:       # a result: the crossing between lo and hi, unlocated
-            stopped = f"physical crossing between D0 = {lo:g} and {hi:g} not located: {exc}"
     if bl is not None:
+        stopped = ""
         lab = bl.label
         point = energy_centroid(pb, bl.x, bl.load, lab.mode)
         n_half = half_waves(pb, lab.mode, lab.increments, point[0])
@@ -194,15 +219,6 @@ def run_unit(alpha: float, elements, *, grading: float = 1.0, D0_step: float = 0
                peak_GB=round(resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024**2, 3),
                solver=solver, date=datetime.date.today().isoformat())
     return row
-
-
-def _only_targets(hook, s):
-    """The scan sees the converged charge targets (and the end of the pre-load)."""
-    def cb(step):
-        load = np.asarray(step.load, dtype=float)
-        if step.target_reached and load[0] == s:
-            hook(step)
-    return cb
 
 
 def _key(r: dict) -> tuple:
@@ -269,9 +285,10 @@ def main(argv=None) -> int:
                 print(f"alpha = {alpha:g} {_mesh_text(el)} grading {a.grading:g}: kept",
                       flush=True)
                 continue
-            row = run_unit(alpha, el, grading=a.grading, D0_step=a.D0_step,
-                           D0_max=a.D0_max, formulation=a.formulation, solver=a.solver,
-                           progress=lambda t: print("  " + t, flush=True))
+            with blas_thread_limit(1):      # as the command line (docs/performance.md)
+                row = run_unit(alpha, el, grading=a.grading, D0_step=a.D0_step,
+                               D0_max=a.D0_max, formulation=a.formulation, solver=a.solver,
+                               progress=lambda t: print("  " + t, flush=True))
             row["command"] = command
             _append(a.csv, row)
             print(f"alpha = {alpha:g} {_mesh_text(el)} grading {a.grading:g}: D0_b "

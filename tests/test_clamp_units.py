@@ -1,0 +1,55 @@
+"""The clamp-zone wrinkle study, unit by unit (validation.studies.clamp_units)."""
+
+from __future__ import annotations
+
+import math
+import warnings
+from dataclasses import replace
+
+import numpy as np
+import pytest
+
+import skfem_dielectric as fe
+from skfem_dielectric.studies.buckling import buckling_load
+from validation.fe.model import BUCKLING_GRAD_DIV, BUCKLING_NEWTON, BUCKLING_TOL
+from validation.studies.clamp_units import COLUMNS, main, read_units, run_unit
+
+
+def test_a_unit_locates_the_buckling_studys_load_and_writes_its_row(tmp_path):
+    """alpha = 1 on the graded 6 x 1 x 3 eighth model, D0 in steps of 1: the unit's D0_b
+    against buckling_load of the whole ramp (another driver of the same scan and
+    location: both to 1e-4); the row holds every column, J at the clamp layer is that of
+    a compressible-looking discrete layer (the coarse mesh cannot hold it: J < 0.8), the
+    half-waves are counted across the whole width, and a rerun keeps the row."""
+    row = run_unit(1.0, (6, 1, 3), grading=0.5, D0_step=1.0)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", RuntimeWarning)
+        res = fe.keplinger_plate(1.0, D0=[1.0, 2.0, 3.0, 4.0], elements=(6, 1, 3),
+                                 grading=0.5, options=fe.PlateOptions(grad_div=BUCKLING_GRAD_DIV),
+                                 settings=replace(fe.gallery.KEPLINGER_SETTINGS,
+                                                  max_cutbacks=6, max_iter=25))
+    charge = [st for st in res.steps if st.load[1] > 0]
+    states = [res.steps[len(res.steps) - len(charge) - 1]] + charge
+    ref = buckling_load(res.problem, [(st.x, st.load) for st in states], tol=BUCKLING_TOL,
+                        settings=BUCKLING_NEWTON)
+    assert ref.found and abs(row["D0_b"] - ref.D0_b) <= 2 * BUCKLING_TOL
+    assert row["class"] == ref.label.symmetry
+    assert row["half_waves"] >= 1 and row["elements_per_half_wave"] == 6 / row["half_waves"]
+    assert 0.5 < row["J_min_clamp"] <= row["J_max_clamp"] < 0.8
+    assert row["dofs"] == res.problem.ndofs
+    out = tmp_path / "units.csv"
+    argv = ["--alpha", "1", "--mesh", "6x1x3", "--grading", "0.5", "--D0-step", "1",
+            "--csv", str(out)]
+    assert main(argv) == 0
+    rows = read_units(out)
+    assert len(rows) == 1 and list(rows[0]) == list(COLUMNS)
+    assert math.isclose(float(rows[0]["D0_b"]), row["D0_b"], abs_tol=1e-5)
+    before = out.read_bytes()
+    assert main(argv) == 0                      # kept, not recomputed
+    assert out.read_bytes() == before
+
+
+def test_bad_mesh_is_one_message(capsys):
+    with pytest.raises(SystemExit):
+        main(["--alpha", "1", "--mesh", "6x1", "--csv", "/dev/null"])
+    assert "a mesh is n1xn2xn3" in capsys.readouterr().err
