@@ -38,14 +38,13 @@ from dataclasses import replace
 
 import numpy as np
 
-import skfem_dielectric as fe
 from skfem_dielectric.linalg.solver_base import back_substitution_count, factorisation_count
 from skfem_dielectric.models.plate.scan import PlateScan
 from skfem_dielectric.models.plate.symmetry_classes import symmetry_classes
 from skfem_dielectric.studies.buckling import buckling_load
 from validation.cases import CASES
-from validation.fe.model import (BUCKLING_NEWTON, BUCKLING_TOL, buckling_problem,
-                                 ramp_settings, ramp_targets, with_dead_load)
+from validation.fe.model import BUCKLING_NEWTON, BUCKLING_TOL
+from validation.fe.runner import grad_div_states
 
 
 def _mesh(text: str) -> tuple[int, int, int]:
@@ -60,21 +59,10 @@ def states_of(alpha: float, mesh, D0) -> tuple:
     """The grad-div form of the α run of ``uni-axial-ideal`` on ``mesh`` ramped to ``D0``:
     ``(problem, [(x, load), ...], ramp CPU s, factorisations)``."""
     base = next(r for r in CASES["uni-axial-ideal"].runs(True) if r.buckling)
-    spec = with_dead_load(replace(base, alpha=alpha, s=None, D0=tuple(D0),
-                                  mesh=(("n1", mesh[0]), ("n2", mesh[1]), ("n3", mesh[2]))))
-    problem = buckling_problem(spec)
-    states = []
-
-    def keep(step):
-        load = np.asarray(step.load, dtype=float)
-        if load[0] == spec.s and step.target_reached:
-            states.append((step.x, load))
-
+    spec = replace(base, alpha=alpha, s=None, D0=tuple(D0),
+                   mesh=(("n1", mesh[0]), ("n2", mesh[1]), ("n3", mesh[2])))
     t, f0 = time.process_time(), factorisation_count()
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", RuntimeWarning)
-        fe.ramp(problem, ramp_targets(spec), on_step=keep, **ramp_settings(spec, "superlu"),
-                **fe.gallery.newton_guards(problem))
+    problem, states = grad_div_states(spec)
     return problem, states, time.process_time() - t, factorisation_count() - f0
 
 

@@ -316,25 +316,12 @@ def test_event_scan_matches_the_full_scan_on_the_quick_alpha_1_run():
     (each located to 1e-4 by the same trial states); the crossing is the x2-antisymmetric
     class's (the plate bends), and the event scan computes no mode at a state where no
     count changed."""
-    import warnings
-
     from validation.cases import CASES
-    from validation.fe.model import (BUCKLING_NEWTON, BUCKLING_TOL, buckling_problem,
-                                     ramp_settings, ramp_targets, with_dead_load)
+    from validation.fe.model import BUCKLING_NEWTON, BUCKLING_TOL
+    from validation.fe.runner import grad_div_states
 
-    spec = with_dead_load(next(r for r in CASES["uni-axial-ideal"].runs(True) if r.buckling))
-    pb = buckling_problem(spec)
-    states = []
-
-    def keep(step):
-        load = np.asarray(step.load, dtype=float)
-        if load[0] == spec.s and step.target_reached:
-            states.append((step.x, load))
-
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", RuntimeWarning)
-        fe.ramp(pb, ramp_targets(spec), on_step=keep, **ramp_settings(spec, "superlu"),
-                **fe.gallery.newton_guards(pb))
+    pb, states = grad_div_states(next(r for r in CASES["uni-axial-ideal"].runs(True)
+                                      if r.buckling))
     kw = dict(tol=BUCKLING_TOL, linear_solver="superlu", settings=BUCKLING_NEWTON)
     ev = buckling_load(pb, states, **kw)
     full = buckling_load(pb, states, scan="full", **kw)

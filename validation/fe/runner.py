@@ -98,6 +98,16 @@ def _stabilised_states(spec, targets, state, linear_solver) -> dict:
     return {"problem": problem, "x": states, "back": backs}
 
 
+def grad_div_states(spec, linear_solver: str = "superlu") -> tuple:
+    """The grad-div form's ramp of a run analysed for buckling (``spec.buckling``), from
+    the start: ``(problem, [(x, load), ...])`` at its converged charge targets, the states
+    the run's whole-plate columns and ``D0_b`` are of (``benchmarks/bench_buckling_scan.py``
+    and the tests scan them)."""
+    spec = with_dead_load(spec)
+    st = _stabilised_states(spec, ramp_targets(spec), None, linear_solver)
+    return st["problem"], [(x, np.array([spec.s, d])) for d, x in sorted(st["x"].items())]
+
+
 def _saved_back(state, prefix="") -> tuple | None:
     """The secant predictor's second point saved with a row's state (``x_back`` and
     ``load_back``, or those of the grad-div form with ``prefix="stab_"``), else ``None``."""
