@@ -18,7 +18,8 @@ unit's row holds what the mesh says about the mode there:
   next to the clamp, at ``D0_b`` (an incompressible material has ``J = 1``; the discrete
   clamp layer departs from it where the mesh does not resolve it);
 * ``n_flagged_b``: the negative eigenvalues of the whole plate that are not physical
-  (clamp corner or mesh scale) at the last scanned state;
+  (clamp corner or mesh scale) at the last scanned state; ``scan_counts`` every scanned
+  state as ``D0:negative/physical`` (in scan order, refined steps last);
 * the unknowns, factorisations, CPU seconds, peak memory, solver, date and command, and a
   ``note`` where no ``D0_b`` was found (no crossing up to ``D0_max``, the ramp stopped, or a
   crossing between two states that the location could not follow).
@@ -69,7 +70,7 @@ DEFAULT_CSV = Path(__file__).resolve().parents[1] / "data" / "clamp_units.csv"
 COLUMNS = ("alpha", "mesh", "grading", "formulation", "dofs", "D0_step", "D0_b", "class",
            "corner_share", "mesh_scale", "half_waves", "elements_per_half_wave",
            "J_min_clamp", "J_max_clamp", "n_flagged_b", "states", "factorisations",
-           "cpu_s", "peak_GB", "solver", "date", "note", "command")
+           "cpu_s", "peak_GB", "solver", "date", "scan_counts", "note", "command")
 _HEADER = """\
 # The clamp-zone wrinkle of the Keplinger plate, unit by unit (one alpha on one mesh per row).
 # Written by validation.studies.clamp_units (the module docstring defines every column):
@@ -135,7 +136,8 @@ def run_unit(alpha: float, elements, *, grading: float = 1.0, D0_step: float = 0
                                       options=options)
     s = fe.gallery.keplinger_s(alpha, g=9.81)
     settings = replace(fe.gallery.KEPLINGER_SETTINGS, max_cutbacks=6, max_iter=25)
-    track = {"prev": None, "before": None, "row": None, "cur": None, "states": 0}
+    track = {"prev": None, "before": None, "row": None, "cur": None, "states": 0,
+             "counts": []}
 
     def on_step(step):
         load = np.asarray(step.load, dtype=float)
@@ -144,6 +146,7 @@ def run_unit(alpha: float, elements, *, grading: float = 1.0, D0_step: float = 0
         before = scan.state
         row = scan.analyse(step.x, load)
         track["states"] += 1
+        track["counts"].append(f"{load[1]:g}:{row.n_negative}/{row.n_physical}")
         if progress is not None:
             progress(f"D0 = {load[1]:.4f}: {row.n_negative} negative, {row.n_physical} "
                      f"physical, {row.cpu:.1f} CPU s")
@@ -197,7 +200,7 @@ def run_unit(alpha: float, elements, *, grading: float = 1.0, D0_step: float = 0
             stopped = ramp_to(fine, start=prev) or stopped
     row = {"alpha": alpha, "mesh": _mesh_text(el), "grading": grading,
            "formulation": formulation, "dofs": pb.ndofs, "D0_step": D0_step,
-           "states": track["states"]}
+           "states": track["states"], "scan_counts": " ".join(track["counts"])}
     if bl is not None:
         stopped = ""
         lab = bl.label
