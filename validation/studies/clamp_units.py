@@ -267,7 +267,19 @@ def _mesh(text: str) -> tuple[int, int, int]:
     return n
 
 
-def main(argv=None) -> int:
+def main(argv: list[str] | None = None) -> int:
+    """Run the units ``--alpha`` x ``--mesh`` not yet in ``--csv`` and append their rows.
+
+    Parameters
+    ----------
+    argv : list of str, optional
+        The arguments (default: ``sys.argv[1:]``; see the module docstring).
+
+    Returns
+    -------
+    int
+        0; bad arguments exit with argparse's one line and code 2.
+    """
     ap = argparse.ArgumentParser(prog="python -m validation.studies.clamp_units",
                                  description=__doc__.splitlines()[0])
     ap.add_argument("--alpha", type=float, nargs="+", required=True)
