@@ -22,6 +22,7 @@ import threading
 from contextlib import contextmanager
 
 import numpy as np
+import scipy
 import scipy.sparse as sp
 
 __all__ = ["BlockScatter", "DofReduction", "OrderedSum", "ScatterMap", "blas_threads",
@@ -102,7 +103,6 @@ def _every_openblas() -> list:
     """The thread-count functions of every OpenBLAS bundled with numpy and scipy (scipy's
     serves SuperLU and ARPACK), each library once."""
     if not _ALL_OPENBLAS:
-        import scipy
         found, seen = [], set()
         for pkg in (np, scipy):
             here = os.path.dirname(pkg.__file__)
