@@ -99,7 +99,8 @@ def main(argv=None) -> None:
                   f"{r.factorisations / n_classes:10.2f}  {r.back_substitutions:9d}  "
                   f"{r.cpu:5.2f}  {phys}", flush=True)
         later = rows[1:] or rows
-        print(f"  events, states after the first: {np.mean([r.factorisations for r in later]) / n_classes:.2f} "
+        per_class = np.mean([r.factorisations for r in later]) / n_classes
+        print(f"  events, states after the first: {per_class:.2f} "
               f"factorisations per class per state, "
               f"{np.mean([r.back_substitutions for r in later]):.0f} back-substitutions per state, "
               f"{np.mean([r.cpu for r in later]):.2f} CPU s per state; first state "

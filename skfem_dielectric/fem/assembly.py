@@ -71,28 +71,33 @@ def _malloc_trim():
     return _MALLOC_TRIM[0]
 
 
+def _openblas_of(pkg) -> list:
+    """The ``(get_num_threads, set_num_threads)`` functions of each OpenBLAS bundled with
+    the package ``pkg`` (numpy or scipy: ``<pkg>.libs`` on Linux, ``.dylibs`` on macOS)."""
+    here = os.path.dirname(pkg.__file__)
+    libs = os.path.join(os.path.dirname(here), f"{pkg.__name__}.libs")
+    paths = sorted(glob.glob(os.path.join(libs, "*openblas*"))
+                   + glob.glob(os.path.join(here, ".dylibs", "*openblas*")))
+    names = [(f"{p}_get_num_threads{s}", f"{p}_set_num_threads{s}")
+             for p in ("scipy_openblas", "openblas") for s in ("64_", "")]
+    found = []
+    for path in paths:
+        try:
+            lib = ctypes.CDLL(path)
+        except OSError:
+            continue
+        pair = next(((getattr(lib, get), getattr(lib, put)) for get, put in names
+                     if hasattr(lib, get) and hasattr(lib, put)), None)
+        if pair is not None:
+            found.append(pair)
+    return found
+
+
 def _openblas_threads():
     """The thread-count functions of numpy's bundled OpenBLAS, or ``None`` (another BLAS,
     or a layout this does not know)."""
     if not _OPENBLAS:
-        found = None
-        here = os.path.dirname(np.__file__)
-        paths = sorted(glob.glob(os.path.join(os.path.dirname(here), "numpy.libs", "*openblas*"))
-                       + glob.glob(os.path.join(here, ".dylibs", "*openblas*")))
-        names = [(f"{p}_get_num_threads{s}", f"{p}_set_num_threads{s}")
-                 for p in ("scipy_openblas", "openblas") for s in ("64_", "")]
-        for path in paths:
-            try:
-                lib = ctypes.CDLL(path)
-            except OSError:
-                continue
-            for get, put in names:
-                if hasattr(lib, get) and hasattr(lib, put):
-                    found = (getattr(lib, get), getattr(lib, put))
-                    break
-            if found:
-                break
-        _OPENBLAS.append(found)
+        _OPENBLAS.append(next(iter(_openblas_of(np)), None))
     return _OPENBLAS[0]
 
 
@@ -101,25 +106,9 @@ _ALL_OPENBLAS: list = []  # [[(get, set), ...]] of numpy's and scipy's bundled O
 
 def _every_openblas() -> list:
     """The thread-count functions of every OpenBLAS bundled with numpy and scipy (scipy's
-    serves SuperLU and ARPACK), each library once."""
+    serves SuperLU and ARPACK)."""
     if not _ALL_OPENBLAS:
-        found, seen = [], set()
-        for pkg in (np, scipy):
-            here = os.path.dirname(pkg.__file__)
-            libs = os.path.join(os.path.dirname(here), f"{pkg.__name__}.libs")
-            for path in sorted(glob.glob(os.path.join(libs, "*openblas*"))
-                               + glob.glob(os.path.join(here, ".dylibs", "*openblas*"))):
-                try:
-                    lib = ctypes.CDLL(path)
-                except OSError:
-                    continue
-                for p_ in ("scipy_openblas", "openblas"):
-                    for s_ in ("64_", ""):
-                        get, put = f"{p_}_get_num_threads{s_}", f"{p_}_set_num_threads{s_}"
-                        if hasattr(lib, get) and hasattr(lib, put) and path not in seen:
-                            seen.add(path)
-                            found.append((getattr(lib, get), getattr(lib, put)))
-        _ALL_OPENBLAS.append(found)
+        _ALL_OPENBLAS.append(_openblas_of(np) + _openblas_of(scipy))
     return _ALL_OPENBLAS[0]
 
 

@@ -15,8 +15,9 @@ post-processed values of the model plus ``phase`` (``"preload"`` or ``"charge"``
 ``stable`` (inertia verdict with PARDISO, else ``None``).
 
 Resuming: pass ``x0=step.x``, ``start=step.load`` and ``back=step.back`` of a saved step
-together with the *same* arguments; targets up to and including ``start`` are skipped and the remaining steps
-are bit-for-bit those of the uninterrupted run (deterministic linear solver).
+together with the *same* arguments; targets up to and including ``start`` are skipped and
+the remaining steps are bit-for-bit those of the uninterrupted run (deterministic linear
+solver).
 """
 
 from __future__ import annotations
@@ -299,7 +300,8 @@ def equibiaxial_plate(s: float, D0: Sequence[float], *, model: Any = "neo-Hookea
     if options.coupling == "maxwell":
         extra["variant"] = f"maxwell-{options.field}"
     out = run_ramp(prob, preload_then_charge(s, D0, preload_steps), on_step=on_step, x0=x0,
-                    start=start, back=back, linear_solver=linear_solver, extra=extra, settings=settings)
+                   start=start, back=back, linear_solver=linear_solver, extra=extra,
+                   settings=settings)
     out.targets = _charge_loads(s, D0)
     return out
 
@@ -374,8 +376,8 @@ def keplinger_plate(alpha: float | None = 1.0, D0: Sequence[float] = (1, 2, 3, 4
     if options.coupling == "maxwell":
         extra["variant"] = f"maxwell-{options.field}"
     out = run_ramp(prob, preload_then_charge(s, D0, preload_steps), on_step=on_step, x0=x0,
-                    start=start, back=back, linear_solver=linear_solver, extra=extra, settings=settings,
-                    state_analysis=state_analysis)
+                   start=start, back=back, linear_solver=linear_solver, extra=extra,
+                   settings=settings, state_analysis=state_analysis)
     out.targets = _charge_loads(s, D0)
     return out
 

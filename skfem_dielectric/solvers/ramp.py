@@ -536,7 +536,8 @@ def check_callbacks(options: dict[str, Any]) -> None:
 
 
 def ramp(problem: Problem, loads: Sequence[Any], *, x0: np.ndarray | None = None,
-         start: Any = None, back: tuple[np.ndarray, Any] | None = None, on_step: Callable[[StepResult], Any] | None = None,
+         start: Any = None, back: tuple[np.ndarray, Any] | None = None,
+         on_step: Callable[[StepResult], Any] | None = None,
          linear_solver: str | LinearSolver = "superlu",
          settings: RampSettings = RampSettings(),
          step_limit: Callable[[np.ndarray, np.ndarray, Any], float] | None = None,

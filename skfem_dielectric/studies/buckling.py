@@ -318,9 +318,10 @@ def locate_buckling(problem: PlateProblem, a: tuple[np.ndarray, Any],
     class nearest to zero (:func:`~skfem_dielectric.stability.analysis.modes_near_zero`,
     on the factors that count the class: a mode near its crossing is among them), located
     by :func:`~skfem_dielectric.solvers.critical.critical_load` with every trial solved
-    from the stable end of its bracket (``a`` or a later trial found stable).  At the located load every class is counted against ``counts`` (the
-    scan's state at ``a``); a class whose new negative mode there is physical crossed
-    first and is located in turn (each class once).
+    from the stable end of its bracket (``a`` or a later trial found stable).  At the
+    located load every class is counted against ``counts`` (the scan's state at ``a``);
+    a class whose new negative mode there is physical crossed first and is located in turn
+    (each class once).
 
     Parameters
     ----------

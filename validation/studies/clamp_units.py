@@ -40,8 +40,8 @@ from __future__ import annotations
 import argparse
 import csv
 import datetime
+import io
 import math
-import os
 import resource
 import shlex
 import sys
@@ -245,15 +245,12 @@ def _cell(v) -> str:
 
 
 def _append(path: Path, row: dict) -> None:
-    rows = read_units(path) + [{k: _cell(row.get(k, "")) for k in COLUMNS}]
-    lines = [",".join(COLUMNS)]
-    for r in rows:
-        buf = []
-        for k in COLUMNS:
-            v = r.get(k, "")
-            buf.append(f'"{v}"' if "," in v or " " in v else v)
-        lines.append(",".join(buf))
-    write_text_atomic(path, _HEADER + "\n".join(lines) + "\n")
+    """Rewrite the study's CSV atomically with ``row`` after the rows it holds."""
+    buf = io.StringIO()
+    w = csv.DictWriter(buf, COLUMNS, restval="", extrasaction="ignore", lineterminator="\n")
+    w.writeheader()
+    w.writerows(read_units(path) + [{k: _cell(row.get(k, "")) for k in COLUMNS}])
+    write_text_atomic(path, _HEADER + buf.getvalue())
 
 
 def _mesh(text: str) -> tuple[int, int, int]:
@@ -307,7 +304,8 @@ def main(argv: list[str] | None = None) -> int:
             row["command"] = command
             _append(a.csv, row)
             print(f"alpha = {alpha:g} {_mesh_text(el)} grading {a.grading:g}: D0_b "
-                  f"{row['D0_b']:.4f} {row.get('note', '')}, {row.get('half_waves', '')} half-waves, "
+                  f"{row['D0_b']:.4f} {row.get('note', '')}, "
+                  f"{row.get('half_waves', '')} half-waves, "
                   f"{row['dofs']} DOFs, {row['cpu_s']} CPU s, {row['peak_GB']} GB",
                   flush=True)
     return 0
