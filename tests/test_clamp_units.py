@@ -53,3 +53,18 @@ def test_bad_mesh_is_one_message(capsys):
     with pytest.raises(SystemExit):
         main(["--alpha", "1", "--mesh", "6x1", "--csv", "/dev/null"])
     assert "a mesh is n1xn2xn3" in capsys.readouterr().err
+
+
+def test_the_smallest_committed_unit_is_reproduced():
+    """The smallest mesh of the committed study (alpha = 1, 12 x 1 x 6 graded 0.25) run
+    again: D0_b within twice its location tolerance, the same class, half-wave count and
+    J at the clamp layer (4 digits) as its row in validation/data/clamp_units.csv."""
+    ref = next(r for r in read_units() if r["alpha"] == "1" and r["mesh"] == "12x1x6"
+               and r["grading"] == "0.25" and r["formulation"] == "mixed")
+    row = run_unit(1.0, (12, 1, 6), grading=0.25)
+    assert abs(row["D0_b"] - float(ref["D0_b"])) <= 2 * BUCKLING_TOL
+    assert row["class"] == ref["class"]
+    assert row["half_waves"] == int(ref["half_waves"])
+    assert row["dofs"] == int(ref["dofs"])
+    assert math.isclose(row["J_min_clamp"], float(ref["J_min_clamp"]), abs_tol=1e-4)
+    assert math.isclose(row["J_max_clamp"], float(ref["J_max_clamp"]), abs_tol=1e-4)

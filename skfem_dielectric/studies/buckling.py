@@ -278,20 +278,30 @@ def _event_scan(problem, pairs, opts, tol, maxiter, ramp_options) -> BucklingLoa
 def _most_like(problem, c, vals, vecs, order, ref, radius, xf):
     """Among the eigenpairs ``vals``, ``vecs`` of class ``c`` (visited in ``order``), the
     mode classified physical that overlaps most with ``ref`` (the unit displacement part
-    of the followed mode): ``(eigenvalue, full mode)``, or ``None`` if none is physical."""
+    of the followed mode): ``(eigenvalue, full mode, overlap)``, or ``None`` if none is
+    physical."""
     n_u = ref.size
     best, out = -1.0, None
     for j in order:
         w = class_mode_full(c, vecs[:, j])
         ov = abs(ref @ w[:n_u]) / max(np.linalg.norm(w[:n_u]), 1e-300)
         if ov > best and classify_mode(problem, xf, w, radius=radius)["kind"] == "physical":
-            best, out = ov, (float(vals[j]), w)
+            best, out = ov, (float(vals[j]), w, float(ov))
     return out
+
+
+#: overlap with the followed mode below which the physical modes nearest to zero are
+#: taken not to hold it (it lies beyond them, past mesh-scale modes): more are computed
+FOLLOW_OVERLAP = 0.5
 
 
 def _near_zero_physical(problem, c, K, ref, radius, k0, xf):
     """Among the eigenpairs of class ``c`` nearest to zero, the physical mode most like
-    ``ref``: ``(eigenvalue, mode)`` or ``None`` when none of up to 32 nearest is physical."""
+    ``ref``: ``(eigenvalue, mode, overlap)``, or ``None`` when none of up to 64 nearest is
+    physical.  More eigenpairs are computed (doubling) while the best physical one
+    overlaps less than :data:`FOLLOW_OVERLAP` with ``ref``: a physical mode that has just
+    crossed can lie beyond mesh-scale modes nearer to zero, and another physical mode
+    nearer to zero is not the one followed."""
     Kc = class_tangent(c, K)
     inertia, factors = inertia_factors(Kc, "auto", c.orders)
     usable = reusable_factors(factors, inertia)
@@ -301,7 +311,7 @@ def _near_zero_physical(problem, c, K, ref, radius, k0, xf):
         vals, vecs = modes_near_zero(Kc, c.metric, k, side="both", factors=usable, tol=1e-10)
         out = _most_like(problem, c, vals, vecs, np.argsort(np.abs(vals), kind="stable"),
                          ref, radius, xf)
-        if out is not None or k >= min(32, nd - 1):
+        if out is not None and out[2] >= FOLLOW_OVERLAP or k >= min(64, nd - 1):
             return out
         k = min(2 * k, nd - 1)
 
