@@ -68,3 +68,39 @@ def test_the_smallest_committed_unit_is_reproduced():
     assert row["dofs"] == int(ref["dofs"])
     assert math.isclose(row["J_min_clamp"], float(ref["J_min_clamp"]), abs_tol=1e-4)
     assert math.isclose(row["J_max_clamp"], float(ref["J_max_clamp"]), abs_tol=1e-4)
+
+
+def _units(tmp_path, rows):
+    path = tmp_path / "units.csv"
+    with open(path, "w") as fh:
+        fh.write("# test rows\n" + ",".join(COLUMNS) + "\n")
+        for r in rows:
+            fh.write(",".join(str(r.get(k, "")) for k in COLUMNS) + "\n")
+    return path
+
+
+def _row(mesh, dofs, D0_b, hw, eph):
+    return {"alpha": 1, "mesh": mesh, "grading": 0.1, "formulation": "mixed", "dofs": dofs,
+            "D0_b": D0_b, "half_waves": hw, "elements_per_half_wave": eph}
+
+
+def test_clamp_unit_load_needs_two_finest_meshes_that_hold_and_agree(tmp_path):
+    """The load is the finest mesh's where the two finest hold the mode (>= 4 elements per
+    half-wave), count the same half-waves and agree within 0.02; every other case is a
+    ValueError naming why, never an extrapolated value."""
+    from validation.studies.clamp_units import clamp_unit_load
+    ok = _units(tmp_path, [_row("10x1x24", 10, 2.9, 22, 2.2), _row("20x1x48", 20, 3.36, 13, 7.4),
+                           _row("30x1x48", 30, 3.37, 13, 7.4)])
+    got = clamp_unit_load(1.0, path=ok)
+    assert got["D0_b"] == 3.37 and math.isclose(got["spread"], 0.01, abs_tol=1e-12)
+    assert got["meshes"] == ("20x1x48", "30x1x48") and got["half_waves"] == 13
+    cases = {"too coarse": [_row("20x1x24", 20, 3.3687, 13, 3.7), _row("30x1x24", 30, 3.3703, 14, 3.4)],
+             "half-wave count": [_row("a", 20, 3.36, 13, 7.4), _row("b", 30, 3.37, 14, 6.9)],
+             "spread 0.0300": [_row("a", 20, 3.34, 13, 7.4), _row("b", 30, 3.37, 13, 7.4)],
+             "two meshes are needed": [_row("a", 20, 3.34, 13, 7.4)]}
+    for i, (msg, rows) in enumerate(cases.items()):
+        (tmp_path / str(i)).mkdir()
+        with pytest.raises(ValueError, match=msg):
+            clamp_unit_load(1.0, path=_units(tmp_path / str(i), rows))
+    with pytest.raises(ValueError, match="too coarse.*alpha = 1"):
+        clamp_unit_load(1.0)             # the committed rows: 3.7 and 3.4 per half-wave

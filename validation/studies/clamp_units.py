@@ -62,7 +62,8 @@ from ..fe.model import BUCKLING_GRAD_DIV, BUCKLING_NEWTON, BUCKLING_TOL
 from ..store import write_text_atomic
 from .local_theory import energy_centroid, half_waves, local_state
 
-__all__ = ["COLUMNS", "DEFAULT_CSV", "run_unit", "read_units", "main"]
+__all__ = ["COLUMNS", "DEFAULT_CSV", "MIN_ELEMENTS_PER_HALF_WAVE", "run_unit", "read_units",
+           "clamp_unit_load", "main"]
 
 #: where the study's rows are kept (provenance in its header lines)
 DEFAULT_CSV = Path(__file__).resolve().parents[1] / "data" / "clamp_units.csv"
@@ -236,6 +237,72 @@ def read_units(path: Path = DEFAULT_CSV) -> list[dict]:
         return []
     with open(path, newline="") as fh:
         return list(csv.DictReader(ln for ln in fh if not ln.startswith("#")))
+
+
+#: elements across the width per half-wave below which a mesh cannot hold the mode
+MIN_ELEMENTS_PER_HALF_WAVE = 4.0
+
+
+def clamp_unit_load(alpha: float, *, tol: float | None = None, path: Path = DEFAULT_CSV,
+                    formulation: str = "mixed") -> dict:
+    """The clamp-zone buckling load of ``alpha`` where the study's two finest meshes agree.
+
+    The rows of ``alpha`` (``formulation``, a located ``D0_b``) ordered by unknowns; the
+    two finest must hold the mode (at least :data:`MIN_ELEMENTS_PER_HALF_WAVE` elements
+    across the width per half-wave), count the same half-waves and give ``D0_b`` within
+    ``tol`` (default 0.02; 0.05 for ``alpha >= 1.5``).  No value is extrapolated.
+
+    Parameters
+    ----------
+    alpha : float
+        Weight fraction (matched to ``1e-9``).
+    tol : float, optional
+        Largest difference of the two finest meshes' ``D0_b``.
+    path : Path
+        The study's CSV.
+    formulation : str
+        How ``J = 1`` is imposed in the rows used.
+
+    Returns
+    -------
+    dict
+        ``D0_b`` (the finest mesh's), ``spread`` (the two finest meshes' difference),
+        ``half_waves``, ``meshes`` (the two finest, coarser first).
+
+    Raises
+    ------
+    ValueError
+        ``alpha`` has fewer than two located rows, or the two finest do not hold the mode,
+        count different half-waves or differ by more than ``tol``; the message says which
+        and gives their numbers.
+    """
+    alpha = float(alpha)
+    if tol is None:
+        tol = 0.05 if alpha >= 1.5 else 0.02
+    rows = [r for r in read_units(path) if r["D0_b"] and r["formulation"] == formulation
+            and math.isclose(float(r["alpha"]), alpha, rel_tol=0.0, abs_tol=1e-9)]
+    rows.sort(key=lambda r: int(r["dofs"]))
+    if len(rows) < 2:
+        raise ValueError(f"alpha = {alpha:g} has {len(rows)} located clamp-zone unit(s) with "
+                         f"formulation {formulation!r} in {path}: two meshes are needed")
+    a, b = rows[-2], rows[-1]
+    what = (f"alpha = {alpha:g}: {a['mesh']} graded {a['grading']} D0_b {a['D0_b']} "
+            f"({a['half_waves']} half-waves, {float(a['elements_per_half_wave']):.1f} "
+            f"elements each), {b['mesh']} graded {b['grading']} D0_b {b['D0_b']} "
+            f"({b['half_waves']} half-waves, {float(b['elements_per_half_wave']):.1f} "
+            f"elements each)")
+    coarse = [r["mesh"] for r in (a, b)
+              if float(r["elements_per_half_wave"]) < MIN_ELEMENTS_PER_HALF_WAVE]
+    if coarse:
+        raise ValueError(f"mesh too coarse for the mode ({', '.join(coarse)}: fewer than "
+                         f"{MIN_ELEMENTS_PER_HALF_WAVE:g} elements per half-wave); {what}")
+    if a["half_waves"] != b["half_waves"]:
+        raise ValueError(f"half-wave count not converged; {what}")
+    spread = abs(float(b["D0_b"]) - float(a["D0_b"]))
+    if spread > tol:
+        raise ValueError(f"D0_b not converged (spread {spread:.4f} > tol {tol:g}); {what}")
+    return {"D0_b": float(b["D0_b"]), "spread": spread, "half_waves": int(b["half_waves"]),
+            "meshes": (a["mesh"], b["mesh"])}
 
 
 def _cell(v) -> str:
