@@ -199,11 +199,12 @@ class PointResponse:
     J: np.ndarray
 
 
-#: the volumetric treatments: mixed u-p, penalty ``kappa (J-1)^2/2`` on ``W(I1)``, and
-#: COMSOL's isochoric ``W(J^(-2/3) I1) + kappa (J-1)^2/2``
-FORMULATIONS = ("mixed", "penalty", "isochoric", "mixed-isochoric")
+#: the volumetric treatments: mixed u-p, penalty ``kappa (J-1)^2/2`` on ``W(I1)``,
+#: COMSOL's isochoric ``W(J^(-2/3) I1) + kappa (J-1)^2/2``, and the mixed form without the
+#: ``-mu0 ln J`` of the stress-free reference (``"mixed-plain"``)
+FORMULATIONS = ("mixed", "penalty", "isochoric", "mixed-isochoric", "mixed-plain")
 #: the formulations with the pressure-like unknown ``p``
-MIXED_FORMULATIONS = ("mixed", "mixed-isochoric")
+MIXED_FORMULATIONS = ("mixed", "mixed-isochoric", "mixed-plain")
 
 
 def _check_form(formulation: str, kappa: float) -> float:
@@ -299,7 +300,7 @@ def dielectric_response(material, F: np.ndarray, G: np.ndarray, p: np.ndarray | 
         dpsi_dp = np.zeros_like(J)
         A_pp = 0.0
     mu0 = 2.0 * float(material.energy_derivatives(np.array(3.0))[1]) \
-        if stress_free_reference and not iso else 0.0
+        if stress_free_reference and not iso and formulation != "mixed-plain" else 0.0
     eJ = eps * J
     with np.errstate(invalid="ignore", divide="ignore"):   # J <= 0 -> nan -> Newton rejects
         psi = W + vol - 0.5 * eJ * aa - mu0 * np.log(J)
@@ -375,7 +376,10 @@ def ideal_dielectric_response(material, F: np.ndarray, G: np.ndarray,
         ``"mixed"`` (``W(I1) + p (J-1) - p^2/(2 kappa)``), ``"penalty"``
         (``W(I1) + kappa (J-1)^2 / 2``), ``"isochoric"``
         (``W(J^(-2/3) I1) + kappa (J-1)^2 / 2``, COMSOL's nearly incompressible form) or
-        ``"mixed-isochoric"`` (``W(J^(-2/3) I1) + p (J-1) - p^2/(2 kappa)``).
+        ``"mixed-isochoric"`` (``W(J^(-2/3) I1) + p (J-1) - p^2/(2 kappa)``) or
+        ``"mixed-plain"`` (``"mixed"`` without the ``-mu0 ln J`` of
+        ``stress_free_reference``: the paper's ``W(I1) + p (J-1)``, reference pressure
+        ``p = -mu``; the three mixed forms agree wherever ``J = 1``).
     need_tangent
         If False only ``psi``, ``P``, ``dpsi_dp`` and ``D_L`` are computed (the tangent
         fields are empty arrays).
@@ -388,7 +392,8 @@ def ideal_dielectric_response(material, F: np.ndarray, G: np.ndarray,
         modes at free corners unstable (observed: spurious negative eigenvalues and Newton
         stagnation on the clamped plate at ``s ~ 0.2``).  For the penalty form it gives the
         usual compressible neo-Hookean ``mu/2 (I1 - 3) - mu ln J + kappa (J-1)^2/2``.
-        Not used by the isochoric form, whose reference state is stress free as it is.
+        Not used by the isochoric forms, whose reference state is stress free as it is,
+        nor by ``"mixed-plain"``.
     grad_div
         ``gamma >= 0``: adds ``gamma (J - 1)^2 / 2`` to the mixed form (grad-div
         stabilisation).  It vanishes with its first derivative where ``J = 1``, so exact

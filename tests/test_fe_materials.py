@@ -20,7 +20,7 @@ MATERIALS = [NeoHookeanDielectric(mu=1.3, eps=0.7), GentDielectric(mu=1.3, eps=0
                              dW=lambda I: 0.5 + 0.02 * (I - 3), d2W=lambda I: 0.02 + 0 * I,
                              mu=1.0, eps=2.0)]
 FORMS = [("mixed", math.inf), ("mixed", 50.0), ("penalty", 50.0), ("isochoric", 50.0),
-         ("mixed-isochoric", 50.0), ("mixed-isochoric", math.inf)]
+         ("mixed-isochoric", 50.0), ("mixed-isochoric", math.inf), ("mixed-plain", math.inf)]
 
 
 def flat(F, G, p):
@@ -70,10 +70,13 @@ def test_derivatives_match_central_differences(mat, form, kappa, stress_free):
     assert np.abs(hess - np.swapaxes(hess, 0, 1)).max() / scale_h < 1e-13
 
 
-@pytest.mark.parametrize("stress_free", [False, True])
-def test_cauchy_stress_is_elastic_plus_maxwell(stress_free):
+@pytest.mark.parametrize("form,stress_free,log_term", [("mixed", False, False),
+                                                       ("mixed", True, True),
+                                                       ("mixed-plain", True, False)])
+def test_cauchy_stress_is_elastic_plus_maxwell(form, stress_free, log_term):
     mat = NeoHookeanDielectric(mu=1.0, eps=2.5)
-    r = ideal_dielectric_response(mat, F0, G0, P0, stress_free_reference=stress_free)
+    r = ideal_dielectric_response(mat, F0, G0, P0, formulation=form,
+                                  stress_free_reference=stress_free)
     J = np.linalg.det(np.moveaxis(F0, -1, 0))
     sigma = np.einsum("aK...,bK...->ab...", r.P, F0) / J
     Finv = np.linalg.inv(np.moveaxis(F0, -1, 0))
@@ -81,7 +84,8 @@ def test_cauchy_stress_is_elastic_plus_maxwell(stress_free):
     b = np.einsum("aKn,bKn->abn", F0, F0)
     I = np.eye(3)[:, :, None]
     # -mu ln J adds -mu/J I (vanishes from the model when J = 1)
-    p_eff = P0 - (mat.mu / J if stress_free else 0.0)
+    # ("mixed-plain" has none: its reference pressure is p = -mu)
+    p_eff = P0 - (mat.mu / J if log_term else 0.0)
     expected = (mat.mu * b / J + p_eff * I + mat.eps * (np.einsum("an,bn->abn", E, E)
                 - 0.5 * np.einsum("an,an->n", E, E) * I))
     np.testing.assert_allclose(sigma, expected, atol=1e-12)

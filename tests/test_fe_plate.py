@@ -92,7 +92,7 @@ def test_penalty_error_scales_like_mu_over_kappa():
 @pytest.mark.parametrize("formulation,kappa,phi_element",
                          [("mixed", math.inf, "Q2"), ("mixed", 30.0, "Q1"),
                           ("penalty", 30.0, "Q2"), ("isochoric", 30.0, "Q2"),
-                          ("mixed-isochoric", 30.0, "Q2")])
+                          ("mixed-isochoric", 30.0, "Q2"), ("mixed-plain", math.inf, "Q2")])
 @pytest.mark.parametrize("loading,symmetry", [("uniaxial", "eighth"),
                                               ("equibiaxial", "quarter"),
                                               ("uniaxial", "half")])

@@ -44,7 +44,7 @@ class PlateOptions:
         or ``"local"`` (the field of the charge, charge control only).
     formulation, kappa
         How ``J = 1`` is imposed: ``"mixed"`` (pressure multiplier), ``"penalty"``,
-        ``"isochoric"`` or ``"mixed-isochoric"``; ``kappa`` the bulk modulus (units of
+        ``"isochoric"``, ``"mixed-isochoric"`` or ``"mixed-plain"``; ``kappa`` the bulk modulus (units of
         ``mu``, ``> 0``, ``inf`` for the exactly incompressible mixed forms, finite for the
         penalty and isochoric ones).
     phi_element

@@ -237,7 +237,8 @@ class PlateProblem(Problem):
     formulation
         ``"mixed"`` (u-p-phi, default), ``"penalty"`` (u-phi, ``W(I1) + kappa (J-1)^2/2``),
         ``"isochoric"`` (u-phi, COMSOL's ``W(J^(-2/3) I1) + kappa (J-1)^2/2``) or
-        ``"mixed-isochoric"`` (u-p-phi, the same energy without volumetric locking;
+        ``"mixed-isochoric"`` (u-p-phi, the same energy without volumetric locking) or
+        ``"mixed-plain"`` (u-p-phi, ``"mixed"`` without its ``-mu0 ln J``;
         :mod:`skfem_dielectric.materials`).
     kappa
         Bulk modulus; ``inf`` (the mixed forms only) = exactly incompressible.
