@@ -1,0 +1,58 @@
+"""The located P33 breakdown on graded meshes (validation.studies.p33_units)."""
+
+from __future__ import annotations
+
+import math
+import warnings
+from dataclasses import replace
+
+import numpy as np
+
+import skfem_dielectric as fe
+from validation.studies.buckling import p33_measures
+from validation.studies.p33_units import (COLUMNS, ONSET_TOL, SETS, main, read_p33_units,
+                                          run_p33_unit)
+from validation.table import BREAKDOWN_TOL
+
+
+def test_a_located_onset_is_where_an_independent_ramp_crosses_the_flag(tmp_path):
+    """alpha = 1 on the graded 8 x 1 x 4 eighth model: each located onset lies inside its
+    bracketing step, and an independent ramp from D0 = 0 (not the trial states of the
+    location) to 2 ONSET_TOL below and above it reads min P33/mu above and below
+    -BREAKDOWN_TOL there; the row holds every column and a rerun keeps it."""
+    row = run_p33_unit(1.0, (8, 1, 4), grading=0.25, D0_step=0.5, D0_max=4.0)
+    assert math.isnan(row["newton_limit"]) and row["states"] == 8
+    for k in SETS:
+        d = row[f"P33_onset_{k}"]
+        assert 0.0 < d < 4.0
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", RuntimeWarning)
+            res = fe.keplinger_plate(1.0, D0=[d - 2 * ONSET_TOL, d + 2 * ONSET_TOL],
+                                     elements=(8, 1, 4), grading=0.25,
+                                     settings=replace(fe.gallery.KEPLINGER_SETTINGS,
+                                                      max_cutbacks=6, max_iter=25))
+        pb = res.problem
+        lo, hi = (p33_measures(pb, st.x, st.load, st.quantities)[k]
+                  for st in res.steps[-2:])
+        assert lo > -BREAKDOWN_TOL > hi, (k, d, lo, hi)
+    out = tmp_path / "p33.csv"
+    assert main(["--alpha", "1", "--mesh", "6x1x3", "--grading", "0.5", "--D0-step", "1",
+                 "--D0-max", "3", "--csv", str(out)]) == 0
+    rows = read_p33_units(out)
+    assert len(rows) == 1 and list(rows[0]) == list(COLUMNS)
+    assert main(["--alpha", "1", "--mesh", "6x1x3", "--grading", "0.5", "--csv",
+                 str(out)]) == 0
+    assert read_p33_units(out) == rows
+
+
+def test_the_smallest_committed_unit_is_reproduced():
+    """alpha = 1 on 12 x 1 x 6 graded 0.25 run again: every onset within twice its
+    location tolerance of its row in validation/data/p33_units.csv."""
+    ref = next(r for r in read_p33_units() if r["alpha"] == "1" and r["mesh"] == "12x1x6"
+               and r["grading"] == "0.25")
+    row = run_p33_unit(1.0, (12, 1, 6), grading=0.25, D0_step=float(ref["D0_step"]),
+                       D0_max=float(ref["D0_max"]))
+    for k in SETS:
+        assert abs(row[f"P33_onset_{k}"] - float(ref[f"P33_onset_{k}"])) <= 2 * ONSET_TOL
+    assert row["dofs"] == int(ref["dofs"])
+    assert np.isnan(row["newton_limit"]) == (ref["newton_limit"] == "")
