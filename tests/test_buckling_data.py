@@ -1,6 +1,7 @@
-"""The measured buckling loads (validation/data/buckling_loads.csv): the file, its loader,
-the Richardson extrapolation behind its extrapolated column, the docs table it feeds, and
-the breakdown map that draws it."""
+"""The measured buckling loads (validation/data/buckling_loads.csv, the uniform meshes, and
+validation/data/clamp_units.csv, the graded ones): the files, their loader, the Richardson
+extrapolation behind the uniform file's extrapolated column, the docs table it feeds, and
+the figures that draw the loads."""
 
 from __future__ import annotations
 
@@ -10,7 +11,9 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from validation.buckling_data import buckling_loads, buckling_provenance, converged_buckling_load
+from validation.buckling_data import (buckling_loads, buckling_provenance, clamp_unit_load,
+                                      converged_buckling_load, read_clamp_units,
+                                      uniform_buckling_loads)
 from validation.studies.buckling import richardson
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -49,7 +52,7 @@ def test_richardson_refuses_a_non_monotone_sequence_and_bad_meshes():
 def test_data_file_extrapolation_is_richardson_of_its_meshes():
     # the file's D0_b, error and order are richardson() of its three meshes, rounded to
     # the printed digits (4 decimals for loads and errors, 2 for the order)
-    entries = buckling_loads()
+    entries = uniform_buckling_loads()
     assert [e.alpha for e in entries] == [0.05, 0.3, 0.7, 1.0, 1.5]
     for e in entries:
         ext, err, order = richardson(H, e.D0_b_mesh)
@@ -60,7 +63,34 @@ def test_data_file_extrapolation_is_richardson_of_its_meshes():
         else:
             assert np.isnan(ext) and np.isnan(e.D0_b)
     # alpha = 0.05 extrapolates to 0.744 (the finest mesh 0.7539, order 1.81)
-    assert round(converged_buckling_load(0.05).D0_b, 3) == 0.744
+    assert round(next(e for e in entries if e.alpha == 0.05).D0_b, 3) == 0.744
+
+
+def test_a_weight_takes_the_graded_load_where_its_two_finest_meshes_agree():
+    """buckling_loads() per weight: clamp_unit_load's verdict on the committed graded rows
+    (the finest mesh's D0_b, error = the two finest meshes' difference, recomputed here from
+    the rows), else the uniform file's entry unchanged."""
+    uniform = {e.alpha: e for e in uniform_buckling_loads()}
+    rows = read_clamp_units()
+    for e in buckling_loads():
+        mine = sorted((r for r in rows if r["D0_b"] and r["formulation"] == "mixed"
+                       and float(r["alpha"]) == e.alpha), key=lambda r: int(r["dofs"]))
+        try:
+            clamp_unit_load(e.alpha)
+        except ValueError:
+            assert repr(e) == repr(uniform[e.alpha])        # nan-safe
+            continue
+        a, b = mine[-2:]
+        assert e.source == "graded" and e.converged
+        assert e.D0_b == float(b["D0_b"])
+        assert e.error == pytest.approx(abs(float(b["D0_b"]) - float(a["D0_b"])), abs=1e-15)
+        assert e.meshes == (f"{a['mesh']} g{a['grading']}", f"{b['mesh']} g{b['grading']}")
+        assert float(a["elements_per_half_wave"]) >= 4 and a["half_waves"] == b["half_waves"]
+    # alpha = 1: the graded meshes resolve the clamp-zone wrinkle at 3.370, 0.53 above the
+    # uniform meshes' extrapolation 2.840 (two elements per half-wave)
+    g1 = converged_buckling_load(1.0)
+    assert g1.source == "graded" and abs(g1.D0_b - 3.370) < 5e-4 and g1.error < 1e-3
+    assert uniform[1.0].D0_b == 2.84
 
 
 def test_provenance_names_command_meshes_solver_date_and_error():
@@ -85,7 +115,7 @@ def _cell(x: float, digits: int) -> str:
 
 def test_docs_table_agrees_with_the_data_file():
     text = (ROOT / "docs" / "validation.md").read_text()
-    for e in buckling_loads():
+    for e in uniform_buckling_loads():
         a = f"{e.alpha:g}"
         row = next(ln for ln in text.splitlines()
                    if ln.startswith(f"| {a} | ") and ln.count("|") == 10)
@@ -133,12 +163,14 @@ def test_breakdown_map_draws_each_meaning_where_the_data_put_it():
     (p,) = _by_gid(ax, "p33-coupled")
     np.testing.assert_array_equal(p.get_xydata(), [[0.05, 0.5], [1.0, 3.0]])
     assert p.get_marker() == "o" and p.get_markerfacecolor() == "none"
-    # the run's crosses and Newton limit, the file's Newton limits (0.05: 3.91, 0.3: 5.125)
+    # the run's crosses and Newton limit, the loads' Newton limits (0.05: 3.91 on the
+    # uniform 20 x 1 x 10; the graded meshes' plain ramps where they stop)
     np.testing.assert_array_equal(_by_gid(ax, "buckling-run")[0].get_xydata(), [[1.0, 2.68]])
     assert _by_gid(ax, "buckling-run")[0].get_marker() == "x"
     np.testing.assert_array_equal(_by_gid(ax, "newton-run")[0].get_xydata(), [[0.3, 5.5]])
-    np.testing.assert_array_equal(_by_gid(ax, "newton-limit")[0].get_xydata(),
-                                  [[0.05, 3.91], [0.3, 5.125]])
+    nl = [[e.alpha, e.newton_limit] for e in buckling_loads() if np.isfinite(e.newton_limit)]
+    assert [0.05, 3.91] in nl
+    np.testing.assert_array_equal(_by_gid(ax, "newton-limit")[0].get_xydata(), nl)
     # the homogeneous paths of s > 0 never reach the wrinkling limits (docs/wrinkling.md):
     # arrows at the top for every weight, no limit line
     assert not _by_gid(ax, "wrinkling-limit")
@@ -184,10 +216,11 @@ def test_fig5_draws_the_converged_loads_on_their_curves():
             for e in conv]
     np.testing.assert_allclose(line.get_xydata(), want, rtol=1e-12)   # same closed form
     (nl,) = [ln for ln in ax.lines if ln.get_gid() == "newton-limit"]
-    np.testing.assert_array_equal(nl.get_ydata(), [3.91, 5.125])
+    np.testing.assert_array_equal(nl.get_ydata(), [e.newton_limit for e in buckling_loads()
+                                                   if np.isfinite(e.newton_limit)])
     labels = [t.get_text() for t in ax.get_legend().get_texts()]
     err = max(e.error for e in conv)
     assert (f"buckling load, converged (error bar $\\leq {err:.2g}$, hidden by the diamond)"
             in labels)
-    assert "Newton limit, plain form (20 x 1 x 10)" in labels
+    assert "Newton limit, plain form (finest mesh)" in labels
     plt.close(fig)

@@ -102,5 +102,5 @@ def test_clamp_unit_load_needs_two_finest_meshes_that_hold_and_agree(tmp_path):
         (tmp_path / str(i)).mkdir()
         with pytest.raises(ValueError, match=msg):
             clamp_unit_load(1.0, path=_units(tmp_path / str(i), rows))
-    with pytest.raises(ValueError, match="alpha = 0.05 has 0 located"):
-        clamp_unit_load(0.05)            # the committed file has no unit of this weight
+    with pytest.raises(ValueError, match="alpha = 2 has 0 located"):
+        clamp_unit_load(2.0)             # the committed file has no unit of this weight

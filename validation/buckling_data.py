@@ -1,13 +1,24 @@
 """The converged buckling loads of the clamped Keplinger plate, as measured.
 
-``validation/data/buckling_loads.csv`` (in the wheel) holds, per weight fraction
-``alpha``, the first physical buckling load ``D0_b`` of the whole plate on three meshes,
-its Richardson extrapolation with an error estimate and order, and where the plain form's
-Newton ramp stops on the finest mesh; its ``#`` header says how they were measured
-(command, meshes, solver, date, error estimate).  The study that produces them is
-:mod:`validation.studies.buckling` (docs/validation.md, "The study"); the figures
-(paper Fig. 5 and the breakdown map, docs/breakdown.md) read them from here.  Reading the
-file loads no finite elements.
+Two data files (in the wheel) hold the first physical buckling load ``D0_b`` of the whole
+plate:
+
+* ``validation/data/clamp_units.csv``: the clamp-zone study on meshes graded towards the
+  clamp (:mod:`validation.studies.clamp_units`, one weight on one mesh per row, with the
+  mode's half-wave count, ``J`` at the clamp and the command of each row).  A weight's
+  load is the finest mesh's where the two finest hold the mode (at least
+  :data:`MIN_ELEMENTS_PER_HALF_WAVE` elements per half-wave across the width), count the
+  same half-waves and agree (:func:`clamp_unit_load`);
+* ``validation/data/buckling_loads.csv``: three uniform meshes per weight
+  (:mod:`validation.studies.buckling`), their Richardson extrapolation with an error
+  estimate and order, and where the plain form's Newton ramp stops on the finest mesh;
+  its ``#`` header says how they were measured (command, meshes, solver, date, error
+  estimate).  Its meshes hold two elements per half-wave of the heavier weights'
+  clamp-zone wrinkle, so a weight with a converged graded load takes that one.
+
+:func:`buckling_loads` gives, per weight, the entry the project stands behind; the figures
+(paper Fig. 5 and the breakdown map, docs/breakdown.md) and ``skfem-dielectric check``
+read it from here.  Reading the files loads no finite elements.
 
 Only converged entries are answers: :func:`converged_buckling_load` refuses a weight
 without one (``alpha = 1.5``: the three meshes disagree) or absent from the file rather
@@ -20,12 +31,19 @@ import csv
 import math
 from dataclasses import dataclass
 from importlib import resources
+from pathlib import Path
 
-__all__ = ["BUCKLING_LOADS_FILE", "BucklingEntry", "buckling_loads", "buckling_provenance",
-           "converged_buckling_load"]
+__all__ = ["BUCKLING_LOADS_FILE", "CLAMP_UNITS_FILE", "MIN_ELEMENTS_PER_HALF_WAVE",
+           "BucklingEntry", "buckling_loads", "uniform_buckling_loads", "buckling_provenance",
+           "converged_buckling_load", "read_clamp_units", "clamp_unit_load"]
 
-#: the data file, relative to the ``validation`` package
+#: the data file of the uniform meshes, relative to the ``validation`` package
 BUCKLING_LOADS_FILE = "data/buckling_loads.csv"
+#: the data file of the clamp-zone study on graded meshes (one unit per row,
+#: :mod:`validation.studies.clamp_units`), relative to the ``validation`` package
+CLAMP_UNITS_FILE = "data/clamp_units.csv"
+#: elements across the width per half-wave below which a mesh cannot hold the mode
+MIN_ELEMENTS_PER_HALF_WAVE = 4.0
 
 
 @dataclass(frozen=True)
@@ -45,7 +63,14 @@ class BucklingEntry:
         finest mesh's value) and the observed order; ``nan`` where not converged.
     newton_limit
         Where the plain form (``grad_div = 0``) stops on the finest mesh; ``nan`` if it
-        reached every target.
+        reached every target (or, for a ``"graded"`` entry, was not run there).
+    source
+        ``"uniform"``: the three uniform meshes of :data:`BUCKLING_LOADS_FILE`, ``D0_b``
+        their Richardson extrapolation; ``"graded"``: the two finest graded meshes of the
+        clamp-zone study (:data:`CLAMP_UNITS_FILE`, ``meshes`` named ``"40x1x36 g0.1"``:
+        mesh and grading), ``D0_b`` the finest mesh's where the two hold the mode and agree
+        (:func:`clamp_unit_load`), ``error`` their difference, ``order`` ``nan`` (nothing
+        is extrapolated).
     """
 
     alpha: float
@@ -55,6 +80,7 @@ class BucklingEntry:
     error: float
     order: float
     newton_limit: float
+    source: str = "uniform"
 
     @property
     def converged(self) -> bool:
@@ -75,8 +101,9 @@ def buckling_provenance() -> str:
     return "\n".join(ln[1:].strip() for ln in _lines() if ln.startswith("#"))
 
 
-def buckling_loads() -> tuple[BucklingEntry, ...]:
-    """Every entry of the data file, converged or not, in increasing ``alpha``.
+def uniform_buckling_loads() -> tuple[BucklingEntry, ...]:
+    """Every entry of :data:`BUCKLING_LOADS_FILE` (three uniform meshes), converged or not,
+    in increasing ``alpha``.
 
     Returns
     -------
@@ -92,6 +119,53 @@ def buckling_loads() -> tuple[BucklingEntry, ...]:
                          newton_limit=_float(r[f"newton_limit_{meshes[-1]}"]))
            for r in rows]
     return tuple(sorted(out, key=lambda e: e.alpha))
+
+
+def _plain_newton_limit(alpha: float, mesh: str, grading: str) -> float:
+    """The plain form's Newton limit on a graded mesh (``data/p33_units.csv``), ``nan``
+    where it reached every target or was not run."""
+    f = resources.files("validation") / "data" / "p33_units.csv"
+    if not f.is_file():
+        return math.nan
+    for r in csv.DictReader(ln for ln in f.read_text().splitlines()
+                            if not ln.startswith("#")):
+        if (math.isclose(float(r["alpha"]), alpha, rel_tol=0.0, abs_tol=1e-9)
+                and r["mesh"] == mesh and r["grading"] == grading):
+            return _float(r["newton_limit"])
+    return math.nan
+
+
+def buckling_loads() -> tuple[BucklingEntry, ...]:
+    """The buckling load the project stands behind, per weight fraction, in increasing
+    ``alpha``: the clamp-zone study's graded meshes where the two finest hold the mode and
+    agree (:func:`clamp_unit_load`; ``source="graded"``), else the entry of the three
+    uniform meshes (:func:`uniform_buckling_loads`, converged or not).
+
+    The uniform meshes of :data:`BUCKLING_LOADS_FILE` have two elements per half-wave of
+    the heavier weights' clamp-zone wrinkle: where the graded meshes resolve it, their load
+    replaces the uniform extrapolation (docs/validation.md, "The clamp-zone wrinkle on
+    graded meshes").
+
+    Returns
+    -------
+    tuple of BucklingEntry
+    """
+    out = {round(e.alpha, 9): e for e in uniform_buckling_loads()}
+    alphas = {round(float(r["alpha"]), 9) for r in read_clamp_units() if r["D0_b"]}
+    for a in alphas:
+        try:
+            g = clamp_unit_load(a)
+        except ValueError:
+            continue
+        rows = g["rows"][-2:]                  # the two finest, that agree
+        fine = rows[-1]
+        out[a] = BucklingEntry(
+            alpha=a, meshes=tuple(f"{r['mesh']} g{r['grading']}" for r in rows),
+            D0_b_mesh=tuple(float(r["D0_b"]) for r in rows), D0_b=g["D0_b"],
+            error=g["spread"], order=math.nan,
+            newton_limit=_plain_newton_limit(a, fine["mesh"], fine["grading"]),
+            source="graded")
+    return tuple(sorted(out.values(), key=lambda e: e.alpha))
 
 
 def converged_buckling_load(alpha: float) -> BucklingEntry:
@@ -116,8 +190,8 @@ def converged_buckling_load(alpha: float) -> BucklingEntry:
     Examples
     --------
     >>> e = converged_buckling_load(1.0)
-    >>> round(e.D0_b, 3), e.meshes[-1]
-    (2.84, '20x1x10')
+    >>> round(e.D0_b, 3), e.meshes[-1], e.source
+    (3.37, '40x1x36 g0.1', 'graded')
     """
     alpha = float(alpha)
     entries = buckling_loads()
@@ -131,4 +205,87 @@ def converged_buckling_load(alpha: float) -> BucklingEntry:
             raise ValueError(f"alpha = {alpha:g} has no converged buckling load (meshes "
                              f"{', '.join(e.meshes)}: "
                              f"{', '.join(f'{v:g}' for v in e.D0_b_mesh)}); {where}")
-    raise ValueError(f"alpha = {alpha:g} has no entry in {BUCKLING_LOADS_FILE}; {where}")
+    raise ValueError(f"alpha = {alpha:g} has no entry in {BUCKLING_LOADS_FILE} or "
+                     f"{CLAMP_UNITS_FILE}; {where}")
+
+
+def read_clamp_units(path: Path | None = None) -> list[dict]:
+    """The rows of the clamp-zone study's CSV (comment lines skipped), as dicts of strings.
+
+    Parameters
+    ----------
+    path : Path, optional
+        Default: the package's :data:`CLAMP_UNITS_FILE`.  A missing file has no rows.
+    """
+    if path is None:
+        text = (resources.files("validation") / CLAMP_UNITS_FILE).read_text()
+    else:
+        path = Path(path)
+        if not path.exists():
+            return []
+        text = path.read_text()
+    return list(csv.DictReader(ln for ln in text.splitlines() if not ln.startswith("#")))
+def clamp_unit_load(alpha: float, *, tol: float | None = None, path: Path | None = None,
+                    formulation: str = "mixed") -> dict:
+    """The clamp-zone buckling load of ``alpha`` where the study's two finest meshes agree.
+
+    The rows of ``alpha`` (``formulation``, a located ``D0_b``) ordered by unknowns; the
+    two finest must hold the mode (at least :data:`MIN_ELEMENTS_PER_HALF_WAVE` elements
+    across the width per half-wave), count the same half-waves and give ``D0_b`` within
+    ``tol`` (default 0.02; 0.05 for ``alpha >= 1.5``).  No value is extrapolated.
+
+    Parameters
+    ----------
+    alpha : float
+        Weight fraction (matched to ``1e-9``).
+    tol : float, optional
+        Largest difference of the two finest meshes' ``D0_b``.
+    path : Path, optional
+        The study's CSV (default: the package's :data:`CLAMP_UNITS_FILE`).
+    formulation : str
+        How ``J = 1`` is imposed in the rows used.
+
+    Returns
+    -------
+    dict
+        ``D0_b`` (the finest mesh's), ``spread`` (the two finest meshes' difference),
+        ``half_waves``, ``meshes`` (the two finest, coarser first), ``rows`` (every located
+        row of ``alpha`` and ``formulation``, by unknowns).
+
+    Raises
+    ------
+    ValueError
+        ``alpha`` has fewer than two located rows, or the two finest do not hold the mode,
+        count different half-waves or differ by more than ``tol``; the message says which
+        and gives their numbers.
+    """
+    alpha = float(alpha)
+    if tol is None:
+        tol = 0.05 if alpha >= 1.5 else 0.02
+    rows = [r for r in read_clamp_units(path) if r["D0_b"] and r["formulation"] == formulation
+            and math.isclose(float(r["alpha"]), alpha, rel_tol=0.0, abs_tol=1e-9)]
+    rows.sort(key=lambda r: int(r["dofs"]))
+    if len(rows) < 2:
+        raise ValueError(f"alpha = {alpha:g} has {len(rows)} located clamp-zone unit(s) with "
+                         f"formulation {formulation!r} in {path or CLAMP_UNITS_FILE}: two "
+                         f"meshes are needed")
+    a, b = rows[-2], rows[-1]
+    what = (f"alpha = {alpha:g}: {a['mesh']} graded {a['grading']} D0_b {a['D0_b']} "
+            f"({a['half_waves']} half-waves, {float(a['elements_per_half_wave']):.1f} "
+            f"elements each), {b['mesh']} graded {b['grading']} D0_b {b['D0_b']} "
+            f"({b['half_waves']} half-waves, {float(b['elements_per_half_wave']):.1f} "
+            f"elements each)")
+    coarse = [r["mesh"] for r in (a, b)
+              if float(r["elements_per_half_wave"]) < MIN_ELEMENTS_PER_HALF_WAVE]
+    if coarse:
+        raise ValueError(f"mesh too coarse for the mode ({', '.join(coarse)}: fewer than "
+                         f"{MIN_ELEMENTS_PER_HALF_WAVE:g} elements per half-wave); {what}")
+    if a["half_waves"] != b["half_waves"]:
+        raise ValueError(f"half-wave count not converged; {what}")
+    spread = abs(float(b["D0_b"]) - float(a["D0_b"]))
+    if spread > tol:
+        raise ValueError(f"D0_b not converged (spread {spread:.4f} > tol {tol:g}); {what}")
+    return {"D0_b": float(b["D0_b"]), "spread": spread, "half_waves": int(b["half_waves"]),
+            "meshes": (a["mesh"], b["mesh"]), "rows": rows}
+
+

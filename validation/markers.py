@@ -70,13 +70,15 @@ RUN_BUCKLING = Marker(
     dict(marker="x", color="red", ms=13, mew=2.8, zorder=9))
 CONVERGED_BUCKLING = Marker(
     "buckling load, converged", "black diamond",
-    "D0_b converged over three meshes (extrapolated; validation/data/buckling_loads.csv); "
-    "its error bar (at most 0.012) is smaller than the diamond",
+    "D0_b where the meshes agree: the finest of the two finest graded meshes of the "
+    "clamp-zone study (validation/data/clamp_units.csv), else the extrapolation of three "
+    "uniform meshes (validation/data/buckling_loads.csv); its error bar (at most 0.012) is "
+    "smaller than the diamond",
     dict(marker="D", color="k", ms=6, zorder=7))
 MESH_BUCKLING = Marker(
     "buckling load on each mesh", "small grey dot",
-    "D0_b on each of the three meshes; where they scatter without a diamond the load is "
-    "not converged",
+    "D0_b on each mesh of the load (the two finest graded or the three uniform); where "
+    "they scatter without a diamond the load is not converged",
     dict(marker=".", color="0.55", ms=5, zorder=2))
 NEWTON_LIMIT = Marker(
     "Newton limit, plain form", "black triangle down",

@@ -119,8 +119,9 @@ def plot_breakdown_map(p33=None, run_buckling=None, run_newton=None, loads=None,
     loads : sequence of BucklingEntry, optional
         The measured buckling loads (default :func:`validation.buckling_data.buckling_loads`):
         the converged ``D0_b`` with its error bar (:data:`~validation.markers.CONVERGED_BUCKLING`;
-        the legend says that the bars hide behind the diamonds), each mesh's value
-        (:data:`~validation.markers.MESH_BUCKLING`; a weight without a diamond gets a note
+        the legend says that the bars hide behind the diamonds), the value of each mesh of
+        the entry (:data:`~validation.markers.MESH_BUCKLING`: the three uniform meshes, or
+        the two finest graded ones; a weight without a diamond gets a note
         in the figure, :data:`~validation.markers.NOT_CONVERGED_NOTE`) and the plain form's
         Newton limit on the finest mesh (:data:`~validation.markers.NEWTON_LIMIT`).
     alphas : sequence of float, optional
@@ -139,11 +140,16 @@ def plot_breakdown_map(p33=None, run_buckling=None, run_newton=None, loads=None,
     if ax is None:
         _, ax = plt.subplots(figsize=(6.5, 4.8), layout="constrained")
     loads = buckling_loads() if loads is None else loads
-    fine = loads[0].meshes[-1] if loads else ""
-    for k, e in enumerate(loads):                      # every mesh, converged or not
+    named = set()
+    for e in loads:                                    # every mesh, converged or not
+        label = None
+        if e.source not in named:                      # one legend entry per source
+            named.add(e.source)
+            label = (f"{MESH_BUCKLING.name} (uniform {', '.join(e.meshes)})"
+                     if e.source == "uniform" else
+                     f"{MESH_BUCKLING.name} (the two finest graded meshes)")
         ax.plot([e.alpha] * len(e.D0_b_mesh), e.D0_b_mesh, ls="none", gid="buckling-mesh",
-                label=(f"{MESH_BUCKLING.name} ({', '.join(e.meshes)})" if k == 0 else None),
-                **legend_style(MESH_BUCKLING))
+                label=label, **legend_style(MESH_BUCKLING))
     conv = [e for e in loads if e.converged]
     if conv:
         err = max(e.error for e in conv)
@@ -151,7 +157,7 @@ def plot_breakdown_map(p33=None, run_buckling=None, run_newton=None, loads=None,
         ax.errorbar([e.alpha for e in conv], [e.D0_b for e in conv],
                     yerr=[e.error for e in conv], fmt="-", lw=1.0, capsize=3,
                     gid="buckling-converged", color=st.pop("color"), **st,
-                    label=f"{CONVERGED_BUCKLING.name} (extrapolated; error bar "
+                    label=f"{CONVERGED_BUCKLING.name} (error bar "
                           f"$\\leq {err:.2g}$, hidden by the diamond)")
     for e in loads:                                    # a weight without a diamond says why
         if not e.converged and len(e.D0_b_mesh):
@@ -162,7 +168,7 @@ def plot_breakdown_map(p33=None, run_buckling=None, run_newton=None, loads=None,
     nl = [e for e in loads if math.isfinite(e.newton_limit)]
     if nl:
         ax.plot([e.alpha for e in nl], [e.newton_limit for e in nl], ls="none",
-                gid="newton-limit", label=f"{NEWTON_LIMIT.name} ({fine})",
+                gid="newton-limit", label=f"{NEWTON_LIMIT.name} (finest mesh)",
                 **legend_style(NEWTON_LIMIT))
     for v, per in (p33 or {}).items():
         pts = [(float(a), d) for a, d in per.items() if d is not None]

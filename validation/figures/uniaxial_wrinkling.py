@@ -105,7 +105,7 @@ def _measured_loads(ax, alphas, m, D0max):
     if newton:
         ax.plot(*zip(*newton), ls="none", gid="newton-limit", **legend_style(NEWTON_LIMIT))
         out.append(Line2D([], [], ls="none", **legend_style(NEWTON_LIMIT),
-                          label=f"{NEWTON_LIMIT.name} (20 x 1 x 10)"))
+                          label=f"{NEWTON_LIMIT.name} (finest mesh)"))
     if missing and conv:
         out.append(Line2D([], [], ls="none", label=rf"$\alpha = {', '.join(missing)}$: "
                                                     f"{NOT_CONVERGED_NOTE}"))

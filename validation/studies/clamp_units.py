@@ -58,12 +58,13 @@ from skfem_dielectric.linalg.solver_base import factorisation_count
 from skfem_dielectric.models.plate.scan import PlateScan
 from skfem_dielectric.studies.buckling import locate_buckling
 
+from ..buckling_data import MIN_ELEMENTS_PER_HALF_WAVE, clamp_unit_load, read_clamp_units
 from ..fe.model import BUCKLING_GRAD_DIV, BUCKLING_NEWTON, BUCKLING_TOL
 from ..store import write_text_atomic
 from .local_theory import energy_centroid, half_waves, local_state
 
 __all__ = ["COLUMNS", "DEFAULT_CSV", "MIN_ELEMENTS_PER_HALF_WAVE", "run_unit", "read_units",
-           "clamp_unit_load", "main"]
+           "clamp_unit_load", "mesh_text", "parse_mesh", "main"]
 
 #: where the study's rows are kept (provenance in its header lines)
 DEFAULT_CSV = Path(__file__).resolve().parents[1] / "data" / "clamp_units.csv"
@@ -81,7 +82,8 @@ _HEADER = """\
 """
 
 
-def _mesh_text(elements) -> str:
+def mesh_text(elements) -> str:
+    """``(n1, n2, n3)`` as the study writes it, ``"n1xn2xn3"``."""
     return "x".join(str(int(n)) for n in elements)
 
 
@@ -199,7 +201,7 @@ def run_unit(alpha: float, elements, *, grading: float = 1.0, D0_step: float = 0
             scan = PlateScan(pb, state=before)
             fine = [np.array([s, d]) for d in np.round(lo + step * np.arange(0, 5), 10)]
             stopped = ramp_to(fine, start=prev) or stopped
-    row = {"alpha": alpha, "mesh": _mesh_text(el), "grading": grading,
+    row = {"alpha": alpha, "mesh": mesh_text(el), "grading": grading,
            "formulation": formulation, "dofs": pb.ndofs, "D0_step": D0_step,
            "states": track["states"], "scan_counts": " ".join(track["counts"])}
     if bl is not None:
@@ -232,77 +234,7 @@ def _key(r: dict) -> tuple:
 
 def read_units(path: Path = DEFAULT_CSV) -> list[dict]:
     """The rows of the study's CSV (comment lines skipped), as dicts of strings."""
-    path = Path(path)
-    if not path.exists():
-        return []
-    with open(path, newline="") as fh:
-        return list(csv.DictReader(ln for ln in fh if not ln.startswith("#")))
-
-
-#: elements across the width per half-wave below which a mesh cannot hold the mode
-MIN_ELEMENTS_PER_HALF_WAVE = 4.0
-
-
-def clamp_unit_load(alpha: float, *, tol: float | None = None, path: Path = DEFAULT_CSV,
-                    formulation: str = "mixed") -> dict:
-    """The clamp-zone buckling load of ``alpha`` where the study's two finest meshes agree.
-
-    The rows of ``alpha`` (``formulation``, a located ``D0_b``) ordered by unknowns; the
-    two finest must hold the mode (at least :data:`MIN_ELEMENTS_PER_HALF_WAVE` elements
-    across the width per half-wave), count the same half-waves and give ``D0_b`` within
-    ``tol`` (default 0.02; 0.05 for ``alpha >= 1.5``).  No value is extrapolated.
-
-    Parameters
-    ----------
-    alpha : float
-        Weight fraction (matched to ``1e-9``).
-    tol : float, optional
-        Largest difference of the two finest meshes' ``D0_b``.
-    path : Path
-        The study's CSV.
-    formulation : str
-        How ``J = 1`` is imposed in the rows used.
-
-    Returns
-    -------
-    dict
-        ``D0_b`` (the finest mesh's), ``spread`` (the two finest meshes' difference),
-        ``half_waves``, ``meshes`` (the two finest, coarser first).
-
-    Raises
-    ------
-    ValueError
-        ``alpha`` has fewer than two located rows, or the two finest do not hold the mode,
-        count different half-waves or differ by more than ``tol``; the message says which
-        and gives their numbers.
-    """
-    alpha = float(alpha)
-    if tol is None:
-        tol = 0.05 if alpha >= 1.5 else 0.02
-    rows = [r for r in read_units(path) if r["D0_b"] and r["formulation"] == formulation
-            and math.isclose(float(r["alpha"]), alpha, rel_tol=0.0, abs_tol=1e-9)]
-    rows.sort(key=lambda r: int(r["dofs"]))
-    if len(rows) < 2:
-        raise ValueError(f"alpha = {alpha:g} has {len(rows)} located clamp-zone unit(s) with "
-                         f"formulation {formulation!r} in {path}: two meshes are needed")
-    a, b = rows[-2], rows[-1]
-    what = (f"alpha = {alpha:g}: {a['mesh']} graded {a['grading']} D0_b {a['D0_b']} "
-            f"({a['half_waves']} half-waves, {float(a['elements_per_half_wave']):.1f} "
-            f"elements each), {b['mesh']} graded {b['grading']} D0_b {b['D0_b']} "
-            f"({b['half_waves']} half-waves, {float(b['elements_per_half_wave']):.1f} "
-            f"elements each)")
-    coarse = [r["mesh"] for r in (a, b)
-              if float(r["elements_per_half_wave"]) < MIN_ELEMENTS_PER_HALF_WAVE]
-    if coarse:
-        raise ValueError(f"mesh too coarse for the mode ({', '.join(coarse)}: fewer than "
-                         f"{MIN_ELEMENTS_PER_HALF_WAVE:g} elements per half-wave); {what}")
-    if a["half_waves"] != b["half_waves"]:
-        raise ValueError(f"half-wave count not converged; {what}")
-    spread = abs(float(b["D0_b"]) - float(a["D0_b"]))
-    if spread > tol:
-        raise ValueError(f"D0_b not converged (spread {spread:.4f} > tol {tol:g}); {what}")
-    return {"D0_b": float(b["D0_b"]), "spread": spread, "half_waves": int(b["half_waves"]),
-            "meshes": (a["mesh"], b["mesh"])}
+    return read_clamp_units(path)
 
 
 def _cell(v) -> str:
@@ -320,7 +252,9 @@ def _append(path: Path, row: dict) -> None:
     write_text_atomic(path, _HEADER + buf.getvalue())
 
 
-def _mesh(text: str) -> tuple[int, int, int]:
+def parse_mesh(text: str) -> tuple[int, int, int]:
+    """``"n1xn2xn3"`` as ``(n1, n2, n3)`` (positive counts), for ``argparse``: an
+    ``argparse.ArgumentTypeError`` naming the text otherwise."""
     try:
         n = tuple(int(v) for v in text.split("x"))
     except ValueError:
@@ -347,7 +281,7 @@ def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(prog="python -m validation.studies.clamp_units",
                                  description=__doc__.splitlines()[0])
     ap.add_argument("--alpha", type=float, nargs="+", required=True)
-    ap.add_argument("--mesh", type=_mesh, nargs="+", required=True)
+    ap.add_argument("--mesh", type=parse_mesh, nargs="+", required=True)
     ap.add_argument("--grading", type=float, default=1.0)
     ap.add_argument("--formulation", default="mixed")
     ap.add_argument("--D0-step", dest="D0_step", type=float, default=0.5)
@@ -359,9 +293,9 @@ def main(argv: list[str] | None = None) -> int:
         shlex.quote(v) for v in (argv if argv is not None else sys.argv[1:]))
     for alpha in a.alpha:
         for el in a.mesh:
-            row_key = (f"{alpha:g}", _mesh_text(el), f"{a.grading:g}", a.formulation)
+            row_key = (f"{alpha:g}", mesh_text(el), f"{a.grading:g}", a.formulation)
             if any(_key(r) == row_key for r in read_units(a.csv)):
-                print(f"alpha = {alpha:g} {_mesh_text(el)} grading {a.grading:g}: kept",
+                print(f"alpha = {alpha:g} {mesh_text(el)} grading {a.grading:g}: kept",
                       flush=True)
                 continue
             with blas_thread_limit(1):      # as the command line (docs/performance.md)
@@ -370,7 +304,7 @@ def main(argv: list[str] | None = None) -> int:
                                progress=lambda t: print("  " + t, flush=True))
             row["command"] = command
             _append(a.csv, row)
-            print(f"alpha = {alpha:g} {_mesh_text(el)} grading {a.grading:g}: D0_b "
+            print(f"alpha = {alpha:g} {mesh_text(el)} grading {a.grading:g}: D0_b "
                   f"{row['D0_b']:.4f} {row.get('note', '')}, "
                   f"{row.get('half_waves', '')} half-waves, "
                   f"{row['dofs']} DOFs, {row['cpu_s']} CPU s, {row['peak_GB']} GB",

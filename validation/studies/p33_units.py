@@ -59,7 +59,7 @@ from ..fe.model import BUCKLING_NEWTON
 from ..store import write_text_atomic
 from ..table import BREAKDOWN_TOL
 from .buckling import p33_measures
-from .clamp_units import _mesh, _mesh_text
+from .clamp_units import mesh_text, parse_mesh
 
 __all__ = ["COLUMNS", "DEFAULT_CSV", "SETS", "run_p33_unit", "read_p33_units", "main"]
 
@@ -130,7 +130,7 @@ def run_p33_unit(alpha: float, elements, *, grading: float = 1.0, D0_step: float
             s, D0, fe.gallery.KEPLINGER_PRELOAD_STEPS), on_step=on_step,
             linear_solver=solver, settings=settings)
     newton_limit = math.nan if res.converged else (float(states[-1][1][1]) if states else 0.0)
-    row = {"alpha": alpha, "mesh": _mesh_text(el), "grading": grading, "dofs": pb.ndofs,
+    row = {"alpha": alpha, "mesh": mesh_text(el), "grading": grading, "dofs": pb.ndofs,
            "D0_step": D0_step, "newton_limit": newton_limit, "D0_max": D0_max,
            "states": len(states)}
     notes, trials = [], 0
@@ -207,7 +207,7 @@ def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(prog="python -m validation.studies.p33_units",
                                  description=__doc__.splitlines()[0])
     ap.add_argument("--alpha", type=float, nargs="+", required=True)
-    ap.add_argument("--mesh", type=_mesh, nargs="+", required=True)
+    ap.add_argument("--mesh", type=parse_mesh, nargs="+", required=True)
     ap.add_argument("--grading", type=float, default=1.0)
     ap.add_argument("--D0-step", dest="D0_step", type=float, default=0.25)
     ap.add_argument("--D0-max", dest="D0_max", type=float, default=6.0)
@@ -218,7 +218,7 @@ def main(argv: list[str] | None = None) -> int:
         shlex.quote(v) for v in (argv if argv is not None else sys.argv[1:]))
     for alpha in a.alpha:
         for el in a.mesh:
-            key = (f"{alpha:g}", _mesh_text(el), f"{a.grading:g}")
+            key = (f"{alpha:g}", mesh_text(el), f"{a.grading:g}")
             if any(_key(r) == key for r in read_p33_units(a.csv)):
                 print(f"alpha = {alpha:g} {key[1]} grading {a.grading:g}: kept", flush=True)
                 continue
