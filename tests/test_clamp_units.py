@@ -21,7 +21,22 @@ def test_a_unit_locates_the_buckling_studys_load_and_writes_its_row(tmp_path):
     location: both to 1e-4); the row holds every column, J at the clamp layer is that of
     a compressible-looking discrete layer (the coarse mesh cannot hold it: J < 0.8), the
     half-waves are counted across the whole width, and a rerun keeps the row."""
-    row = run_unit(1.0, (6, 1, 3), grading=0.5, D0_step=1.0)
+    row = run_unit(1.0, (6, 1, 3), grading=0.5, D0_step=1.0, modes_dir=tmp_path / "modes")
+    # the mode at D0_b: the top face of the whole plate at the element vertices (both
+    # halves of each plane of symmetry: 2 n1 + 1 by 2 n3 + 1 points)
+    with np.load(tmp_path / "modes" / "1_6x1x3_g0.5_mixed.npz") as z:
+        assert z["D0_b"] == row["D0_b"]
+        assert z["X1"].shape == z["X3"].shape == z["u2"].shape
+        assert len(np.unique(z["X1"])) == 2 * 6 + 1 and len(np.unique(z["X3"])) == 2 * 3 + 1
+        assert np.abs(z["u2"]).max() > 0
+    from validation.figures.clamp_modes import clamp_modes_figure, read_clamp_modes
+    (mode,) = read_clamp_modes(tmp_path / "modes")
+    assert (mode["alpha"], mode["mesh"], mode["grading"], mode["formulation"]) == \
+        (1.0, "6x1x3", 0.5, "mixed")
+    fig = clamp_modes_figure([mode])
+    assert f"{row['D0_b']:.4f}" in fig.axes[0].get_title()
+    with pytest.raises(ValueError, match="holds no mode"):
+        read_clamp_modes(tmp_path)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", RuntimeWarning)
         res = fe.keplinger_plate(1.0, D0=[1.0, 2.0, 3.0, 4.0], elements=(6, 1, 3),

@@ -24,6 +24,10 @@ unit's row holds what the mesh says about the mode there:
   ``note`` where no ``D0_b`` was found (no crossing up to ``D0_max``, the ramp stopped, or a
   crossing between two states that the location could not follow).
 
+The mode at ``D0_b`` (the top face's deflection over the whole plate) goes to
+``--modes`` (default ``results/clamp-modes``, one ``.npz`` per unit, not data of the
+repository); ``python -m validation.figures.clamp_modes`` draws them.
+
 Rows go to a CSV (default ``validation/data/clamp_units.csv``), one per unit, written
 atomically as soon as the unit is done; a unit whose key (``alpha``, mesh, ``grading``,
 ``formulation``) is already there is skipped, so a list of units run in the background
@@ -55,12 +59,13 @@ import numpy as np
 import skfem_dielectric as fe
 from skfem_dielectric.fem import blas_thread_limit
 from skfem_dielectric.linalg.solver_base import factorisation_count
+from skfem_dielectric.models.plate.modes import top_deflection
 from skfem_dielectric.models.plate.scan import PlateScan
 from skfem_dielectric.studies.buckling import locate_buckling
 
 from ..buckling_data import MIN_ELEMENTS_PER_HALF_WAVE, clamp_unit_load, read_clamp_units
 from ..fe.model import BUCKLING_GRAD_DIV, BUCKLING_NEWTON, BUCKLING_TOL
-from ..store import write_text_atomic
+from ..store import write_npz_atomic, write_text_atomic
 from .local_theory import energy_centroid, half_waves, local_state
 
 __all__ = ["COLUMNS", "DEFAULT_CSV", "MIN_ELEMENTS_PER_HALF_WAVE", "run_unit", "read_units",
@@ -103,7 +108,7 @@ class _Crossed(Exception):
 
 def run_unit(alpha: float, elements, *, grading: float = 1.0, D0_step: float = 0.5,
              D0_max: float = 6.0, formulation: str = "mixed", solver: str = "auto",
-             progress=None) -> dict:
+             progress=None, modes_dir: Path | None = None) -> dict:
     """One unit of the study: the row of :data:`COLUMNS` (module docstring).
 
     Parameters
@@ -125,6 +130,10 @@ def run_unit(alpha: float, elements, *, grading: float = 1.0, D0_step: float = 0
         Linear solver of the ramps and trial states.
     progress
         Optional ``progress(text)`` called once per scanned state.
+    modes_dir
+        Where to write the mode at ``D0_b`` (``<alpha>_<mesh>_g<grading>_<formulation>.npz``:
+        the top face's deflection over the whole plate, ``X1``, ``X3``, ``u2``, as
+        :func:`~skfem_dielectric.models.plate.modes.top_deflection`); ``None``: not written.
 
     Returns
     -------
@@ -216,6 +225,12 @@ def run_unit(alpha: float, elements, *, grading: float = 1.0, D0_step: float = 0
                    half_waves=n_half, elements_per_half_wave=n3 / n_half,
                    J_min_clamp=jmin, J_max_clamp=jmax,
                    n_flagged_b=track["row"].n_negative - track["row"].n_physical)
+        if modes_dir is not None:
+            X1, X3, u2 = top_deflection(pb, lab.mode, lab.increments)
+            Path(modes_dir).mkdir(parents=True, exist_ok=True)
+            write_npz_atomic(Path(modes_dir) / f"{alpha:g}_{mesh_text(el)}_g{grading:g}_"
+                                               f"{formulation}.npz",
+                             X1=X1, X3=X3, u2=u2, D0_b=float(bl.D0_b))
     else:
         row.update(D0_b=math.nan, n_flagged_b=(track["row"].n_negative - track["row"].n_physical
                                                 if track["row"] is not None else ""),
@@ -288,6 +303,8 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--D0-max", dest="D0_max", type=float, default=6.0)
     ap.add_argument("--solver", default="auto", choices=["auto", "superlu", "pardiso"])
     ap.add_argument("--csv", type=Path, default=DEFAULT_CSV)
+    ap.add_argument("--modes", type=Path, default=Path("results") / "clamp-modes",
+                    help="folder of the modes at D0_b (default results/clamp-modes)")
     a = ap.parse_args(argv)
     command = "python -m validation.studies.clamp_units " + " ".join(
         shlex.quote(v) for v in (argv if argv is not None else sys.argv[1:]))
@@ -301,7 +318,8 @@ def main(argv: list[str] | None = None) -> int:
             with blas_thread_limit(1):      # as the command line (docs/performance.md)
                 row = run_unit(alpha, el, grading=a.grading, D0_step=a.D0_step,
                                D0_max=a.D0_max, formulation=a.formulation, solver=a.solver,
-                               progress=lambda t: print("  " + t, flush=True))
+                               progress=lambda t: print("  " + t, flush=True),
+                               modes_dir=a.modes)
             row["command"] = command
             _append(a.csv, row)
             print(f"alpha = {alpha:g} {mesh_text(el)} grading {a.grading:g}: D0_b "
