@@ -32,5 +32,19 @@ def test_the_wavelength_follows_cerda_mahadevan_not_the_thickness(capsys):
     assert math.isclose(r["cm_mm"], math.sqrt(r["t_mm"] * 100.0 * lam1)
                         * (lam1 - 1) ** -0.25, rel_tol=1e-9)
     assert math.isclose(r["wavelength_mm"], 100.0 / r["half_waves"], rel_tol=1e-12)
-    assert main([]) == 0
+    assert main(["--no-membrane"]) == 0
     assert "| 1 | 3.37" in capsys.readouterr().out
+
+
+def test_the_membrane_compressive_zone_sits_at_the_clamps():
+    """alpha = 1 at D0 = 3.37 on a coarse membrane (20 x 10): the centre is the homogeneous
+    uni-axial state, whose lateral stress is zero (Eq. (DEuniax): t3 = 0) to the
+    discretisation's 2e-3; the compression (S33/mu down to about -0.11) sits at the clamp
+    (X1 > 45 of 50 mm) over a zone of about half the width (15-30 mm) from each clamp."""
+    from validation.studies.wrinkle_scaling import compressive_zone
+
+    z = compressive_zone(1.0, 3.37, n1=20, n3=10, D0_step=0.5)
+    assert abs(z["P33_centre"]) < 2e-3
+    assert -0.15 < z["P33_min"] < -0.07 and z["X1_min"] > 45.0
+    assert 15.0 < z["extent_mm"] < 30.0 and 0.2 < z["area_fraction"] < 0.5
+    assert 2.5 <= z["D0_compressed"] <= 3.37

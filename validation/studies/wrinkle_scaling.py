@@ -16,9 +16,12 @@ of the mode, ``2 W / n`` -- with both, on the homogeneous uni-axial state at ``D
 (Eq. (DEuniax): ``t = H lam2``, ``L = L0 lam1``, ``gamma = lam1 - 1``).  The scaling
 holds where ``lambda_w / ((t L)^{1/2} gamma^{-1/4})`` is the same for every weight.
 
+:func:`compressive_zone` gives the plane-stress compressive zone of the membrane model at
+``D0_b`` (where the lateral stress ``S33/mu`` -- the paper's ``P33`` -- is negative).
+
 Usage::
 
-    python -m validation.studies.wrinkle_scaling
+    python -m validation.studies.wrinkle_scaling [--no-membrane]
 """
 
 from __future__ import annotations
@@ -26,13 +29,19 @@ from __future__ import annotations
 import math
 import sys
 
+import numpy as np
+
 import analytic as an
 from analytic.units import keplinger_s
 
 from ..buckling_data import clamp_unit_load
 from ..specs import KEPLINGER
 
-__all__ = ["wrinkle_scaling", "main"]
+__all__ = ["wrinkle_scaling", "compressive_zone", "main"]
+
+#: lateral stress ``S33/mu`` below which a point counts as compressed (the breakdown flag
+#: of the harness, ``validation.table.BREAKDOWN_TOL``)
+COMPRESSED = -1e-2
 
 
 def wrinkle_scaling(alphas=(0.3, 0.7, 1.0, 1.5)) -> list[dict]:
@@ -71,14 +80,80 @@ def wrinkle_scaling(alphas=(0.3, 0.7, 1.0, 1.5)) -> list[dict]:
     return out
 
 
+def compressive_zone(alpha: float, D0_b: float, *, n1: int = 80, n3: int = 40,
+                     D0_step: float = 0.125) -> dict:
+    """The plane-stress compressive zone of the membrane model at ``D0_b``.
+
+    The membrane plate (:func:`skfem_dielectric.gallery.membrane_keplinger`, ``n1 x n3`` Q2
+    elements on the quarter, charge in steps of ``D0_step`` to ``D0_b``): the lateral
+    second Piola stress ``S33/mu`` (the paper's ``P33``) along the centre line and over
+    the plate.
+
+    Parameters
+    ----------
+    alpha, D0_b
+        Weight fraction and the charge of the state.
+    n1, n3, D0_step
+        Mesh of the quarter and charge step.
+
+    Returns
+    -------
+    dict
+        ``P33_centre`` (``X1 = 0``), ``P33_min`` (over the element centres) with its
+        ``X1_min``, ``X3_min`` (mm), ``extent_mm``: the length from the clamp along the
+        centre line over which ``S33/mu <`` :data:`COMPRESSED`, ``area_fraction``: the
+        share of the plate's elements below it, ``D0_compressed``: the first charge step
+        at which the centre line outside the clamps' 2H layer falls below it.
+    """
+    import skfem_dielectric as fe      # the FE side, only here
+
+    D0 = np.append(np.arange(0.0, D0_b - 1e-9, D0_step), D0_b)
+    res = fe.gallery.membrane_keplinger(alpha, D0=D0, n1=n1, n3=n3)
+    if not res.converged:
+        raise ValueError(f"the membrane ramp of alpha = {alpha:g} stopped before "
+                         f"D0_b = {D0_b:g}: {res.reason}")
+    pb = res.problem
+    L = 1e3 * KEPLINGER["length"] / 2
+    first = math.nan
+    for st in res.steps:
+        if st.load[1] > 0 and not math.isfinite(first):
+            c = pb.centre_line(st.x, st.load)
+            if c["P33"][np.abs(c["x1"]) <= L - 2e3 * KEPLINGER["thickness"]].min() < COMPRESSED:
+                first = float(st.load[1])
+    st = res.steps[-1]
+    c = pb.centre_line(st.x, st.load)
+    m = pb.step_mesh(st.x, st.load)
+    P33 = np.asarray(m.cell_data["P33"][0])
+    centres = m.points[m.cells[0].data].mean(axis=1)
+    k = int(np.argmin(P33))
+    comp = np.abs(c["x1"][c["P33"] < COMPRESSED])
+    return {"P33_centre": float(c["P33"][np.argmin(np.abs(c["x1"]))]),
+            "P33_min": float(P33[k]), "X1_min": float(abs(centres[k, 0])),
+            "X3_min": float(abs(centres[k, 1])),
+            "extent_mm": float(L - comp.min()) if comp.size else 0.0,
+            "area_fraction": float(np.mean(P33 < COMPRESSED)), "D0_compressed": first}
+
+
 def main(argv=None) -> int:
-    """Print the table of :func:`wrinkle_scaling` (Markdown).
+    """Print the tables of :func:`wrinkle_scaling` and :func:`compressive_zone` (Markdown).
+
+    Parameters
+    ----------
+    argv : list of str, optional
+        ``--no-membrane``: the wavelength table only (the membrane ramps take about 10 CPU
+        seconds per weight).
 
     Returns
     -------
     int
         0.
     """
+    import argparse
+
+    ap = argparse.ArgumentParser(prog="python -m validation.studies.wrinkle_scaling",
+                                 description=__doc__.splitlines()[0])
+    ap.add_argument("--no-membrane", action="store_true")
+    a = ap.parse_args(argv)
     rows = wrinkle_scaling()
     print("| alpha | D0_b | half-waves | wavelength 2W/n (mm) | lam1 | t (mm) | L (mm) | "
           "gamma | (t L)^1/2 gamma^-1/4 (mm) | wavelength / CM | wavelength / t |")
@@ -88,6 +163,18 @@ def main(argv=None) -> int:
               f"{r['wavelength_mm']:.2f} | {r['lam1']:.3f} | {r['t_mm']:.3f} | "
               f"{r['L_mm']:.1f} | {r['gamma']:.3f} | {r['cm_mm']:.2f} | "
               f"{r['ratio_cm']:.3f} | {r['ratio_t']:.1f} |")
+    if a.no_membrane:
+        return 0
+    print()
+    print("| alpha | D0_b | membrane S33/mu at the centre | min S33/mu (X1, X3 mm) | "
+          "compressed length from the clamp on the centre line (mm) | compressed area | "
+          "centre line compressed from D0 |")
+    print("| --- " * 7 + "|")
+    for r in rows:
+        z = compressive_zone(r["alpha"], r["D0_b"])
+        print(f"| {r['alpha']:g} | {r['D0_b']:.4f} | {z['P33_centre']:+.4f} | "
+              f"{z['P33_min']:+.4f} ({z['X1_min']:.1f}, {z['X3_min']:.1f}) | "
+              f"{z['extent_mm']:.1f} | {z['area_fraction']:.2f} | {z['D0_compressed']:g} |")
     return 0
 
 
