@@ -35,7 +35,7 @@ from pathlib import Path
 
 __all__ = ["BUCKLING_LOADS_FILE", "CLAMP_UNITS_FILE", "MIN_ELEMENTS_PER_HALF_WAVE",
            "BucklingEntry", "buckling_loads", "uniform_buckling_loads", "buckling_provenance",
-           "converged_buckling_load", "read_clamp_units", "clamp_unit_load"]
+           "converged_buckling_load", "read_clamp_units", "clamp_unit_load", "clamp_study_tables"]
 
 #: the data file of the uniform meshes, relative to the ``validation`` package
 BUCKLING_LOADS_FILE = "data/buckling_loads.csv"
@@ -289,3 +289,64 @@ def clamp_unit_load(alpha: float, *, tol: float | None = None, path: Path | None
             "meshes": (a["mesh"], b["mesh"]), "rows": rows}
 
 
+
+
+def _read_p33_units() -> list[dict]:
+    f = resources.files("validation") / "data" / "p33_units.csv"
+    if not f.is_file():
+        return []
+    return list(csv.DictReader(ln for ln in f.read_text().splitlines()
+                               if not ln.startswith("#")))
+
+
+def clamp_study_tables() -> str:
+    """The clamp-zone study as two Markdown tables, from the data files alone.
+
+    The first has a row per unit (``formulation``, weight, mesh, grading; by weight and
+    unknowns); the second a row per weight: the load of :func:`clamp_unit_load` (or why
+    there is none), and the plain form's located ``P33`` onsets and Newton limit on the
+    finest graded mesh that :mod:`validation.studies.p33_units` ran for the weight.
+
+    Returns
+    -------
+    str
+    """
+    rows = [r for r in read_clamp_units() if r["D0_b"]]
+    rows.sort(key=lambda r: (float(r["alpha"]), r["formulation"] != "mixed", r["formulation"],
+                             int(r["dofs"])))
+    out = ["| alpha | mesh (grading) | formulation | unknowns | half-waves | elements per "
+           "half-wave | `D0_b` | `J` at the clamp | flagged at `D0_b` | CPU s (solver) |",
+           "| --- " * 10 + "|"]
+    for r in rows:
+        out.append(f"| {float(r['alpha']):g} | {r['mesh']} ({r['grading']}) | "
+                   f"{r['formulation']} | {int(r['dofs'])} | {r['half_waves']} | "
+                   f"{float(r['elements_per_half_wave']):.1f} | {float(r['D0_b']):.4f} | "
+                   f"{float(r['J_min_clamp']):.2f}-{float(r['J_max_clamp']):.2f} | "
+                   f"{r['n_flagged_b']} | {r['cpu_s']} ({r['solver']}) |")
+    p33 = _read_p33_units()
+    out += ["", "| alpha | `D0_b` (two finest meshes, spread) | `P33` onset: centre line / "
+            "clamp line / interior (mesh) | Newton limit, plain form |", "| --- " * 4 + "|"]
+    for a in sorted({float(r["alpha"]) for r in rows}):
+        try:
+            g = clamp_unit_load(a)
+            load = (f"**{g['D0_b']:.4f}** ({g['meshes'][0]}, {g['meshes'][1]}; "
+                    f"{g['spread']:.4f})")
+        except ValueError as exc:
+            load = "none: " + str(exc).split(";")[0]
+        mine = [r for r in p33 if math.isclose(float(r["alpha"]), a, abs_tol=1e-9)
+                and r["grading"] != "0.25"]
+        if mine:
+            r = max(mine, key=lambda r: int(r["dofs"]))
+            on = " / ".join(f"{float(r[k]):.4f}" if r[k] else "none" for k in
+                            ("P33_onset_centre_line", "P33_onset_clamp",
+                             "P33_onset_interior"))
+            onset, newton = (f"{on} ({r['mesh']} ({r['grading']}))",
+                             r["newton_limit"] or f"none up to {float(r['D0_max']):g}")
+        else:
+            onset, newton = "not run", "not run"
+        out.append(f"| {a:g} | {load} | {onset} | {newton} |")
+    return "\n".join(out) + "\n"
+
+
+if __name__ == "__main__":
+    print(clamp_study_tables(), end="")
