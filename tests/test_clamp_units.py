@@ -54,10 +54,11 @@ def test_a_unit_locates_the_buckling_studys_load_and_writes_its_row(tmp_path):
     assert row["dofs"] == res.problem.ndofs
     out = tmp_path / "units.csv"
     argv = ["--alpha", "1", "--mesh", "6x1x3", "--grading", "0.5", "--D0-step", "1",
-            "--csv", str(out)]
+            "--csv", str(out), "--modes", str(tmp_path / "cli-modes")]
     assert main(argv) == 0
     rows = read_units(out)
     assert len(rows) == 1 and list(rows[0]) == list(COLUMNS)
+    assert (tmp_path / "cli-modes" / "1_6x1x3_g0.5_mixed.npz").is_file()
     assert math.isclose(float(rows[0]["D0_b"]), row["D0_b"], abs_tol=1e-5)
     before = out.read_bytes()
     assert main(argv) == 0                      # kept, not recomputed
