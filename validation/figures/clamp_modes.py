@@ -125,6 +125,7 @@ def main(argv: list[str] | None = None) -> int:
         modes = read_clamp_modes(a.folder)
     except ValueError as exc:
         ap.error(str(exc))
+    a.out.mkdir(parents=True, exist_ok=True)
     for p in save_figure(clamp_modes_figure(modes), a.out, "clamp-modes"):
         print(p)
     return 0
