@@ -12,8 +12,8 @@ import numpy as np
 import pytest
 
 from validation.buckling_data import (buckling_loads, buckling_provenance, clamp_unit_load,
-                                      converged_buckling_load, read_clamp_units,
-                                      uniform_buckling_loads)
+                                      converged_buckling_load, newton_limits,
+                                      read_clamp_units, uniform_buckling_loads)
 from validation.studies.buckling import richardson
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -163,13 +163,13 @@ def test_breakdown_map_draws_each_meaning_where_the_data_put_it():
     (p,) = _by_gid(ax, "p33-coupled")
     np.testing.assert_array_equal(p.get_xydata(), [[0.05, 0.5], [1.0, 3.0]])
     assert p.get_marker() == "o" and p.get_markerfacecolor() == "none"
-    # the run's crosses and Newton limit, the loads' Newton limits (0.05: 3.91 on the
-    # uniform 20 x 1 x 10; the graded meshes' plain ramps where they stop)
+    # the run's crosses and Newton limit, the loads' Newton limits (the uniform 20 x 1 x 10's
+    # or the graded meshes' plain ramps, where they stop)
     np.testing.assert_array_equal(_by_gid(ax, "buckling-run")[0].get_xydata(), [[1.0, 2.68]])
     assert _by_gid(ax, "buckling-run")[0].get_marker() == "x"
     np.testing.assert_array_equal(_by_gid(ax, "newton-run")[0].get_xydata(), [[0.3, 5.5]])
-    nl = [[e.alpha, e.newton_limit] for e in buckling_loads() if np.isfinite(e.newton_limit)]
-    assert [0.05, 3.91] in nl
+    nl = [[a, d] for a, d, _ in newton_limits()]
+    assert [0.05, 3.91] in nl and [0.3, 5.125] in nl     # the uniform 20 x 1 x 10's
     np.testing.assert_array_equal(_by_gid(ax, "newton-limit")[0].get_xydata(), nl)
     # the homogeneous paths of s > 0 never reach the wrinkling limits (docs/wrinkling.md):
     # arrows at the top for every weight, no limit line
@@ -216,13 +216,12 @@ def test_fig5_draws_the_converged_loads_on_their_curves():
             for e in conv]
     np.testing.assert_allclose(line.get_xydata(), want, rtol=1e-12)   # same closed form
     (nl,) = [ln for ln in ax.lines if ln.get_gid() == "newton-limit"]
-    np.testing.assert_array_equal(nl.get_ydata(), [e.newton_limit for e in buckling_loads()
-                                                   if np.isfinite(e.newton_limit)])
+    np.testing.assert_array_equal(nl.get_ydata(), [d for _, d, _ in newton_limits()])
     labels = [t.get_text() for t in ax.get_legend().get_texts()]
     err = max(e.error for e in conv)
     assert (f"buckling load, converged (error bar $\\leq {err:.2g}$, hidden by the diamond)"
             in labels)
-    assert "Newton limit, plain form (finest mesh)" in labels
+    assert "Newton limit, plain form (20x1x10)" in labels
     plt.close(fig)
 
 

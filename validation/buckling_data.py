@@ -35,7 +35,8 @@ from pathlib import Path
 
 __all__ = ["BUCKLING_LOADS_FILE", "CLAMP_UNITS_FILE", "MIN_ELEMENTS_PER_HALF_WAVE",
            "BucklingEntry", "buckling_loads", "uniform_buckling_loads", "buckling_provenance",
-           "converged_buckling_load", "read_clamp_units", "clamp_unit_load", "clamp_study_tables"]
+           "converged_buckling_load", "read_clamp_units", "clamp_unit_load", "clamp_study_tables",
+           "newton_limits"]
 
 #: the data file of the uniform meshes, relative to the ``validation`` package
 BUCKLING_LOADS_FILE = "data/buckling_loads.csv"
@@ -166,6 +167,22 @@ def buckling_loads() -> tuple[BucklingEntry, ...]:
             newton_limit=_plain_newton_limit(a, fine["mesh"], fine["grading"]),
             source="graded")
     return tuple(sorted(out.values(), key=lambda e: e.alpha))
+
+
+def newton_limits() -> list[tuple[float, float, str]]:
+    """Where the plain form's Newton ramp stops, per weight and mesh: ``(alpha, D0, mesh)``
+    of every uniform entry's finest mesh and every graded entry's finest mesh whose plain
+    ramp stopped (:mod:`validation.studies.p33_units`), in increasing ``alpha``.
+
+    Returns
+    -------
+    list of tuple
+    """
+    out = [(e.alpha, e.newton_limit, e.meshes[-1]) for e in uniform_buckling_loads()
+           if math.isfinite(e.newton_limit)]
+    out += [(e.alpha, e.newton_limit, e.meshes[-1]) for e in buckling_loads()
+            if e.source == "graded" and math.isfinite(e.newton_limit)]
+    return sorted(out)
 
 
 def converged_buckling_load(alpha: float) -> BucklingEntry:
@@ -349,4 +366,6 @@ def clamp_study_tables() -> str:
 
 
 if __name__ == "__main__":
-    print(clamp_study_tables(), end="")
+    import sys
+
+    sys.stdout.write(clamp_study_tables())

@@ -19,7 +19,7 @@ import numpy as np
 import analytic as an
 from analytic.units import keplinger_s
 
-from ..buckling_data import buckling_loads
+from ..buckling_data import buckling_loads, newton_limits
 from ..cases import ALPHAS, analytic_model
 from ..specs import KEPLINGER
 from ..markers import (CONVERGED_BUCKLING, MESH_BUCKLING, NEWTON_LIMIT, NOT_CONVERGED_NOTE,
@@ -123,7 +123,8 @@ def plot_breakdown_map(p33=None, run_buckling=None, run_newton=None, loads=None,
         the entry (:data:`~validation.markers.MESH_BUCKLING`: the three uniform meshes, or
         the two finest graded ones; a weight without a diamond gets a note
         in the figure, :data:`~validation.markers.NOT_CONVERGED_NOTE`) and the plain form's
-        Newton limit on the finest mesh (:data:`~validation.markers.NEWTON_LIMIT`).
+        Newton limit (:func:`validation.buckling_data.newton_limits`,
+        :data:`~validation.markers.NEWTON_LIMIT`).
     alphas : sequence of float, optional
         The weights of the homogeneous wrinkling limits (:func:`homogeneous_wrinkling_D0`):
         a blue line where a path reaches one, else a blue arrow at the top of the axes.
@@ -165,10 +166,11 @@ def plot_breakdown_map(p33=None, run_buckling=None, run_newton=None, loads=None,
                         (e.alpha, max(e.D0_b_mesh)), xytext=(-6, 10),
                         textcoords="offset points", ha="right", fontsize=7, color="0.3",
                         gid="not-converged")
-    nl = [e for e in loads if math.isfinite(e.newton_limit)]
+    nl = newton_limits()
     if nl:
-        ax.plot([e.alpha for e in nl], [e.newton_limit for e in nl], ls="none",
-                gid="newton-limit", label=f"{NEWTON_LIMIT.name} (finest mesh)",
+        ax.plot([a for a, _, _ in nl], [d for _, d, _ in nl], ls="none",
+                gid="newton-limit",
+                label=f"{NEWTON_LIMIT.name} ({', '.join(sorted({m for _, _, m in nl}))})",
                 **legend_style(NEWTON_LIMIT))
     for v, per in (p33 or {}).items():
         pts = [(float(a), d) for a, d in per.items() if d is not None]

@@ -12,7 +12,7 @@ from matplotlib.lines import Line2D
 import analytic as an
 from analytic.units import keplinger_s
 
-from ..buckling_data import buckling_loads
+from ..buckling_data import buckling_loads, newton_limits
 from ..cases import ALPHAS, analytic_model
 from ..specs import KEPLINGER
 from ..markers import (AFTER_BREAKDOWN, CONVERGED_BUCKLING, NEWTON_LIMIT, NOT_CONVERGED_NOTE,
@@ -91,8 +91,7 @@ def _measured_loads(ax, alphas, m, D0max):
             conv.append((float(an.uniaxial_lam1(e.D0_b, s, m)), e.D0_b, e.error))
         else:
             missing.append(f"{e.alpha:g}")
-        if np.isfinite(e.newton_limit) and e.newton_limit <= D0max:
-            newton.append((float(an.uniaxial_lam1(e.newton_limit, s, m)), e.newton_limit))
+
     if conv:
         x, y, err = zip(*conv)
         st = legend_style(CONVERGED_BUCKLING)
@@ -102,10 +101,16 @@ def _measured_loads(ax, alphas, m, D0max):
         out.append(Line2D([], [], ls="none", **st,
                           label=f"{CONVERGED_BUCKLING.name} (error bar "
                                 f"$\\leq {max(err):.2g}$, hidden by the diamond)"))
+    meshes = set()
+    for a, d, mesh in newton_limits():
+        if any(np.isclose(a, b) for b in alphas) and d <= D0max:
+            s = float(keplinger_s(a, g=KEPLINGER["g"]))
+            newton.append((float(an.uniaxial_lam1(d, s, m)), d))
+            meshes.add(mesh)
     if newton:
         ax.plot(*zip(*newton), ls="none", gid="newton-limit", **legend_style(NEWTON_LIMIT))
         out.append(Line2D([], [], ls="none", **legend_style(NEWTON_LIMIT),
-                          label=f"{NEWTON_LIMIT.name} (finest mesh)"))
+                          label=f"{NEWTON_LIMIT.name} ({', '.join(sorted(meshes))})"))
     if missing and conv:
         out.append(Line2D([], [], ls="none", label=rf"$\alpha = {', '.join(missing)}$: "
                                                     f"{NOT_CONVERGED_NOTE}"))

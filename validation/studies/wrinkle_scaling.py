@@ -26,12 +26,14 @@ Usage::
 
 from __future__ import annotations
 
+import argparse
 import math
 import sys
 
 import numpy as np
 
 import analytic as an
+import skfem_dielectric as fe
 from analytic.units import keplinger_s
 
 from ..buckling_data import clamp_unit_load
@@ -105,8 +107,6 @@ def compressive_zone(alpha: float, D0_b: float, *, n1: int = 80, n3: int = 40,
         share of the plate's elements below it, ``D0_compressed``: the first charge step
         at which the centre line outside the clamps' 2H layer falls below it.
     """
-    import skfem_dielectric as fe      # the FE side, only here
-
     D0 = np.append(np.arange(0.0, D0_b - 1e-9, D0_step), D0_b)
     res = fe.gallery.membrane_keplinger(alpha, D0=D0, n1=n1, n3=n3)
     if not res.converged:
@@ -148,8 +148,6 @@ def main(argv=None) -> int:
     int
         0.
     """
-    import argparse
-
     ap = argparse.ArgumentParser(prog="python -m validation.studies.wrinkle_scaling",
                                  description=__doc__.splitlines()[0])
     ap.add_argument("--no-membrane", action="store_true")
