@@ -317,7 +317,8 @@ def _read_p33_units() -> list[dict]:
 
 
 def clamp_study_tables() -> str:
-    """The clamp-zone study as two Markdown tables, from the data files alone.
+    """The clamp-zone study as two Markdown tables, from the data files alone
+    (``python -m validation.studies.clamp_units --tables``).
 
     The first has a row per unit (``formulation``, weight, mesh, grading; by weight and
     unknowns); the second a row per weight: the load of :func:`clamp_unit_load` (or why
@@ -354,9 +355,16 @@ def clamp_study_tables() -> str:
                 and r["grading"] != "0.25"]
         if mine:
             r = max(mine, key=lambda r: int(r["dofs"]))
-            on = " / ".join(f"{float(r[k]):.4f}" if r[k] else "none" for k in
-                            ("P33_onset_centre_line", "P33_onset_clamp",
-                             "P33_onset_interior"))
+            def cell(k):
+                name = k.removeprefix("P33_onset_")
+                if not r[k]:
+                    return "none"
+                if f"{name}: below at the first target" in r["note"]:
+                    return f"<= {float(r[k]):g} (below from the first step)"
+                return f"{float(r[k]):.4f}"
+
+            on = " / ".join(cell(k) for k in ("P33_onset_centre_line", "P33_onset_clamp",
+                                               "P33_onset_interior"))
             onset, newton = (f"{on} ({r['mesh']} ({r['grading']}))",
                              r["newton_limit"] or f"none up to {float(r['D0_max']):g}")
         else:
@@ -364,8 +372,3 @@ def clamp_study_tables() -> str:
         out.append(f"| {a:g} | {load} | {onset} | {newton} |")
     return "\n".join(out) + "\n"
 
-
-if __name__ == "__main__":
-    import sys
-
-    sys.stdout.write(clamp_study_tables())

@@ -37,6 +37,7 @@ Usage::
 
     python -m validation.studies.clamp_units --alpha 1 --mesh 12x1x12 --grading 0.25
     python -m validation.studies.clamp_units --alpha 1 0.7 --mesh 12x1x12 16x1x20 --grading 0.25
+    python -m validation.studies.clamp_units --tables     # the study's tables, from the data
 """
 
 from __future__ import annotations
@@ -63,7 +64,8 @@ from skfem_dielectric.models.plate.modes import top_deflection
 from skfem_dielectric.models.plate.scan import PlateScan
 from skfem_dielectric.studies.buckling import locate_buckling
 
-from ..buckling_data import MIN_ELEMENTS_PER_HALF_WAVE, clamp_unit_load, read_clamp_units
+from ..buckling_data import (MIN_ELEMENTS_PER_HALF_WAVE, clamp_study_tables, clamp_unit_load,
+                             read_clamp_units)
 from ..fe.model import BUCKLING_GRAD_DIV, BUCKLING_NEWTON, BUCKLING_TOL
 from ..store import write_npz_atomic, write_text_atomic
 from .local_theory import energy_centroid, half_waves, local_state
@@ -295,8 +297,10 @@ def main(argv: list[str] | None = None) -> int:
     """
     ap = argparse.ArgumentParser(prog="python -m validation.studies.clamp_units",
                                  description=__doc__.splitlines()[0])
-    ap.add_argument("--alpha", type=float, nargs="+", required=True)
-    ap.add_argument("--mesh", type=parse_mesh, nargs="+", required=True)
+    ap.add_argument("--alpha", type=float, nargs="+")
+    ap.add_argument("--mesh", type=parse_mesh, nargs="+")
+    ap.add_argument("--tables", action="store_true",
+                    help="print the study's tables (Markdown) from the data files and stop")
     ap.add_argument("--grading", type=float, default=1.0)
     ap.add_argument("--formulation", default="mixed")
     ap.add_argument("--D0-step", dest="D0_step", type=float, default=0.5)
@@ -306,6 +310,11 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--modes", type=Path, default=Path("results") / "clamp-modes",
                     help="folder of the modes at D0_b (default results/clamp-modes)")
     a = ap.parse_args(argv)
+    if a.tables:
+        sys.stdout.write(clamp_study_tables())
+        return 0
+    if not a.alpha or not a.mesh:
+        ap.error("--alpha and --mesh are required (or --tables)")
     command = "python -m validation.studies.clamp_units " + " ".join(
         shlex.quote(v) for v in (argv if argv is not None else sys.argv[1:]))
     for alpha in a.alpha:
