@@ -306,3 +306,20 @@ def test_smoke(script: Path):
                     f"with nothing: add its check to CHECKS in tests/test_benchmarks.py\n"
                     f"{proc.stdout[-2000:]}")
     check(proc.stdout)
+
+
+def test_buckling_scan_on_a_graded_mesh():
+    """bench_buckling_scan --grading (the clamp-zone study's meshes): the same checks on
+    its rows as the smoke run's (a grading moves nodes, not unknowns)."""
+    env = dict(os.environ, OPENBLAS_NUM_THREADS="1", MPLBACKEND="Agg")
+    proc = subprocess.run([sys.executable, str(ROOT / "benchmarks" / "bench_buckling_scan.py"),
+                           "--meshes", "4x1x2", "--grading", "0.5", "--D0-step", "1",
+                           "--D0-max", "2"], cwd=ROOT, env=env, capture_output=True,
+                          text=True, timeout=HANG_TIMEOUT)
+    assert proc.returncode == 0, proc.stderr[-2000:]
+    out = proc.stdout
+    assert int(_one(r"mesh 4x1x2  (\d+) DOFs", out)[0]) == plate_unknowns((4, 1, 2), "eighth")
+    rows = re.findall(r"^\s+(\d\.\d{3})\s+(\d+)\s+(\d+)\s+(\S+)\s+(\d+)\s", out, re.M)
+    assert [float(r[0]) for r in rows] == [0.0, 1.0, 2.0]
+    for _, _, changed, per_class, back in rows[1:]:
+        assert float(per_class) == 1.0 and (int(back) == 0) == (int(changed) == 0)
