@@ -36,13 +36,15 @@ from pathlib import Path
 __all__ = ["BUCKLING_LOADS_FILE", "CLAMP_UNITS_FILE", "MIN_ELEMENTS_PER_HALF_WAVE",
            "BucklingEntry", "buckling_loads", "uniform_buckling_loads", "buckling_provenance",
            "converged_buckling_load", "read_clamp_units", "clamp_unit_load", "clamp_study_tables",
-           "newton_limits"]
+           "newton_limits", "read_data_csv", "P33_UNITS_FILE"]
 
 #: the data file of the uniform meshes, relative to the ``validation`` package
 BUCKLING_LOADS_FILE = "data/buckling_loads.csv"
 #: the data file of the clamp-zone study on graded meshes (one unit per row,
 #: :mod:`validation.studies.clamp_units`), relative to the ``validation`` package
 CLAMP_UNITS_FILE = "data/clamp_units.csv"
+#: the located P33 onsets on the graded meshes (:mod:`validation.studies.p33_units`)
+P33_UNITS_FILE = "data/p33_units.csv"
 #: elements across the width per half-wave below which a mesh cannot hold the mode
 MIN_ELEMENTS_PER_HALF_WAVE = 4.0
 
@@ -125,11 +127,7 @@ def uniform_buckling_loads() -> tuple[BucklingEntry, ...]:
 def _plain_newton_limit(alpha: float, mesh: str, grading: str) -> float:
     """The plain form's Newton limit on a graded mesh (``data/p33_units.csv``), ``nan``
     where it reached every target or was not run."""
-    f = resources.files("validation") / "data" / "p33_units.csv"
-    if not f.is_file():
-        return math.nan
-    for r in csv.DictReader(ln for ln in f.read_text().splitlines()
-                            if not ln.startswith("#")):
+    for r in _read_p33_units():
         if (math.isclose(float(r["alpha"]), alpha, rel_tol=0.0, abs_tol=1e-9)
                 and r["mesh"] == mesh and r["grading"] == grading):
             return _float(r["newton_limit"])
@@ -226,6 +224,24 @@ def converged_buckling_load(alpha: float) -> BucklingEntry:
                      f"{CLAMP_UNITS_FILE}; {where}")
 
 
+def read_data_csv(path: Path | None, default: str = CLAMP_UNITS_FILE) -> list[dict]:
+    """The rows of one of the data CSVs (``#`` comment lines skipped), as dicts of strings.
+
+    Parameters
+    ----------
+    path : Path or None
+        The file; ``None``: the package's ``default`` (relative to ``validation``).  A
+        missing file has no rows.
+    default : str
+        The package file read for ``path=None``.
+    """
+    f = resources.files("validation") / default if path is None else Path(path)
+    if not f.is_file():
+        return []
+    return list(csv.DictReader(ln for ln in f.read_text().splitlines()
+                               if not ln.startswith("#")))
+
+
 def read_clamp_units(path: Path | None = None) -> list[dict]:
     """The rows of the clamp-zone study's CSV (comment lines skipped), as dicts of strings.
 
@@ -234,14 +250,9 @@ def read_clamp_units(path: Path | None = None) -> list[dict]:
     path : Path, optional
         Default: the package's :data:`CLAMP_UNITS_FILE`.  A missing file has no rows.
     """
-    if path is None:
-        text = (resources.files("validation") / CLAMP_UNITS_FILE).read_text()
-    else:
-        path = Path(path)
-        if not path.exists():
-            return []
-        text = path.read_text()
-    return list(csv.DictReader(ln for ln in text.splitlines() if not ln.startswith("#")))
+    return read_data_csv(path, CLAMP_UNITS_FILE)
+
+
 def clamp_unit_load(alpha: float, *, tol: float | None = None, path: Path | None = None,
                     formulation: str = "mixed") -> dict:
     """The clamp-zone buckling load of ``alpha`` where the study's two finest meshes agree.
@@ -309,11 +320,7 @@ def clamp_unit_load(alpha: float, *, tol: float | None = None, path: Path | None
 
 
 def _read_p33_units() -> list[dict]:
-    f = resources.files("validation") / "data" / "p33_units.csv"
-    if not f.is_file():
-        return []
-    return list(csv.DictReader(ln for ln in f.read_text().splitlines()
-                               if not ln.startswith("#")))
+    return read_data_csv(None, P33_UNITS_FILE)
 
 
 def clamp_study_tables() -> str:

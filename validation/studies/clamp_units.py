@@ -65,13 +65,13 @@ from skfem_dielectric.models.plate.scan import PlateScan
 from skfem_dielectric.studies.buckling import locate_buckling
 
 from ..buckling_data import (MIN_ELEMENTS_PER_HALF_WAVE, clamp_study_tables, clamp_unit_load,
-                             read_clamp_units)
+                             read_clamp_units, read_data_csv)
 from ..fe.model import BUCKLING_GRAD_DIV, BUCKLING_NEWTON, BUCKLING_TOL
 from ..store import write_npz_atomic, write_text_atomic
 from .local_theory import energy_centroid, half_waves, local_state
 
 __all__ = ["COLUMNS", "DEFAULT_CSV", "MIN_ELEMENTS_PER_HALF_WAVE", "run_unit", "read_units",
-           "clamp_unit_load", "mesh_text", "parse_mesh", "main"]
+           "clamp_unit_load", "mesh_text", "parse_mesh", "append_row", "main"]
 
 #: where the study's rows are kept (provenance in its header lines)
 DEFAULT_CSV = Path(__file__).resolve().parents[1] / "data" / "clamp_units.csv"
@@ -260,13 +260,14 @@ def _cell(v) -> str:
     return str(v)
 
 
-def _append(path: Path, row: dict) -> None:
-    """Rewrite the study's CSV atomically with ``row`` after the rows it holds."""
+def append_row(path: Path, row: dict, columns=COLUMNS, header: str = _HEADER) -> None:
+    """Rewrite a study's CSV atomically: ``header`` (``#`` lines), ``columns``, the rows it
+    holds, then ``row`` (floats to 6 digits, ``nan`` as an empty cell)."""
     buf = io.StringIO()
-    w = csv.DictWriter(buf, COLUMNS, restval="", extrasaction="ignore", lineterminator="\n")
+    w = csv.DictWriter(buf, columns, restval="", extrasaction="ignore", lineterminator="\n")
     w.writeheader()
-    w.writerows(read_units(path) + [{k: _cell(row.get(k, "")) for k in COLUMNS}])
-    write_text_atomic(path, _HEADER + buf.getvalue())
+    w.writerows(read_data_csv(path) + [{k: _cell(row.get(k, "")) for k in columns}])
+    write_text_atomic(path, header + buf.getvalue())
 
 
 def parse_mesh(text: str) -> tuple[int, int, int]:
@@ -330,7 +331,7 @@ def main(argv: list[str] | None = None) -> int:
                                progress=lambda t: print("  " + t, flush=True),
                                modes_dir=a.modes)
             row["command"] = command
-            _append(a.csv, row)
+            append_row(a.csv, row)
             print(f"alpha = {alpha:g} {mesh_text(el)} grading {a.grading:g}: D0_b "
                   f"{row['D0_b']:.4f} {row.get('note', '')}, "
                   f"{row.get('half_waves', '')} half-waves, "

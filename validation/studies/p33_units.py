@@ -35,9 +35,7 @@ Usage::
 from __future__ import annotations
 
 import argparse
-import csv
 import datetime
-import io
 import math
 import resource
 import shlex
@@ -55,11 +53,11 @@ from skfem_dielectric.gallery.drivers import newton_guards
 from skfem_dielectric.linalg.solver_base import factorisation_count
 from skfem_dielectric.solvers.critical import critical_load
 
+from ..buckling_data import read_data_csv
 from ..fe.model import BUCKLING_NEWTON
-from ..store import write_text_atomic
 from ..table import BREAKDOWN_TOL
 from .buckling import p33_measures
-from .clamp_units import mesh_text, parse_mesh
+from .clamp_units import append_row, mesh_text, parse_mesh
 
 __all__ = ["COLUMNS", "DEFAULT_CSV", "SETS", "run_p33_unit", "read_p33_units", "main"]
 
@@ -174,17 +172,7 @@ def run_p33_unit(alpha: float, elements, *, grading: float = 1.0, D0_step: float
 
 def read_p33_units(path: Path = DEFAULT_CSV) -> list[dict]:
     """The rows of the CSV (comment lines skipped), as dicts of strings."""
-    path = Path(path)
-    if not path.exists():
-        return []
-    with open(path, newline="") as fh:
-        return list(csv.DictReader(ln for ln in fh if not ln.startswith("#")))
-
-
-def _cell(v) -> str:
-    if isinstance(v, float):
-        return "" if not math.isfinite(v) else f"{v:.6g}"
-    return str(v)
+    return read_data_csv(path)
 
 
 def _key(r: dict) -> tuple:
@@ -227,12 +215,7 @@ def main(argv: list[str] | None = None) -> int:
                                    D0_max=a.D0_max, solver=a.solver,
                                    progress=lambda t: print("  " + t, flush=True))
             row["command"] = command
-            buf = io.StringIO()
-            w = csv.DictWriter(buf, COLUMNS, restval="", extrasaction="ignore",
-                               lineterminator="\n")
-            w.writeheader()
-            w.writerows(read_p33_units(a.csv) + [{k: _cell(row.get(k, "")) for k in COLUMNS}])
-            write_text_atomic(a.csv, _HEADER + buf.getvalue())
+            append_row(a.csv, row, COLUMNS, _HEADER)
             print(f"alpha = {alpha:g} {key[1]} grading {a.grading:g}: P33 onsets "
                   + ", ".join(f"{k} {row[f'P33_onset_{k}']:.4f}" for k in SETS)
                   + f", Newton limit {row['newton_limit']:g}, {row['dofs']} DOFs, "
