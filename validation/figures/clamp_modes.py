@@ -1,7 +1,8 @@
 """The clamp-zone study's modes at ``D0_b``: the top face's deflection over the whole plate.
 
 :func:`validation.studies.clamp_units.run_unit` writes one ``.npz`` per unit (``X1``,
-``X3`` in mm, ``u2`` the deflection scaled to a largest ``|u2|`` of one, ``D0_b``);
+``X3`` in mm, ``u2`` the mode's deflection, ``D0_b``; each panel scales it to a largest
+``|u2|`` of one);
 :func:`clamp_modes_figure` draws a folder of them, one panel per unit (blue and red: the
 two signs of the deflection; the clamps are the left and right edges).
 
