@@ -7,7 +7,12 @@ byte-identical to the serial run's.
 
 from __future__ import annotations
 
+import os
+import signal
+import subprocess
 import sys
+import time
+from pathlib import Path
 
 import pytest
 
@@ -110,3 +115,38 @@ def test_a_scheduler_that_goes_away_is_exit_3_naming_it(tmp_path, capsys):
     assert code == 3 and len(err.strip().splitlines()) == 1, err
     assert f"cannot use {address}: the dask scheduler went away mid-run" in err
     assert (tmp_path / "nh-d-e.csv").exists()
+
+
+@pytest.mark.slow
+def test_sigterm_on_a_local_cluster_stops_and_resumes(tmp_path):
+    """``validate --scheduler local --jobs 2`` sent SIGTERM once the first FE step of the
+    Keplinger case is saved: exit 143 with the one line of docs/cli.md, no worker left, no
+    temporary file; the rerun resumes (the locks released) to the serial run's bytes."""
+    pytest.importorskip("distributed", reason=NO_DASK)
+    psutil = pytest.importorskip("psutil")
+    root = Path(__file__).resolve().parents[1]
+    args = ["validate", "--quick", "--case", "uni-axial-ideal", "--no-progress",
+            "--solver", "superlu"]
+    assert main(args + ["--out", str(tmp_path / "serial")]) == 0
+    out = tmp_path / "dask"
+    cmd = [sys.executable, "-m", "validation.cli", *args, "--scheduler", "local", "--jobs",
+           "2", "--out", str(out)]
+    p = subprocess.Popen(cmd, env=dict(os.environ, PYTHONPATH=str(root)),
+                         stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    csv_file, t_end = out / "uni-axial-ideal.csv", time.monotonic() + 120
+    while time.monotonic() < t_end and p.poll() is None and not (
+            csv_file.exists() and len(csv_file.read_text().splitlines()) >= 3):
+        time.sleep(0.05)
+    children = psutil.Process(p.pid).children(recursive=True)
+    p.send_signal(signal.SIGTERM)
+    _, err = p.communicate(timeout=60)
+    assert p.returncode == 143, err
+    assert err.strip() == "terminated (SIGTERM); rerun the same command to resume"
+    gone, alive = psutil.wait_procs(children, timeout=15)
+    assert not alive
+    assert not [f for f in out.rglob("*") if f.name.endswith(".tmp")]
+    rows = len(csv_file.read_text().splitlines())
+    assert main(args + ["--out", str(out)]) == 0
+    assert len((tmp_path / "serial" / "uni-axial-ideal.csv").read_text().splitlines()) > rows
+    assert (out / "uni-axial-ideal.csv").read_bytes() == \
+        (tmp_path / "serial" / "uni-axial-ideal.csv").read_bytes()

@@ -255,9 +255,10 @@ def _dask_executor(address: str, jobs: int):
         raise ValueError(f"--scheduler needs dask.distributed (pip install -e '.[cluster]'), "
                          f"got --scheduler {address} without it") from None
     if address == "local":
-        # a dashboard on a free port of this machine: no warning when 8787 is taken
+        # a dashboard on a free port of this machine: no warning when 8787 is taken; the
+        # workers log errors only (a task cancelled by SIGTERM is said by the one line)
         cluster = LocalCluster(n_workers=jobs, threads_per_worker=1, processes=True,
-                               dashboard_address="127.0.0.1:0")
+                               dashboard_address="127.0.0.1:0", silence_logs=logging.ERROR)
         return Client(cluster), cluster
     try:
         return Client(address, timeout="20s"), None

@@ -1,0 +1,319 @@
+"""The first physical crossing of each symmetry class at the clamp-zone study's bracket.
+
+Where the whole-plate scan of a unit of :mod:`validation.studies.clamp_units` finds several
+physical modes crossing between its last two states (the clamp-zone wrinkle of the heavier
+weights: modes one half-wave apart across the width, in the two width classes, and their
+mirror images about the plate's centre, in the two ``x1`` classes), the unit locates the
+first of them only.  Which one is first can flip with the mesh while the load does not move;
+this study locates each of them.
+
+A *unit* is one weight fraction ``alpha`` on one mesh of the clamp-zone study (same plate,
+grading, formulation and solver), with that unit's row in
+``validation/data/clamp_units.csv``: its last two scanned states (``scan_counts``: the
+largest charge below ``D0_b`` without and the smallest above it with a physical negative
+mode) are the bracket ``lo, hi``.  The charge ramp goes to ``lo`` and ``hi`` (targets in
+steps of the row's ``D0_step`` below ``lo``, not scanned), the whole plate is scanned at
+``lo`` (every negative mode classified: none may be physical) and at ``hi``
+(:class:`~skfem_dielectric.models.plate.scan.PlateScan`), and every class with a negative
+physical mode at ``hi`` (or each class of ``--classes``; one not yet physical at ``hi`` is
+followed in steps of ``hi - lo``, four at most) is located to ``1e-4`` in ``D0``
+(:func:`~skfem_dielectric.studies.buckling.locate_buckling`, that class's indicator
+alone).  A row per class:
+
+* ``D0_c``: the located crossing of the class's lowest physical mode;
+* ``half_waves``, ``elements_per_half_wave``, ``corner_share``, ``mesh_scale``: as the
+  clamp-zone study's row, for this mode;
+* ``lo``, ``hi``: the class's bracket; the unknowns; the factorisations, CPU seconds and
+  peak memory of the unit's process up to that row (the ramp, the scans and the classes
+  located before it in the same run included); solver, date, command, and a ``note`` where
+  the location failed.
+
+Rows go to a CSV (default ``validation/data/class_onsets.csv``), written atomically as each
+class is located; a class whose key (``alpha``, mesh, ``grading``, ``formulation``,
+``class``) is there is skipped, so the units resume where they stopped.
+
+Usage::
+
+    python -m validation.studies.class_onsets --solver pardiso --alpha 1.5 --mesh 30x1x24 \\
+        --grading 0.1
+"""
+
+from __future__ import annotations
+
+import argparse
+import datetime
+import math
+import resource
+import shlex
+import sys
+import time
+import warnings
+from dataclasses import replace
+from pathlib import Path
+
+import numpy as np
+
+import skfem_dielectric as fe
+from skfem_dielectric.fem import blas_thread_limit
+from skfem_dielectric.linalg.solver_base import factorisation_count
+from skfem_dielectric.models.plate.scan import PlateScan
+from skfem_dielectric.studies.buckling import locate_buckling
+
+from ..buckling_data import read_clamp_units, read_data_csv
+from ..fe.model import BUCKLING_GRAD_DIV, BUCKLING_NEWTON, BUCKLING_TOL
+from .clamp_units import append_row, mesh_text, parse_mesh
+from .local_theory import energy_centroid, half_waves
+
+__all__ = ["COLUMNS", "DEFAULT_CSV", "bracket", "run_class_onsets", "read_class_onsets",
+           "main"]
+
+#: where the study's rows are kept (provenance in its header lines)
+DEFAULT_CSV = Path(__file__).resolve().parents[1] / "data" / "class_onsets.csv"
+#: the columns of a row, in order
+COLUMNS = ("alpha", "mesh", "grading", "formulation", "class", "dofs", "lo", "hi", "D0_c",
+           "half_waves", "elements_per_half_wave", "corner_share", "mesh_scale",
+           "factorisations", "cpu_s", "peak_GB", "solver", "date", "note", "command")
+_HEADER = """\
+# The first physical crossing of each symmetry class inside the bracket of a clamp-zone unit
+# (validation/data/clamp_units.csv).  Written by validation.studies.class_onsets (the module
+# docstring defines every column): eighth model, neo-Hookean, g = 9.81, grad-div 10; D0_c
+# located to 1e-4 with the class's own indicator; cpu_s and peak_GB of the unit's process.
+"""
+
+
+def bracket(row: dict) -> tuple[float, float]:
+    """``(lo, hi)`` of a clamp-zone unit's row: the largest scanned charge below ``D0_b``
+    and the smallest above it (from ``scan_counts``).
+
+    Parameters
+    ----------
+    row : dict
+        A row of ``validation/data/clamp_units.csv`` with a located ``D0_b``.
+
+    Raises
+    ------
+    ValueError
+        The row has no ``D0_b`` or no scanned state on one side of it.
+    """
+    try:
+        d0b = float(row.get("D0_b") or "nan")
+    except ValueError:
+        d0b = math.nan
+    if not math.isfinite(d0b):
+        raise ValueError(f"the unit alpha = {row.get('alpha')} {row.get('mesh')} has no "
+                         f"located D0_b: no bracket")
+    D0 = [float(item.split(":")[0]) for item in str(row.get("scan_counts", "")).split()]
+    below, above = [d for d in D0 if d < d0b], [d for d in D0 if d > d0b]
+    if not below or not above:
+        raise ValueError(f"the unit alpha = {row.get('alpha')} {row.get('mesh')} has no "
+                         f"scanned state on both sides of D0_b = {d0b:g}")
+    return max(below), min(above)
+
+
+def _unit_row(alpha: float, el, grading: float, formulation: str, units: Path | None) -> dict:
+    key = (f"{alpha:g}", mesh_text(el), f"{grading:g}", formulation)
+    for r in read_clamp_units(units):
+        if (f"{float(r['alpha']):g}", r["mesh"], f"{float(r['grading']):g}",
+                r["formulation"]) == key:
+            return r
+    raise ValueError(f"no clamp-zone unit alpha = {alpha:g} {mesh_text(el)} grading "
+                     f"{grading:g} ({formulation}) in the data: run "
+                     f"python -m validation.studies.clamp_units first")
+
+
+def run_class_onsets(alpha: float, elements, *, grading: float = 1.0,
+                     formulation: str = "mixed", solver: str = "auto", classes=None,
+                     skip=(), units: Path | None = None, progress=None,
+                     on_row=None) -> list[dict]:
+    """One unit of the study: a row of :data:`COLUMNS` per located class.
+
+    Parameters
+    ----------
+    alpha, elements, grading, formulation
+        The clamp-zone unit (its row must be in ``units``).
+    solver
+        Linear solver of the ramp and the trial states.
+    classes
+        Names of the classes to locate (as the ``class`` column); ``None``: every class
+        with a negative physical mode at ``hi``.
+    skip
+        Names of classes not to locate (already located).
+    units
+        The clamp-zone study's CSV (default: the package's).
+    progress
+        Optional ``progress(text)``.
+    on_row
+        Optional ``on_row(row)`` called as each class is located (the caller writes it).
+
+    Returns
+    -------
+    list of dict
+
+    Raises
+    ------
+    ValueError
+        No such unit in ``units``; a physical negative mode at ``lo``; a class of
+        ``classes`` without a physical negative mode at ``hi``.
+    """
+    t0, f0 = time.process_time(), factorisation_count()
+    say = progress or (lambda text: None)
+    el = tuple(int(n) for n in elements)
+    unit = _unit_row(alpha, el, grading, formulation, units)
+    lo, hi = bracket(unit)
+    step = float(unit["D0_step"])
+    options = fe.PlateOptions(grad_div=BUCKLING_GRAD_DIV, formulation=formulation)
+    pb = fe.gallery.keplinger_problem(elements=el, symmetry="eighth", grading=grading,
+                                      options=options)
+    s = fe.gallery.keplinger_s(alpha, g=9.81)
+    settings = replace(fe.gallery.KEPLINGER_SETTINGS, max_cutbacks=6, max_iter=25)
+    D0 = [d for d in np.round(np.arange(step, lo, step), 10) if d < lo - 1e-9] + [lo, hi]
+    states = {}
+
+    def on_step(st):
+        load = np.asarray(st.load, dtype=float)
+        if st.target_reached and load[0] == s:
+            states[float(load[1])] = (st.x, load, st.back)
+
+    def ramp(targets, start=None):
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", RuntimeWarning)
+            res = fe.gallery.run_ramp(
+                pb, targets, on_step=on_step, linear_solver=solver, settings=settings,
+                **({} if start is None else dict(x0=start[0], start=start[1],
+                                                 back=start[2])))
+        if not res.converged:
+            raise ValueError(f"the ramp of alpha = {alpha:g} {mesh_text(el)} stopped at "
+                             f"D0 = {np.asarray(res.failed_at)[-1]:g}")
+
+    ramp(fe.gallery.preload_then_charge(s, np.asarray(D0), fe.gallery.KEPLINGER_PRELOAD_STEPS))
+    scan = PlateScan(pb)
+    at_lo = scan.analyse(*states[lo][:2])
+    say(f"D0 = {lo:g}: {sum(at_lo.counts.values())} negative, {at_lo.n_physical} physical, "
+        f"{at_lo.cpu:.1f} CPU s")
+    if at_lo.n_physical:
+        raise ValueError(f"alpha = {alpha:g} {mesh_text(el)}: {at_lo.n_physical} physical "
+                         f"negative modes at lo = {lo:g}")
+    # the lowest physical negative mode of each class and the first state that has it;
+    # a class of ``classes`` not yet there is followed in steps of hi - lo (four at most)
+    lowest, ends, end = {}, {}, hi
+    for extra in range(5):
+        row_at = scan.analyse(*states[end][:2])
+        say(f"D0 = {end:g}: {sum(row_at.counts.values())} negative, {row_at.n_physical} "
+            f"physical, {row_at.cpu:.1f} CPU s")
+        for lab in row_at.labels:      # sorted by eigenvalue: the class's lowest first
+            if lab.kind == "physical" and lab.eigenvalue < 0 and lab.symmetry not in lowest:
+                lowest[lab.symmetry], ends[lab.symmetry] = lab, end
+        if classes is None or set(classes) <= set(lowest) or extra == 4:
+            break
+        nxt = round(end + (hi - lo), 10)
+        ramp([np.array([s, end]), np.array([s, nxt])], start=states[end])
+        end = nxt
+    names = [c for c in (sorted(lowest) if classes is None else classes) if c not in skip]
+    for name in names:
+        if name not in lowest:
+            raise ValueError(f"classes: {name!r} has no physical negative mode up to "
+                             f"D0 = {end:g} (there: {sorted(lowest)})")
+    method = "pardiso" if solver == "pardiso" else "auto"
+    n3 = el[2] * (2 if 3 in pb.plate.symmetry else 1)
+    rows = []
+    for name in names:
+        row = {"alpha": alpha, "mesh": mesh_text(el), "grading": grading,
+               "formulation": formulation, "class": name, "dofs": pb.ndofs, "lo": lo,
+               "hi": ends[name]}
+        try:
+            bl = locate_buckling(pb, states[lo][:2], states[ends[name]][:2], lowest[name],
+                                 counts=None,
+                                 method=method, tol=BUCKLING_TOL, linear_solver=solver,
+                                 settings=BUCKLING_NEWTON)
+        except ValueError as exc:     # a result: the class's crossing not located
+            row.update(D0_c=math.nan, note=f"not located: {exc}")
+        else:
+            lab = bl.label
+            point = energy_centroid(pb, bl.x, bl.load, lab.mode)
+            n_half = half_waves(pb, lab.mode, lab.increments, point[0])
+            row.update(D0_c=float(bl.D0_b), half_waves=n_half,
+                       elements_per_half_wave=n3 / n_half, corner_share=lab.corner_share,
+                       mesh_scale=lab.mesh_scale)
+            if lab.symmetry != name:
+                row["note"] = f"located the crossing of {lab.symmetry} first"
+        row.update(factorisations=factorisation_count() - f0,
+                   cpu_s=round(time.process_time() - t0, 1),
+                   peak_GB=round(resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
+                                 / 1024**2, 3),
+                   solver=solver, date=datetime.date.today().isoformat())
+        say(f"{name}: D0_c {row['D0_c']:.5f}, {row.get('half_waves', '')} half-waves "
+            f"{row.get('note', '')}")
+        rows.append(row)
+        if on_row is not None:
+            on_row(row)
+    return rows
+
+
+def read_class_onsets(path: Path = DEFAULT_CSV) -> list[dict]:
+    """The rows of the study's CSV (comment lines skipped), as dicts of strings."""
+    return read_data_csv(path)
+
+
+def _key(r: dict) -> tuple:
+    return (f"{float(r['alpha']):g}", str(r["mesh"]), f"{float(r['grading']):g}",
+            str(r["formulation"]), str(r["class"]))
+
+
+def main(argv: list[str] | None = None) -> int:
+    """Locate each class of the units ``--alpha`` x ``--mesh`` not yet in ``--csv``.
+
+    Parameters
+    ----------
+    argv : list of str, optional
+        The arguments (default: ``sys.argv[1:]``; see the module docstring).
+
+    Returns
+    -------
+    int
+        0; 1 with one line where a unit cannot be run (no clamp-zone row, a physical mode
+        at ``lo``); bad arguments exit with argparse's one line and code 2.
+    """
+    ap = argparse.ArgumentParser(prog="python -m validation.studies.class_onsets",
+                                 description=__doc__.splitlines()[0])
+    ap.add_argument("--alpha", type=float, nargs="+", required=True)
+    ap.add_argument("--mesh", type=parse_mesh, nargs="+", required=True)
+    ap.add_argument("--grading", type=float, default=1.0)
+    ap.add_argument("--formulation", default="mixed")
+    ap.add_argument("--classes", nargs="+", default=None,
+                    help="class names to locate, e.g. 'x1 S, x2 A, x3 S' (default: every "
+                         "class with a physical negative mode at hi)")
+    ap.add_argument("--solver", default="auto", choices=["auto", "superlu", "pardiso"])
+    ap.add_argument("--csv", type=Path, default=DEFAULT_CSV)
+    ap.add_argument("--units", type=Path, default=None,
+                    help="the clamp-zone study's CSV (default: the package's)")
+    a = ap.parse_args(argv)
+    command = "python -m validation.studies.class_onsets " + " ".join(
+        shlex.quote(v) for v in (argv if argv is not None else sys.argv[1:]))
+    for alpha in a.alpha:
+        for el in a.mesh:
+            done = {_key(r)[4] for r in read_class_onsets(a.csv)
+                    if _key(r)[:4] == (f"{alpha:g}", mesh_text(el), f"{a.grading:g}",
+                                       a.formulation)}
+            if a.classes is not None and set(a.classes) <= done:
+                print(f"alpha = {alpha:g} {mesh_text(el)}: kept", flush=True)
+                continue
+
+            def write(row):
+                row["command"] = command
+                append_row(a.csv, row, COLUMNS, _HEADER)
+
+            try:
+                with blas_thread_limit(1):
+                    run_class_onsets(alpha, el, grading=a.grading, formulation=a.formulation,
+                                     solver=a.solver, classes=a.classes, skip=done,
+                                     units=a.units,
+                                     progress=lambda t: print("  " + t, flush=True),
+                                     on_row=write)
+            except ValueError as exc:
+                print(f"error: {exc}", file=sys.stderr)
+                return 1
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
