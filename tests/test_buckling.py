@@ -8,9 +8,11 @@ import pytest
 import analytic as an
 import skfem_dielectric as fe
 from skfem_dielectric.gallery.drivers import equibiaxial_problem, keplinger_problem
+from skfem_dielectric.linalg.solver_base import back_substitution_count
 from skfem_dielectric.models.plate.symmetry_classes import class_stability
 from skfem_dielectric.models.plate.modes import (LowestPhysical, corner_radius, lowest_physical,
                                                 physical_modes)
+from skfem_dielectric.models.plate.scan import PlateScan
 from skfem_dielectric.studies.buckling import buckling_load
 from validation.cli import main
 
@@ -100,6 +102,24 @@ def test_event_scan_locates_the_full_scans_load_with_its_counts(end_compression)
             assert b["back_substitutions"] == 0 and b["changed"] == ""
     with pytest.raises(ValueError, match="scan must be one of"):
         buckling_load(pb, states, scan="some")
+
+
+def test_counting_a_state_is_analysing_it_without_modes(end_compression):
+    """PlateScan.count at a state gives analyse's counts there (one factorisation per
+    class, Sylvester: exact, no eigenpair computed), and the state after it is analysed
+    alike from either: the same counts, physical count and classes of what crossed."""
+    pb, states = end_compression
+    i = next(k for k in range(1, len(states))
+             if PlateScan(pb).analyse(*states[k]).n_physical > 0)
+    a, b = PlateScan(pb), PlateScan(pb)
+    ref = a.analyse(*states[i - 1])
+    b0 = back_substitution_count()
+    assert b.count(*states[i - 1]) == ref.counts
+    assert back_substitution_count() == b0
+    ra, rb = a.analyse(*states[i]), b.analyse(*states[i])
+    assert ra.counts == rb.counts and ra.n_physical == rb.n_physical > 0
+    assert [m.symmetry for m in ra.labels] == [m.symmetry for m in rb.labels]
+    assert np.allclose([m.eigenvalue for m in ra.labels], [m.eigenvalue for m in rb.labels])
 
 
 def test_the_trials_trace_the_indicator_through_zero_at_the_located_load(end_compression):

@@ -36,7 +36,8 @@ from pathlib import Path
 __all__ = ["BUCKLING_LOADS_FILE", "CLAMP_UNITS_FILE", "MIN_ELEMENTS_PER_HALF_WAVE",
            "BucklingEntry", "buckling_loads", "uniform_buckling_loads", "buckling_provenance",
            "converged_buckling_load", "read_clamp_units", "clamp_unit_load", "clamp_study_tables",
-           "newton_limits", "read_data_csv", "P33_UNITS_FILE"]
+           "newton_limits", "read_data_csv", "P33_UNITS_FILE", "CLASS_ONSETS_FILE",
+           "CLAMP_LAYER_FILE"]
 
 #: the data file of the uniform meshes, relative to the ``validation`` package
 BUCKLING_LOADS_FILE = "data/buckling_loads.csv"
@@ -45,6 +46,10 @@ BUCKLING_LOADS_FILE = "data/buckling_loads.csv"
 CLAMP_UNITS_FILE = "data/clamp_units.csv"
 #: the located P33 onsets on the graded meshes (:mod:`validation.studies.p33_units`)
 P33_UNITS_FILE = "data/p33_units.csv"
+#: each symmetry class's crossing at a unit's bracket (:mod:`validation.studies.class_onsets`)
+CLASS_ONSETS_FILE = "data/class_onsets.csv"
+#: J and volume ratios at the clamp (:mod:`validation.studies.clamp_layer`)
+CLAMP_LAYER_FILE = "data/clamp_layer.csv"
 #: elements across the width per half-wave below which a mesh cannot hold the mode
 MIN_ELEMENTS_PER_HALF_WAVE = 4.0
 
@@ -324,13 +329,15 @@ def _read_p33_units() -> list[dict]:
 
 
 def clamp_study_tables() -> str:
-    """The clamp-zone study as two Markdown tables, from the data files alone
+    """The clamp-zone study as four Markdown tables, from the data files alone
     (``python -m validation.studies.clamp_units --tables``).
 
     The first has a row per unit (``formulation``, weight, mesh, grading; by weight and
     unknowns); the second a row per weight: the load of :func:`clamp_unit_load` (or why
     there is none), and the plain form's located ``P33`` onsets and Newton limit on the
-    finest graded mesh that :mod:`validation.studies.p33_units` ran for the weight.
+    finest graded mesh that :mod:`validation.studies.p33_units` ran for the weight; the
+    third a row per located class of :mod:`validation.studies.class_onsets`; the fourth a
+    row per unit of :mod:`validation.studies.clamp_layer`.
 
     Returns
     -------
@@ -377,5 +384,27 @@ def clamp_study_tables() -> str:
         else:
             onset, newton = "not run", "not run"
         out.append(f"| {a:g} | {load} | {onset} | {newton} |")
+    classes = [r for r in read_data_csv(None, CLASS_ONSETS_FILE) if r["D0_c"]]
+    classes.sort(key=lambda r: (float(r["alpha"]), int(r["dofs"]), r["class"]))
+    out += ["", "| alpha | mesh (grading) | class | half-waves | elements per half-wave | "
+            "`D0_c` | bracket |", "| --- " * 7 + "|"]
+    for r in classes:
+        out.append(f"| {float(r['alpha']):g} | {r['mesh']} ({r['grading']}) | "
+                   f"`{r['class']}` | {r['half_waves']} | "
+                   f"{float(r['elements_per_half_wave']):.1f} | {float(r['D0_c']):.5f} | "
+                   f"{r['lo']}-{r['hi']} |")
+    layer = read_data_csv(None, CLAMP_LAYER_FILE)
+    layer.sort(key=lambda r: (float(r["alpha"]), int(r["dofs"])))
+    out += ["", "| alpha | mesh (grading) | `D0` | mean `J`, first / second element layer | "
+            "`J` at the first layer's centres | volume ratio, layer 0.5 / 1 / 2 mm | "
+            "whole model |", "| --- " * 7 + "|"]
+    for r in layer:
+        f = {k: float(v) for k, v in r.items() if k.startswith(("J_", "V_"))}
+        out.append(f"| {float(r['alpha']):g} | {r['mesh']} ({r['grading']}) | "
+                   f"{float(r['D0']):.4f} | {f['J_first_min']:.3f}-{f['J_first_max']:.3f} / "
+                   f"{f['J_second_min']:.3f}-{f['J_second_max']:.3f} | "
+                   f"{f['J_centre_min']:.3f}-{f['J_centre_max']:.3f} | "
+                   f"{f['V_0.5mm']:.4f} / {f['V_1mm']:.4f} / {f['V_2mm']:.4f} | "
+                   f"{f['V_plate']:.6f} |")
     return "\n".join(out) + "\n"
 

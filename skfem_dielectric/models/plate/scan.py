@@ -219,6 +219,34 @@ class PlateScan:
         near = np.sort(on_side[np.argsort(np.abs(vals[on_side]), kind="stable")][:need])
         return inertia, vals[near], vecs[:, near], side
 
+    def count(self, x: np.ndarray, load: Any) -> dict[str, int]:
+        """Count the negative eigenvalues of every class at a state, without eigenpairs,
+        and take the state as the previous one of the next :meth:`analyse`.
+
+        One factorisation per class and no eigenpair: for a state known to have no
+        physical negative mode (an earlier scan of the same path said so), where
+        :meth:`analyse` from scratch would compute every negative mode to classify it.
+        The physical counts are set to zero.
+
+        Parameters
+        ----------
+        x, load
+            A converged state of the problem (reduced vector, ``(s, D0)``).
+
+        Returns
+        -------
+        dict
+            Negative eigenvalues per class name.
+        """
+        classes, K = union_tangent(self.problem, x, load, self.grad_div)
+        counts = {}
+        for c in classes:
+            inertia, _ = inertia_factors(class_tangent(c, K), self.method, c.orders)
+            counts[c.name] = int(inertia[1] - c.layout.n_multipliers)
+        self.counts = counts
+        self.physical = {c.name: 0 for c in self.classes}
+        return dict(counts)
+
     def analyse(self, x: np.ndarray, load: Any) -> ScanRow:
         """Count every class at the state ``(x, load)`` and classify what crossed zero
         since the previous state.

@@ -1,0 +1,239 @@
+"""How incompressible the clamp layer is at the clamp-zone wrinkle's onset, per mesh.
+
+The incompressible plate has ``J = det F = 1`` everywhere.  The mixed form imposes it
+weakly, ``integral q (J - 1) dV = 0`` for every continuous ``Q1`` pressure test function
+``q``: the discrete ``J`` at a point is not one, and next to the clamp -- where the clamped
+face meets the free faces along a line, a singular edge of the incompressible solid -- it
+departs from one by a few per cent in the first elements on every mesh.  What the
+formulation constrains is the volume, and this study measures both at the located onset
+``D0_b`` of a clamp-zone unit (``validation/data/clamp_units.csv``):
+
+* ``J_first_min``, ``J_first_max``: the volume ratio (mean ``J``) of each element next to
+  the clamp (the last element along ``x1``, every element across ``x2`` and ``x3``);
+* ``J_second_min``, ``J_second_max``: the same for the second element layer;
+* ``J_centre_min``, ``J_centre_max``: ``J`` at the mid-plane centres of the elements next
+  to the clamp (the clamp-zone study's ``J_min_clamp``, ``J_max_clamp``);
+* ``V_<d>mm``: the volume ratio of the clamp layer ``L - d < X1 < L`` (``d`` = 0.5, 1 and
+  2 mm: half, one and two plate thicknesses), by the quadrature points inside it;
+* ``V_plate``: the volume ratio of the whole model (the constant is a ``Q1`` test
+  function: one to the Newton tolerance).
+
+Rows go to a CSV (default ``validation/data/clamp_layer.csv``), one per unit (``alpha``,
+mesh, ``grading``, ``formulation``), written atomically; a unit already there is skipped.
+
+Usage::
+
+    python -m validation.studies.clamp_layer --solver pardiso --alpha 1 --mesh 40x1x36 \\
+        --grading 0.1
+"""
+
+from __future__ import annotations
+
+import argparse
+import datetime
+import resource
+import shlex
+import sys
+import time
+import warnings
+from dataclasses import replace
+from pathlib import Path
+
+import numpy as np
+
+import skfem_dielectric as fe
+from skfem_dielectric.fem import blas_thread_limit
+
+from ..buckling_data import read_clamp_units, read_data_csv
+from ..fe.model import BUCKLING_GRAD_DIV
+from .clamp_units import append_row, mesh_text, parse_mesh
+from .local_theory import local_state
+
+__all__ = ["COLUMNS", "DEFAULT_CSV", "LAYER_WIDTHS", "volume_ratios", "run_clamp_layer",
+           "read_clamp_layer", "main"]
+
+#: where the study's rows are kept (provenance in its header lines)
+DEFAULT_CSV = Path(__file__).resolve().parents[1] / "data" / "clamp_layer.csv"
+#: widths ``d`` (mm) of the clamp layers ``L - d < X1 < L`` whose volume ratio is reported
+LAYER_WIDTHS = (0.5, 1.0, 2.0)
+#: the columns of a row, in order
+COLUMNS = ("alpha", "mesh", "grading", "formulation", "dofs", "D0", "J_first_min",
+           "J_first_max", "J_second_min", "J_second_max", "J_centre_min", "J_centre_max",
+           *(f"V_{d:g}mm" for d in LAYER_WIDTHS), "V_plate", "cpu_s", "peak_GB", "solver",
+           "date", "command")
+_HEADER = """\
+# J in the clamp layer of the Keplinger plate at the located clamp-zone onset D0 (= D0_b of
+# validation/data/clamp_units.csv).  Written by validation.studies.clamp_layer (the module
+# docstring defines every column): element volume ratios of the first and second element
+# layers at the clamp, J at the first layer's mid-plane centres, volume ratios of the
+# layers L - d < X1 < L and of the whole model.
+"""
+
+
+def volume_ratios(problem, x: np.ndarray, load) -> dict:
+    """``J`` and volume ratios at the clamp of a plate state (the module docstring).
+
+    Parameters
+    ----------
+    problem : PlateProblem
+        The plate (mixed form: its ``form`` has the ``Q2`` displacement basis ``b2``).
+    x : ndarray
+        Reduced state vector of a converged step.
+    load : tuple
+        Its load ``(s, D0)``.
+
+    Returns
+    -------
+    dict
+        The ``J_first_*``, ``J_second_*``, ``V_<d>mm`` and ``V_plate`` columns; ``J`` is
+        ``det(I + grad u)`` at the quadrature points, a volume ratio is
+        ``integral J dX / integral dX`` over the set.
+    """
+    xf = problem.full(x, load)
+    b2 = problem.form.b2
+    u = xf[:problem.form.n_u].reshape(b2.N, 3)
+    grad = np.array([b2.interpolate(u[:, i]).grad for i in range(3)])       # (i, j, e, q)
+    F = grad + np.eye(3)[:, :, None, None]
+    J = np.linalg.det(np.moveaxis(F, (0, 1), (-2, -1)))                     # (e, q)
+    w = np.asarray(b2.dx)
+    X1 = np.asarray(b2.global_coordinates())[0]                             # (e, q)
+    g1 = problem.plate.grids[0]
+    centre = b2.mesh.p[0, b2.mesh.t].mean(axis=0)
+    out = {}
+    for k, name in ((1, "first"), (2, "second")):
+        sel = (centre > g1[-k - 1]) & (centre < g1[-k])
+        mean = (J[sel] * w[sel]).sum(axis=1) / w[sel].sum(axis=1)
+        out[f"J_{name}_min"], out[f"J_{name}_max"] = float(mean.min()), float(mean.max())
+    for d in LAYER_WIDTHS:
+        m = X1 > g1[-1] - d
+        out[f"V_{d:g}mm"] = float((J[m] * w[m]).sum() / w[m].sum())
+    out["V_plate"] = float((J * w).sum() / w.sum())
+    return out
+
+
+def _unit_D0(alpha: float, el, grading: float, formulation: str, units) -> float:
+    key = (f"{alpha:g}", mesh_text(el), f"{grading:g}", formulation)
+    for r in read_clamp_units(units):
+        if (f"{float(r['alpha']):g}", r["mesh"], f"{float(r['grading']):g}",
+                r["formulation"]) == key and r["D0_b"]:
+            return float(r["D0_b"])
+    raise ValueError(f"no clamp-zone unit alpha = {alpha:g} {mesh_text(el)} grading "
+                     f"{grading:g} ({formulation}) with a located D0_b in the data: run "
+                     f"python -m validation.studies.clamp_units first")
+
+
+def run_clamp_layer(alpha: float, elements, *, grading: float = 1.0,
+                    formulation: str = "mixed", solver: str = "auto", D0: float | None = None,
+                    units: Path | None = None) -> dict:
+    """One unit: the charge ramp (steps of 0.5) to ``D0`` and the row of :data:`COLUMNS`.
+
+    Parameters
+    ----------
+    alpha, elements, grading, formulation
+        The plate of a clamp-zone unit (eighth model, grad-div 10).
+    solver
+        Linear solver of the ramp.
+    D0
+        The charge; ``None``: the unit's ``D0_b`` in ``units`` (default: the package's).
+
+    Raises
+    ------
+    ValueError
+        ``D0`` is ``None`` and the unit has no located ``D0_b``; the ramp stops first.
+    """
+    t0 = time.process_time()
+    el = tuple(int(n) for n in elements)
+    D0 = _unit_D0(alpha, el, grading, formulation, units) if D0 is None else float(D0)
+    pb = fe.gallery.keplinger_problem(
+        elements=el, symmetry="eighth", grading=grading,
+        options=fe.PlateOptions(grad_div=BUCKLING_GRAD_DIV, formulation=formulation))
+    s = fe.gallery.keplinger_s(alpha, g=9.81)
+    targets = [d for d in np.round(np.arange(0.5, D0, 0.5), 10) if d < D0 - 1e-9] + [D0]
+    last = {}
+
+    def on_step(step):
+        if step.target_reached and step.load[0] == s:
+            last["x"], last["load"] = step.x, step.load
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", RuntimeWarning)
+        res = fe.gallery.run_ramp(
+            pb, fe.gallery.preload_then_charge(s, np.asarray(targets),
+                                               fe.gallery.KEPLINGER_PRELOAD_STEPS),
+            on_step=on_step, linear_solver=solver,
+            settings=replace(fe.gallery.KEPLINGER_SETTINGS, max_cutbacks=6, max_iter=25))
+    if not res.converged or float(last["load"][1]) != D0:
+        raise ValueError(f"the ramp of alpha = {alpha:g} {mesh_text(el)} stopped before "
+                         f"D0 = {D0:g}")
+    x, load = last["x"], last["load"]
+    g1, g3 = pb.plate.grids[0], pb.plate.grids[2]
+    X1 = 0.5 * (g1[-1] + g1[-2])
+    Jc = [local_state(pb, x, load, np.array([X1, 0.0, 0.5 * (a + b)])).J
+          for a, b in zip(g3[:-1], g3[1:])]
+    row = {"alpha": alpha, "mesh": mesh_text(el), "grading": grading,
+           "formulation": formulation, "dofs": pb.ndofs, "D0": D0,
+           **volume_ratios(pb, x, load), "J_centre_min": float(min(Jc)),
+           "J_centre_max": float(max(Jc)),
+           "cpu_s": round(time.process_time() - t0, 1),
+           "peak_GB": round(resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024**2, 3),
+           "solver": solver, "date": datetime.date.today().isoformat()}
+    return row
+
+
+def read_clamp_layer(path: Path = DEFAULT_CSV) -> list[dict]:
+    """The rows of the study's CSV (comment lines skipped), as dicts of strings."""
+    return read_data_csv(path)
+
+
+def main(argv: list[str] | None = None) -> int:
+    """Measure the units ``--alpha`` x ``--mesh`` not yet in ``--csv``.
+
+    Parameters
+    ----------
+    argv : list of str, optional
+        The arguments (default: ``sys.argv[1:]``; see the module docstring).
+
+    Returns
+    -------
+    int
+        0; 1 with one line where a unit cannot be measured (no located ``D0_b``, the ramp
+        stopped); bad arguments exit with argparse's one line and code 2.
+    """
+    ap = argparse.ArgumentParser(prog="python -m validation.studies.clamp_layer",
+                                 description=__doc__.splitlines()[0])
+    ap.add_argument("--alpha", type=float, nargs="+", required=True)
+    ap.add_argument("--mesh", type=parse_mesh, nargs="+", required=True)
+    ap.add_argument("--grading", type=float, default=1.0)
+    ap.add_argument("--formulation", default="mixed")
+    ap.add_argument("--solver", default="auto", choices=["auto", "superlu", "pardiso"])
+    ap.add_argument("--csv", type=Path, default=DEFAULT_CSV)
+    ap.add_argument("--units", type=Path, default=None,
+                    help="the clamp-zone study's CSV (default: the package's)")
+    a = ap.parse_args(argv)
+    command = "python -m validation.studies.clamp_layer " + " ".join(
+        shlex.quote(v) for v in (argv if argv is not None else sys.argv[1:]))
+    for alpha in a.alpha:
+        for el in a.mesh:
+            key = (f"{alpha:g}", mesh_text(el), f"{a.grading:g}", a.formulation)
+            if any((f"{float(r['alpha']):g}", r["mesh"], f"{float(r['grading']):g}",
+                    r["formulation"]) == key for r in read_clamp_layer(a.csv)):
+                print(f"alpha = {alpha:g} {mesh_text(el)}: kept", flush=True)
+                continue
+            try:
+                with blas_thread_limit(1):
+                    row = run_clamp_layer(alpha, el, grading=a.grading,
+                                          formulation=a.formulation, solver=a.solver,
+                                          units=a.units)
+            except ValueError as exc:
+                print(f"error: {exc}", file=sys.stderr)
+                return 1
+            row["command"] = command
+            append_row(a.csv, row, COLUMNS, _HEADER)
+            print(f"alpha = {alpha:g} {mesh_text(el)} at D0 = {row['D0']:g}: first layer J "
+                  f"{row['J_first_min']:.4f}-{row['J_first_max']:.4f}, layer of 1 mm "
+                  f"{row['V_1mm']:.5f}, {row['cpu_s']} CPU s", flush=True)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
