@@ -14,7 +14,9 @@ import pytest
 from validation.buckling_data import (buckling_loads, buckling_provenance, clamp_unit_load,
                                       converged_buckling_load, newton_limits,
                                       read_clamp_units, uniform_buckling_loads)
+import validation.buckling_data as bd
 from validation.studies.buckling import richardson
+from validation.studies.class_onsets import read_class_onsets
 
 ROOT = Path(__file__).resolve().parents[1]
 H = 1.0 / np.array([10.0, 14.0, 20.0])          # the study's meshes: ratios 1.4 and 1.43
@@ -85,7 +87,19 @@ def test_a_weight_takes_the_graded_load_where_its_two_finest_meshes_agree():
         assert e.D0_b == float(b["D0_b"])
         assert e.error == pytest.approx(abs(float(b["D0_b"]) - float(a["D0_b"])), abs=1e-15)
         assert e.meshes == (f"{a['mesh']} g{a['grading']}", f"{b['mesh']} g{b['grading']}")
-        assert float(a["elements_per_half_wave"]) >= 4 and a["half_waves"] == b["half_waves"]
+        assert float(a["elements_per_half_wave"]) >= 4
+        if a["half_waves"] != b["half_waves"]:
+            # the first crossings differ in class: a class located within 2e-4 of the
+            # first on both meshes counts the same half-waves on both (class onsets)
+            def near(r):
+                mine = [q for q in read_class_onsets() if q["D0_c"] and (
+                    q["alpha"], q["mesh"], q["grading"], q["formulation"]) == (
+                    r["alpha"], r["mesh"], r["grading"], r["formulation"])]
+                first = min(float(q["D0_c"]) for q in mine)
+                assert abs(first - float(r["D0_b"])) <= 2e-4
+                return {q["class"]: q["half_waves"] for q in mine
+                        if float(q["D0_c"]) <= first + 2e-4}
+            assert any(near(a).get(c) == n for c, n in near(b).items())
     # alpha = 1: the graded meshes resolve the clamp-zone wrinkle at 3.370, 0.53 above the
     # uniform meshes' extrapolation 2.840 (two elements per half-wave)
     g1 = converged_buckling_load(1.0)
@@ -100,13 +114,16 @@ def test_provenance_names_command_meshes_solver_date_and_error():
         assert word in text
 
 
-def test_bad_alpha_names_the_alpha_and_the_converged_entries():
+def test_bad_alpha_names_the_alpha_and_the_converged_entries(monkeypatch):
+    with pytest.raises(ValueError, match=r"alpha = 2 has no entry .*converged: alpha = "
+                                         r"0\.05, 0\.3, 0\.7, 1, 1\.5"):
+        converged_buckling_load(2.0)
+    # the uniform meshes alone: alpha = 1.5 is not converged there
+    monkeypatch.setattr(bd, "buckling_loads", uniform_buckling_loads)
     with pytest.raises(ValueError, match=r"alpha = 1\.5 has no converged buckling load.*"
                                          r"converged: alpha = 0\.05, 0\.3, 0\.7, 1; "
                                          r"not converged: alpha = 1\.5"):
         converged_buckling_load(1.5)
-    with pytest.raises(ValueError, match=r"alpha = 2 has no entry .*converged: alpha = 0\.05"):
-        converged_buckling_load(2.0)
 
 
 def _cell(x: float, digits: int) -> str:
@@ -155,10 +172,19 @@ def test_breakdown_map_draws_each_meaning_where_the_data_put_it():
     (bars,) = [c for c in ax.collections if c.get_gid() == "buckling-converged"]
     half = [abs(s[1, 1] - s[0, 1]) / 2 for s in bars.get_segments()]
     np.testing.assert_allclose(half, [e.error for e in conv], rtol=1e-12)   # rounding
-    # no diamond at alpha = 1.5 (not converged), but its three mesh values as dots
-    assert 1.5 not in line.get_xdata()
+    # each load's mesh values as dots (alpha = 1.5: its two graded meshes)
     dots = np.vstack([ln.get_xydata() for ln in _by_gid(ax, "buckling-mesh")])
+    e15 = next(e for e in conv if e.alpha == 1.5)
+    assert dots[dots[:, 0] == 1.5][:, 1].tolist() == list(e15.D0_b_mesh)
+    # a weight without a converged load (the uniform meshes' alpha = 1.5): no diamond,
+    # its three mesh values as dots
+    fig2, ax2 = plt.subplots()
+    plot_breakdown_map(loads=uniform_buckling_loads(), ax=ax2)
+    (line2,) = [ln for ln in _by_gid(ax2, "buckling-converged") if ln.get_marker() == "D"]
+    assert 1.5 not in line2.get_xdata()
+    dots = np.vstack([ln.get_xydata() for ln in _by_gid(ax2, "buckling-mesh")])
     assert dots[dots[:, 0] == 1.5][:, 1].tolist() == [4.2027, 3.9908, 4.4008]
+    plt.close(fig2)
     # the P33 criterion as given (the None of alpha = 1.5 is not drawn), red open circles
     (p,) = _by_gid(ax, "p33-coupled")
     np.testing.assert_array_equal(p.get_xydata(), [[0.05, 0.5], [1.0, 3.0]])

@@ -23,7 +23,8 @@ import numpy as np
 import pytest
 
 import validation
-from validation.buckling_data import converged_buckling_load
+import validation.checker
+from validation.buckling_data import converged_buckling_load, uniform_buckling_loads
 from validation.cases import get_case
 from validation.checker import (CHECK_CASES, TOLERANCES, CheckInputError, parse_tolerances,
                                 read_csv_rows)
@@ -237,18 +238,18 @@ def test_every_case_of_validate_can_be_checked():
 def test_buckling_load_against_the_converged_value(tmp_path):
     # the loads of validation.buckling_data, read here as the reference (their own tests
     # check them against the rows): alpha = 1 graded (30x1x36 / 40x1x36: 3.3698 / 3.3700,
-    # uniform 10x1x5: 2.9147); 0.3 graded 1.4712 +- 0.0005; 1.5: not converged
+    # uniform 10x1x5: 2.9147); 0.3 graded 1.4712 +- 0.0005; 2: no entry
     e1, e3 = converged_buckling_load(1.0), converged_buckling_load(0.3)
     f = _write(tmp_path / "uni-axial-ideal.csv", ["case", "alpha", "D0_b"],
                [["uni-axial-ideal", "1", f"{e1.D0_b + 0.8 * e1.error:.7f}"],
                 ["uni-axial-ideal", "0.3", f"{e3.D0_b - 0.2 * e3.error:.7f}"],
-                ["uni-axial-ideal", "1.5", "4.4"]])
+                ["uni-axial-ideal", "2", "4.4"]])
     result = validation.check(f)
     m = result["uni-axial-ideal"].measures[0]
     assert result.passed and m.name == "D0_b" and m.n == 2
     # the worst row relative to its tolerance: alpha = 1 (0.8 of its error bar)
     assert m.error == pytest.approx(0.8 * e1.error, abs=1e-7)
-    assert any("alpha = 1.5 not scored" in n for n in result.notes)
+    assert any("alpha = 2 not scored: no entry" in n for n in result.notes)
     _write(f, ["case", "alpha", "D0_b"], [["uni-axial-ideal", "1", "2.9147"]])
     m = validation.check(f).worst
     assert not m.passed and m.error == pytest.approx(e1.D0_b - 2.9147, abs=1e-9)
@@ -273,6 +274,19 @@ def test_the_clamped_plate_centre_within_one_percent(tmp_path):
     _write(f, ["case", "alpha", "D0", "lam1_fe"], rows)
     assert validation.check(f).worst.where == "zs22.csv line 4"
     assert not validation.check(f).passed
+
+
+def test_a_weight_without_a_converged_load_is_not_scored(tmp_path, monkeypatch):
+    """With the uniform meshes' loads alone (alpha = 1.5: its three meshes disagree) a
+    D0_b of alpha = 1.5 is a note, not a score; alpha = 1 is scored against 2.84."""
+    monkeypatch.setattr(validation.checker, "buckling_loads", uniform_buckling_loads)
+    f = _write(tmp_path / "uni-axial-ideal.csv", ["case", "alpha", "D0_b"],
+               [["uni-axial-ideal", "1.5", "4.4"], ["uni-axial-ideal", "1", "2.84"]])
+    result = validation.check(f)
+    assert any("alpha = 1.5 not scored: no converged load (its meshes disagree)" in n
+               for n in result.notes)
+    m = result["uni-axial-ideal"].measures[0]
+    assert m.n == 1 and m.error == pytest.approx(0.0, abs=1e-12)
 
 
 def test_voltage_limit_point_and_the_hessian_verdict(tmp_path):

@@ -21,8 +21,8 @@ plate:
 read it from here.  Reading the files loads no finite elements.
 
 Only converged entries are answers: :func:`converged_buckling_load` refuses a weight
-without one (``alpha = 1.5``: the three meshes disagree) or absent from the file rather
-than extrapolate or interpolate between weights.
+without one (the uniform meshes' ``alpha = 1.5``: its three meshes disagree) or absent
+from the file rather than extrapolate or interpolate between weights.
 """
 
 from __future__ import annotations
@@ -37,7 +37,7 @@ __all__ = ["BUCKLING_LOADS_FILE", "CLAMP_UNITS_FILE", "MIN_ELEMENTS_PER_HALF_WAV
            "BucklingEntry", "buckling_loads", "uniform_buckling_loads", "buckling_provenance",
            "converged_buckling_load", "read_clamp_units", "clamp_unit_load", "clamp_study_tables",
            "newton_limits", "read_data_csv", "P33_UNITS_FILE", "CLASS_ONSETS_FILE",
-           "CLAMP_LAYER_FILE"]
+           "CLAMP_LAYER_FILE", "CLASS_TIE", "tied_classes"]
 
 #: the data file of the uniform meshes, relative to the ``validation`` package
 BUCKLING_LOADS_FILE = "data/buckling_loads.csv"
@@ -52,6 +52,9 @@ CLASS_ONSETS_FILE = "data/class_onsets.csv"
 CLAMP_LAYER_FILE = "data/clamp_layer.csv"
 #: elements across the width per half-wave below which a mesh cannot hold the mode
 MIN_ELEMENTS_PER_HALF_WAVE = 4.0
+#: modes whose located crossings lie within this of a mesh's first (twice the location
+#: tolerance 1e-4) cross together: the mesh does not order them
+CLASS_TIE = 2e-4
 
 
 @dataclass(frozen=True)
@@ -259,13 +262,20 @@ def read_clamp_units(path: Path | None = None) -> list[dict]:
 
 
 def clamp_unit_load(alpha: float, *, tol: float | None = None, path: Path | None = None,
-                    formulation: str = "mixed") -> dict:
+                    formulation: str = "mixed", classes_path: Path | None = None) -> dict:
     """The clamp-zone buckling load of ``alpha`` where the study's two finest meshes agree.
 
     The rows of ``alpha`` (``formulation``, a located ``D0_b``) ordered by unknowns; the
     two finest must hold the mode (at least :data:`MIN_ELEMENTS_PER_HALF_WAVE` elements
     across the width per half-wave), count the same half-waves and give ``D0_b`` within
     ``tol`` (default 0.02; 0.05 for ``alpha >= 1.5``).  No value is extrapolated.
+
+    Where the two finest meshes' first crossings differ in half-waves, the modes that
+    cross together on each mesh (:func:`tied_classes`: the classes located by
+    :mod:`validation.studies.class_onsets` within :data:`CLASS_TIE` of the mesh's first)
+    decide: a class tied for first on both meshes with the same half-waves on both is the
+    converged mode (its count is reported); without class onsets, or without such a class,
+    the count is not converged.
 
     Parameters
     ----------
@@ -277,13 +287,17 @@ def clamp_unit_load(alpha: float, *, tol: float | None = None, path: Path | None
         The study's CSV (default: the package's :data:`CLAMP_UNITS_FILE`).
     formulation : str
         How ``J = 1`` is imposed in the rows used.
+    classes_path : Path, optional
+        The class onsets' CSV (default: the package's :data:`CLASS_ONSETS_FILE`).
 
     Returns
     -------
     dict
         ``D0_b`` (the finest mesh's), ``spread`` (the two finest meshes' difference),
-        ``half_waves``, ``meshes`` (the two finest, coarser first), ``rows`` (every located
-        row of ``alpha`` and ``formulation``, by unknowns).
+        ``half_waves``, ``class`` (the mode's symmetry class), ``tied`` (the classes tied
+        for first on the finest mesh, ``{class: half-waves}``, empty where the two finest
+        rows agreed by themselves), ``meshes`` (the two finest, coarser first), ``rows``
+        (every located row of ``alpha`` and ``formulation``, by unknowns).
 
     Raises
     ------
@@ -313,13 +327,53 @@ def clamp_unit_load(alpha: float, *, tol: float | None = None, path: Path | None
     if coarse:
         raise ValueError(f"mesh too coarse for the mode ({', '.join(coarse)}: fewer than "
                          f"{MIN_ELEMENTS_PER_HALF_WAVE:g} elements per half-wave); {what}")
+    name, n_half, tied = b["class"], int(b["half_waves"]), {}
     if a["half_waves"] != b["half_waves"]:
-        raise ValueError(f"half-wave count not converged; {what}")
+        ta, tb = tied_classes(a, classes_path), tied_classes(b, classes_path)
+        shared = [c for c in tb if ta.get(c) == tb[c]]
+        if not shared:
+            ties = "; ".join(f"{r['mesh']}: " + (", ".join(
+                f"{c} {n}" for c, n in sorted(t.items())) or "no class onsets")
+                for r, t in ((a, ta), (b, tb)))
+            raise ValueError(f"half-wave count not converged (tied classes: {ties}); {what}")
+        name, tied = shared[0], tb
+        n_half = tb[name]
     spread = abs(float(b["D0_b"]) - float(a["D0_b"]))
     if spread > tol:
         raise ValueError(f"D0_b not converged (spread {spread:.4f} > tol {tol:g}); {what}")
-    return {"D0_b": float(b["D0_b"]), "spread": spread, "half_waves": int(b["half_waves"]),
-            "meshes": (a["mesh"], b["mesh"]), "rows": rows}
+    return {"D0_b": float(b["D0_b"]), "spread": spread, "half_waves": n_half,
+            "class": name, "tied": tied, "meshes": (a["mesh"], b["mesh"]), "rows": rows}
+
+
+def tied_classes(row: dict, path: Path | None = None) -> dict:
+    """The symmetry classes that cross together first on a clamp-zone unit's mesh.
+
+    Parameters
+    ----------
+    row : dict
+        A row of the clamp-zone study (``alpha``, ``mesh``, ``grading``, ``formulation``,
+        ``D0_b``).
+    path : Path, optional
+        The class onsets' CSV (default: the package's :data:`CLASS_ONSETS_FILE`).
+
+    Returns
+    -------
+    dict
+        ``{class: half-waves}`` of the located classes of that unit whose ``D0_c`` lies
+        within :data:`CLASS_TIE` of the lowest, in increasing ``D0_c``; empty where the unit
+        has no located class or its lowest ``D0_c`` is not within :data:`CLASS_TIE` of the
+        unit's ``D0_b`` (the two locations disagree).
+    """
+    key = (f"{float(row['alpha']):g}", row["mesh"], f"{float(row['grading']):g}",
+           row["formulation"])
+    mine = sorted((r for r in read_data_csv(path, CLASS_ONSETS_FILE) if r["D0_c"] and (
+        f"{float(r['alpha']):g}", r["mesh"], f"{float(r['grading']):g}", r["formulation"])
+        == key), key=lambda r: float(r["D0_c"]))
+    if not mine or abs(float(mine[0]["D0_c"]) - float(row["D0_b"])) > CLASS_TIE:
+        return {}
+    first = float(mine[0]["D0_c"])
+    return {r["class"]: int(r["half_waves"]) for r in mine
+            if float(r["D0_c"]) - first <= CLASS_TIE}
 
 
 
@@ -363,6 +417,10 @@ def clamp_study_tables() -> str:
             g = clamp_unit_load(a)
             load = (f"**{g['D0_b']:.4f}** ({g['meshes'][0]}, {g['meshes'][1]}; "
                     f"{g['spread']:.4f})")
+            if g["tied"]:
+                load += (f"; `{g['class']}`, {g['half_waves']} half-waves on both, tied "
+                         f"with " + ", ".join(f"`{c}` ({n})" for c, n in g["tied"].items()
+                                              if c != g["class"]))
         except ValueError as exc:
             load = "none: " + str(exc).split(";")[0]
         mine = [r for r in p33 if math.isclose(float(r["alpha"]), a, abs_tol=1e-9)
