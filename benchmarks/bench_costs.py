@@ -12,7 +12,8 @@ resident set of the child or a worker, from ``os.wait4``).  Also counted: the te
 
 The table keeps a row per command with the date and the machine it was measured on;
 measuring some commands (``--only``) rewrites their rows and keeps the others, so that a
-cheap command can be re-measured without the hour of the full run.  A command never
+cheap command can be re-measured without the hour of the full run.  The table is written
+after each command: a run stopped midway keeps the rows it measured.  A command never
 measured has a row that says so and how to measure it.  Every run but ``--smoke``
 counts the tests again (a few CPU seconds).
 
@@ -236,6 +237,8 @@ def main(argv=None) -> int:
         print(f"{key:14s} CPU {m['cpu']:8.1f} s  wall {m['wall']:8.1f} s  load "
               f"{m['load'][0]:.2f} -> {m['load'][1]:.2f}  peak {m['peak_mb']:6.0f} MB  "
               f"exit {m['exit']}" + (f"  ({m['error']})" if m["exit"] else ""), flush=True)
+        # each row as soon as it is measured: a run stopped later keeps it
+        table.write_text(render(rows, count, cpu_model()))
     if not args.smoke:                              # a few CPU seconds
         run, collected = count_tests()
         count = (f"Tests: `python -m pytest` runs {run} tests; `python -m pytest -m slow` "

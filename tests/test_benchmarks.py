@@ -15,6 +15,7 @@ number of rows that the smoke setting asks for.
 
 from __future__ import annotations
 
+import importlib.util
 import math
 import os
 import re
@@ -323,3 +324,29 @@ def test_buckling_scan_on_a_graded_mesh():
     assert [float(r[0]) for r in rows] == [0.0, 1.0, 2.0]
     for _, _, changed, per_class, back in rows[1:]:
         assert float(per_class) == 1.0 and (int(back) == 0) == (int(changed) == 0)
+
+
+def test_costs_keeps_each_row_as_it_is_measured(tmp_path, monkeypatch):
+    """bench_costs writes the table after each command: stopped during the second command
+    (an interrupt), the first command's row is in the table with its numbers and the
+    second keeps its old row."""
+    spec = importlib.util.spec_from_file_location("bench_costs_mod",
+                                                  ROOT / "benchmarks" / "bench_costs.py")
+    mod = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(mod)
+    calls = []
+
+    def fake(command, cwd):
+        calls.append(command)
+        if len(calls) == 2:
+            raise KeyboardInterrupt
+        return {"cpu": 12.5, "wall": 13.0, "load": (0.5, 0.75), "peak_mb": 321.0, "exit": 0}
+
+    monkeypatch.setattr(mod, "measure", fake)
+    table = tmp_path / "costs.md"
+    with pytest.raises(KeyboardInterrupt):
+        mod.main(["--only", "list", "curves", "--table", str(table)])
+    rows = {ln.split("|")[1].strip(): ln for ln in table.read_text().splitlines()
+            if ln.startswith("| `")}
+    assert "| 12.5 | 13.0 | 0.50 -> 0.75 | 321 MB |" in rows["`skfem-dielectric list`"]
+    assert "not measured" in rows["`skfem-dielectric curves --out results/curves`"]
