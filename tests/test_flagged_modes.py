@@ -1,0 +1,50 @@
+"""The whole plate's negative modes at one state (validation.studies.flagged_modes)."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+import skfem_dielectric as fe
+from skfem_dielectric.models.plate.scan import PlateScan
+from validation.fe.model import BUCKLING_GRAD_DIV
+from validation.studies.flagged_modes import COLUMNS, main, read_flagged_modes, run_flagged_modes
+
+
+def test_every_negative_mode_is_a_row_and_the_clamps_mirror_each_other():
+    """alpha = 1, 10 x 1 x 24 graded 0.1 at D0 = 2.75: one row per negative eigenvalue of
+    the whole plate (Sylvester's count by PlateScan.count at the same state: no eigenpair
+    computed), each row's layer the element layer of its centroid's X1, and the modes at
+    the clamps come in mirror pairs about the plate's centre (classes x1 S and x1 A, the
+    clamps 100 mm apart): equal eigenvalues to 1e-6 of the largest."""
+    rows = run_flagged_modes(1.0, (10, 1, 24), 2.75, grading=0.1)
+    res = fe.keplinger_plate(1.0, D0=list(np.arange(0.5, 2.75, 0.5)) + [2.75],
+                             elements=(10, 1, 24), grading=0.1,
+                             options=fe.PlateOptions(grad_div=BUCKLING_GRAD_DIV),
+                             settings=fe.gallery.KEPLINGER_SETTINGS)
+    last = res.steps[-1]
+    assert last.load[1] == 2.75
+    counts = PlateScan(res.problem).count(last.x, last.load)
+    assert len(rows) == sum(counts.values()) > 0
+    g1 = res.problem.plate.grids[0]
+    for r in rows:
+        assert g1[len(g1) - 1 - r["layer"]] <= r["X1"] <= g1[len(g1) - r["layer"]]
+    sym = sorted(r["eigenvalue"] for r in rows if r["class"].startswith("x1 S"))
+    anti = sorted(r["eigenvalue"] for r in rows if r["class"].startswith("x1 A"))
+    np.testing.assert_allclose(sym, anti, rtol=0, atol=1e-6 * np.abs(sym).max())
+
+
+def test_a_state_is_written_once_and_bad_input_is_one_line(tmp_path, capsys):
+    out = tmp_path / "f.csv"
+    args = ["--alpha", "1", "--mesh", "4x1x2", "--grading", "0.5", "--D0", "0.5", "--csv",
+            str(out)]
+    assert main(args) == 0
+    rows = read_flagged_modes(out)
+    assert rows and list(rows[0]) == list(COLUMNS)
+    before = out.read_bytes()
+    assert main(args) == 0 and out.read_bytes() == before
+    with pytest.raises(SystemExit) as exc:
+        main(["--alpha", "1", "--mesh", "4x1x2", "--D0", "-1", "--csv", str(out)])
+    assert exc.value.code == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert "--D0 must be a positive charge, got -1" in err[-1]
