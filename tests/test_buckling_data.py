@@ -270,3 +270,17 @@ def test_the_clamp_study_tables_on_the_page_are_the_data_files():
                                                       r["formulation"] != "mixed",
                                                       r["formulation"], int(r["dofs"]))), first):
         assert f"| {float(r['D0_b']):.4f} |" in line and r["mesh"] in line
+
+
+def test_richardson_over_the_graded_family_of_alpha_1():
+    """alpha = 1 on the family refined alike in both directions (graded 0.1, n3 = 1.2 n1:
+    20x1x24, 30x1x36, 40x1x48): the three located loads converge monotonically and their
+    Richardson limit (h = 1/n1) lies within the location tolerance 1e-4 of the finest and
+    of clamp_unit_load(1) (docs/validation.md)."""
+    rows = {r["mesh"]: float(r["D0_b"]) for r in read_clamp_units() if r["alpha"] == "1"
+            and r["grading"] == "0.1" and r["formulation"] == "mixed" and r["D0_b"]}
+    v = [rows[m] for m in ("20x1x24", "30x1x36", "40x1x48")]
+    assert v[0] < v[1] < v[2]
+    ext, err, order = richardson([1 / 20, 1 / 30, 1 / 40], v)
+    assert abs(ext - v[2]) <= 1e-4 and err <= 1e-4
+    assert abs(ext - clamp_unit_load(1.0)["D0_b"]) <= 1e-4
