@@ -3,6 +3,7 @@
 
 from __future__ import annotations
 
+from pathlib import Path
 
 import pytest
 
@@ -69,3 +70,17 @@ def test_bad_input_is_one_line(tmp_path, capsys):
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and "alpha = 0.9 4x1x2" in err[0] and "clamp_units" in err[0]
     assert not out.exists()
+
+
+def test_a_given_bracket_needs_no_unit_and_says_so():
+    """The bracket of the 10 x 1 x 24 unit given by hand (no unit row read): the same
+    class located within twice the tolerance of the unit's D0_b, and the row's note says
+    that nothing on this mesh was scanned below lo; a bracket that is not 0 < lo < hi is a
+    ValueError naming it."""
+    ref = _unit("1", "10x1x24", "0.1")
+    rows = run_class_onsets(1.0, (10, 1, 24), grading=0.1, classes=[ref["class"]],
+                            given=(2.90625, 2.9375), units=Path("/nonexistent.csv"))
+    assert abs(rows[0]["D0_c"] - float(ref["D0_b"])) <= 2 * BUCKLING_TOL
+    assert "bracket given" in rows[0]["note"]
+    with pytest.raises(ValueError, match="bracket must be 0 < lo < hi, got 3, 2"):
+        run_class_onsets(1.0, (4, 1, 2), given=(3.0, 2.0))

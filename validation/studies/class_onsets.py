@@ -29,6 +29,11 @@ alone).  A row per class:
   located before it in the same run included); solver, date, command, and a ``note`` where
   the location failed.
 
+``--bracket LO HI`` gives the bracket instead, for a mesh without a unit (too large for a
+unit's scan from ``D0 = 0``): the classes are located there just the same, but no scan
+of that mesh says that no physical mode went negative below ``LO`` (the row's ``note``
+says so; the coarser meshes' units are the evidence).
+
 Rows go to a CSV (default ``validation/data/class_onsets.csv``), written atomically as each
 class is located; a class whose key (``alpha``, mesh, ``grading``, ``formulation``,
 ``class``) is there is skipped, so the units resume where they stopped.
@@ -125,7 +130,7 @@ def _unit_row(alpha: float, el, grading: float, formulation: str, units: Path | 
 def run_class_onsets(alpha: float, elements, *, grading: float = 1.0,
                      formulation: str = "mixed", solver: str = "auto", classes=None,
                      skip=(), units: Path | None = None, progress=None,
-                     on_row=None) -> list[dict]:
+                     on_row=None, given=None) -> list[dict]:
     """One unit of the study: a row of :data:`COLUMNS` per located class.
 
     Parameters
@@ -145,6 +150,10 @@ def run_class_onsets(alpha: float, elements, *, grading: float = 1.0,
         Optional ``progress(text)``.
     on_row
         Optional ``on_row(row)`` called as each class is located (the caller writes it).
+    given
+        ``(lo, hi)`` instead of a unit's bracket: no unit of this mesh is needed, the ramp
+        goes in steps of 0.5, and nothing says that no physical mode went negative below
+        ``lo`` (the rows' ``note`` says so; a coarser unit's scan is the evidence).
 
     Returns
     -------
@@ -160,14 +169,20 @@ def run_class_onsets(alpha: float, elements, *, grading: float = 1.0,
     t0, f0 = time.process_time(), factorisation_count()
     say = progress or (lambda text: None)
     el = tuple(int(n) for n in elements)
-    unit = _unit_row(alpha, el, grading, formulation, units)
-    lo, hi = bracket(unit)
-    at_lo = {float(d): p for d, p in (item.split(":")[0:2] for item in
-                                      unit["scan_counts"].split())}
-    if not str(at_lo.get(lo, "/?")).endswith("/0"):
-        raise ValueError(f"the unit alpha = {alpha:g} {mesh_text(el)} has physical negative "
-                         f"modes at lo = {lo:g} ({at_lo.get(lo)})")
-    step = float(unit["D0_step"])
+    if given is None:
+        unit = _unit_row(alpha, el, grading, formulation, units)
+        lo, hi = bracket(unit)
+        at_lo = {float(d): p for d, p in (item.split(":")[0:2] for item in
+                                          unit["scan_counts"].split())}
+        if not str(at_lo.get(lo, "/?")).endswith("/0"):
+            raise ValueError(f"the unit alpha = {alpha:g} {mesh_text(el)} has physical "
+                             f"negative modes at lo = {lo:g} ({at_lo.get(lo)})")
+        step, note = float(unit["D0_step"]), ""
+    else:
+        lo, hi = (float(v) for v in given)
+        if not (0 < lo < hi and math.isfinite(hi)):
+            raise ValueError(f"bracket must be 0 < lo < hi, got {lo:g}, {hi:g}")
+        step, note = 0.5, "bracket given: no unit of this mesh scanned below lo"
     options = fe.PlateOptions(grad_div=BUCKLING_GRAD_DIV, formulation=formulation)
     pb = fe.gallery.keplinger_problem(elements=el, symmetry="eighth", grading=grading,
                                       options=options)
@@ -214,6 +229,9 @@ def run_class_onsets(alpha: float, elements, *, grading: float = 1.0,
         nxt = round(end + (hi - lo), 10)
         ramp([np.array([s, end]), np.array([s, nxt])], start=states[end])
         end = nxt
+    if classes is None and not lowest:
+        raise ValueError(f"alpha = {alpha:g} {mesh_text(el)}: no class has a physical "
+                         f"negative mode at hi = {hi:g}")
     names = [c for c in (sorted(lowest) if classes is None else classes) if c not in skip]
     for name in names:
         if name not in lowest:
@@ -242,6 +260,8 @@ def run_class_onsets(alpha: float, elements, *, grading: float = 1.0,
                        mesh_scale=lab.mesh_scale)
             if lab.symmetry != name:
                 row["note"] = f"located the crossing of {lab.symmetry} first"
+        if note:
+            row["note"] = "; ".join(v for v in (row.get("note", ""), note) if v)
         row.update(factorisations=factorisation_count() - f0,
                    cpu_s=round(time.process_time() - t0, 1),
                    peak_GB=round(resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
@@ -292,6 +312,9 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--csv", type=Path, default=DEFAULT_CSV)
     ap.add_argument("--units", type=Path, default=None,
                     help="the clamp-zone study's CSV (default: the package's)")
+    ap.add_argument("--bracket", type=float, nargs=2, metavar=("LO", "HI"), default=None,
+                    help="the bracket instead of a unit's (no unit of the mesh needed; "
+                         "nothing checks the states below LO)")
     a = ap.parse_args(argv)
     command = "python -m validation.studies.class_onsets " + " ".join(
         shlex.quote(v) for v in (argv if argv is not None else sys.argv[1:]))
@@ -312,7 +335,7 @@ def main(argv: list[str] | None = None) -> int:
                 with blas_thread_limit(1):
                     run_class_onsets(alpha, el, grading=a.grading, formulation=a.formulation,
                                      solver=a.solver, classes=a.classes, skip=done,
-                                     units=a.units,
+                                     units=a.units, given=a.bracket,
                                      progress=lambda t: print("  " + t, flush=True),
                                      on_row=write)
             except ValueError as exc:
