@@ -70,8 +70,9 @@ def test_data_file_extrapolation_is_richardson_of_its_meshes():
 
 def test_a_weight_takes_the_graded_load_where_its_two_finest_meshes_agree():
     """buckling_loads() per weight: clamp_unit_load's verdict on the committed graded rows
-    (the finest mesh's D0_b, error = the two finest meshes' difference, recomputed here from
-    the rows), else the uniform file's entry unchanged."""
+    (the finest mesh's D0_b, error = the two finest meshes' difference but at least the
+    location tolerance 1e-4, recomputed here from the rows), else the uniform file's entry
+    unchanged."""
     uniform = {e.alpha: e for e in uniform_buckling_loads()}
     rows = read_clamp_units()
     for e in buckling_loads():
@@ -85,7 +86,8 @@ def test_a_weight_takes_the_graded_load_where_its_two_finest_meshes_agree():
         a, b = mine[-2:]
         assert e.source == "graded" and e.converged
         assert e.D0_b == float(b["D0_b"])
-        assert e.error == pytest.approx(abs(float(b["D0_b"]) - float(a["D0_b"])), abs=1e-15)
+        assert e.error == pytest.approx(max(abs(float(b["D0_b"]) - float(a["D0_b"])), 1e-4),
+                                        abs=1e-15)
         assert e.meshes == (f"{a['mesh']} g{a['grading']}", f"{b['mesh']} g{b['grading']}")
         assert float(a["elements_per_half_wave"]) >= 4
         if a["half_waves"] != b["half_waves"]:
@@ -171,7 +173,7 @@ def test_breakdown_map_draws_each_meaning_where_the_data_put_it():
     np.testing.assert_array_equal(line.get_xydata(), [[e.alpha, e.D0_b] for e in conv])
     (bars,) = [c for c in ax.collections if c.get_gid() == "buckling-converged"]
     half = [abs(s[1, 1] - s[0, 1]) / 2 for s in bars.get_segments()]
-    np.testing.assert_allclose(half, [e.error for e in conv], rtol=1e-12)   # rounding
+    np.testing.assert_allclose(half, [e.error for e in conv], rtol=0, atol=1e-12)   # rounding
     # each load's mesh values as dots (alpha = 1.5: its two graded meshes)
     dots = np.vstack([ln.get_xydata() for ln in _by_gid(ax, "buckling-mesh")])
     e15 = next(e for e in conv if e.alpha == 1.5)

@@ -37,7 +37,7 @@ __all__ = ["BUCKLING_LOADS_FILE", "CLAMP_UNITS_FILE", "MIN_ELEMENTS_PER_HALF_WAV
            "BucklingEntry", "buckling_loads", "uniform_buckling_loads", "buckling_provenance",
            "converged_buckling_load", "read_clamp_units", "clamp_unit_load", "clamp_study_tables",
            "newton_limits", "read_data_csv", "P33_UNITS_FILE", "CLASS_ONSETS_FILE",
-           "CLAMP_LAYER_FILE", "CLASS_TIE", "tied_classes"]
+           "CLAMP_LAYER_FILE", "CLASS_TIE", "LOCATION_TOL", "tied_classes"]
 
 #: the data file of the uniform meshes, relative to the ``validation`` package
 BUCKLING_LOADS_FILE = "data/buckling_loads.csv"
@@ -52,9 +52,12 @@ CLASS_ONSETS_FILE = "data/class_onsets.csv"
 CLAMP_LAYER_FILE = "data/clamp_layer.csv"
 #: elements across the width per half-wave below which a mesh cannot hold the mode
 MIN_ELEMENTS_PER_HALF_WAVE = 4.0
+#: the tolerance in ``D0`` to which every graded unit's ``D0_b`` is located: the least error
+#: of a graded load, whatever its two meshes' spread
+LOCATION_TOL = 1e-4
 #: modes whose located crossings lie within this of a mesh's first (twice the location
-#: tolerance 1e-4) cross together: the mesh does not order them
-CLASS_TIE = 2e-4
+#: tolerance) cross together: the mesh does not order them
+CLASS_TIE = 2 * LOCATION_TOL
 
 
 @dataclass(frozen=True)
@@ -146,7 +149,9 @@ def buckling_loads() -> tuple[BucklingEntry, ...]:
     """The buckling load the project stands behind, per weight fraction, in increasing
     ``alpha``: the clamp-zone study's graded meshes where the two finest hold the mode and
     agree (:func:`clamp_unit_load`; ``source="graded"``), else the entry of the three
-    uniform meshes (:func:`uniform_buckling_loads`, converged or not).
+    uniform meshes (:func:`uniform_buckling_loads`, converged or not).  A graded entry's
+    ``error`` is the two finest meshes' difference, at least :data:`LOCATION_TOL` (each is
+    located to it: two meshes that agree to the last digit do not make the load exact).
 
     The uniform meshes of :data:`BUCKLING_LOADS_FILE` have two elements per half-wave of
     the heavier weights' clamp-zone wrinkle: where the graded meshes resolve it, their load
@@ -169,7 +174,7 @@ def buckling_loads() -> tuple[BucklingEntry, ...]:
         out[a] = BucklingEntry(
             alpha=a, meshes=tuple(f"{r['mesh']} g{r['grading']}" for r in rows),
             D0_b_mesh=tuple(float(r["D0_b"]) for r in rows), D0_b=g["D0_b"],
-            error=g["spread"], order=math.nan,
+            error=max(g["spread"], LOCATION_TOL), order=math.nan,
             newton_limit=_plain_newton_limit(a, fine["mesh"], fine["grading"]),
             source="graded")
     return tuple(sorted(out.values(), key=lambda e: e.alpha))
