@@ -37,7 +37,8 @@ __all__ = ["BUCKLING_LOADS_FILE", "CLAMP_UNITS_FILE", "MIN_ELEMENTS_PER_HALF_WAV
            "BucklingEntry", "buckling_loads", "uniform_buckling_loads", "buckling_provenance",
            "converged_buckling_load", "read_clamp_units", "clamp_unit_load", "clamp_study_tables",
            "newton_limits", "read_data_csv", "P33_UNITS_FILE", "CLASS_ONSETS_FILE",
-           "CLAMP_LAYER_FILE", "CLASS_TIE", "LOCATION_TOL", "tied_classes"]
+           "CLAMP_LAYER_FILE", "CLASS_TIE", "LOCATION_TOL", "tied_classes", "unit_key",
+           "clamp_unit_row"]
 
 #: the data file of the uniform meshes, relative to the ``validation`` package
 BUCKLING_LOADS_FILE = "data/buckling_loads.csv"
@@ -255,6 +256,39 @@ def read_data_csv(path: Path | None, default: str = CLAMP_UNITS_FILE) -> list[di
                                if not ln.startswith("#")))
 
 
+def unit_key(row: dict) -> tuple[str, str, str, str]:
+    """What names a clamp-zone unit in every study's rows: ``(alpha, mesh, grading,
+    formulation)`` as text (numbers as ``%g``), from a row of any of the data CSVs."""
+    return (f"{float(row['alpha']):g}", str(row["mesh"]), f"{float(row['grading']):g}",
+            str(row["formulation"]))
+
+
+def clamp_unit_row(alpha: float, mesh: str, grading: float, formulation: str, *,
+                   path: Path | None = None) -> dict:
+    """The clamp-zone study's row of one unit.
+
+    Parameters
+    ----------
+    alpha, mesh, grading, formulation
+        The unit (``mesh`` as ``"n1xn2xn3"``).
+    path : Path, optional
+        The study's CSV (default: the package's :data:`CLAMP_UNITS_FILE`).
+
+    Raises
+    ------
+    ValueError
+        No such row: the message names the unit and the study to run.
+    """
+    key = unit_key({"alpha": alpha, "mesh": mesh, "grading": grading,
+                    "formulation": formulation})
+    for r in read_clamp_units(path):
+        if unit_key(r) == key:
+            return r
+    raise ValueError(f"no clamp-zone unit alpha = {alpha:g} {mesh} grading {grading:g} "
+                     f"({formulation}) in the data: run python -m "
+                     f"validation.studies.clamp_units first")
+
+
 def read_clamp_units(path: Path | None = None) -> list[dict]:
     """The rows of the clamp-zone study's CSV (comment lines skipped), as dicts of strings.
 
@@ -369,11 +403,9 @@ def tied_classes(row: dict, path: Path | None = None) -> dict:
         has no located class or its lowest ``D0_c`` is not within :data:`CLASS_TIE` of the
         unit's ``D0_b`` (the two locations disagree).
     """
-    key = (f"{float(row['alpha']):g}", row["mesh"], f"{float(row['grading']):g}",
-           row["formulation"])
-    mine = sorted((r for r in read_data_csv(path, CLASS_ONSETS_FILE) if r["D0_c"] and (
-        f"{float(r['alpha']):g}", r["mesh"], f"{float(r['grading']):g}", r["formulation"])
-        == key), key=lambda r: float(r["D0_c"]))
+    mine = sorted((r for r in read_data_csv(path, CLASS_ONSETS_FILE)
+                   if r["D0_c"] and unit_key(r) == unit_key(row)),
+                  key=lambda r: float(r["D0_c"]))
     if not mine or abs(float(mine[0]["D0_c"]) - float(row["D0_b"])) > CLASS_TIE:
         return {}
     first = float(mine[0]["D0_c"])

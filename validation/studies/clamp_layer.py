@@ -35,19 +35,15 @@ import resource
 import shlex
 import sys
 import time
-import warnings
-from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
 
-import skfem_dielectric as fe
 from skfem_dielectric.fem import blas_thread_limit
 
-from ..buckling_data import read_clamp_units, read_data_csv
-from ..fe.model import BUCKLING_GRAD_DIV
-from .clamp_units import append_row, mesh_text, parse_mesh
-from .local_theory import local_state
+from ..buckling_data import clamp_unit_row, read_data_csv, unit_key
+from .clamp_units import (append_row, clamp_centre_J, mesh_text, parse_mesh, ramp_to_charge,
+                          unit_problem)
 
 __all__ = ["COLUMNS", "DEFAULT_CSV", "LAYER_WIDTHS", "volume_ratios", "run_clamp_layer",
            "read_clamp_layer", "main"]
@@ -111,17 +107,6 @@ def volume_ratios(problem, x: np.ndarray, load) -> dict:
     return out
 
 
-def _unit_D0(alpha: float, el, grading: float, formulation: str, units) -> float:
-    key = (f"{alpha:g}", mesh_text(el), f"{grading:g}", formulation)
-    for r in read_clamp_units(units):
-        if (f"{float(r['alpha']):g}", r["mesh"], f"{float(r['grading']):g}",
-                r["formulation"]) == key and r["D0_b"]:
-            return float(r["D0_b"])
-    raise ValueError(f"no clamp-zone unit alpha = {alpha:g} {mesh_text(el)} grading "
-                     f"{grading:g} ({formulation}) with a located D0_b in the data: run "
-                     f"python -m validation.studies.clamp_units first")
-
-
 def run_clamp_layer(alpha: float, elements, *, grading: float = 1.0,
                     formulation: str = "mixed", solver: str = "auto", D0: float | None = None,
                     units: Path | None = None) -> dict:
@@ -143,37 +128,20 @@ def run_clamp_layer(alpha: float, elements, *, grading: float = 1.0,
     """
     t0 = time.process_time()
     el = tuple(int(n) for n in elements)
-    D0 = _unit_D0(alpha, el, grading, formulation, units) if D0 is None else float(D0)
-    pb = fe.gallery.keplinger_problem(
-        elements=el, symmetry="eighth", grading=grading,
-        options=fe.PlateOptions(grad_div=BUCKLING_GRAD_DIV, formulation=formulation))
-    s = fe.gallery.keplinger_s(alpha, g=9.81)
-    targets = [d for d in np.round(np.arange(0.5, D0, 0.5), 10) if d < D0 - 1e-9] + [D0]
-    last = {}
-
-    def on_step(step):
-        if step.target_reached and step.load[0] == s:
-            last["x"], last["load"] = step.x, step.load
-
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", RuntimeWarning)
-        res = fe.gallery.run_ramp(
-            pb, fe.gallery.preload_then_charge(s, np.asarray(targets),
-                                               fe.gallery.KEPLINGER_PRELOAD_STEPS),
-            on_step=on_step, linear_solver=solver,
-            settings=replace(fe.gallery.KEPLINGER_SETTINGS, max_cutbacks=6, max_iter=25))
-    if not res.converged or float(last["load"][1]) != D0:
-        raise ValueError(f"the ramp of alpha = {alpha:g} {mesh_text(el)} stopped before "
-                         f"D0 = {D0:g}")
-    x, load = last["x"], last["load"]
-    g1, g3 = pb.plate.grids[0], pb.plate.grids[2]
-    X1 = 0.5 * (g1[-1] + g1[-2])
-    Jc = [local_state(pb, x, load, np.array([X1, 0.0, 0.5 * (a + b)])).J
-          for a, b in zip(g3[:-1], g3[1:])]
+    if D0 is None:
+        unit = clamp_unit_row(alpha, mesh_text(el), grading, formulation, path=units)
+        if not unit["D0_b"]:
+            raise ValueError(f"the clamp-zone unit alpha = {alpha:g} {mesh_text(el)} has no "
+                             f"located D0_b")
+        D0 = float(unit["D0_b"])
+    D0 = float(D0)
+    pb, s = unit_problem(alpha, el, grading=grading, formulation=formulation)
+    x, load = ramp_to_charge(pb, s, D0, solver=solver,
+                             name=f"alpha = {alpha:g} {mesh_text(el)}")
+    j_min, j_max = clamp_centre_J(pb, x, load)
     row = {"alpha": alpha, "mesh": mesh_text(el), "grading": grading,
            "formulation": formulation, "dofs": pb.ndofs, "D0": D0,
-           **volume_ratios(pb, x, load), "J_centre_min": float(min(Jc)),
-           "J_centre_max": float(max(Jc)),
+           **volume_ratios(pb, x, load), "J_centre_min": j_min, "J_centre_max": j_max,
            "cpu_s": round(time.process_time() - t0, 1),
            "peak_GB": round(resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024**2, 3),
            "solver": solver, "date": datetime.date.today().isoformat()}
@@ -214,9 +182,9 @@ def main(argv: list[str] | None = None) -> int:
         shlex.quote(v) for v in (argv if argv is not None else sys.argv[1:]))
     for alpha in a.alpha:
         for el in a.mesh:
-            key = (f"{alpha:g}", mesh_text(el), f"{a.grading:g}", a.formulation)
-            if any((f"{float(r['alpha']):g}", r["mesh"], f"{float(r['grading']):g}",
-                    r["formulation"]) == key for r in read_clamp_layer(a.csv)):
+            key = unit_key({"alpha": alpha, "mesh": mesh_text(el), "grading": a.grading,
+                            "formulation": a.formulation})
+            if any(unit_key(r) == key for r in read_clamp_layer(a.csv)):
                 print(f"alpha = {alpha:g} {mesh_text(el)}: kept", flush=True)
                 continue
             try:

@@ -65,13 +65,15 @@ from skfem_dielectric.models.plate.scan import PlateScan
 from skfem_dielectric.studies.buckling import locate_buckling
 
 from ..buckling_data import (MIN_ELEMENTS_PER_HALF_WAVE, clamp_study_tables, clamp_unit_load,
-                             read_clamp_units, read_data_csv)
+                             read_clamp_units, read_data_csv, unit_key)
 from ..fe.model import BUCKLING_GRAD_DIV, BUCKLING_NEWTON, BUCKLING_TOL
 from ..store import write_npz_atomic, write_text_atomic
 from .local_theory import energy_centroid, half_waves, local_state
 
-__all__ = ["COLUMNS", "DEFAULT_CSV", "MIN_ELEMENTS_PER_HALF_WAVE", "run_unit", "read_units",
-           "clamp_unit_load", "mesh_text", "parse_mesh", "append_row", "main"]
+__all__ = ["COLUMNS", "DEFAULT_CSV", "MIN_ELEMENTS_PER_HALF_WAVE", "UNIT_SETTINGS",
+           "run_unit", "read_units", "clamp_unit_load", "mesh_text", "parse_mesh",
+           "append_row", "append_rows", "unit_problem", "ramp_to_charge", "clamp_centre_J",
+           "main"]
 
 #: where the study's rows are kept (provenance in its header lines)
 DEFAULT_CSV = Path(__file__).resolve().parents[1] / "data" / "clamp_units.csv"
@@ -89,12 +91,61 @@ _HEADER = """\
 """
 
 
+#: Newton settings of a unit's ramps: the Keplinger plate's, with more cut-backs and
+#: iterations (the graded clamp layer)
+UNIT_SETTINGS = replace(fe.gallery.KEPLINGER_SETTINGS, max_cutbacks=6, max_iter=25)
+
+
+def unit_problem(alpha: float, elements, *, grading: float = 1.0,
+                 formulation: str = "mixed"):
+    """The plate of a unit and its dead load: ``(problem, s)``.
+
+    The clamped Keplinger plate, eighth model, graded along ``x1`` (``grading``), grad-div
+    :data:`~validation.fe.model.BUCKLING_GRAD_DIV`, ``J = 1`` imposed as ``formulation``;
+    ``s`` of weight fraction ``alpha`` with ``g = 9.81``.
+    """
+    options = fe.PlateOptions(grad_div=BUCKLING_GRAD_DIV, formulation=formulation)
+    pb = fe.gallery.keplinger_problem(elements=tuple(int(n) for n in elements),
+                                      symmetry="eighth", grading=grading, options=options)
+    return pb, fe.gallery.keplinger_s(alpha, g=9.81)
+
+
+def ramp_to_charge(problem, s: float, D0: float, *, solver: str = "auto", name: str = ""):
+    """The converged state ``(x, load)`` at charge ``D0`` of a unit's plate: the dead load
+    ``s`` in the Keplinger pre-load steps, then the charge in steps of 0.5 and ``D0``
+    (:data:`UNIT_SETTINGS`).
+
+    Raises
+    ------
+    ValueError
+        The ramp stops before ``D0`` (the message names the ramp as ``name``).
+    """
+    D0 = float(D0)
+    targets = [d for d in np.round(np.arange(0.5, D0, 0.5), 10) if d < D0 - 1e-9] + [D0]
+    last = {}
+
+    def on_step(step):
+        if step.target_reached and step.load[0] == s:
+            last["x"], last["load"] = step.x, step.load
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", RuntimeWarning)
+        res = fe.gallery.run_ramp(
+            problem, fe.gallery.preload_then_charge(s, np.asarray(targets),
+                                                    fe.gallery.KEPLINGER_PRELOAD_STEPS),
+            on_step=on_step, linear_solver=solver, settings=UNIT_SETTINGS)
+    if not res.converged or not last or float(last["load"][1]) != D0:
+        raise ValueError(f"the ramp{' of ' + name if name else ''} stopped before "
+                         f"D0 = {D0:g}")
+    return last["x"], last["load"]
+
+
 def mesh_text(elements) -> str:
     """``(n1, n2, n3)`` as the study writes it, ``"n1xn2xn3"``."""
     return "x".join(str(int(n)) for n in elements)
 
 
-def _clamp_J(pb, x, load) -> tuple[float, float]:
+def clamp_centre_J(pb, x, load) -> tuple[float, float]:
     """Smallest and largest ``J`` at the mid-plane centres of the elements next to the
     clamp (eighth model: the last element along ``x1``, every element across ``x3``)."""
     g1, _, g3 = pb.plate.grids
@@ -145,11 +196,7 @@ def run_unit(alpha: float, elements, *, grading: float = 1.0, D0_step: float = 0
     """
     t0, f0 = time.process_time(), factorisation_count()
     el = tuple(int(n) for n in elements)
-    options = fe.PlateOptions(grad_div=BUCKLING_GRAD_DIV, formulation=formulation)
-    pb = fe.gallery.keplinger_problem(elements=el, symmetry="eighth", grading=grading,
-                                      options=options)
-    s = fe.gallery.keplinger_s(alpha, g=9.81)
-    settings = replace(fe.gallery.KEPLINGER_SETTINGS, max_cutbacks=6, max_iter=25)
+    pb, s = unit_problem(alpha, el, grading=grading, formulation=formulation)
     track = {"prev": None, "before": None, "row": None, "cur": None, "states": 0,
              "counts": []}
 
@@ -175,7 +222,7 @@ def run_unit(alpha: float, elements, *, grading: float = 1.0, D0_step: float = 0
             with warnings.catch_warnings():
                 warnings.simplefilter("ignore", RuntimeWarning)
                 res = fe.gallery.run_ramp(
-                    pb, targets, on_step=on_step, linear_solver=solver, settings=settings,
+                    pb, targets, on_step=on_step, linear_solver=solver, settings=UNIT_SETTINGS,
                     **({} if start is None else dict(x0=start[0], start=start[1],
                                                      back=start[2])))
         except _Crossed:
@@ -220,7 +267,7 @@ def run_unit(alpha: float, elements, *, grading: float = 1.0, D0_step: float = 0
         lab = bl.label
         point = energy_centroid(pb, bl.x, bl.load, lab.mode)
         n_half = half_waves(pb, lab.mode, lab.increments, point[0])
-        jmin, jmax = _clamp_J(pb, bl.x, bl.load)
+        jmin, jmax = clamp_centre_J(pb, bl.x, bl.load)
         n3 = el[2] * (2 if 3 in pb.plate.symmetry else 1)
         row.update(D0_b=float(bl.D0_b), **{"class": lab.symmetry},
                    corner_share=lab.corner_share, mesh_scale=lab.mesh_scale,
@@ -244,11 +291,6 @@ def run_unit(alpha: float, elements, *, grading: float = 1.0, D0_step: float = 0
     return row
 
 
-def _key(r: dict) -> tuple:
-    return (f"{float(r['alpha']):g}", str(r["mesh"]), f"{float(r['grading']):g}",
-            str(r["formulation"]))
-
-
 def read_units(path: Path = DEFAULT_CSV) -> list[dict]:
     """The rows of the study's CSV (comment lines skipped), as dicts of strings."""
     return read_clamp_units(path)
@@ -260,14 +302,20 @@ def _cell(v) -> str:
     return str(v)
 
 
-def append_row(path: Path, row: dict, columns=COLUMNS, header: str = _HEADER) -> None:
+def append_rows(path: Path, rows, columns=COLUMNS, header: str = _HEADER) -> None:
     """Rewrite a study's CSV atomically: ``header`` (``#`` lines), ``columns``, the rows it
-    holds, then ``row`` (floats to 6 digits, ``nan`` as an empty cell)."""
+    holds, then ``rows`` (floats to 6 digits, ``nan`` as an empty cell)."""
     buf = io.StringIO()
     w = csv.DictWriter(buf, columns, restval="", extrasaction="ignore", lineterminator="\n")
     w.writeheader()
-    w.writerows(read_data_csv(path) + [{k: _cell(row.get(k, "")) for k in columns}])
+    w.writerows(read_data_csv(path) + [{k: _cell(r.get(k, "")) for k in columns}
+                                       for r in rows])
     write_text_atomic(path, header + buf.getvalue())
+
+
+def append_row(path: Path, row: dict, columns=COLUMNS, header: str = _HEADER) -> None:
+    """:func:`append_rows` of one row."""
+    append_rows(path, [row], columns, header)
 
 
 def parse_mesh(text: str) -> tuple[int, int, int]:
@@ -320,8 +368,9 @@ def main(argv: list[str] | None = None) -> int:
         shlex.quote(v) for v in (argv if argv is not None else sys.argv[1:]))
     for alpha in a.alpha:
         for el in a.mesh:
-            row_key = (f"{alpha:g}", mesh_text(el), f"{a.grading:g}", a.formulation)
-            if any(_key(r) == row_key for r in read_units(a.csv)):
+            row_key = unit_key({"alpha": alpha, "mesh": mesh_text(el),
+                                "grading": a.grading, "formulation": a.formulation})
+            if any(unit_key(r) == row_key for r in read_units(a.csv)):
                 print(f"alpha = {alpha:g} {mesh_text(el)} grading {a.grading:g}: kept",
                       flush=True)
                 continue

@@ -54,7 +54,6 @@ import shlex
 import sys
 import time
 import warnings
-from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
@@ -65,9 +64,9 @@ from skfem_dielectric.linalg.solver_base import factorisation_count
 from skfem_dielectric.models.plate.scan import PlateScan
 from skfem_dielectric.studies.buckling import locate_buckling
 
-from ..buckling_data import read_clamp_units, read_data_csv
-from ..fe.model import BUCKLING_GRAD_DIV, BUCKLING_NEWTON, BUCKLING_TOL
-from .clamp_units import append_row, mesh_text, parse_mesh
+from ..buckling_data import clamp_unit_row, read_data_csv, unit_key
+from ..fe.model import BUCKLING_NEWTON, BUCKLING_TOL
+from .clamp_units import UNIT_SETTINGS, append_row, mesh_text, parse_mesh, unit_problem
 from .local_theory import energy_centroid, half_waves
 
 __all__ = ["COLUMNS", "DEFAULT_CSV", "bracket", "run_class_onsets", "read_class_onsets",
@@ -116,17 +115,6 @@ def bracket(row: dict) -> tuple[float, float]:
     return max(below), min(above)
 
 
-def _unit_row(alpha: float, el, grading: float, formulation: str, units: Path | None) -> dict:
-    key = (f"{alpha:g}", mesh_text(el), f"{grading:g}", formulation)
-    for r in read_clamp_units(units):
-        if (f"{float(r['alpha']):g}", r["mesh"], f"{float(r['grading']):g}",
-                r["formulation"]) == key:
-            return r
-    raise ValueError(f"no clamp-zone unit alpha = {alpha:g} {mesh_text(el)} grading "
-                     f"{grading:g} ({formulation}) in the data: run "
-                     f"python -m validation.studies.clamp_units first")
-
-
 def run_class_onsets(alpha: float, elements, *, grading: float = 1.0,
                      formulation: str = "mixed", solver: str = "auto", classes=None,
                      skip=(), units: Path | None = None, progress=None,
@@ -170,7 +158,7 @@ def run_class_onsets(alpha: float, elements, *, grading: float = 1.0,
     say = progress or (lambda text: None)
     el = tuple(int(n) for n in elements)
     if given is None:
-        unit = _unit_row(alpha, el, grading, formulation, units)
+        unit = clamp_unit_row(alpha, mesh_text(el), grading, formulation, path=units)
         lo, hi = bracket(unit)
         at_lo = {float(d): p for d, p in (item.split(":")[0:2] for item in
                                           unit["scan_counts"].split())}
@@ -183,11 +171,7 @@ def run_class_onsets(alpha: float, elements, *, grading: float = 1.0,
         if not (0 < lo < hi and math.isfinite(hi)):
             raise ValueError(f"bracket must be 0 < lo < hi, got {lo:g}, {hi:g}")
         step, note = 0.5, "bracket given: no unit of this mesh scanned below lo"
-    options = fe.PlateOptions(grad_div=BUCKLING_GRAD_DIV, formulation=formulation)
-    pb = fe.gallery.keplinger_problem(elements=el, symmetry="eighth", grading=grading,
-                                      options=options)
-    s = fe.gallery.keplinger_s(alpha, g=9.81)
-    settings = replace(fe.gallery.KEPLINGER_SETTINGS, max_cutbacks=6, max_iter=25)
+    pb, s = unit_problem(alpha, el, grading=grading, formulation=formulation)
     D0 = [d for d in np.round(np.arange(step, lo, step), 10) if d < lo - 1e-9] + [lo, hi]
     states = {}
 
@@ -200,7 +184,7 @@ def run_class_onsets(alpha: float, elements, *, grading: float = 1.0,
         with warnings.catch_warnings():
             warnings.simplefilter("ignore", RuntimeWarning)
             res = fe.gallery.run_ramp(
-                pb, targets, on_step=on_step, linear_solver=solver, settings=settings,
+                pb, targets, on_step=on_step, linear_solver=solver, settings=UNIT_SETTINGS,
                 **({} if start is None else dict(x0=start[0], start=start[1],
                                                  back=start[2])))
         if not res.converged:
@@ -281,8 +265,7 @@ def read_class_onsets(path: Path = DEFAULT_CSV) -> list[dict]:
 
 
 def _key(r: dict) -> tuple:
-    return (f"{float(r['alpha']):g}", str(r["mesh"]), f"{float(r['grading']):g}",
-            str(r["formulation"]), str(r["class"]))
+    return (*unit_key(r), str(r["class"]))
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -320,9 +303,9 @@ def main(argv: list[str] | None = None) -> int:
         shlex.quote(v) for v in (argv if argv is not None else sys.argv[1:]))
     for alpha in a.alpha:
         for el in a.mesh:
-            done = {_key(r)[4] for r in read_class_onsets(a.csv)
-                    if _key(r)[:4] == (f"{alpha:g}", mesh_text(el), f"{a.grading:g}",
-                                       a.formulation)}
+            unit = unit_key({"alpha": alpha, "mesh": mesh_text(el), "grading": a.grading,
+                             "formulation": a.formulation})
+            done = {_key(r)[4] for r in read_class_onsets(a.csv) if _key(r)[:4] == unit}
             if a.classes is not None and set(a.classes) <= done:
                 print(f"alpha = {alpha:g} {mesh_text(el)}: kept", flush=True)
                 continue

@@ -25,28 +25,21 @@ Usage::
 from __future__ import annotations
 
 import argparse
-import csv
 import datetime
-import io
 import math
 import resource
 import shlex
 import sys
 import time
-import warnings
-from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
 
-import skfem_dielectric as fe
 from skfem_dielectric.fem import blas_thread_limit
 from skfem_dielectric.models.plate.scan import PlateScan
 
 from ..buckling_data import read_data_csv
-from ..fe.model import BUCKLING_GRAD_DIV
-from ..store import write_text_atomic
-from .clamp_units import mesh_text, parse_mesh
+from .clamp_units import append_rows, mesh_text, parse_mesh, ramp_to_charge, unit_problem
 from .local_theory import energy_centroid
 
 __all__ = ["COLUMNS", "DEFAULT_CSV", "run_flagged_modes", "read_flagged_modes", "main"]
@@ -91,32 +84,15 @@ def run_flagged_modes(alpha: float, elements, D0: float, *, grading: float = 1.0
         The ramp stops before ``D0``.
     """
     el = tuple(int(n) for n in elements)
-    pb = fe.gallery.keplinger_problem(elements=el, symmetry="eighth", grading=grading,
-                                      options=fe.PlateOptions(grad_div=BUCKLING_GRAD_DIV))
-    s = fe.gallery.keplinger_s(alpha, g=9.81)
-    targets = [d for d in np.round(np.arange(0.5, D0, 0.5), 10) if d < D0 - 1e-9] + [D0]
-    last = {}
-
-    def on_step(step):
-        if step.target_reached and step.load[0] == s:
-            last["x"], last["load"] = step.x, step.load
-
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", RuntimeWarning)
-        res = fe.gallery.run_ramp(
-            pb, fe.gallery.preload_then_charge(s, np.asarray(targets),
-                                               fe.gallery.KEPLINGER_PRELOAD_STEPS),
-            on_step=on_step, linear_solver=solver,
-            settings=replace(fe.gallery.KEPLINGER_SETTINGS, max_cutbacks=6, max_iter=25))
-    if not res.converged or float(last["load"][1]) != float(D0):
-        raise ValueError(f"the ramp of alpha = {alpha:g} {mesh_text(el)} stopped before "
-                         f"D0 = {D0:g}")
+    pb, s = unit_problem(alpha, el, grading=grading)
+    x, load = ramp_to_charge(pb, s, D0, solver=solver,
+                             name=f"alpha = {alpha:g} {mesh_text(el)}")
     t0 = time.process_time()
-    row = PlateScan(pb).analyse(last["x"], last["load"])
+    row = PlateScan(pb).analyse(x, load)
     g1 = pb.plate.grids[0]
     out = []
     for m in row.labels:
-        c = energy_centroid(pb, last["x"], last["load"], m.mode)
+        c = energy_centroid(pb, x, load, m.mode)
         layer = int(np.count_nonzero(g1 > c[0]))        # 1: inside the last element
         out.append({"alpha": alpha, "mesh": mesh_text(el), "grading": grading, "D0": D0,
                     "dofs": pb.ndofs, "eigenvalue": m.eigenvalue, "class": m.symmetry,
@@ -136,12 +112,6 @@ def run_flagged_modes(alpha: float, elements, D0: float, *, grading: float = 1.0
 def read_flagged_modes(path: Path = DEFAULT_CSV) -> list[dict]:
     """The rows of the study's CSV (comment lines skipped), as dicts of strings."""
     return read_data_csv(path)
-
-
-def _cell(v) -> str:
-    if isinstance(v, float):
-        return "" if not math.isfinite(v) else f"{v:.6g}"
-    return str(v)
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -186,13 +156,8 @@ def main(argv: list[str] | None = None) -> int:
             except ValueError as exc:
                 print(f"error: {exc}", file=sys.stderr)
                 return 1
-            buf = io.StringIO()
-            w = csv.DictWriter(buf, COLUMNS, restval="", extrasaction="ignore",
-                               lineterminator="\n")
-            w.writeheader()
-            w.writerows(old + [{k: _cell({**r, "command": command}.get(k, ""))
-                                for k in COLUMNS} for r in rows])
-            write_text_atomic(a.csv, _HEADER + buf.getvalue())
+            append_rows(a.csv, [{**r, "command": command} for r in rows], COLUMNS,
+                        _HEADER)
             kinds = {}
             for r in rows:
                 if r["kind"] != "none":

@@ -42,7 +42,6 @@ import shlex
 import sys
 import time
 import warnings
-from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
@@ -57,7 +56,7 @@ from ..buckling_data import read_data_csv
 from ..fe.model import BUCKLING_NEWTON
 from ..table import BREAKDOWN_TOL
 from .buckling import p33_measures
-from .clamp_units import append_row, mesh_text, parse_mesh
+from .clamp_units import UNIT_SETTINGS, append_row, mesh_text, parse_mesh
 
 __all__ = ["COLUMNS", "DEFAULT_CSV", "SETS", "run_p33_unit", "read_p33_units", "main"]
 
@@ -110,7 +109,6 @@ def run_p33_unit(alpha: float, elements, *, grading: float = 1.0, D0_step: float
     pb = fe.gallery.keplinger_problem(elements=el, symmetry="eighth", grading=grading,
                                       options=fe.PlateOptions())
     s = fe.gallery.keplinger_s(alpha, g=9.81)
-    settings = replace(fe.gallery.KEPLINGER_SETTINGS, max_cutbacks=6, max_iter=25)
     D0 = np.round(np.arange(D0_step, D0_max + 1e-9, D0_step), 10)
     states = []
 
@@ -126,7 +124,7 @@ def run_p33_unit(alpha: float, elements, *, grading: float = 1.0, D0_step: float
         warnings.simplefilter("ignore", RuntimeWarning)
         res = fe.gallery.run_ramp(pb, fe.gallery.preload_then_charge(
             s, D0, fe.gallery.KEPLINGER_PRELOAD_STEPS), on_step=on_step,
-            linear_solver=solver, settings=settings)
+            linear_solver=solver, settings=UNIT_SETTINGS)
     newton_limit = math.nan if res.converged else (float(states[-1][1][1]) if states else 0.0)
     row = {"alpha": alpha, "mesh": mesh_text(el), "grading": grading, "dofs": pb.ndofs,
            "D0_step": D0_step, "newton_limit": newton_limit, "D0_max": D0_max,
