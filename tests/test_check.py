@@ -23,7 +23,7 @@ import numpy as np
 import pytest
 
 import validation
-import validation.checker
+import validation.checker.rules
 from validation.buckling_data import converged_buckling_load, uniform_buckling_loads
 from validation.cases import get_case
 from validation.checker import (CHECK_CASES, TOLERANCES, CheckInputError, parse_tolerances,
@@ -279,7 +279,7 @@ def test_the_clamped_plate_centre_within_one_percent(tmp_path):
 def test_a_weight_without_a_converged_load_is_not_scored(tmp_path, monkeypatch):
     """With the uniform meshes' loads alone (alpha = 1.5: its three meshes disagree) a
     D0_b of alpha = 1.5 is a note, not a score; alpha = 1 is scored against 2.84."""
-    monkeypatch.setattr(validation.checker, "buckling_loads", uniform_buckling_loads)
+    monkeypatch.setattr(validation.checker.rules, "buckling_loads", uniform_buckling_loads)
     f = _write(tmp_path / "uni-axial-ideal.csv", ["case", "alpha", "D0_b"],
                [["uni-axial-ideal", "1.5", "4.4"], ["uni-axial-ideal", "1", "2.84"]])
     result = validation.check(f)

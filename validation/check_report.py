@@ -34,7 +34,6 @@ from .figures import (BUCKLING_NAME, LIMIT_NAME, add_caption, plot_equibiaxial_l
 from .figures.common import colors
 from .markers import CONVERGED_BUCKLING
 from .specs import KEPLINGER
-from .store import write_text_atomic
 
 __all__ = ["check_figure", "report_markdown", "report_json", "write_check_report"]
 
@@ -344,26 +343,29 @@ def report_json(result: CheckResult) -> str:
                        "notes": list(result.notes)}, indent=2) + "\n"
 
 
-def _write_bytes_atomic(path: Path, data: bytes) -> Path:
+def _stage(path: Path, data: bytes) -> Path:
+    """``data`` written and synced to a temporary file beside ``path``; its path."""
     tmp = path.with_name(f".{path.name}.tmp{os.getpid()}")
     try:
         with open(tmp, "wb") as fh:
             fh.write(data)
             fh.flush()
             os.fsync(fh.fileno())
-        os.replace(tmp, path)
-    finally:
-        if tmp.exists():
-            tmp.unlink()
-    return path
+    except BaseException:
+        tmp.unlink(missing_ok=True)
+        raise
+    return tmp
 
 
 def write_check_report(result: CheckResult, out) -> list[Path]:
     """Write the report of ``result`` into ``out``: ``<case>.png`` per case, ``check.md``
     and ``check.json``.
 
-    Every figure and text is made before the folder is created or a file written, and
-    each file is written atomically (temporary file, ``fsync``, rename).
+    Every figure and text is made before the folder is created or a file written; every
+    file is then written to a temporary file beside its place (``fsync``), and only when
+    all are written do they replace the old ones, ``check.md`` and ``check.json`` last: a
+    failed write leaves the folder as it was, and no report sits beside the figures of
+    another check.
 
     Parameters
     ----------
@@ -392,7 +394,20 @@ def write_check_report(result: CheckResult, out) -> list[Path]:
                          f"<case>.png would be overwritten; give another folder")
     pngs = {f"{c.name}.png": _png(check_figure(c)) for c in result.cases}
     texts = {"check.md": report_markdown(result, list(pngs)), "check.json": report_json(result)}
+    files = {**pngs, **{name: text.encode() for name, text in texts.items()}}
     out.mkdir(parents=True, exist_ok=True)
-    paths = [_write_bytes_atomic(out / name, data) for name, data in pngs.items()]
-    paths += [write_text_atomic(out / name, text) for name, text in texts.items()]
-    return paths
+    # every file is staged beside its place first: a failed write changes nothing.  Then
+    # the old report goes, the figures take their places and the report comes last, so
+    # that no report ever sits beside figures of another check
+    staged: dict[Path, Path] = {}
+    try:
+        for name, data in files.items():
+            staged[out / name] = _stage(out / name, data)
+        for name in texts:
+            (out / name).unlink(missing_ok=True)
+        for path, tmp in staged.items():
+            os.replace(tmp, path)
+    finally:
+        for tmp in staged.values():
+            tmp.unlink(missing_ok=True)
+    return list(staged)

@@ -323,9 +323,9 @@ class _Page:
         self.src["uni_buckling"].data = dict(x=[b[0] for b in bk], y=[b[1] for b in bk])
         text = f"alpha = {float(self.p.alpha):g}: s = {d['s']:.6f}"
         if bk:
-            text += f"; {BUCKLING_NAME} D0_b = {bk[0][1]:.4f}"
+            text += f"; {RUN_BUCKLING.name} D0_b = {bk[0][1]:.4f}"
         if brk:
-            text += f"; {BREAKDOWN_NAME} at D0 = " + ", ".join(f"{b[1]:g}" for b in brk)
+            text += f"; {P33_BREAKDOWN.name} at D0 = " + ", ".join(f"{b[1]:g}" for b in brk)
         if self.results.folder is not None and not marks:
             text += "; FE runs at alpha = " + ", ".join(
                 f"{x:g}" for x in self.results.available()["alpha"])
