@@ -263,6 +263,16 @@ def check_wrinkling(out: str) -> None:
                 assert float(D_thick) == pytest.approx(thick, rel=1e-5)
 
 
+def check_check_input(out: str) -> None:
+    # the smoke size is read and passes (exact rows: 2001 charges a block), and the 50 MB
+    # file is refused with check's one line and exit code 2
+    rows = re.findall(r"^\s*([\d.]+)\s+(\d+)\s+(\d+)\s+\S+\s+\S+\s+\S+\s.*check: 1 of 1 "
+                      r"cases pass", out, re.M)
+    assert len(rows) == 1 and int(rows[0][1]) % 2001 == 0 and rows[0][2] == "0"
+    assert re.search(r"^\s*50\.00\s+-\s+2\s.*refused: skfem-dielectric check: error: big.csv: "
+                     r"50\.0 MB, above the 12 MB", out, re.M)
+
+
 def check_explore_redraw(out: str) -> None:
     # one line per slider move asked for: 4 analytic panels, 2 page updates (Bokeh)
     assert len(re.findall(r"CPU s per move", out)) == 6
@@ -271,6 +281,7 @@ def check_explore_redraw(out: str) -> None:
 CHECKS = {
     "bench_analytic.py": check_analytic,
     "bench_buckling_scan.py": check_buckling_scan,
+    "bench_check_input.py": check_check_input,
     "bench_clamp_wrinkle.py": check_clamp_wrinkle,
     "bench_costs.py": check_costs,
     "bench_fe_alpha_scan.py": check_fe_alpha_scan,

@@ -247,6 +247,11 @@ def _cmd_curves(args) -> int:
     return 0
 
 
+#: seconds that ``--scheduler ADDRESS`` waits for the scheduler in all (connection,
+#: handshake, the first answer); past them the command ends with one line and exit code 3
+SCHEDULER_TIMEOUT = 30.0
+
+
 def _dask_executor(address: str, jobs: int):
     """``(client, cluster)`` of a dask.distributed scheduler ADDRESS or a LocalCluster."""
     try:
@@ -260,11 +265,35 @@ def _dask_executor(address: str, jobs: int):
         cluster = LocalCluster(n_workers=jobs, threads_per_worker=1, processes=True,
                                dashboard_address="127.0.0.1:0", silence_logs=logging.ERROR)
         return Client(cluster), cluster
-    try:
-        return Client(address, timeout="20s"), None
-    except ValueError as exc:
+    scheme = address.split("://", 1)[0].lower() if "://" in address else "tcp"
+    if scheme != "tcp":
+        raise ValueError(f"--scheduler must be a dask scheduler address tcp://HOST:PORT (or "
+                         f"HOST:PORT) or 'local'; {scheme}:// is not supported (TLS needs "
+                         f"security settings, UCX its own package), got {address!r}")
+    box: dict = {}
+
+    def connect():
+        try:
+            box["client"] = Client(address, timeout=f"{SCHEDULER_TIMEOUT:g}s")
+        except BaseException as exc:   # reported by the caller's thread, one line
+            box["error"] = exc
+
+    # the whole connection within SCHEDULER_TIMEOUT: a peer that accepts the connection
+    # and never answers (or answers what is not dask) must not hang the command
+    worker = threading.Thread(target=connect, name="dask-connect", daemon=True)
+    worker.start()
+    worker.join(SCHEDULER_TIMEOUT + 2.0)
+    if "client" in box:
+        return box["client"], None
+    exc = box.get("error")
+    if isinstance(exc, ValueError) and "://" not in address and ":" not in address:
         raise ValueError(f"--scheduler must be a dask scheduler address (tcp://HOST:PORT) or "
-                         f"'local', got {address!r} ({exc})") from None
+                         f"'local', got {address!r} ({_one_line(exc)})") from None
+    if exc is None:
+        raise OSError(None, f"no dask scheduler answered within {SCHEDULER_TIMEOUT:g} s",
+                      address)
+    raise OSError(None, f"no dask scheduler there ({type(exc).__name__}: "
+                        f"{_one_line(exc)[:200]})", address)
 
 
 def _validate_on_cluster(args, kw: dict) -> list:
@@ -390,6 +419,8 @@ def _cmd_simulate(args) -> int:
 
 
 def _cmd_explore(args) -> int:
+    if args.export is not None and (not args.export.strip() or Path(args.export).is_dir()):
+        raise ValueError(f"--export must name an HTML file to write, got {args.export!r}")
     require_bokeh()
     results = load_results(args.results)
     if args.export:

@@ -59,9 +59,10 @@ VERDICT_MEASURES = ("stable",)
 
 #: The largest results file ``check`` reads, in bytes (larger: one line, exit 2; split the
 #: file by case).
-MAX_FILE_BYTES = 16 * 1024**2
-#: The most ``check`` reads from one folder, in bytes, all files together.
-MAX_TOTAL_BYTES = 64 * 1024**2
+MAX_FILE_BYTES = 12 * 1024**2
+#: The most ``check`` reads from one folder, in bytes, all scored files together (the
+#: files it names and skips, field samples and study tables, do not count).
+MAX_TOTAL_BYTES = 12 * 1024**2
 
 
 class CheckInputError(ValueError):

@@ -233,7 +233,7 @@ def results_files(path: Path) -> list[Path]:
         if not files:
             raise CheckInputError(f"{path} holds no CSV file (the results contract: one "
                                   f"<case>.csv per case, docs/check.md)")
-        total = sum(_regular_size(f) for f in files)
+        total = sum(_regular_size(f) for f in files if not_scored(f.name) is None)
         if total > MAX_TOTAL_BYTES:
             raise CheckInputError(f"{path}: {len(files)} CSV files of {total / 1024**2:.1f} MB, "
                                   f"above the {MAX_TOTAL_BYTES // 1024**2} MB that check reads "

@@ -97,12 +97,31 @@ class FEResults:
         return {"s": s, "alpha": alpha, "lam": lam}
 
 
-def _table(path: Path):
+#: the columns the page reads of each kind of table (the contract of ``validate``)
+_NEEDED = {
+    "equibiaxial": ("run", "converged", "model", "s", "variant", "lam1_fe", "lam3_fe", "D0"),
+    "keplinger": ("run", "converged", "alpha", "variant", "breakdown", "lam1_fe",
+                  "lam1_analytic", "D0"),
+    "wrinkling": ("control", "lam", "mode", "kh"),
+}
+
+
+def _table(path: Path, kind: str):
+    """The table of ``path`` (``None`` without a row); a ``ValueError`` naming the file
+    when it cannot be read or lacks a column of :data:`_NEEDED` ``[kind]``."""
     try:
         t = read_table(path)
     except (OSError, ValueError, csv.Error, UnicodeDecodeError) as exc:
-        raise ValueError(f"--results: cannot read {path}: {exc}") from None
-    return t if t and len(next(iter(t.values()))) else None
+        raise ValueError(f"--results: cannot read {path}: {' '.join(str(exc).split())}") \
+            from None
+    if not t or not len(next(iter(t.values()))):
+        return None
+    missing = [c for c in _NEEDED[kind] if c not in t]
+    if missing:
+        raise ValueError(f"--results: {path} lacks the column{'s' * (len(missing) > 1)} "
+                         f"{', '.join(missing)} of the results contract (docs/theory.md); "
+                         f"is it a table written by `skfem-dielectric validate`?")
+    return t
 
 
 def load_results(folder) -> FEResults:
@@ -131,13 +150,13 @@ def load_results(folder) -> FEResults:
     res = FEResults(folder=folder)
     for name in EQUIBIAXIAL_CASES:
         if (folder / f"{name}.csv").is_file():
-            t = _table(folder / f"{name}.csv")
+            t = _table(folder / f"{name}.csv", "equibiaxial")
             if t is not None:
                 res.equibiaxial.append(t)
     if (folder / "uni-axial-ideal.csv").is_file():
-        res.keplinger = _table(folder / "uni-axial-ideal.csv")
+        res.keplinger = _table(folder / "uni-axial-ideal.csv", "keplinger")
     if (folder / "wrinkling-fe.csv").is_file():
-        res.wrinkling = _table(folder / "wrinkling-fe.csv")
+        res.wrinkling = _table(folder / "wrinkling-fe.csv", "wrinkling")
     if not (res.equibiaxial or res.keplinger or res.wrinkling):
         raise ValueError(f"--results {str(folder)!r} holds none of "
                          f"{', '.join(EQUIBIAXIAL_CASES)}, uni-axial-ideal, wrinkling-fe (.csv)")
