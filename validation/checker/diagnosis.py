@@ -95,6 +95,9 @@ class Loading:
 
 
 def lam1_errors(p: Loading) -> tuple[np.ndarray, np.ndarray]:
+    """The closed-form ``lam1`` of every row of ``p`` (:func:`lam1_closed`) and the relative
+    error ``|lam1 - closed form| / closed form`` of the file's ``lam1`` (``nan`` where no
+    closed form exists)."""
     ref = lam1_closed(p.D0, p.s, p.model, p.loading, p.rows)
     with np.errstate(all="ignore"):
         return ref, np.abs(p.lam1 - ref) / ref

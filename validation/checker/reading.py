@@ -185,6 +185,8 @@ def row_number(row: Row, col: str | None, *, required: bool = True) -> float | N
 
 
 def row_flag(row: Row, col: str | None) -> bool | None:
+    """The True/False cell of ``row`` in column ``col`` (``None`` for no column or an empty
+    cell); any other text is a :class:`CheckInputError` naming the row and column."""
     if col is None or row.cells.get(col, "") == "":
         return None
     text = row.cells[col].lower()
@@ -195,6 +197,9 @@ def row_flag(row: Row, col: str | None) -> bool | None:
 
 
 def row_model(row: Row, header, case: str) -> str:
+    """The canonical model name of ``row`` (``neo-Hookean`` or ``Gent``), or the default of
+    ``case`` when the file has no ``model`` column; an unknown name or a missing one where
+    the case has no default is a :class:`CheckInputError`."""
     default = CHECK_CASES[case][1]
     if "model" not in header or row.cells["model"] == "":
         if default is None:
@@ -209,6 +214,8 @@ def row_model(row: Row, header, case: str) -> str:
 
 
 def row_text(row: Row, col: str, choices, default=None) -> str:
+    """The cell of ``row`` in column ``col``, which must be one of ``choices`` (``default``
+    for an empty cell when given); anything else is a :class:`CheckInputError`."""
     value = row.cells.get(col, "")
     if value == "" and default is not None:
         return default
@@ -219,6 +226,8 @@ def row_text(row: Row, col: str, choices, default=None) -> str:
 
 
 def not_scored(name: str) -> str | None:
+    """Why the contract file ``name`` is read by no rule of ``check`` (an entry of
+    :data:`NOT_SCORED`, matched by name or by suffix), or ``None`` for a scored file."""
     for key, why in NOT_SCORED.items():
         if name == key or (key.startswith("_") and name.endswith(key)):
             return why

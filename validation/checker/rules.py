@@ -22,6 +22,9 @@ from .scores import CaseCheck, Measure, file_names, make_measure, rows_text
 __all__ = ["check_loading", "check_clamped", "loading_measure", "stable_measure"]
 
 def loading_measure(case, p: Loading, name: str, tol: float, eq: str) -> Measure:
+    """The :class:`Measure` of the stretch ``name`` of the rows ``p`` against the closed form
+    named by ``eq`` with tolerance ``tol``; a failing measure carries the diagnosis of
+    :func:`diagnose_loading`."""
     ref, err = lam1_errors(p)
 
     def details(i):
@@ -142,6 +145,8 @@ def _stability_rows(case, tables, p: Loading):
 
 
 def check_loading(case, tables, tol) -> CaseCheck:
+    """The equibiaxial and uni-axial free cases: ``lam1`` against Eq. (loading_gent) or
+    Eq. (DEuniax), ``stable`` against the Hessian criterion at each row."""
     kind = CHECK_CASES[case][0]
     p, notes = _loading_rows(case, tables, kind)
     if p is None:
@@ -166,6 +171,9 @@ def check_loading(case, tables, tol) -> CaseCheck:
 
 
 def check_clamped(case, tables, tol) -> CaseCheck:
+    """The clamped case: ``lam1`` of the clamped plate against the homogeneous curve,
+    Eq. (DEuniax), and the buckling charges ``D0_b`` (every row, the worst counts) against
+    the clamped-plate onsets."""
     p, notes = _loading_rows(case, tables, "clamped")
     measures, points = [], {"kind": "clamped"}
     if p is not None:

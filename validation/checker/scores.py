@@ -77,10 +77,13 @@ class Measure:
 
 
 def rows_text(n: int) -> str:
+    """``"1 row"`` or ``"n rows"``."""
     return f"{n} row" if n == 1 else f"{n} rows"
 
 
 def fmt_g(x: float) -> str:
+    """``x`` in the two-digit scientific form of the report (``inf`` for a non-finite
+    value)."""
     return "inf" if not math.isfinite(x) else format(x, ".2e")
 
 
@@ -148,6 +151,8 @@ class CaseCheck:
 
 
 def measures_table(cases) -> str:
+    """A Markdown table of every measure of ``cases``: rows, error, tolerance, worst row and
+    verdict."""
     lines = ["| case | measure | rows | error | tolerance | worst row | verdict |",
              "| --- | --- | --- | --- | --- | --- | --- |"]
     for c in cases:
@@ -224,4 +229,5 @@ class CheckResult:
 
 
 def file_names(tables) -> tuple:
+    """The names of the files that ``tables`` were read from, each once, in reading order."""
     return tuple(dict.fromkeys(rs[0].file for _, rs in tables))
