@@ -11,6 +11,7 @@ from validation.studies.edge_counts import (CLASS_COLUMNS, COLUMNS, main, read_e
                                             run_edge_counts)
 
 
+@pytest.mark.slow
 def test_the_counts_equal_the_units_full_scan():
     """alpha = 1, 10 x 1 x 24 graded 0.1: the unit's scan (every negative mode computed and
     classified) counted 38 negative modes at D0 = 2.5 and 100 at D0 = 3 (its

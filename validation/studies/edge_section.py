@@ -1,0 +1,224 @@
+"""The clamp edge resolved: the (X1, X2) section next to the clamp against waves along X3.
+
+For a weight fraction ``alpha`` and a charge ``D0`` the clamped plate (eighth model,
+neo-Hookean, ``g = 9.81``, graded along ``x1``) is ramped to ``D0`` on a 3D mesh; the
+section ``[50 - length, 50] x [-H/2, H/2]`` at the plate's centre plane then solves its own
+base state with elements of side ``h0`` at the two clamp edges, graded away from them
+(:func:`~skfem_dielectric.models.edge_base.solve_section_base`, the 3D state on the cut
+and on the clamp, ``F_33`` from it), and counts the negative eigenvalues of its energy
+against ``cos kX3`` / ``sin kX3`` waves for each ``k`` of ``--k``
+(:class:`~skfem_dielectric.models.edge_section.EdgeSection`).  A physical edge instability
+is a band of ``k`` with negative modes whose edges converge as ``h0`` is halved; an
+artefact of the discretisation is not.
+
+A row per ``(state, h0, k)``:
+
+* ``alpha``, ``mesh``, ``grading``, ``grad_div`` (units of ``mu``), ``D0``: the 3D state;
+  ``length``, ``h0``: the section and its edge elements (mm, ``H = 1``); ``k``: the
+  wavenumber per reference length along ``X3`` (``2 pi / k`` is the reference wavelength);
+* ``section_dofs``; ``n_negative``: the negative modes at ``k``;
+* ``base_iterations``; ``J_min``, ``J_max``: ``det F`` of the section's base state at its
+  quadrature points (1 in the continuum); ``F11_section``, ``F11_3d``: ``F11`` at
+  ``(50 - length / 2, 0)`` in the section and in the 3D state (the two agree where both
+  resolve);
+* ``count_cpu_s`` (this ``k``), ``base_cpu_s`` (the section's base state), ``state_cpu_s``
+  (the 3D ramp), ``peak_GB``, ``date``, ``command``.
+
+Rows go to a CSV (default ``validation/data/edge_section.csv``), written atomically as each
+section mesh is done; a key already there is skipped, so a run resumes.
+
+Usage::
+
+    python -m validation.studies.edge_section --alpha 1 --D0 3.25 --mesh 40x1x36 \\
+        --grading 0.1 --h0 0.04 0.02 0.01 --solver pardiso
+"""
+
+from __future__ import annotations
+
+import argparse
+import datetime
+import math
+import resource
+import shlex
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+
+from skfem_dielectric.fem import blas_thread_limit
+from skfem_dielectric.models.edge_base import solve_section_base
+from skfem_dielectric.models.edge_section import (EdgeSection, edge_section_grids,
+                                                  plate_fields)
+
+from ..buckling_data import read_data_csv
+from ..fe.model import BUCKLING_GRAD_DIV
+from .clamp_units import append_rows, mesh_text, parse_mesh, ramp_to_charge, unit_problem
+
+__all__ = ["COLUMNS", "DEFAULT_CSV", "DEFAULT_K", "run_edge_section", "read_edge_section",
+           "main"]
+
+DEFAULT_CSV = Path(__file__).resolve().parents[1] / "data" / "edge_section.csv"
+#: from the plate's width (k = 2 pi / 50) to far past the 3D meshes' cut-off
+DEFAULT_K = tuple(float(f"{k:.4g}") for k in np.geomspace(2 * math.pi / 50, 200.0, 25))
+COLUMNS = ("alpha", "mesh", "grading", "grad_div", "D0", "length", "h0", "k",
+           "section_dofs", "n_negative", "base_iterations", "J_min", "J_max",
+           "F11_section", "F11_3d", "count_cpu_s", "base_cpu_s", "state_cpu_s", "peak_GB",
+           "date", "command")
+#: the edge elements (mm) of the coarser sections that lead to the finest base state
+SEQUENCE = (0.12, 0.08)
+_KEY = ("alpha", "mesh", "grading", "grad_div", "D0", "length", "h0", "k")
+_HEADER = """\
+# Negative modes of the clamp-edge section against waves cos/sin(k X3), one row per k.
+# Written by validation.studies.edge_section (the module docstring defines every column):
+# eighth-model plate, neo-Hookean, g = 9.81; section at the centre plane, base state solved
+# on the section's own mesh (edge elements h0, mm, H = 1).
+"""
+
+
+def _key(r: dict) -> tuple:
+    return tuple(f"{float(r[c]):.10g}" if c != "mesh" else str(r[c]) for c in _KEY)
+
+
+def run_edge_section(alpha: float, elements, D0: float, h0s, ks=DEFAULT_K, *,
+                     grading: float = 1.0, grad_div: float = BUCKLING_GRAD_DIV,
+                     length: float = 5.0, solver: str = "auto", done=frozenset(),
+                     on_rows=None, progress=None) -> list[dict]:
+    """The rows of :data:`COLUMNS` for one 3D state and every ``h0`` x ``k``.
+
+    Parameters
+    ----------
+    alpha, elements, grading, grad_div
+        The plate (:func:`~validation.studies.clamp_units.unit_problem`).
+    D0
+        The charge of the state (positive).
+    h0s, ks
+        Edge element sizes of the section (mm, positive) and wavenumbers (positive).
+    length
+        The section's length along ``X1`` (mm).
+    solver
+        Linear solver of the 3D ramp.
+    done
+        Keys (:data:`COLUMNS` up to ``k``, as written) not to compute again.
+    on_rows, progress
+        Optional ``on_rows(rows)`` after each ``h0`` (the caller writes them) and
+        ``progress(text)``.
+
+    Raises
+    ------
+    ValueError
+        A non-positive ``D0``, ``h0``, ``k`` or ``length``; the ramp stopping before
+        ``D0``; the section's base state not converging.
+    """
+    for name, vals in (("D0", [D0]), ("h0", h0s), ("k", ks), ("length", [length])):
+        for v in vals:
+            if not (math.isfinite(float(v)) and float(v) > 0):
+                raise ValueError(f"{name} must be positive and finite, got {v!r}")
+    el = tuple(int(n) for n in elements)
+    base_row = {"alpha": alpha, "mesh": mesh_text(el), "grading": grading,
+                "grad_div": grad_div, "D0": float(D0), "length": length}
+    todo = [(h, k) for h in h0s for k in ks
+            if _key({**base_row, "h0": h, "k": k}) not in done]
+    if not todo:
+        return []
+    t0 = time.process_time()
+    pb, s = unit_problem(alpha, el, grading=grading, grad_div=grad_div)
+    with blas_thread_limit(1):
+        x, load = ramp_to_charge(pb, s, D0, solver=solver,
+                                 name=f"alpha = {alpha:g} {mesh_text(el)}")
+    fields = plate_fields(pb, pb.full(x, load))
+    state_cpu = time.process_time() - t0
+    mid = (np.array([50.0 - length / 2]), np.array([0.0]))
+    F11_3d = float(fields(*mid)["F"][0, 0, 0])
+    rows, guess = [], None
+    # the section's base states from coarse to fine, each from the one before
+    for h0 in sorted({*h0s, *[h for h in SEQUENCE if h > max(h0s)]}, reverse=True):
+        ks_h = [k for (h, k) in todo if h == h0]
+        t1 = time.process_time()
+        g1, g2 = edge_section_grids(50.0, length, 1.0, h0)
+        sb = solve_section_base(g1, g2, pb.material, fields, D0, guess=guess,
+                                grad_div=pb.grad_div)
+        guess = sb.fields
+        if not ks_h:
+            continue
+        sec = EdgeSection(g1, g2, pb.material, sb.base, grad_div=pb.grad_div)
+        base_cpu = time.process_time() - t1
+        F11_sec = float(sb.fields(*mid)["F"][0, 0, 0])
+        out = []
+        for k in ks_h:
+            t2 = time.process_time()
+            n = sec.count(k)
+            out.append({**base_row, "h0": h0, "k": k, "section_dofs": int(sec.free.sum()),
+                        "n_negative": n, "base_iterations": sb.iterations,
+                        "J_min": round(float(sec.base_J.min()), 4),
+                        "J_max": round(float(sec.base_J.max()), 4),
+                        "F11_section": round(F11_sec, 5), "F11_3d": round(F11_3d, 5),
+                        "count_cpu_s": round(time.process_time() - t2, 2),
+                        "base_cpu_s": round(base_cpu, 1), "state_cpu_s": round(state_cpu, 1),
+                        "peak_GB": round(resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
+                                         / 1024**2, 3),
+                        "date": datetime.date.today().isoformat()})
+        if progress is not None:
+            neg = [f"{r['k']:g}:{r['n_negative']}" for r in out if r["n_negative"]]
+            progress(f"h0 = {h0:g}: {out[0]['section_dofs']} unknowns, base in "
+                     f"{sb.iterations} steps, negative at k = {' '.join(neg) or 'none'}")
+        rows += out
+        if on_rows is not None:
+            on_rows(out)
+    return rows
+
+
+def read_edge_section(path: Path | None = None) -> list[dict]:
+    """The rows of the study's CSV (default: the package's), as dicts of strings."""
+    return read_data_csv(path, "data/edge_section.csv")
+
+
+def main(argv: list[str] | None = None) -> int:
+    """Run the states ``--alpha`` x ``--D0`` on ``--mesh`` not yet in ``--csv``.
+
+    Returns
+    -------
+    int
+        0; 1 with one line where a ramp or a base state fails or ``--csv`` is another
+        table; bad arguments exit with argparse's one line and code 2.
+    """
+    ap = argparse.ArgumentParser(prog="python -m validation.studies.edge_section",
+                                 description=__doc__.splitlines()[0])
+    ap.add_argument("--alpha", type=float, nargs="+", required=True)
+    ap.add_argument("--D0", type=float, nargs="+", required=True)
+    ap.add_argument("--mesh", type=parse_mesh, default=(40, 1, 36))
+    ap.add_argument("--grading", type=float, default=0.1)
+    ap.add_argument("--grad-div", dest="grad_div", type=float, default=BUCKLING_GRAD_DIV)
+    ap.add_argument("--h0", type=float, nargs="+", default=[0.04, 0.02, 0.01])
+    ap.add_argument("--k", type=float, nargs="+", default=list(DEFAULT_K))
+    ap.add_argument("--length", type=float, default=5.0)
+    ap.add_argument("--solver", default="auto", choices=["auto", "superlu", "pardiso"])
+    ap.add_argument("--csv", type=Path, default=DEFAULT_CSV)
+    a = ap.parse_args(argv)
+    if a.csv.exists() and (not a.csv.is_file() or (
+            read_edge_section(a.csv) and set(read_edge_section(a.csv)[0]) != set(COLUMNS))):
+        print(f"error: --csv {a.csv} is not this study's table", file=sys.stderr)
+        return 1
+    command = "python -m validation.studies.edge_section " + " ".join(
+        shlex.quote(v) for v in (argv if argv is not None else sys.argv[1:]))
+
+    def write(rows):
+        append_rows(a.csv, [{**r, "command": command} for r in rows], COLUMNS, _HEADER)
+
+    for alpha in a.alpha:
+        for D0 in a.D0:
+            done = {_key(r) for r in (read_edge_section(a.csv) if a.csv.exists() else [])}
+            print(f"alpha = {alpha:g}, D0 = {D0:g}, {mesh_text(a.mesh)}", flush=True)
+            try:
+                run_edge_section(alpha, a.mesh, D0, a.h0, a.k, grading=a.grading,
+                                 grad_div=a.grad_div, length=a.length, solver=a.solver,
+                                 done=done, on_rows=write,
+                                 progress=lambda t: print("  " + t, flush=True))
+            except ValueError as exc:
+                print(f"error: {exc}", file=sys.stderr)
+                return 1
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
