@@ -54,9 +54,9 @@ BaseState = Callable[[np.ndarray, np.ndarray], tuple]
 
 
 def graded_spacing(length: float, h0: float, growth: float, hmax: float) -> np.ndarray:
-    """Node offsets ``0 = t_0 < t_1 < ... < t_n = length`` whose first interval is
-    ``h0`` and each next one ``growth`` times the previous, at most ``hmax`` (the last
-    intervals made equal so that the offsets end at ``length``).
+    """Increasing node offsets from 0 to ``length`` whose first interval is ``h0`` and
+    each next one ``growth`` times the previous, at most ``hmax`` (a short last interval
+    folded into the one before, so that the offsets end at ``length``).
 
     Raises
     ------
