@@ -39,7 +39,7 @@ from skfem import Basis, ElementQuad1, ElementQuad2, FacetBasis, LinearForm, Mes
 
 from ..materials import ideal_dielectric_response
 
-__all__ = ["SectionBase", "solve_section_base"]
+__all__ = ["SectionBase", "solve_section_base", "pointwise_tangent"]
 
 #: in-plane entries of ``F`` (row-major ``3 i + J``), of ``Grad phi``, and ``p`` in the
 #: 13 unknowns ``(F, Grad phi, p)`` of the pointwise tangent
@@ -136,8 +136,11 @@ class SectionBase:
         return f["F"], f["G"], f["p"]
 
 
-def _tangent_13(r, npt: int) -> np.ndarray:
-    """The 13 x 13 second derivatives of ``psi`` in ``(F, Grad phi, p)`` at each point."""
+def pointwise_tangent(r, npt: int) -> np.ndarray:
+    """The 13 x 13 second derivatives of ``psi`` in ``(F, Grad phi, p)`` at each of the
+    ``npt`` points of a response ``r`` of
+    :func:`~skfem_dielectric.materials.ideal_dielectric_response`, shape ``(npt, 13, 13)``
+    (``F`` row-major, ``3 i + J``, then ``Grad phi``, then ``p``)."""
     T = np.zeros((npt, 13, 13))
     T[:, :9, :9] = np.moveaxis(r.A_FF.reshape(9, 9, npt), -1, 0)
     T[:, :9, 9:12] = np.moveaxis(r.A_FG.reshape(9, 3, npt), -1, 0)
@@ -258,7 +261,7 @@ def solve_section_base(g1, g2, material, fields: Callable, D0: float, *,
         s = (s[:, idx] * w[:, None]).reshape(ne, nq, 7)
         R = np.bincount(edofs.ravel(), np.einsum("eqia,eqi->ea", B, s).ravel(),
                         minlength=ndofs) + face
-        T = (_tangent_13(r, npt)[:, idx][:, :, idx] * w[:, None, None]).reshape(ne, nq, 7, 7)
+        T = (pointwise_tangent(r, npt)[:, idx][:, :, idx] * w[:, None, None]).reshape(ne, nq, 7, 7)
         Ke = np.einsum("eqia,eqij,eqjb->eab", B, T, B, optimize=True)
         K = sp.coo_matrix((Ke.ravel(), (rows, cols)), shape=(ndofs, ndofs)).tocsr()
         return R, K

@@ -42,6 +42,7 @@ from skfem import Basis, ElementQuad1, ElementQuad2, MeshQuad
 from ..checks import check_positive
 from ..linalg.inertia import counted_inertia
 from ..materials import ideal_dielectric_response
+from .edge_base import pointwise_tangent
 from .plate import evaluate_fields
 
 __all__ = ["EdgeSection", "edge_section_grids", "graded_spacing", "homogeneous_base",
@@ -259,14 +260,7 @@ class EdgeSection:
         r = ideal_dielectric_response(self.material, F, G, p,
                                       grad_div=self.grad_div * self.material.mu)
         npt = ne * nq
-        T = np.zeros((npt, 13, 13))
-        T[:, :9, :9] = np.moveaxis(r.A_FF.reshape(9, 9, npt), -1, 0)
-        T[:, :9, 9:12] = np.moveaxis(r.A_FG.reshape(9, 3, npt), -1, 0)
-        T[:, 9:12, :9] = np.swapaxes(T[:, :9, 9:12], 1, 2)
-        T[:, 9:12, 9:12] = np.moveaxis(r.A_GG.reshape(3, 3, npt), -1, 0)
-        T[:, :9, 12] = np.moveaxis(r.A_Fp.reshape(9, npt), -1, 0)
-        T[:, 12, :9] = T[:, :9, 12]
-        T[:, 12, 12] = r.A_pp
+        T = pointwise_tangent(r, npt)
         T *= b2.dx.reshape(npt)[:, None, None]
         N2 = np.stack([np.asarray(f[0]) for f in b2.basis], axis=-1)          # (e,q,9)
         dN2 = np.stack([np.asarray(f[0].grad) for f in b2.basis], axis=-1)          # (2,e,q,9)
