@@ -174,3 +174,26 @@ def test_the_section_base_keeps_a_homogeneous_state_and_newton_returns_to_it():
     assert np.allclose(got["F"][0, 0], lam1, atol=1e-8)
     assert np.allclose(got["F"][1, 1], 1 / (lam1 * lam3), atol=1e-8)
     assert np.allclose(got["G"][1], fields(X1, X2)["G"][1], atol=1e-8)
+
+
+def test_continuation_reaches_the_homogeneous_end_state():
+    """Along a path of homogeneous states (lam1 1.1 -> 1.5, D0 0 -> 2; the first one's
+    fields carry the charge 0.5, not its D0 = 0, so its section state is not homogeneous
+    and no guess on the way is exact) the continued base state ends on the last one:
+    F11, F22 and Grad phi within 1e-8; a path of one state is the direct solve."""
+    from skfem_dielectric.models.edge_base import continue_section_base
+    lam3 = 1.2
+    path = [(D0, _homogeneous_fields(lam1, lam3, Df))
+            for lam1, D0, Df in ((1.1, 0.0, 0.5), (1.3, 1.0, 1.0), (1.5, 2.0, 2.0))]
+    g1, g2 = edge_section_grids(h0=0.1)
+    seen = []
+    sb = continue_section_base(g1, g2, MAT, path, grad_div=10.0, progress=seen.append)
+    assert len(seen) == 2 and sb.iterations >= 2
+    X1, X2 = np.array([45.5, 47.0, 49.95]), np.array([0.1, -0.3, 0.45])
+    got = sb.fields(X1, X2)
+    assert np.allclose(got["F"][0, 0], 1.5, atol=1e-8)
+    assert np.allclose(got["F"][1, 1], 1 / (1.5 * lam3), atol=1e-8)
+    assert np.allclose(got["G"][1], path[-1][1](X1, X2)["G"][1], atol=1e-8)
+    assert continue_section_base(g1, g2, MAT, path[-1:], grad_div=10.0).iterations == 0
+    with pytest.raises(ValueError, match="path"):
+        continue_section_base(g1, g2, MAT, [], grad_div=10.0)

@@ -20,7 +20,8 @@ where the plate is symmetric in ``X3`` (``F_13 = F_31 = F_23 = F_32 = 0``,
 
 Equilibrium is the stationarity of ``int psi dA + sigma (int_top phi - int_bottom phi)``
 in ``(u1, u2, phi, p)``, reached by Newton's method with backtracking from the 3D solution
-or, on a fine section, from the solution on a coarser one.  The
+(:func:`solve_section_base`) or, where that is too far from the section's equilibrium at
+the edge, by continuation along the 3D ramp's states (:func:`continue_section_base`).  The
 terms ``d P_i3 / d X3`` of the 3D equilibrium are left out (the plate's state varies along
 ``X3`` on the scale of its width), so away from the edge the section's state equals the 3D
 one to within that and the 3D discretisation error.
@@ -39,7 +40,7 @@ from skfem import Basis, ElementQuad1, ElementQuad2, FacetBasis, LinearForm, Mes
 
 from ..materials import ideal_dielectric_response
 
-__all__ = ["SectionBase", "solve_section_base", "pointwise_tangent"]
+__all__ = ["SectionBase", "solve_section_base", "continue_section_base", "pointwise_tangent"]
 
 #: in-plane entries of ``F`` (row-major ``3 i + J``), of ``Grad phi``, and ``p`` in the
 #: 13 unknowns ``(F, Grad phi, p)`` of the pointwise tangent
@@ -293,3 +294,90 @@ def solve_section_base(g1, g2, material, fields: Callable, D0: float, *,
             return SectionBase(b2, b1, lam3, x, it, rel)
     raise ValueError(f"the section's base state did not converge in max_iter = {max_iter} "
                      f"Newton steps (relative residual {rel:.2e})")
+
+
+def _blend(fa: Callable, fb: Callable, t: float) -> Callable:
+    """The fields ``(1 - t) fa + t fb`` (``u``, ``phi``, ``p``, ``F``)."""
+    def fields(X1, X2):
+        a, b = fa(X1, X2), fb(X1, X2)
+        return {name: (1.0 - t) * a[name] + t * b[name] for name in ("u", "phi", "p", "F")}
+    return fields
+
+
+def _shifted(sb: SectionBase, old: Callable, new: Callable) -> Callable:
+    """The guess ``sb + (new - old)``: the section's solution moved by the change of the
+    3D state, so that the boundary data move with it."""
+    def guess(X1, X2):
+        f, a, b = sb.fields(X1, X2), old(X1, X2), new(X1, X2)
+        return {"u": f["u"] + (b["u"][:2] - a["u"][:2]),
+                "phi": f["phi"] + (b["phi"] - a["phi"]),
+                "p": f["p"] + (b["p"] - a["p"])}
+    return guess
+
+
+def continue_section_base(g1, g2, material, path, *, grad_div: float = 0.0,
+                          tol: float = 1e-10, max_iter: int = 40, max_halvings: int = 6,
+                          progress: Callable | None = None) -> SectionBase:
+    """Solve the section's base state along a path of 3D states, by continuation in the
+    charge.
+
+    The first state is solved from its own 3D fields (:func:`solve_section_base`); each
+    next one from the last solution moved by the change of the 3D state, ``guess = x + (f_new
+    - f_old)`` (so the clamp's and the cut's data move with it).  Between two states of the
+    path the 3D fields and ``D0`` are interpolated linearly, and a step that does not
+    converge is halved, at most ``max_halvings`` times.
+
+    Parameters
+    ----------
+    g1, g2, material, grad_div, tol, max_iter
+        As for :func:`solve_section_base`.
+    path
+        ``[(D0, fields), ...]`` in the order to follow (e.g. the 3D ramp's converged
+        states, :func:`~skfem_dielectric.models.edge_section.plate_fields` of each); the
+        result is the last one's base state.
+    max_halvings
+        The smallest step is ``2 ** -max_halvings`` of an interval of the path.
+    progress
+        Optional ``progress(text)`` after each state of the path.
+
+    Returns
+    -------
+    SectionBase
+        The base state at the path's last state; its ``iterations`` are the Newton steps
+        of the whole path.
+
+    Raises
+    ------
+    ValueError
+        An empty path, or a step of the smallest size that does not converge (the message
+        names the charge).
+    """
+    path = list(path)
+    if not path:
+        raise ValueError("path must hold at least one (D0, fields) state, got none")
+    D0, f0 = path[0]
+    sb = solve_section_base(g1, g2, material, f0, D0, grad_div=grad_div, tol=tol,
+                            max_iter=max_iter)
+    total = sb.iterations
+    for (Da, fa), (Db, fb) in zip(path[:-1], path[1:]):
+        t, dt = 0.0, 1.0
+        while t < 1.0:
+            t1 = min(1.0, t + dt)
+            old, new = _blend(fa, fb, t), _blend(fa, fb, t1)
+            try:
+                sb = solve_section_base(g1, g2, material, new, (1 - t1) * Da + t1 * Db,
+                                        guess=_shifted(sb, old, new), grad_div=grad_div,
+                                        tol=tol, max_iter=max_iter)
+            except ValueError:
+                if dt <= 2.0 ** -max_halvings:
+                    raise ValueError(f"the section's base state did not converge at D0 = "
+                                     f"{(1 - t1) * Da + t1 * Db:.6g} with the smallest step "
+                                     f"(max_halvings = {max_halvings})") from None
+                dt /= 2
+                continue
+            total += sb.iterations
+            t = t1
+        if progress is not None:
+            progress(f"D0 = {Db:g}: {total} Newton steps so far")
+    sb.iterations = total
+    return sb

@@ -72,8 +72,8 @@ from .local_theory import energy_centroid, half_waves, local_state
 
 __all__ = ["COLUMNS", "DEFAULT_CSV", "MIN_ELEMENTS_PER_HALF_WAVE", "UNIT_SETTINGS",
            "run_unit", "read_units", "clamp_unit_load", "mesh_text", "parse_mesh",
-           "append_row", "append_rows", "unit_problem", "ramp_to_charge", "clamp_centre_J",
-           "main"]
+           "append_row", "append_rows", "unit_problem", "ramp_states", "ramp_to_charge",
+           "clamp_centre_J", "main"]
 
 #: where the study's rows are kept (provenance in its header lines)
 DEFAULT_CSV = Path(__file__).resolve().parents[1] / "data" / "clamp_units.csv"
@@ -110,10 +110,11 @@ def unit_problem(alpha: float, elements, *, grading: float = 1.0,
     return pb, fe.gallery.keplinger_s(alpha, g=9.81)
 
 
-def ramp_to_charge(problem, s: float, D0: float, *, solver: str = "auto", name: str = ""):
-    """The converged state ``(x, load)`` at charge ``D0`` of a unit's plate: the dead load
-    ``s`` in the Keplinger pre-load steps, then the charge in steps of 0.5 and ``D0``
-    (:data:`UNIT_SETTINGS`).
+def ramp_states(problem, s: float, D0: float, *, solver: str = "auto",
+                name: str = "") -> list[tuple[float, np.ndarray, np.ndarray]]:
+    """The converged states ``(D0_i, x, load)`` of a unit's ramp to the charge ``D0``: the
+    dead load ``s`` in the Keplinger pre-load steps (its end is ``D0_i = 0``), then the
+    charge in steps of 0.5 and ``D0`` (:data:`UNIT_SETTINGS`), in the ramp's order.
 
     Raises
     ------
@@ -122,11 +123,11 @@ def ramp_to_charge(problem, s: float, D0: float, *, solver: str = "auto", name: 
     """
     D0 = float(D0)
     targets = [d for d in np.round(np.arange(0.5, D0, 0.5), 10) if d < D0 - 1e-9] + [D0]
-    last = {}
+    states = {}
 
     def on_step(step):
         if step.target_reached and step.load[0] == s:
-            last["x"], last["load"] = step.x, step.load
+            states[float(step.load[1])] = (float(step.load[1]), step.x, step.load)
 
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", RuntimeWarning)
@@ -134,10 +135,23 @@ def ramp_to_charge(problem, s: float, D0: float, *, solver: str = "auto", name: 
             problem, fe.gallery.preload_then_charge(s, np.asarray(targets),
                                                     fe.gallery.KEPLINGER_PRELOAD_STEPS),
             on_step=on_step, linear_solver=solver, settings=UNIT_SETTINGS)
-    if not res.converged or not last or float(last["load"][1]) != D0:
+    if not res.converged or D0 not in states:
         raise ValueError(f"the ramp{' of ' + name if name else ''} stopped before "
                          f"D0 = {D0:g}")
-    return last["x"], last["load"]
+    return [states[d] for d in sorted(states)]
+
+
+def ramp_to_charge(problem, s: float, D0: float, *, solver: str = "auto", name: str = ""):
+    """The converged state ``(x, load)`` at charge ``D0`` of a unit's plate: the last of
+    :func:`ramp_states`.
+
+    Raises
+    ------
+    ValueError
+        The ramp stops before ``D0`` (the message names the ramp as ``name``).
+    """
+    _, x, load = ramp_states(problem, s, D0, solver=solver, name=name)[-1]
+    return x, load
 
 
 def mesh_text(elements) -> str:

@@ -4,8 +4,9 @@ For a weight fraction ``alpha`` and a charge ``D0`` the clamped plate (eighth mo
 neo-Hookean, ``g = 9.81``, graded along ``x1``) is ramped to ``D0`` on a 3D mesh; the
 section ``[50 - length, 50] x [-H/2, H/2]`` at the plate's centre plane then solves its own
 base state with elements of side ``h0`` at the two clamp edges, graded away from them
-(:func:`~skfem_dielectric.models.edge_base.solve_section_base`, the 3D state on the cut
-and on the clamp, ``F_33`` from it), and counts the negative eigenvalues of its energy
+(the 3D state on the cut and on the clamp, ``F_33`` from it), by continuation along the 3D
+ramp's converged states ``D0 = 0, 0.5, 1, ...``
+(:func:`~skfem_dielectric.models.edge_base.continue_section_base`), and counts the negative eigenvalues of its energy
 against ``cos kX3`` / ``sin kX3`` waves for each ``k`` of ``--k``
 (:class:`~skfem_dielectric.models.edge_section.EdgeSection`).  A physical edge instability
 is a band of ``k`` with negative modes whose edges converge as ``h0`` is halved; an
@@ -17,7 +18,7 @@ A row per ``(state, h0, k)``:
   ``length``, ``h0``: the section and its edge elements (mm, ``H = 1``); ``k``: the
   wavenumber per reference length along ``X3`` (``2 pi / k`` is the reference wavelength);
 * ``section_dofs``; ``n_negative``: the negative modes at ``k``;
-* ``base_iterations``; ``J_min``, ``J_max``: ``det F`` of the section's base state at its
+* ``base_iterations`` (Newton steps of the whole continuation); ``J_min``, ``J_max``: ``det F`` of the section's base state at its
   quadrature points (1 in the continuum); ``F11_section``, ``F11_3d``: ``F11`` at
   ``(50 - length / 2, 0)`` in the section and in the 3D state (the two agree where both
   resolve);
@@ -47,13 +48,13 @@ from pathlib import Path
 import numpy as np
 
 from skfem_dielectric.fem import blas_thread_limit
-from skfem_dielectric.models.edge_base import solve_section_base
+from skfem_dielectric.models.edge_base import continue_section_base
 from skfem_dielectric.models.edge_section import (EdgeSection, edge_section_grids,
                                                   plate_fields)
 
 from ..buckling_data import read_data_csv
 from ..fe.model import BUCKLING_GRAD_DIV
-from .clamp_units import append_rows, mesh_text, parse_mesh, ramp_to_charge, unit_problem
+from .clamp_units import append_rows, mesh_text, parse_mesh, ramp_states, unit_problem
 
 __all__ = ["COLUMNS", "DEFAULT_CSV", "DEFAULT_K", "run_edge_section", "read_edge_section",
            "main"]
@@ -65,8 +66,6 @@ COLUMNS = ("alpha", "mesh", "grading", "grad_div", "D0", "length", "h0", "k",
            "section_dofs", "n_negative", "base_iterations", "J_min", "J_max",
            "F11_section", "F11_3d", "count_cpu_s", "base_cpu_s", "state_cpu_s", "peak_GB",
            "date", "command")
-#: the edge elements (mm) of the coarser sections that lead to the finest base state
-SEQUENCE = (0.12, 0.08)
 _KEY = ("alpha", "mesh", "grading", "grad_div", "D0", "length", "h0", "k")
 _HEADER = """\
 # Negative modes of the clamp-edge section against waves cos/sin(k X3), one row per k.
@@ -124,23 +123,21 @@ def run_edge_section(alpha: float, elements, D0: float, h0s, ks=DEFAULT_K, *,
     t0 = time.process_time()
     pb, s = unit_problem(alpha, el, grading=grading, grad_div=grad_div)
     with blas_thread_limit(1):
-        x, load = ramp_to_charge(pb, s, D0, solver=solver,
-                                 name=f"alpha = {alpha:g} {mesh_text(el)}")
-    fields = plate_fields(pb, pb.full(x, load))
+        states = ramp_states(pb, s, D0, solver=solver,
+                             name=f"alpha = {alpha:g} {mesh_text(el)}")
+    path = [(d, plate_fields(pb, pb.full(x, load))) for d, x, load in states]
+    fields = path[-1][1]
     state_cpu = time.process_time() - t0
     mid = (np.array([50.0 - length / 2]), np.array([0.0]))
     F11_3d = float(fields(*mid)["F"][0, 0, 0])
-    rows, guess = [], None
-    # the section's base states from coarse to fine, each from the one before
-    for h0 in sorted({*h0s, *[h for h in SEQUENCE if h > max(h0s)]}, reverse=True):
+    rows = []
+    for h0 in sorted(set(h0s), reverse=True):
         ks_h = [k for (h, k) in todo if h == h0]
-        t1 = time.process_time()
-        g1, g2 = edge_section_grids(50.0, length, 1.0, h0)
-        sb = solve_section_base(g1, g2, pb.material, fields, D0, guess=guess,
-                                grad_div=pb.grad_div)
-        guess = sb.fields
         if not ks_h:
             continue
+        t1 = time.process_time()
+        g1, g2 = edge_section_grids(50.0, length, 1.0, h0)
+        sb = continue_section_base(g1, g2, pb.material, path, grad_div=pb.grad_div)
         sec = EdgeSection(g1, g2, pb.material, sb.base, grad_div=pb.grad_div)
         base_cpu = time.process_time() - t1
         F11_sec = float(sb.fields(*mid)["F"][0, 0, 0])
