@@ -15,11 +15,11 @@ from skfem_dielectric.models.edge_section import (EdgeSection, edge_section_grid
 MAT = make_material("neo-Hookean")
 
 
-def _first_negative(g1, g2, lam, k, lo, hi, steps=22):
+def _first_negative(g1, g2, lam, k, lo, hi, steps=22, grad_div=0.0):
     """The smallest ``D0`` in ``[lo, hi]`` with a negative eigenvalue at ``k`` (bisection)."""
     def count(D0):
         return EdgeSection(g1, g2, MAT, homogeneous_base(MAT, lam, lam, D0),
-                           fixed="normal").count(k)
+                           fixed="normal", grad_div=grad_div).count(k)
     assert count(lo) == 0 and count(hi) > 0
     for _ in range(steps):
         mid = 0.5 * (lo + hi)
@@ -38,6 +38,25 @@ def test_a_strip_wrinkles_at_the_stroh_charge(k):
     ref = float(critical_D0(lam, (k / lam) * (H / lam**2)))
     got = _first_negative(np.array([0.0, 0.25]), np.linspace(-H / 2, H / 2, 17), lam, k,
                           0.8 * ref, 1.2 * ref)
+    assert abs(got / ref - 1) < 5e-5, (got, ref)
+
+
+def test_without_grad_div_the_discrete_strip_fails_early_on_every_mesh():
+    """The Q2/Q1/Q2 strip with square elements and no grad-div term has element-scale
+    modes at the charged faces: at k = 6 it first loses stability 15 % below the exact
+    charge (4.1109), at a charge that does not move when the elements are halved
+    (measured 3.4854 for h = H/8, 3.4879 for H/16), so refinement alone would not expose
+    it.  The plate's grad-div weight (10 mu) removes it: the exact charge within 5e-5
+    (measured 2.6e-5 on H/16)."""
+    lam, k = 1.5, 6.0
+    ref = float(critical_D0(lam, (k / lam) / lam**2))
+    onset = {}
+    for n in (8, 16):
+        g1, g2 = np.linspace(0.0, 4.0 / n, 5), np.linspace(-0.5, 0.5, n + 1)
+        onset[n] = _first_negative(g1, g2, lam, k, 2.0, 1.2 * ref)
+        assert onset[n] < 0.86 * ref, (n, onset[n], ref)
+    assert abs(onset[16] - onset[8]) < 1e-2, onset
+    got = _first_negative(g1, g2, lam, k, 2.0, 1.2 * ref, grad_div=10.0)
     assert abs(got / ref - 1) < 5e-5, (got, ref)
 
 
@@ -197,3 +216,27 @@ def test_continuation_reaches_the_homogeneous_end_state():
     assert continue_section_base(g1, g2, MAT, path[-1:], grad_div=10.0).iterations == 0
     with pytest.raises(ValueError, match="path"):
         continue_section_base(g1, g2, MAT, [], grad_div=10.0)
+
+
+def test_band_onsets_and_the_figure(tmp_path):
+    """``band_onsets`` gives, per state and section mesh, the smallest k with a negative
+    mode (hand-made rows); the figure has a panel per state and a line per h0; the CLI
+    refuses a missing table with code 2."""
+    from validation.figures.edge_band import band_onsets, edge_band_figure, main
+
+    def row(alpha, D0, h0, k, n):
+        return {"alpha": alpha, "D0": D0, "mesh": "40x1x36", "grading": "0.1",
+                "grad_div": "10", "h0": h0, "k": k, "n_negative": n}
+    rows = [row("1", "3.25", h0, k, n) for h0, kn in
+            (("0.04", ((1, 0), (10, 2), (100, 4))), ("0.02", ((1, 0), (10, 0), (100, 2))))
+            for k, n in kn] + [row("1.5", "4.5", "0.04", k, 0) for k in (1, 10)]
+    got = band_onsets(rows)
+    assert got[(1.0, 3.25, "40x1x36", 0.1, 10.0)] == {0.04: (10.0, 2, 100.0),
+                                                      0.02: (100.0, 2, 100.0)}
+    assert got[(1.5, 4.5, "40x1x36", 0.1, 10.0)] == {0.04: (None, 0, 10.0)}
+    fig = edge_band_figure(rows)
+    visible = [ax for ax in fig.axes if ax.get_visible()]
+    assert len(visible) == 2 and [len(ax.lines) for ax in visible] == [2, 1]
+    with pytest.raises(SystemExit) as e:
+        main([str(tmp_path / "missing.csv"), "--out", str(tmp_path)])
+    assert e.value.code == 2

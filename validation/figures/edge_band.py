@@ -1,0 +1,148 @@
+"""The clamp edge in section: negative modes against the wavenumber along the clamp.
+
+One panel per 3D state (weight fraction ``alpha``, charge ``D0``) of
+:mod:`validation.studies.edge_section`: the number of negative modes of the section next to
+the clamp against ``k`` (``2 pi / k`` is the reference wavelength along ``X3``, mm), one line
+per section mesh (edge elements ``h0``).  A physical edge instability is a band of ``k``
+whose lower edge stays put as ``h0`` is halved; a band that recedes towards the largest
+``k`` with each halving follows the mesh, not the plate.
+
+Usage::
+
+    python -m validation.figures.edge_band [validation/data/edge_section.csv] [--out results]
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+from pathlib import Path
+
+import numpy as np
+
+from ..buckling_data import read_data_csv
+from .common import plt, save_figure
+
+__all__ = ["band_onsets", "edge_band_figure", "main"]
+
+
+def _state(r: dict) -> tuple:
+    return (float(r["alpha"]), float(r["D0"]), str(r["mesh"]), float(r["grading"]),
+            float(r["grad_div"]))
+
+
+def band_onsets(rows: list[dict]) -> dict:
+    """The band's lower edge per state and section mesh.
+
+    Parameters
+    ----------
+    rows : list of dict
+        Rows of :func:`~validation.studies.edge_section.read_edge_section`.
+
+    Returns
+    -------
+    dict
+        ``{(alpha, D0, mesh, grading, grad_div): {h0: (k_onset, n_at_onset, k_max)}}``:
+        the smallest ``k`` of the sweep with a negative mode (``None`` where there is
+        none, with ``n_at_onset = 0``), the count there, and the sweep's largest ``k``.
+    """
+    out: dict = {}
+    for r in rows:
+        out.setdefault(_state(r), {}).setdefault(float(r["h0"]), []).append(
+            (float(r["k"]), int(r["n_negative"])))
+    res: dict = {}
+    for state, by_h in out.items():
+        res[state] = {}
+        for h0, kn in by_h.items():
+            kn.sort()
+            neg = [(k, n) for k, n in kn if n > 0]
+            k0, n0 = neg[0] if neg else (None, 0)
+            res[state][h0] = (k0, n0, kn[-1][0])
+    return res
+
+
+def edge_band_figure(rows: list[dict]):
+    """One panel per state: negative modes against ``k``, a line per ``h0``.
+
+    Parameters
+    ----------
+    rows : list of dict
+        Rows of :func:`~validation.studies.edge_section.read_edge_section`.
+
+    Returns
+    -------
+    matplotlib Figure
+
+    Raises
+    ------
+    ValueError
+        No rows.
+    """
+    if not rows:
+        raise ValueError("rows must hold at least one row of the edge_section study, got none")
+    states = sorted({_state(r) for r in rows})
+    cols = min(len(states), 2)
+    nrow = -(-len(states) // cols)
+    fig, axes = plt.subplots(nrow, cols, figsize=(4.6 * cols, 2.6 * nrow + 0.6),
+                             layout="constrained", squeeze=False, sharex=True)
+    styles = ["-o", "--s", ":^", "-.v"]
+    for ax, state in zip(axes.flat, states):
+        mine = [r for r in rows if _state(r) == state]
+        h0s = sorted({float(r["h0"]) for r in mine}, reverse=True)
+        for i, h0 in enumerate(h0s):
+            kn = sorted((float(r["k"]), int(r["n_negative"])) for r in mine
+                        if float(r["h0"]) == h0)
+            k, n = np.array(kn).T
+            ax.plot(k, n, styles[i % len(styles)], ms=3.5, lw=1.1,
+                    label=rf"$h_0$ = {h0:g} mm")
+        alpha, D0, mesh, grading, gd = state
+        ax.set_xscale("log")
+        ax.set_title(rf"$\alpha = {alpha:g}$, $D_0 = {D0:g}$ (3D {mesh} g{grading:g})",
+                     fontsize=9)
+        ax.tick_params(labelsize=7)
+        ax.legend(fontsize=7, loc="upper left")
+        ax.set_ylim(bottom=-0.3)
+    for ax in list(axes.flat)[len(states):]:
+        ax.set_visible(False)
+    for ax in axes[-1]:
+        ax.set_xlabel(r"$k$ (1/mm): wave $\cos kX_3$ along the clamp", fontsize=8)
+    for ax in axes[:, 0]:
+        ax.set_ylabel("negative modes of the section", fontsize=8)
+    fig.suptitle("Clamp edge in section: negative modes against the wavenumber, "
+                 "three section meshes", fontsize=10)
+    return fig
+
+
+def main(argv: list[str] | None = None) -> int:
+    """Draw ``edge-band.png`` (and ``.pdf``) from the study's table.
+
+    Parameters
+    ----------
+    argv : list of str, optional
+        The CSV (default: the package's ``validation/data/edge_section.csv``) and ``--out``
+        (default ``results``).
+
+    Returns
+    -------
+    int
+        0; a missing or empty table exits with one line and code 2.
+    """
+    ap = argparse.ArgumentParser(prog="python -m validation.figures.edge_band",
+                                 description=__doc__.splitlines()[0])
+    ap.add_argument("csv", nargs="?", type=Path, default=None)
+    ap.add_argument("--out", type=Path, default=Path("results"))
+    a = ap.parse_args(argv)
+    if a.csv is not None and not a.csv.is_file():
+        ap.error(f"csv must be a file of the edge_section study, got {str(a.csv)!r}")
+    try:
+        fig = edge_band_figure(read_data_csv(a.csv, "data/edge_section.csv"))
+    except (ValueError, KeyError) as exc:
+        ap.error(f"csv {str(a.csv or 'edge_section.csv')!r}: {exc}")
+    a.out.mkdir(parents=True, exist_ok=True)
+    for p in save_figure(fig, a.out, "edge-band"):
+        print(p)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
