@@ -220,20 +220,21 @@ def test_continuation_reaches_the_homogeneous_end_state():
 
 def test_band_onsets_and_the_figure(tmp_path):
     """``band_onsets`` gives, per state and section mesh, the smallest k with a negative
-    mode (hand-made rows); the figure has a panel per state and a line per h0; the CLI
+    mode and whether the base inverted elements (hand-made rows); the figure has a panel per state and a line per h0; the CLI
     refuses a missing table with code 2."""
     from validation.figures.edge_band import band_onsets, edge_band_figure, main
 
     def row(alpha, D0, h0, k, n):
         return {"alpha": alpha, "D0": D0, "mesh": "40x1x36", "grading": "0.1",
-                "grad_div": "10", "h0": h0, "k": k, "n_negative": n}
+                "grad_div": "10", "h0": h0, "k": k, "n_negative": n,
+                "J_min": "-0.1" if alpha == "1.5" else "0.6"}
     rows = [row("1", "3.25", h0, k, n) for h0, kn in
             (("0.04", ((1, 0), (10, 2), (100, 4))), ("0.02", ((1, 0), (10, 0), (100, 2))))
             for k, n in kn] + [row("1.5", "4.5", "0.04", k, 0) for k in (1, 10)]
     got = band_onsets(rows)
-    assert got[(1.0, 3.25, "40x1x36", 0.1, 10.0)] == {0.04: (10.0, 2, 100.0),
-                                                      0.02: (100.0, 2, 100.0)}
-    assert got[(1.5, 4.5, "40x1x36", 0.1, 10.0)] == {0.04: (None, 0, 10.0)}
+    assert got[(1.0, 3.25, "40x1x36", 0.1, 10.0)] == {0.04: (10.0, 2, 100.0, False),
+                                                      0.02: (100.0, 2, 100.0, False)}
+    assert got[(1.5, 4.5, "40x1x36", 0.1, 10.0)] == {0.04: (None, 0, 10.0, True)}
     fig = edge_band_figure(rows)
     visible = [ax for ax in fig.axes if ax.get_visible()]
     assert len(visible) == 2 and [len(ax.lines) for ax in visible] == [2, 1]

@@ -5,7 +5,9 @@ One panel per 3D state (weight fraction ``alpha``, charge ``D0``) of
 the clamp against ``k`` (``2 pi / k`` is the reference wavelength along ``X3``, mm), one line
 per section mesh (edge elements ``h0``).  A physical edge instability is a band of ``k``
 whose lower edge stays put as ``h0`` is halved; a band that recedes towards the largest
-``k`` with each halving follows the mesh, not the plate.
+``k`` with each halving follows the mesh, not the plate.  A section whose base state has
+inverted elements (``J_min <= 0``) is no state of the plate: its line is drawn grey and
+dotted, and its counts decide nothing.
 
 Usage::
 
@@ -31,6 +33,10 @@ def _state(r: dict) -> tuple:
             float(r["grad_div"]))
 
 
+def _inverted(r: dict) -> bool:
+    return r.get("J_min") not in (None, "") and float(r["J_min"]) <= 0
+
+
 def band_onsets(rows: list[dict]) -> dict:
     """The band's lower edge per state and section mesh.
 
@@ -42,14 +48,19 @@ def band_onsets(rows: list[dict]) -> dict:
     Returns
     -------
     dict
-        ``{(alpha, D0, mesh, grading, grad_div): {h0: (k_onset, n_at_onset, k_max)}}``:
-        the smallest ``k`` of the sweep with a negative mode (``None`` where there is
-        none, with ``n_at_onset = 0``), the count there, and the sweep's largest ``k``.
+        ``{(alpha, D0, mesh, grading, grad_div): {h0: (k_onset, n_at_onset, k_max,
+        inverted)}}``: the smallest ``k`` of the sweep with a negative mode (``None`` where
+        there is none, with ``n_at_onset = 0``), the count there, the sweep's largest
+        ``k``, and whether the section's base state has inverted elements (``J_min <= 0``,
+        a row without ``J_min``: not inverted).
     """
     out: dict = {}
+    inverted = set()
     for r in rows:
         out.setdefault(_state(r), {}).setdefault(float(r["h0"]), []).append(
             (float(r["k"]), int(r["n_negative"])))
+        if _inverted(r):
+            inverted.add((_state(r), float(r["h0"])))
     res: dict = {}
     for state, by_h in out.items():
         res[state] = {}
@@ -57,7 +68,7 @@ def band_onsets(rows: list[dict]) -> dict:
             kn.sort()
             neg = [(k, n) for k, n in kn if n > 0]
             k0, n0 = neg[0] if neg else (None, 0)
-            res[state][h0] = (k0, n0, kn[-1][0])
+            res[state][h0] = (k0, n0, kn[-1][0], (state, h0) in inverted)
     return res
 
 
@@ -93,8 +104,12 @@ def edge_band_figure(rows: list[dict]):
             kn = sorted((float(r["k"]), int(r["n_negative"])) for r in mine
                         if float(r["h0"]) == h0)
             k, n = np.array(kn).T
-            ax.plot(k, n, styles[i % len(styles)], ms=3.5, lw=1.1,
-                    label=rf"$h_0$ = {h0:g} mm")
+            if any(_inverted(r) for r in mine if float(r["h0"]) == h0):
+                ax.plot(k, n, ":", color="0.6", lw=1.0,
+                        label=rf"$h_0$ = {h0:g} mm: base inverted ($J_{{min}} \leq 0$)")
+            else:
+                ax.plot(k, n, styles[i % len(styles)], ms=3.5, lw=1.1,
+                        label=rf"$h_0$ = {h0:g} mm")
         alpha, D0, mesh, grading, gd = state
         ax.set_xscale("log")
         ax.set_title(rf"$\alpha = {alpha:g}$, $D_0 = {D0:g}$ (3D {mesh} g{grading:g})",

@@ -21,7 +21,8 @@ A row per ``(state, h0, k)``:
 * ``base_iterations`` (Newton steps of the whole continuation); ``J_min``, ``J_max``: ``det F`` of the section's base state at its
   quadrature points (1 in the continuum); ``F11_section``, ``F11_3d``: ``F11`` at
   ``(50 - length / 2, 0)`` in the section and in the 3D state (the two agree where both
-  resolve);
+  resolve); ``J_min <= 0``: the discrete base state has inverted elements (at the singular
+  edge), is no state of the plate, and its counts decide nothing;
 * ``count_cpu_s`` (this ``k``), ``base_cpu_s`` (the section's base state), ``state_cpu_s``
   (the 3D ramp), ``peak_GB``, ``date``, ``command``.
 

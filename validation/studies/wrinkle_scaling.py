@@ -13,8 +13,10 @@ homogeneous state (whose only length is the thickness: ``lambda_w ∝ t``).  For
 with a converged clamp-zone load (:func:`validation.buckling_data.clamp_unit_load`) this
 module compares the measured wavelength -- the reference width over the half-wave pairs
 of the mode, ``2 W / n`` -- with both, on the homogeneous uni-axial state at ``D0_b``
-(Eq. (DEuniax): ``t = H lam2``, ``L = L0 lam1``, ``gamma = lam1 - 1``).  The scaling
-holds where ``lambda_w / ((t L)^{1/2} gamma^{-1/4})`` is the same for every weight.
+(Eq. (DEuniax): ``t = H lam2``, ``L = L0 lam1``, ``gamma = lam1 - 1``).  The data are
+consistent with the scaling where ``lambda_w / ((t L)^{1/2} gamma^{-1/4})`` is the same for
+every weight; a few weights with an integer half-wave count cannot fix its exponent (and
+``t L = H L0 / lam3`` hardly changes along these states).
 
 :func:`compressive_zone` gives the plane-stress compressive zone of the membrane model at
 ``D0_b`` (where the lateral stress ``S33/mu`` -- the paper's ``P33`` -- is negative).
