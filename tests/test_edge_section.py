@@ -222,8 +222,10 @@ def test_band_onsets_and_the_figure(tmp_path):
     """``band_onsets`` gives, per state and section mesh, the smallest k with a negative
     mode and whether the base inverted elements (hand-made rows); the figure has a panel per state and a line per h0; the CLI
     refuses a missing table with code 2."""
-    from validation.figures.edge_band import band_onsets, edge_band_figure, main
+    from validation.figures.edge_band import band_onsets, edge_band_figure, main, mesh_reach
 
+    # 36 elements over the half-width 25 mm, 4 per half-wave: k = pi / (4 * 25 / 36)
+    assert math.isclose(mesh_reach("40x1x36"), math.pi * 36 / 100, rel_tol=1e-12)
     def row(alpha, D0, h0, k, n):
         return {"alpha": alpha, "D0": D0, "mesh": "40x1x36", "grading": "0.1",
                 "grad_div": "10", "h0": h0, "k": k, "n_negative": n,

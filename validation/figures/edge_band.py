@@ -7,7 +7,9 @@ per section mesh (edge elements ``h0``).  A physical edge instability is a band 
 whose lower edge stays put as ``h0`` is halved; a band that recedes towards the largest
 ``k`` with each halving follows the mesh, not the plate.  A section whose base state has
 inverted elements (``J_min <= 0``) is no state of the plate: its line is drawn grey and
-dotted, and its counts decide nothing.
+dotted, and its counts decide nothing.  The shaded band is the reach of the 3D mesh
+across the width: the wavenumbers it holds with at least
+:data:`~validation.buckling_data.MIN_ELEMENTS_PER_HALF_WAVE` elements per half-wave.
 
 Usage::
 
@@ -22,15 +24,24 @@ from pathlib import Path
 
 import numpy as np
 
-from ..buckling_data import read_data_csv
+from ..buckling_data import MIN_ELEMENTS_PER_HALF_WAVE, read_data_csv
+from ..specs import KEPLINGER
 from .common import plt, save_figure
 
-__all__ = ["band_onsets", "edge_band_figure", "main"]
+__all__ = ["band_onsets", "mesh_reach", "edge_band_figure", "main"]
 
 
 def _state(r: dict) -> tuple:
     return (float(r["alpha"]), float(r["D0"]), str(r["mesh"]), float(r["grading"]),
             float(r["grad_div"]))
+
+
+def mesh_reach(mesh: str) -> float:
+    """The largest ``k`` (1/mm) a 3D eighth-model mesh ``n1xn2xn3`` holds with
+    :data:`~validation.buckling_data.MIN_ELEMENTS_PER_HALF_WAVE` elements per half-wave
+    across the half-width (``n3`` elements over ``W / 2``): ``pi / (m h3)``."""
+    h3 = 1e3 * KEPLINGER["width"] / 2 / int(mesh.split("x")[2])
+    return float(np.pi / (MIN_ELEMENTS_PER_HALF_WAVE * h3))
 
 
 def _inverted(r: dict) -> bool:
@@ -111,9 +122,11 @@ def edge_band_figure(rows: list[dict]):
                 ax.plot(k, n, styles[i % len(styles)], ms=3.5, lw=1.1,
                         label=rf"$h_0$ = {h0:g} mm")
         alpha, D0, mesh, grading, gd = state
+        ax.axvspan(min(float(r["k"]) for r in mine), mesh_reach(mesh), color="0.9", zorder=0,
+                   label=f"held by the 3D mesh {mesh}")
         ax.set_xscale("log")
-        ax.set_title(rf"$\alpha = {alpha:g}$, $D_0 = {D0:g}$ (3D {mesh} g{grading:g})",
-                     fontsize=9)
+        ax.set_title(rf"$\alpha = {alpha:g}$, $D_0 = {D0:g}$ (3D {mesh} g{grading:g}, "
+                     rf"grad-div {gd:g}$\mu$)", fontsize=9)
         ax.tick_params(labelsize=7)
         ax.legend(fontsize=7, loc="upper left")
         ax.set_ylim(bottom=-0.3)
