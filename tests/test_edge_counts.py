@@ -55,3 +55,14 @@ def test_another_tables_csv_is_refused(tmp_path, capsys):
     assert main(["--alpha", "1", "--mesh", "2x1x2", "--D0", "1", "--csv", str(other)]) == 1
     assert "is not this study's table" in capsys.readouterr().err
     assert other.read_text() == "alpha,mesh\n1,2x1x2\n"
+
+
+def test_the_second_pressure_space_counts_one_pressure_per_element():
+    """With ``pressure="P0"`` the plate has one pressure unknown per element instead of one
+    per vertex: 4 x 1 x 6 has 24 elements and 5 * 2 * 7 = 70 vertices, so 46 unknowns
+    fewer; its counts add up over the classes as the Taylor-Hood ones do."""
+    q1 = run_edge_counts(1.0, (4, 1, 6), [2.5], grading=0.1)
+    p0 = run_edge_counts(1.0, (4, 1, 6), [2.5], grading=0.1, pressure="P0")
+    assert q1[0]["dofs"] - p0[0]["dofs"] == 70 - 24
+    assert p0[0]["pressure"] == "P0" and q1[0]["pressure"] == "Q1"
+    assert p0[0]["n_negative"] == sum(p0[0][c] for c in CLASS_COLUMNS)

@@ -89,19 +89,21 @@ def test_penalty_error_scales_like_mu_over_kappa():
     assert errs[-1] < 1e-3
 
 
-@pytest.mark.parametrize("formulation,kappa,phi_element",
-                         [("mixed", math.inf, "Q2"), ("mixed", 30.0, "Q1"),
-                          ("penalty", 30.0, "Q2"), ("isochoric", 30.0, "Q2"),
-                          ("mixed-isochoric", 30.0, "Q2"), ("mixed-plain", math.inf, "Q2")])
+@pytest.mark.parametrize("formulation,kappa,phi_element,pressure",
+                         [("mixed", math.inf, "Q2", "Q1"), ("mixed", 30.0, "Q1", "Q1"),
+                          ("penalty", 30.0, "Q2", "Q1"), ("isochoric", 30.0, "Q2", "Q1"),
+                          ("mixed-isochoric", 30.0, "Q2", "Q1"),
+                          ("mixed-plain", math.inf, "Q2", "Q1"),
+                          ("mixed", math.inf, "Q2", "P0"), ("mixed", 30.0, "Q1", "P0")])
 @pytest.mark.parametrize("loading,symmetry", [("uniaxial", "eighth"),
                                               ("equibiaxial", "quarter"),
                                               ("uniaxial", "half")])
 def test_tangent_matches_finite_differences(formulation, kappa, phi_element, loading,
-                                            symmetry, fd_columns):
+                                            symmetry, pressure, fd_columns):
     pm = plate_mesh(4.0, 1.0, 2.0, 2, 1, 2, symmetry=symmetry)
     pr = PlateProblem(pm, NeoHookeanDielectric(1.0, 1.0), loading=loading,
                       formulation=formulation, kappa=kappa, phi_element=phi_element,
-                      threads=1)
+                      threads=1, pressure=pressure)
     rng = np.random.default_rng(3)
     x = 0.05 * rng.standard_normal(pr.red.n)
     load = (0.7, 1.3)
@@ -278,7 +280,7 @@ def test_run_ramp_names_a_callback_that_is_not_callable():
 
 @pytest.mark.parametrize("field, value", [
     ("control", "current"), ("coupling", "weak"), ("field", "far"), ("formulation", "exact"),
-    ("phi_element", "Q3"), ("kappa", 0.0), ("kappa", -1.0), ("threads", 0), ("threads", 1.5),
+    ("phi_element", "Q3"), ("pressure", "P1"), ("kappa", 0.0), ("kappa", -1.0), ("threads", 0), ("threads", 1.5),
     ("grad_div", -1.0), ("grad_div", math.nan),
 ])
 def test_plate_options_name_the_bad_field_as_the_plate_does(field, value):
@@ -356,3 +358,18 @@ def test_target_steps_match_loads_once_in_ramp_order():
     res.targets = None
     assert res.column("q", targets_only=True).tolist() == [0.0, 0.0, 2.0, 2.0]
     assert res.column("q").tolist() == [0.0, 0.0, 2.0, 2.0, 2.5]
+
+
+@pytest.mark.parametrize("grad_div", [0.0, 10.0])
+def test_equibiaxial_q2_p0_matches_closed_form(grad_div):
+    """The second pressure space (one constant per element, the Q2-P0 pair) gives the
+    homogeneous equi-biaxial state of Eq. (loading_gent) to 1e-8, as the Taylor-Hood one."""
+    s, D0 = 1.5, [1.0, 3.0, 5.0]
+    res = equibiaxial_plate(s, D0, options=PlateOptions(pressure="P0", grad_div=grad_div),
+                            preload_steps=8, linear_solver="superlu")
+    assert res.converged, res.reason
+    for st in res.steps:
+        lam_ref = lam_closed_form(st.load[1], st.load[0], "neo-Hookean")
+        assert abs(st["lam1"] / lam_ref - 1) < 1e-8
+        assert abs(st["lam2"] * lam_ref**2 - 1) < 1e-8
+        assert abs(st["D0_centre"] - st.load[1]) < 1e-8 * max(1.0, st.load[1])

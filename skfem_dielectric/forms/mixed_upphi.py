@@ -20,8 +20,9 @@ field (``elastic_volume=True``) the equilibrium rows carry only the elastic stre
 (``G = 0`` in ``P``), the Gauss rows keep ``D_L(F, G)``: the ``u``-``phi`` block vanishes and
 the field acts through the boundary (:mod:`skfem_dielectric.forms.maxwell_traction`).
 
-Discretisation (Taylor-Hood, locking-free): ``u`` continuous Q2 (``ElementHex2`` per
-component), ``p`` continuous Q1, ``phi`` Q2 (default) or Q1; 27 Gauss points per element
+Discretisation (inf-sup stable, locking-free): ``u`` continuous Q2 (``ElementHex2`` per
+component), ``p`` continuous Q1 (Taylor-Hood, default) or constant per element (``"P0"``,
+the Q2-P0 pair, whose pressure is discontinuous), ``phi`` Q2 (default) or Q1; 27 Gauss points per element
 (``intorder=4``).  Everything is computed with batched numpy over (element, quadrature
 point) arrays and scattered through precomputed positions
 (:class:`~skfem_dielectric.fem.assembly.ScatterMap`), in element chunks assembled by worker
@@ -37,13 +38,16 @@ import threading
 from concurrent.futures import ThreadPoolExecutor
 
 import numpy as np
-from skfem import Basis, ElementHex1, ElementHex2
+from skfem import Basis, ElementHex0, ElementHex1, ElementHex2
 
 from ..fem.assembly import (BlockScatter, DofReduction, OrderedSum, ScatterMap,
                         drop_spare_slots, single_threaded_blas, trim_heap)
 from ..materials import MIXED_FORMULATIONS, dielectric_response
 
-__all__ = ["MixedUPPhiForm"]
+__all__ = ["MixedUPPhiForm", "PRESSURE_ELEMENTS"]
+
+#: the pressure spaces: continuous Q1 (Taylor-Hood) or one constant per element (Q2-P0)
+PRESSURE_ELEMENTS = ("Q1", "P0")
 
 
 def _gradient_layouts(basis) -> np.ndarray:
@@ -138,6 +142,8 @@ class MixedUPPhiForm:
         ``"mixed-isochoric"`` (u-p-phi, ``W(J^(-2/3) I1) + p (J-1) - p^2/(2 kappa)``).
     phi_element
         ``"Q2"`` or ``"Q1"``.
+    pressure
+        The pressure space of the mixed forms, one of :data:`PRESSURE_ELEMENTS`.
     intorder, chunk, threads
         Quadrature order, elements per batch, worker threads.
     elastic_volume
@@ -148,7 +154,7 @@ class MixedUPPhiForm:
 
     Notes
     -----
-    Full dof layout: ``[u (3 N2, node-major), p (N1, mixed only), phi (Nphi)]`` with offsets
+    Full dof layout: ``[u (3 N2, node-major), p (Np, mixed only), phi (Nphi)]`` with offsets
     ``off_p`` and ``off_phi``.  :meth:`bind` attaches the dof reduction of the model
     (constraints), after which :meth:`assemble` and :meth:`residual` work on reduced
     vectors.
@@ -157,7 +163,7 @@ class MixedUPPhiForm:
     def __init__(self, mesh, material, *, formulation: str = "mixed", kappa: float = math.inf,
                  phi_element: str = "Q2", intorder: int = 4, chunk: int = 50,
                  threads: int | None = None, elastic_volume: bool = False,
-                 grad_div: float = 0.0):
+                 grad_div: float = 0.0, pressure: str = "Q1"):
         self.material, self.formulation, self.kappa = material, formulation, kappa
         self.grad_div = grad_div
         self.elastic_volume = elastic_volume
@@ -167,10 +173,12 @@ class MixedUPPhiForm:
         self.b2 = Basis(mesh, ElementHex2(), intorder=intorder)
         self.b1 = Basis(mesh, ElementHex1(), intorder=intorder)
         self.bphi = self.b2 if phi_element == "Q2" else self.b1
+        self.pressure = pressure
+        self.bp = self.b1 if pressure == "Q1" else Basis(mesh, ElementHex0(), intorder=intorder)
         nel, nq = self.b2.nelems, self.b2.X.shape[1]
         self.nel, self.nq = nel, nq
         self.N1 = np.ascontiguousarray(np.moveaxis(
-            np.array([np.array(f[0]) for f in self.b1.basis]), 0, 2))           # (e,q,k)
+            np.array([np.array(f[0]) for f in self.bp.basis]), 0, 2))           # (e,q,k)
         self.w = np.asarray(self.b2.dx)                                       # (e,q)
         # matmul-friendly layouts of the shape-function gradients (computed once; the
         # Q2 potential shares the displacement's arrays)
@@ -178,17 +186,17 @@ class MixedUPPhiForm:
         self.dNphit = self.dNt if phi_element == "Q2" else _gradient_layouts(self.b1)
         N2 = self.b2.N
         self.n_u = 3 * N2
-        self.n_p = self.b1.N if formulation in MIXED_FORMULATIONS else 0
+        self.n_p = self.bp.N if formulation in MIXED_FORMULATIONS else 0
         self.off_p = self.n_u
         self.off_phi = self.n_u + self.n_p
         self.n_phi = self.bphi.N
         self.n_full = self.off_phi + self.n_phi
         e2 = self.b2.element_dofs.T                                            # (e, 27)
         eu = (3 * e2[:, :, None] + np.arange(3)).reshape(nel, -1)
-        parts = [eu] + ([self.off_p + self.b1.element_dofs.T] if self.n_p else [])
+        parts = [eu] + ([self.off_p + self.bp.element_dofs.T] if self.n_p else [])
         parts.append(self.off_phi + self.bphi.element_dofs.T)
         self.edofs = np.concatenate(parts, axis=1)
-        self.m_u, self.m_p = eu.shape[1], (8 if self.n_p else 0)
+        self.m_u, self.m_p = eu.shape[1], (self.bp.Nbfun if self.n_p else 0)
         self.m_phi = self.bphi.element_dofs.shape[0]
         self.red: DofReduction | None = None
 

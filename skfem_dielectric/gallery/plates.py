@@ -17,6 +17,7 @@ from dataclasses import asdict, dataclass
 
 from ..checks import check_choice, check_count, check_nonnegative, check_positive
 from ..materials import FORMULATIONS
+from ..forms.mixed_upphi import PRESSURE_ELEMENTS
 from ..models.plate.problem import CONTROLS, COUPLINGS, FIELDS, PHI_ELEMENTS
 
 __all__ = ["PlateOptions"]
@@ -49,6 +50,8 @@ class PlateOptions:
         penalty and isochoric ones).
     phi_element
         Element of the potential, ``"Q1"`` or ``"Q2"``.
+    pressure
+        Pressure space of the mixed forms, ``"Q1"`` (Taylor-Hood) or ``"P0"`` (Q2-P0).
     threads
         Assembly threads (``None``: the package default, ``>= 1`` otherwise).
     grad_div
@@ -80,11 +83,12 @@ class PlateOptions:
     phi_element: str = "Q2"
     threads: int | None = None
     grad_div: float = 0.0
+    pressure: str = "Q1"
 
     def __post_init__(self) -> None:
         for name, choices in (("control", CONTROLS), ("coupling", COUPLINGS),
                               ("field", FIELDS), ("formulation", FORMULATIONS),
-                              ("phi_element", PHI_ELEMENTS)):
+                              ("phi_element", PHI_ELEMENTS), ("pressure", PRESSURE_ELEMENTS)):
             check_choice(name, getattr(self, name), choices)
         if self.kappa != math.inf:
             check_positive("kappa", self.kappa)

@@ -97,14 +97,17 @@ UNIT_SETTINGS = replace(fe.gallery.KEPLINGER_SETTINGS, max_cutbacks=6, max_iter=
 
 
 def unit_problem(alpha: float, elements, *, grading: float = 1.0,
-                 formulation: str = "mixed", grad_div: float = BUCKLING_GRAD_DIV):
+                 formulation: str = "mixed", grad_div: float = BUCKLING_GRAD_DIV,
+                 pressure: str = "Q1"):
     """The plate of a unit and its dead load: ``(problem, s)``.
 
     The clamped Keplinger plate, eighth model, graded along ``x1`` (``grading``), grad-div
     ``grad_div`` (default :data:`~validation.fe.model.BUCKLING_GRAD_DIV`), ``J = 1`` imposed
-    as ``formulation``; ``s`` of weight fraction ``alpha`` with ``g = 9.81``.
+    as ``formulation`` with the pressure space ``pressure`` (``"Q1"`` or ``"P0"``,
+    :class:`~skfem_dielectric.gallery.plates.PlateOptions`); ``s`` of weight fraction
+    ``alpha`` with ``g = 9.81``.
     """
-    options = fe.PlateOptions(grad_div=grad_div, formulation=formulation)
+    options = fe.PlateOptions(grad_div=grad_div, formulation=formulation, pressure=pressure)
     pb = fe.gallery.keplinger_problem(elements=tuple(int(n) for n in elements),
                                       symmetry="eighth", grading=grading, options=options)
     return pb, fe.gallery.keplinger_s(alpha, g=9.81)

@@ -15,7 +15,8 @@ corner quartet, 4, as the edge is refined, or one that does not).
 A row per charge:
 
 * ``alpha``, ``mesh`` (``n1xn2xn3``), ``grading``, ``formulation``, ``grad_div`` (units of
-  ``mu``, equilibrium and analysed tangent alike), ``D0``: the state;
+  ``mu``, equilibrium and analysed tangent alike), ``pressure`` (the pressure space:
+  ``Q1``, continuous, Taylor-Hood; ``P0``, a constant per element), ``D0``: the state;
 * ``dofs``; ``n_negative``: every class's count summed; ``n_x2A``: the counts of the four
   classes antisymmetric in ``x2`` (bending, where the clamp-edge modes sit); ``SSS`` ...
   ``AAA``: the count of the class ``x1 _, x2 _, x3 _`` (``S`` symmetric, ``A``
@@ -25,7 +26,7 @@ A row per charge:
 
 Rows go to a CSV (default ``validation/data/edge_counts.csv``), written atomically as each
 state is counted; a state whose key (``alpha``, mesh, ``grading``, ``formulation``,
-``grad_div``, ``D0``) is there is skipped, so a unit resumes where it stopped.
+``grad_div``, ``pressure``, ``D0``) is there is skipped, so a unit resumes where it stopped.
 
 Usage::
 
@@ -64,7 +65,8 @@ DEFAULT_CSV = Path(__file__).resolve().parents[1] / "data" / "edge_counts.csv"
 #: a column per symmetry class: its parities in the order x1, x2, x3
 CLASS_COLUMNS = tuple(a + b + c for a in "SA" for b in "SA" for c in "SA")
 #: the columns of a row, in order
-COLUMNS = ("alpha", "mesh", "grading", "formulation", "grad_div", "D0", "dofs", "n_negative",
+COLUMNS = ("alpha", "mesh", "grading", "formulation", "grad_div", "pressure", "D0", "dofs",
+           "n_negative",
            "n_x2A") + CLASS_COLUMNS + ("cpu_s", "count_cpu_s", "peak_GB", "factorisations",
                                        "solver", "date", "command")
 _HEADER = """\
@@ -82,12 +84,13 @@ def _column(name: str) -> str:
 
 def run_edge_counts(alpha: float, elements, D0, *, grading: float = 1.0,
                     formulation: str = "mixed", grad_div: float = BUCKLING_GRAD_DIV,
-                    solver: str = "auto", skip=(), progress=None, on_row=None) -> list[dict]:
+                    pressure: str = "Q1", solver: str = "auto", skip=(), progress=None,
+                    on_row=None) -> list[dict]:
     """Count the negative modes of every class at each charge of ``D0``.
 
     Parameters
     ----------
-    alpha, elements, grading, formulation, grad_div
+    alpha, elements, grading, formulation, grad_div, pressure
         The plate (:func:`~validation.studies.clamp_units.unit_problem`).
     D0
         The charges (positive); counted in increasing order along one ramp.
@@ -118,7 +121,7 @@ def run_edge_counts(alpha: float, elements, D0, *, grading: float = 1.0,
             raise ValueError(f"D0 must be positive and finite, got {d!r}")
     el = tuple(int(n) for n in elements)
     pb, s = unit_problem(alpha, el, grading=grading, formulation=formulation,
-                         grad_div=grad_div)
+                         grad_div=grad_div, pressure=pressure)
     scan = PlateScan(pb)
     wanted = [d for d in D0 if not any(abs(d - k) < 1e-12 for k in skip)]
     rows = []
@@ -133,7 +136,8 @@ def run_edge_counts(alpha: float, elements, D0, *, grading: float = 1.0,
         t1 = time.process_time()
         counts = scan.count(st.x, load)
         row = {"alpha": alpha, "mesh": mesh_text(el), "grading": grading,
-               "formulation": formulation, "grad_div": grad_div, "D0": d, "dofs": pb.ndofs,
+               "formulation": formulation, "grad_div": grad_div, "pressure": pressure,
+               "D0": d, "dofs": pb.ndofs,
                "n_negative": sum(counts.values()),
                "n_x2A": sum(v for k, v in counts.items() if _column(k)[1] == "A"),
                **{_column(k): v for k, v in counts.items()},
@@ -173,7 +177,8 @@ def read_edge_counts(path: Path | None = None) -> list[dict]:
 
 
 def _key(r: dict) -> tuple:
-    return (*unit_key(r), f"{float(r['grad_div']):g}", f"{float(r['D0']):g}")
+    return (*unit_key(r), f"{float(r['grad_div']):g}", str(r.get("pressure") or "Q1"),
+            f"{float(r['D0']):g}")
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -198,6 +203,7 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--grading", type=float, default=1.0)
     ap.add_argument("--formulation", default="mixed")
     ap.add_argument("--grad-div", dest="grad_div", type=float, default=BUCKLING_GRAD_DIV)
+    ap.add_argument("--pressure", default="Q1", choices=["Q1", "P0"])
     ap.add_argument("--solver", default="auto", choices=["auto", "superlu", "pardiso"])
     ap.add_argument("--csv", type=Path, default=DEFAULT_CSV)
     a = ap.parse_args(argv)
@@ -210,9 +216,10 @@ def main(argv: list[str] | None = None) -> int:
     for alpha in a.alpha:
         for el in a.mesh:
             unit = {"alpha": alpha, "mesh": mesh_text(el), "grading": a.grading,
-                    "formulation": a.formulation, "grad_div": a.grad_div}
+                    "formulation": a.formulation, "grad_div": a.grad_div,
+                    "pressure": a.pressure}
             done = {float(r["D0"]) for r in read_edge_counts(a.csv)
-                    if _key(r)[:5] == _key({**unit, "D0": 1.0})[:5]}
+                    if _key(r)[:6] == _key({**unit, "D0": 1.0})[:6]}
             if {float(d) for d in a.D0} <= done:
                 print(f"alpha = {alpha:g} {mesh_text(el)}: kept", flush=True)
                 continue
@@ -225,7 +232,7 @@ def main(argv: list[str] | None = None) -> int:
                 with blas_thread_limit(1):
                     run_edge_counts(alpha, el, a.D0, grading=a.grading,
                                     formulation=a.formulation, grad_div=a.grad_div,
-                                    solver=a.solver, skip=done, on_row=write,
+                                    pressure=a.pressure, solver=a.solver, skip=done, on_row=write,
                                     progress=lambda t: print("  " + t, flush=True))
             except ValueError as exc:
                 print(f"error: {exc}", file=sys.stderr)

@@ -34,7 +34,7 @@ def evaluate_fields(problem, xf: np.ndarray, points: np.ndarray) -> dict[str, np
         ``G = Grad phi (3, n)`` at the points.
     """
     points = np.asarray(points, dtype=float)
-    b2, bphi, b1 = problem.b2, problem.bphi, problem.b1
+    b2, bphi, bp = problem.b2, problem.bphi, problem.bp
     mp = b2.mapping
     cells = problem.plate.mesh.element_finder(mapping=mp)(*points)
     X = mp.invF(points[:, :, None], tind=cells)
@@ -58,9 +58,9 @@ def evaluate_fields(problem, xf: np.ndarray, points: np.ndarray) -> dict[str, np
         G += c * df.grad[:, :, 0]
     p = np.zeros(n)
     if problem.n_p:
-        ed1 = b1.element_dofs[:, cells]
+        ed1 = bp.element_dofs[:, cells]
         for i in range(ed1.shape[0]):
-            df = b1.elem.gbasis(mp, X, i, tind=cells)[0]
+            df = bp.elem.gbasis(mp, X, i, tind=cells)[0]
             p += xf[problem.off_p + ed1[i]] * np.array(df)[:, 0]
     return {"u": u, "phi": phi, "p": p, "F": F, "G": G}
 
@@ -221,7 +221,8 @@ def plate_step_mesh(problem, x: np.ndarray, load):
     # Q2 and Q1 scalar dofs are numbered vertices first (scikit-fem convention)
     u = xf[: problem.n_u].reshape(-1, 3)[:nv]
     phi = xf[problem.off_phi:][:nv]
-    p = xf[problem.off_p:problem.off_phi][:nv] if problem.n_p else np.zeros(nv)
+    p = (xf[problem.off_p:problem.off_phi][:nv]
+         if problem.n_p and problem.pressure == "Q1" else np.zeros(nv))
     mu = problem.material.mu
     cell = {k: [] for k in ("P33", "P11", "lam1", "lam2", "lam3", "J")}
     for _, F, G, pq in problem.quadrature_fields(x, load):
@@ -233,5 +234,9 @@ def plate_step_mesh(problem, x: np.ndarray, load):
             cell[f"lam{i + 1}"].append(lam[i].mean(axis=-1))
         cell["J"].append(st["J"].mean(axis=-1))
     cell_data = {k: [np.concatenate(v)] for k, v in cell.items()}
+    if problem.n_p and problem.pressure == "P0":       # the element constants
+        cell_data["pressure"] = [xf[problem.off_p:problem.off_phi].copy()]
+        return to_meshio(m, point_data={"displacement": u, "potential": phi},
+                         cell_data=cell_data, encode_cell_data=False)
     return to_meshio(m, point_data={"displacement": u, "potential": phi, "pressure": p},
                      cell_data=cell_data, encode_cell_data=False)

@@ -58,7 +58,7 @@ from ...checks import (check_choice, check_count, check_instance, check_material
 from ...fem.assembly import DofReduction
 from ...fem.mesh import PlateMesh
 from ...forms.maxwell_traction import MaxwellBoundary
-from ...forms.mixed_upphi import MixedUPPhiForm
+from ...forms.mixed_upphi import PRESSURE_ELEMENTS, MixedUPPhiForm
 from ...kinematics import segment_det_limit
 from ...linalg.symmetric import SymmetricUpper
 from ...materials import FORMULATIONS, MIXED_FORMULATIONS
@@ -228,6 +228,9 @@ class PlateProblem(Problem):
         Field of the Maxwell traction: ``"electrostatic"`` (default) or ``"local"``.
     phi_element
         Interpolation of the potential: ``"Q2"`` (default) or ``"Q1"``.
+    pressure
+        The pressure space of the mixed forms: ``"Q1"`` (continuous, Taylor-Hood, default)
+        or ``"P0"`` (a constant per element, the Q2-P0 pair); both are inf-sup stable.
     intorder
         Quadrature order (4 -> 27 Gauss points per hexahedron).
     grad_div
@@ -271,7 +274,7 @@ class PlateProblem(Problem):
                  field: str = "electrostatic", phi_element: str = "Q2", intorder: int = 4,
                  grad_div: float = 0.0, formulation: str = "mixed",
                  kappa: float = math.inf, chunk: int = 50, threads: int | None = None,
-                 increments=None):
+                 increments=None, pressure: str = "Q1"):
         plate = check_instance("mesh", mesh, PlateMesh, "plate_mesh")
         check_material("material", material)
         check_choice("loading", loading, LOADINGS)
@@ -279,6 +282,7 @@ class PlateProblem(Problem):
         check_choice("coupling", coupling, COUPLINGS)
         check_choice("field", field, FIELDS)
         check_choice("phi_element", phi_element, PHI_ELEMENTS)
+        check_choice("pressure", pressure, PRESSURE_ELEMENTS)
         intorder = check_count("intorder", intorder)
         grad_div = check_nonnegative("grad_div", grad_div)
         check_choice("formulation", formulation, FORMULATIONS)
@@ -296,7 +300,8 @@ class PlateProblem(Problem):
         self.grad_div = grad_div
         self.options = dict(loading=loading, control=control, coupling=coupling, field=field,
                             formulation=formulation, kappa=kappa, phi_element=phi_element,
-                            intorder=intorder, chunk=chunk, threads=threads, grad_div=grad_div)
+                            intorder=intorder, chunk=chunk, threads=threads, grad_div=grad_div,
+                            pressure=pressure)
         chunk = check_count("chunk", chunk)
         threads = None if threads is None else check_count("threads", threads)
         self.plate, self.material = plate, material
@@ -320,10 +325,11 @@ class PlateProblem(Problem):
             m, material, formulation=formulation, kappa=kappa, phi_element=phi_element,
             intorder=intorder, chunk=chunk, threads=threads,
             elastic_volume=coupling == "maxwell" and field == "electrostatic",
-            grad_div=grad_div * material.mu)
+            grad_div=grad_div * material.mu, pressure=pressure)
         f = self.form
         self.threads, self.nel = f.threads, f.nel
-        self.b2, self.b1, self.bphi = f.b2, f.b1, f.bphi
+        self.b2, self.b1, self.bphi, self.bp = f.b2, f.b1, f.bphi, f.bp
+        self.pressure = pressure
         self.n_u, self.n_p, self.off_p, self.off_phi = f.n_u, f.n_p, f.off_p, f.off_phi
         self.n_full = f.n_full
         self._phi_top = self._phidofs("top")
@@ -357,7 +363,7 @@ class PlateProblem(Problem):
         if field == "u":
             return (3 * self.b2.get_dofs(facets).all()[:, None] + np.arange(3)).ravel()
         if field == "p" and self.n_p:
-            return self.off_p + self.b1.get_dofs(facets).all()
+            return self.off_p + self.bp.get_dofs(facets).all()
         if field == "phi":
             return self.off_phi + self.bphi.get_dofs(facets).all()
         raise ValueError(f"field must be 'u', 'p' (mixed only) or 'phi', got {field!r}")
