@@ -243,3 +243,17 @@ def test_band_onsets_and_the_figure(tmp_path):
     with pytest.raises(SystemExit) as e:
         main([str(tmp_path / "missing.csv"), "--out", str(tmp_path)])
     assert e.value.code == 2
+
+
+def test_the_docs_show_the_committed_band_table():
+    """docs/validation.md shows ``band_table`` of the committed rows verbatim, and every
+    state of the committed rows has three section meshes."""
+    from pathlib import Path
+
+    from validation.figures.edge_band import band_onsets, band_table
+    from validation.studies.edge_section import read_edge_section
+
+    rows = read_edge_section()
+    assert all(len(by_h) == 3 for by_h in band_onsets(rows).values())
+    docs = (Path(__file__).resolve().parents[1] / "docs" / "validation.md").read_text()
+    assert band_table(rows) in docs

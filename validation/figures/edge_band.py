@@ -28,7 +28,7 @@ from ..buckling_data import MIN_ELEMENTS_PER_HALF_WAVE, read_data_csv
 from ..specs import KEPLINGER
 from .common import plt, save_figure
 
-__all__ = ["band_onsets", "mesh_reach", "edge_band_figure", "main"]
+__all__ = ["band_onsets", "band_table", "mesh_reach", "edge_band_figure", "main"]
 
 
 def _state(r: dict) -> tuple:
@@ -81,6 +81,37 @@ def band_onsets(rows: list[dict]) -> dict:
             k0, n0 = neg[0] if neg else (None, 0)
             res[state][h0] = (k0, n0, kn[-1][0], (state, h0) in inverted)
     return res
+
+
+def band_table(rows: list[dict]) -> str:
+    """The band's lower edge as a Markdown table, a row per state (the docs show it
+    verbatim): per section mesh ``h0`` (coarse to fine) the smallest ``k`` with a negative
+    mode (``none`` up to the sweep's end, ``inverted`` where the base state has inverted
+    elements), and the largest ``k`` the 3D mesh holds (:func:`mesh_reach`).
+
+    Parameters
+    ----------
+    rows : list of dict
+        Rows of :func:`~validation.studies.edge_section.read_edge_section`.
+
+    Returns
+    -------
+    str
+    """
+    lines = ["| alpha | `D0` | 3D mesh | grad-div | `h0` (mm) | first `k` with a negative "
+             "mode (1/mm) | `k` held by the 3D mesh |",
+             "| --- | --- | --- | --- | --- | --- | --- |"]
+    for state, by_h in sorted(band_onsets(rows).items()):
+        alpha, D0, mesh, grading, gd = state
+        h0s = sorted(by_h, reverse=True)
+        cells = []
+        for h0 in h0s:
+            k0, _, _, inverted = by_h[h0]
+            cells.append("inverted" if inverted else "none" if k0 is None else f"{k0:.4g}")
+        lines.append(f"| {alpha:g} | {D0:g} | {mesh} g{grading:g} | {gd:g} | "
+                     f"{' / '.join(f'{h:g}' for h in h0s)} | {' / '.join(cells)} | "
+                     f"{mesh_reach(mesh):.2f} |")
+    return "\n".join(lines) + "\n"
 
 
 def edge_band_figure(rows: list[dict]):
@@ -142,7 +173,8 @@ def edge_band_figure(rows: list[dict]):
 
 
 def main(argv: list[str] | None = None) -> int:
-    """Draw ``edge-band.png`` (and ``.pdf``) from the study's table.
+    """Draw ``edge-band.png`` (and ``.pdf``) from the study's table, or print
+    :func:`band_table` (``--table``).
 
     Parameters
     ----------
@@ -159,11 +191,17 @@ def main(argv: list[str] | None = None) -> int:
                                  description=__doc__.splitlines()[0])
     ap.add_argument("csv", nargs="?", type=Path, default=None)
     ap.add_argument("--out", type=Path, default=Path("results"))
+    ap.add_argument("--table", action="store_true",
+                    help="print the band's lower edges as a Markdown table instead")
     a = ap.parse_args(argv)
     if a.csv is not None and not a.csv.is_file():
         ap.error(f"csv must be a file of the edge_section study, got {str(a.csv)!r}")
+    rows = read_data_csv(a.csv, "data/edge_section.csv")
+    if a.table:
+        print(band_table(rows), end="")
+        return 0
     try:
-        fig = edge_band_figure(read_data_csv(a.csv, "data/edge_section.csv"))
+        fig = edge_band_figure(rows)
     except (ValueError, KeyError) as exc:
         ap.error(f"csv {str(a.csv or 'edge_section.csv')!r}: {exc}")
     a.out.mkdir(parents=True, exist_ok=True)
