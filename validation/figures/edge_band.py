@@ -48,6 +48,19 @@ def _inverted(r: dict) -> bool:
     return r.get("J_min") not in (None, "") and float(r["J_min"]) <= 0
 
 
+def _sweeps(rows: list[dict]) -> dict:
+    """``{state: {h0: (sorted [(k, n_negative)], inverted)}}`` of the rows."""
+    kn, inverted = {}, {}
+    for r in rows:
+        key = (_state(r), float(r["h0"]))
+        kn.setdefault(key, []).append((float(r["k"]), int(r["n_negative"])))
+        inverted[key] = inverted.get(key, False) or _inverted(r)
+    out: dict = {}
+    for (state, h0), pairs in kn.items():
+        out.setdefault(state, {})[h0] = (sorted(pairs), inverted[(state, h0)])
+    return out
+
+
 def band_onsets(rows: list[dict]) -> dict:
     """The band's lower edge per state and section mesh.
 
@@ -65,21 +78,13 @@ def band_onsets(rows: list[dict]) -> dict:
         ``k``, and whether the section's base state has inverted elements (``J_min <= 0``,
         a row without ``J_min``: not inverted).
     """
-    out: dict = {}
-    inverted = set()
-    for r in rows:
-        out.setdefault(_state(r), {}).setdefault(float(r["h0"]), []).append(
-            (float(r["k"]), int(r["n_negative"])))
-        if _inverted(r):
-            inverted.add((_state(r), float(r["h0"])))
     res: dict = {}
-    for state, by_h in out.items():
+    for state, by_h in _sweeps(rows).items():
         res[state] = {}
-        for h0, kn in by_h.items():
-            kn.sort()
+        for h0, (kn, inverted) in by_h.items():
             neg = [(k, n) for k, n in kn if n > 0]
             k0, n0 = neg[0] if neg else (None, 0)
-            res[state][h0] = (k0, n0, kn[-1][0], (state, h0) in inverted)
+            res[state][h0] = (k0, n0, kn[-1][0], inverted)
     return res
 
 
@@ -133,27 +138,27 @@ def edge_band_figure(rows: list[dict]):
     """
     if not rows:
         raise ValueError("rows must hold at least one row of the edge_section study, got none")
-    states = sorted({_state(r) for r in rows})
+    sweeps = _sweeps(rows)
+    states = sorted(sweeps)
     cols = min(len(states), 2)
     nrow = -(-len(states) // cols)
     fig, axes = plt.subplots(nrow, cols, figsize=(4.6 * cols, 2.6 * nrow + 0.6),
                              layout="constrained", squeeze=False, sharex=True)
     styles = ["-o", "--s", ":^", "-.v"]
     for ax, state in zip(axes.flat, states):
-        mine = [r for r in rows if _state(r) == state]
-        h0s = sorted({float(r["h0"]) for r in mine}, reverse=True)
-        for i, h0 in enumerate(h0s):
-            kn = sorted((float(r["k"]), int(r["n_negative"])) for r in mine
-                        if float(r["h0"]) == h0)
+        by_h = sweeps[state]
+        for i, h0 in enumerate(sorted(by_h, reverse=True)):
+            kn, inverted = by_h[h0]
             k, n = np.array(kn).T
-            if any(_inverted(r) for r in mine if float(r["h0"]) == h0):
+            if inverted:
                 ax.plot(k, n, ":", color="0.6", lw=1.0,
                         label=rf"$h_0$ = {h0:g} mm: base inverted ($J_{{min}} \leq 0$)")
             else:
                 ax.plot(k, n, styles[i % len(styles)], ms=3.5, lw=1.1,
                         label=rf"$h_0$ = {h0:g} mm")
         alpha, D0, mesh, grading, gd = state
-        ax.axvspan(min(float(r["k"]) for r in mine), mesh_reach(mesh), color="0.9", zorder=0,
+        k_min = min(kn[0][0] for kn, _ in by_h.values())
+        ax.axvspan(k_min, mesh_reach(mesh), color="0.9", zorder=0,
                    label=f"held by the 3D mesh {mesh}")
         ax.set_xscale("log")
         ax.set_title(rf"$\alpha = {alpha:g}$, $D_0 = {D0:g}$ (3D {mesh} g{grading:g}, "

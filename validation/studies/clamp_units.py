@@ -72,8 +72,8 @@ from .local_theory import energy_centroid, half_waves, local_state
 
 __all__ = ["COLUMNS", "DEFAULT_CSV", "MIN_ELEMENTS_PER_HALF_WAVE", "UNIT_SETTINGS",
            "run_unit", "read_units", "clamp_unit_load", "mesh_text", "parse_mesh",
-           "append_row", "append_rows", "unit_problem", "ramp_states", "ramp_to_charge",
-           "clamp_centre_J", "main"]
+           "append_row", "append_rows", "foreign_table", "study_command", "unit_problem",
+           "ramp_states", "ramp_to_charge", "clamp_centre_J", "main"]
 
 #: where the study's rows are kept (provenance in its header lines)
 DEFAULT_CSV = Path(__file__).resolve().parents[1] / "data" / "clamp_units.csv"
@@ -328,6 +328,25 @@ def append_rows(path: Path, rows, columns=COLUMNS, header: str = _HEADER) -> Non
     w.writerows(read_data_csv(path) + [{k: _cell(r.get(k, "")) for k in columns}
                                        for r in rows])
     write_text_atomic(path, header + buf.getvalue())
+
+
+def foreign_table(path: Path, columns) -> bool:
+    """Whether ``path`` exists and is not a table of ``columns`` (a folder, or a file whose
+    rows have other columns): a study must not rewrite it."""
+    path = Path(path)
+    if not path.exists():
+        return False
+    if not path.is_file():
+        return True
+    rows = read_data_csv(path)
+    return bool(rows) and set(rows[0]) != set(columns)
+
+
+def study_command(module: str, argv: list[str] | None) -> str:
+    """The command line of a study's run, as its rows record it: ``python -m module``
+    and ``argv`` (default: the process's own arguments), quoted for a shell."""
+    return f"python -m {module} " + " ".join(
+        shlex.quote(v) for v in (argv if argv is not None else sys.argv[1:]))
 
 
 def append_row(path: Path, row: dict, columns=COLUMNS, header: str = _HEADER) -> None:

@@ -40,7 +40,6 @@ import argparse
 import datetime
 import math
 import resource
-import shlex
 import sys
 import time
 import warnings
@@ -55,7 +54,8 @@ from skfem_dielectric.models.plate.scan import PlateScan
 
 from ..buckling_data import read_data_csv, unit_key
 from ..fe.model import BUCKLING_GRAD_DIV
-from .clamp_units import UNIT_SETTINGS, append_row, mesh_text, parse_mesh, unit_problem
+from .clamp_units import (UNIT_SETTINGS, append_row, foreign_table, mesh_text, parse_mesh,
+                          study_command, unit_problem)
 
 __all__ = ["COLUMNS", "CLASS_COLUMNS", "DEFAULT_CSV", "run_edge_counts", "read_edge_counts",
            "main"]
@@ -207,12 +207,10 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--solver", default="auto", choices=["auto", "superlu", "pardiso"])
     ap.add_argument("--csv", type=Path, default=DEFAULT_CSV)
     a = ap.parse_args(argv)
-    if a.csv.exists() and (not a.csv.is_file() or (
-            read_edge_counts(a.csv) and set(read_edge_counts(a.csv)[0]) != set(COLUMNS))):
+    if foreign_table(a.csv, COLUMNS):
         print(f"error: --csv {a.csv} is not this study's table", file=sys.stderr)
         return 1
-    command = "python -m validation.studies.edge_counts " + " ".join(
-        shlex.quote(v) for v in (argv if argv is not None else sys.argv[1:]))
+    command = study_command("validation.studies.edge_counts", argv)
     for alpha in a.alpha:
         for el in a.mesh:
             unit = {"alpha": alpha, "mesh": mesh_text(el), "grading": a.grading,

@@ -41,7 +41,6 @@ import argparse
 import datetime
 import math
 import resource
-import shlex
 import sys
 import time
 from pathlib import Path
@@ -55,7 +54,8 @@ from skfem_dielectric.models.edge_section import (EdgeSection, edge_section_grid
 
 from ..buckling_data import read_data_csv
 from ..fe.model import BUCKLING_GRAD_DIV
-from .clamp_units import append_rows, mesh_text, parse_mesh, ramp_states, unit_problem
+from .clamp_units import (append_rows, foreign_table, mesh_text, parse_mesh, ramp_states,
+                          study_command, unit_problem)
 
 __all__ = ["COLUMNS", "DEFAULT_CSV", "DEFAULT_K", "run_edge_section", "read_edge_section",
            "main"]
@@ -193,12 +193,10 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--solver", default="auto", choices=["auto", "superlu", "pardiso"])
     ap.add_argument("--csv", type=Path, default=DEFAULT_CSV)
     a = ap.parse_args(argv)
-    if a.csv.exists() and (not a.csv.is_file() or (
-            read_edge_section(a.csv) and set(read_edge_section(a.csv)[0]) != set(COLUMNS))):
+    if foreign_table(a.csv, COLUMNS):
         print(f"error: --csv {a.csv} is not this study's table", file=sys.stderr)
         return 1
-    command = "python -m validation.studies.edge_section " + " ".join(
-        shlex.quote(v) for v in (argv if argv is not None else sys.argv[1:]))
+    command = study_command("validation.studies.edge_section", argv)
 
     def write(rows):
         append_rows(a.csv, [{**r, "command": command} for r in rows], COLUMNS, _HEADER)
