@@ -70,7 +70,7 @@ def states_of(alpha: float, mesh, D0) -> tuple:
 
 def graded_states_of(alpha: float, mesh, D0, grading: float, solver: str = "auto") -> tuple:
     """The grad-div form of the clamp-zone study's unit (eighth model graded ``grading``
-    towards the clamp, :mod:`validation.studies.clamp_units`) ramped to ``D0``: as
+    towards the clamp, :mod:`validation.clamp_zone.units`) ramped to ``D0``: as
     :func:`states_of`."""
     import skfem_dielectric as fe
     from validation.fe.model import BUCKLING_GRAD_DIV

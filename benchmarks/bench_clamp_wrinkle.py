@@ -5,7 +5,7 @@ neo-Hookean, ``validation.studies.buckling``) is ramped in ``D0`` (steps of 0.25
 study's buckling load ``D0_b``, docs/validation.md); at ``D0_b`` the lowest physical mode of
 the whole plate is computed, its energy centroid (mid-plane) and its number of half-waves
 across the width.  At that reference point the local homogeneous state ``(lam1, lam3, D0)``
-of every ramp state is handed to the closed forms (``validation.studies.local_theory``):
+of every ramp state is handed to the closed forms (``validation.clamp_zone.local_theory``):
 the perpendicular thin limit (Eq. thin-uni-axial, ``(x3, x2)`` plane), the flexural
 ``D0_c(kh)`` at the FE mode's ``kh`` and the thick (surface) limit (Eq. thick-plate23),
 and the ramp ``D0`` at which each first fires is printed beside ``D0_b``.
@@ -62,7 +62,7 @@ def run(alpha: float, mesh: str, D0_max: float = 5.0, solver: str = "auto",
     import skfem_dielectric as fe
     from skfem_dielectric.models.plate.modes import lowest_physical
     from validation.fe.model import BUCKLING_GRAD_DIV
-    from validation.studies.local_theory import energy_centroid, half_waves, local_state
+    from validation.clamp_zone.local_theory import energy_centroid, half_waves, local_state
 
     el = tuple(int(v) for v in mesh.split("x"))
     D0_b = D0_B[(alpha, mesh)] if D0_b is None else D0_b
@@ -95,7 +95,7 @@ def run(alpha: float, mesh: str, D0_max: float = 5.0, solver: str = "auto",
 def _onsets(pb, states, D0, D0_b, point, n_half) -> dict:
     """The local criteria along the ramp at one reference point."""
     import analytic as an
-    from validation.studies.local_theory import first_firing, local_criteria, local_state
+    from validation.clamp_zone.local_theory import first_firing, local_criteria, local_state
 
     H, L3 = pb.plate.H, pb.plate.L3
     model = an.NeoHookean()

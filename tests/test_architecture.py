@@ -63,22 +63,27 @@ LAYERS = (
 #: the layers of ``validation``, bottom up, in the same sense as :data:`LAYERS`; the groups
 #: below ``fe`` import no finite elements
 VALIDATION_LAYERS = (
+    ("clamp_zone.key", "clamp_zone.spec"),  # the clamp-zone study's unit key and tables,
+    ("clamp_zone.data",),            # read without FE (the measured loads rest on them)
     ("clash", "progress", "specs", "records",   # package guard, progress; run data, records;
      "buckling_data", "markers"),    # the measured buckling loads; the markers' vocabulary
     ("cases",),                      # the validation cases, one per paper figure
     ("table", "checker"),            # the tidy CSV of a case; scores of another code's CSVs
     ("store",),                      # lock, atomic files, checksums, resume
     ("fe", "figures"),               # the FE runner; the paper's figures
-    ("options",),                    # checks of the command-line options
+    ("options", "cluster"),          # checks of the command-line options; the dask cluster
     ("studies",),                    # buckling, post-buckling, wrinkling, snap-through
+    ("clamp_zone",),                 # the clamp-zone study: runners, tables, figures, command
     ("results", "report", "explore",   # case summaries; summary.json, report.md; the page;
      "check_report"),                # the figures and files of `check`
     ("sweep",),                      # the harness: run_case, run_cases, validate
     ("cli",),                        # the command line
     ("validation",),                 # the package namespace
 )
+#: the modules of subpackages that are groups of their own
+_SUBGROUPS = {g for groups in VALIDATION_LAYERS for g in groups if "." in g}
 #: the groups of ``validation`` that import no finite elements
-VALIDATION_NO_FE = tuple(g for groups in VALIDATION_LAYERS[:4] for g in groups)
+VALIDATION_NO_FE = tuple(g for groups in VALIDATION_LAYERS[:6] for g in groups)
 
 
 def _modules(package: str) -> dict[str, Path]:
@@ -244,8 +249,11 @@ def test_imports_at_module_level_except_optional_dependencies():
 
 
 def _group(module: str) -> str | None:
-    """Layer group of a module of a package: its top-level module or subpackage."""
+    """Layer group of a module of a package: its top-level module or subpackage, or a
+    module of a subpackage that a layer names itself (``"clamp_zone.data"``)."""
     parts = module.split(".")
+    if len(parts) > 2 and ".".join(parts[1:3]) in _SUBGROUPS:
+        return ".".join(parts[1:3])
     return parts[1] if len(parts) > 1 else parts[0]
 
 

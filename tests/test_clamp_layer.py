@@ -9,8 +9,9 @@ import pytest
 
 import skfem_dielectric as fe
 from validation.fe.model import BUCKLING_GRAD_DIV
-from validation.studies.clamp_layer import (COLUMNS, LAYER_WIDTHS, main, read_clamp_layer,
-                                            run_clamp_layer, volume_ratios)
+from validation.cli import main
+from validation.clamp_zone.data import TABLES, load
+from validation.clamp_zone.layer import COLUMNS, LAYER_WIDTHS, run_clamp_layer, volume_ratios
 
 
 def test_an_affine_displacement_has_every_ratio_det_F0():
@@ -36,24 +37,26 @@ def test_the_smallest_committed_unit_is_reproduced_and_the_volume_is_kept(tmp_pa
     """alpha = 1, 10 x 1 x 24 graded 0.1 at its D0_b again (default solver): every column
     within 1e-4 of the committed row; the whole model's volume ratio is 1 to 1e-6 (the
     constant is a pressure test function of the mixed form); a rerun keeps the row."""
-    ref = next(r for r in read_clamp_layer() if r["alpha"] == "1" and r["mesh"] == "10x1x24")
+    ref = next(r for r in load("layer") if r["alpha"] == "1" and r["mesh"] == "10x1x24")
     row = run_clamp_layer(1.0, (10, 1, 24), grading=0.1)
     assert row["D0"] == float(ref["D0"])
     for k in COLUMNS:
         if k.startswith(("J_", "V_")):
             assert abs(row[k] - float(ref[k])) <= 1e-4, k
     assert abs(row["V_plate"] - 1.0) <= 1e-6
-    out = tmp_path / "layer.csv"
-    args = ["--alpha", "1", "--mesh", "10x1x24", "--grading", "0.1", "--csv", str(out)]
+    out = tmp_path / "clamp_layer.csv"
+    args = ["clamp-zone", "layer", "--alpha", "1", "--mesh", "10x1x24", "--grading", "0.1",
+            "--out", str(tmp_path)]
     out.write_text("".join(f"{line}\n" for line in (
-        ",".join(COLUMNS), ",".join(str(ref[k]) for k in COLUMNS))))
+        TABLES["layer"].declaration, ",".join(COLUMNS),
+        ",".join(str(ref[k]) for k in COLUMNS))))
     before = out.read_bytes()
     assert main(args) == 0 and out.read_bytes() == before
 
 
 def test_a_unit_without_D0_b_is_one_line(tmp_path, capsys):
-    out = tmp_path / "layer.csv"
-    assert main(["--alpha", "0.9", "--mesh", "4x1x2", "--csv", str(out)]) == 1
+    assert main(["clamp-zone", "layer", "--alpha", "0.9", "--mesh", "4x1x2",
+                 "--out", str(tmp_path)]) == 2
     err = capsys.readouterr().err.strip().splitlines()
-    assert len(err) == 1 and "alpha = 0.9 4x1x2" in err[0] and "clamp_units" in err[0]
-    assert not out.exists()
+    assert len(err) == 1 and "alpha = 0.9 4x1x2" in err[0] and "clamp-zone units" in err[0]
+    assert not (tmp_path / "clamp_layer.csv").exists()

@@ -1,5 +1,5 @@
 """Each symmetry class's crossing at a clamp-zone unit's bracket
-(validation.studies.class_onsets)."""
+(validation.clamp_zone.onsets)."""
 
 from __future__ import annotations
 
@@ -7,14 +7,13 @@ from pathlib import Path
 
 import pytest
 
-from validation.buckling_data import read_clamp_units
-from validation.fe.model import BUCKLING_TOL
-from validation.studies.class_onsets import (COLUMNS, bracket, main, read_class_onsets,
-                                             run_class_onsets)
+from validation.cli import main
+from validation.clamp_zone.data import LOCATION_TOL as BUCKLING_TOL, load
+from validation.clamp_zone.onsets import COLUMNS, bracket, run_class_onsets
 
 
 def _unit(alpha: str, mesh: str, grading: str) -> dict:
-    return next(r for r in read_clamp_units() if r["alpha"] == alpha and r["mesh"] == mesh
+    return next(r for r in load("units") if r["alpha"] == alpha and r["mesh"] == mesh
                 and r["grading"] == grading and r["formulation"] == "mixed")
 
 
@@ -47,7 +46,7 @@ def test_the_mirror_classes_about_the_centre_cross_together():
     """The two clamps are 2 L apart: a mode and its mirror image about x1 = 0 (classes
     'x1 S' and 'x1 A', the same x2, x3 classes) cross at the same charge within the
     location tolerance, with the same half-waves, in every committed row pair."""
-    rows = read_class_onsets()
+    rows = load("onsets")
     pairs = 0
     for r in rows:
         if not r["class"].startswith("x1 S") or not r["D0_c"]:
@@ -63,13 +62,13 @@ def test_the_mirror_classes_about_the_centre_cross_together():
 
 
 def test_bad_input_is_one_line(tmp_path, capsys):
-    """A unit without a clamp-zone row exits 1 with one line naming it and the study to
-    run first; nothing is written."""
-    out = tmp_path / "c.csv"
-    assert main(["--alpha", "0.9", "--mesh", "4x1x2", "--csv", str(out)]) == 1
+    """A unit without a clamp-zone row exits 2 with one line naming it and the command to
+    run first; no table is written."""
+    assert main(["clamp-zone", "onsets", "--alpha", "0.9", "--mesh", "4x1x2",
+                 "--out", str(tmp_path)]) == 2
     err = capsys.readouterr().err.strip().splitlines()
-    assert len(err) == 1 and "alpha = 0.9 4x1x2" in err[0] and "clamp_units" in err[0]
-    assert not out.exists()
+    assert len(err) == 1 and "alpha = 0.9 4x1x2" in err[0] and "clamp-zone units" in err[0]
+    assert not (tmp_path / "class_onsets.csv").exists()
 
 
 def test_a_given_bracket_needs_no_unit_and_says_so():

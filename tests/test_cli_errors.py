@@ -170,7 +170,10 @@ def test_simulate_pvd_and_stop_message(tmp_path, capsys):
 def test_help_shows_defaults_and_every_option_has_help():
     parser = build_parser()
     subs = next(a for a in parser._actions if a.dest == "command").choices
-    for name, sub in subs.items():
+    nested = {f"clamp-zone {n}": p for n, p in next(
+        a for a in subs["clamp-zone"]._actions if a.dest == "clamp_command").choices.items()}
+    assert set(nested) >= {"clamp-zone units", "clamp-zone tables", "clamp-zone modes"}
+    for name, sub in {**subs, **nested}.items():
         for action in sub._actions:
             assert action.help, (name, action.dest)
         text = sub.format_help()

@@ -1,4 +1,4 @@
-"""Negative-mode counts without eigenpairs (validation.studies.edge_counts): the counts of
+"""Negative-mode counts without eigenpairs (validation.clamp_zone.counts): the counts of
 one ramp equal those of a clamp-zone unit's full scan, state by state; bad input is one
 line."""
 
@@ -6,9 +6,9 @@ from __future__ import annotations
 
 import pytest
 
-from validation.buckling_data import clamp_unit_row
-from validation.studies.edge_counts import (CLASS_COLUMNS, COLUMNS, main, read_edge_counts,
-                                            run_edge_counts)
+from validation.clamp_zone.counts import CLASS_COLUMNS, COLUMNS, run_edge_counts
+from validation.clamp_zone.data import load, unit_row
+from validation.clamp_zone.key import UnitKey
 
 
 @pytest.mark.slow
@@ -16,7 +16,7 @@ def test_the_counts_equal_the_units_full_scan():
     """alpha = 1, 10 x 1 x 24 graded 0.1: the unit's scan (every negative mode computed and
     classified) counted 38 negative modes at D0 = 2.5 and 100 at D0 = 3 (its
     ``scan_counts``); Sylvester's counts of one ramp give the same integers."""
-    unit = clamp_unit_row(1.0, "10x1x24", 0.1, "mixed")
+    unit = unit_row(UnitKey(1.0, (10, 1, 24), 0.1))
     scanned = {float(d): int(c.split("/")[0]) for d, c in
                (item.split(":") for item in unit["scan_counts"].split())}
     rows = run_edge_counts(1.0, (10, 1, 24), [2.5, 3.0], grading=0.1)
@@ -31,7 +31,7 @@ def test_the_counts_equal_the_units_full_scan():
 def test_the_committed_rows_count_the_whole_spectrum():
     """Every committed row: its class counts add up to its total, and the x2 A classes
     (bending) to its n_x2A."""
-    rows = read_edge_counts()
+    rows = load("counts")
     assert rows
     for r in rows:
         counts = {c: int(r[c]) for c in CLASS_COLUMNS}
@@ -39,22 +39,6 @@ def test_the_committed_rows_count_the_whole_spectrum():
         assert sum(v for c, v in counts.items() if c[1] == "A") == int(r["n_x2A"])
 
 
-@pytest.mark.parametrize("argv, message", [
-    (["--alpha", "1", "--mesh", "2x1x2", "--D0", "-1"], "D0 must be positive"),
-    (["--alpha", "1", "--mesh", "2x1x2", "--D0", "nan"], "D0 must be positive"),
-])
-def test_bad_charges_are_one_line(argv, message, tmp_path, capsys):
-    assert main(argv + ["--csv", str(tmp_path / "c.csv")]) == 1
-    err = capsys.readouterr().err
-    assert err.count("\n") == 1 and message in err
-
-
-def test_another_tables_csv_is_refused(tmp_path, capsys):
-    other = tmp_path / "units.csv"
-    other.write_text("alpha,mesh\n1,2x1x2\n")
-    assert main(["--alpha", "1", "--mesh", "2x1x2", "--D0", "1", "--csv", str(other)]) == 1
-    assert "is not this study's table" in capsys.readouterr().err
-    assert other.read_text() == "alpha,mesh\n1,2x1x2\n"
 
 
 def test_the_second_pressure_space_counts_one_pressure_per_element():

@@ -221,8 +221,9 @@ def test_continuation_reaches_the_homogeneous_end_state():
 def test_band_onsets_and_the_figure(tmp_path):
     """``band_onsets`` gives, per state and section mesh, the smallest k with a negative
     mode and whether the base inverted elements (hand-made rows); the figure has a panel per state and a line per h0; the CLI
-    refuses a missing table with code 2."""
-    from validation.figures.edge_band import band_onsets, edge_band_figure, main, mesh_reach
+    refuses a folder that is not one with code 2."""
+    from validation.cli import main
+    from validation.clamp_zone.band import band_onsets, edge_band_figure, mesh_reach
 
     # 36 elements over the half-width 25 mm, 4 per half-wave: k = pi / (4 * 25 / 36)
     assert math.isclose(mesh_reach("40x1x36"), math.pi * 36 / 100, rel_tol=1e-12)
@@ -240,9 +241,8 @@ def test_band_onsets_and_the_figure(tmp_path):
     fig = edge_band_figure(rows)
     visible = [ax for ax in fig.axes if ax.get_visible()]
     assert len(visible) == 2 and [len(ax.lines) for ax in visible] == [2, 1]
-    with pytest.raises(SystemExit) as e:
-        main([str(tmp_path / "missing.csv"), "--out", str(tmp_path)])
-    assert e.value.code == 2
+    assert main(["clamp-zone", "band", "--from", str(tmp_path / "missing"),
+                 "--out", str(tmp_path)]) == 2
 
 
 def test_the_docs_show_the_committed_band_table():
@@ -250,10 +250,10 @@ def test_the_docs_show_the_committed_band_table():
     state of the committed rows has three section meshes."""
     from pathlib import Path
 
-    from validation.figures.edge_band import band_onsets, band_table
-    from validation.studies.edge_section import read_edge_section
+    from validation.clamp_zone.band import band_onsets, band_table
+    from validation.clamp_zone.data import load
 
-    rows = read_edge_section()
+    rows = load("section")
     assert all(len(by_h) == 3 for by_h in band_onsets(rows).values())
     docs = (Path(__file__).resolve().parents[1] / "docs" / "validation.md").read_text()
     assert band_table(rows) in docs

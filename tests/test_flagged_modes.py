@@ -1,14 +1,15 @@
-"""The whole plate's negative modes at one state (validation.studies.flagged_modes)."""
+"""The whole plate's negative modes at one state (validation.clamp_zone.flagged)."""
 
 from __future__ import annotations
 
 import numpy as np
-import pytest
 
 import skfem_dielectric as fe
 from skfem_dielectric.models.plate.scan import PlateScan
 from validation.fe.model import BUCKLING_GRAD_DIV
-from validation.studies.flagged_modes import COLUMNS, main, read_flagged_modes, run_flagged_modes
+from validation.cli import main
+from validation.clamp_zone.data import load
+from validation.clamp_zone.flagged import COLUMNS, run_flagged_modes
 
 
 def test_every_negative_mode_is_a_row_and_the_clamps_mirror_each_other():
@@ -35,16 +36,16 @@ def test_every_negative_mode_is_a_row_and_the_clamps_mirror_each_other():
 
 
 def test_a_state_is_written_once_and_bad_input_is_one_line(tmp_path, capsys):
-    out = tmp_path / "f.csv"
-    args = ["--alpha", "1", "--mesh", "4x1x2", "--grading", "0.5", "--D0", "0.5", "--csv",
-            str(out)]
+    out = tmp_path / "flagged_modes.csv"
+    args = ["clamp-zone", "flagged", "--alpha", "1", "--mesh", "4x1x2", "--grading", "0.5",
+            "--D0", "0.5", "--out", str(tmp_path)]
     assert main(args) == 0
-    rows = read_flagged_modes(out)
+    rows = load("flagged", tmp_path)
     assert rows and list(rows[0]) == list(COLUMNS)
     before = out.read_bytes()
     assert main(args) == 0 and out.read_bytes() == before
-    with pytest.raises(SystemExit) as exc:
-        main(["--alpha", "1", "--mesh", "4x1x2", "--D0", "-1", "--csv", str(out)])
-    assert exc.value.code == 2
+    assert main(["clamp-zone", "flagged", "--alpha", "1", "--mesh", "4x1x2", "--D0", "-1",
+                 "--out", str(tmp_path)]) == 2
     err = capsys.readouterr().err.strip().splitlines()
-    assert "--D0 must be a positive charge, got -1" in err[-1]
+    assert "--D0 must be > 0 and finite, got -1" in err[-1]
+    assert out.read_bytes() == before

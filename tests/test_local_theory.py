@@ -19,7 +19,7 @@ from skfem_dielectric import PlateProblem, RampSettings, ramp
 from skfem_dielectric.fem.mesh import plate_mesh
 from skfem_dielectric.gallery import keplinger_problem
 from skfem_dielectric.materials import NeoHookeanDielectric
-from validation.studies.local_theory import (energy_centroid, first_firing, half_waves,
+from validation.clamp_zone.local_theory import (energy_centroid, first_firing, half_waves,
                                              local_criteria, local_state)
 
 #: the Newton tolerance of the ramps below (relative residual), and what it allows on the

@@ -1,4 +1,4 @@
-"""The located P33 breakdown on graded meshes (validation.studies.p33_units)."""
+"""The located P33 breakdown on graded meshes (validation.clamp_zone.p33)."""
 
 from __future__ import annotations
 
@@ -10,8 +10,9 @@ import numpy as np
 
 import skfem_dielectric as fe
 from validation.studies.buckling import p33_measures
-from validation.studies.p33_units import (COLUMNS, ONSET_TOL, SETS, main, read_p33_units,
-                                          run_p33_unit)
+from validation.cli import main
+from validation.clamp_zone.data import LOCATION_TOL as ONSET_TOL, load
+from validation.clamp_zone.p33 import COLUMNS, SETS, run_p33_unit
 from validation.table import BREAKDOWN_TOL
 
 
@@ -35,20 +36,20 @@ def test_a_located_onset_is_where_an_independent_ramp_crosses_the_flag(tmp_path)
         lo, hi = (p33_measures(pb, st.x, st.load, st.quantities)[k]
                   for st in res.steps[-2:])
         assert lo > -BREAKDOWN_TOL > hi, (k, d, lo, hi)
-    out = tmp_path / "p33.csv"
-    assert main(["--alpha", "1", "--mesh", "6x1x3", "--grading", "0.5", "--D0-step", "1",
-                 "--D0-max", "3", "--csv", str(out)]) == 0
-    rows = read_p33_units(out)
+    out = tmp_path / "run"
+    assert main(["clamp-zone", "p33", "--alpha", "1", "--mesh", "6x1x3", "--grading", "0.5",
+                 "--D0-step", "1", "--D0-max", "3", "--out", str(out)]) == 0
+    rows = load("p33", out)
     assert len(rows) == 1 and list(rows[0]) == list(COLUMNS)
-    assert main(["--alpha", "1", "--mesh", "6x1x3", "--grading", "0.5", "--csv",
-                 str(out)]) == 0
-    assert read_p33_units(out) == rows
+    assert main(["clamp-zone", "p33", "--alpha", "1", "--mesh", "6x1x3", "--grading", "0.5",
+                 "--out", str(out)]) == 0
+    assert load("p33", out) == rows
 
 
 def test_the_smallest_committed_unit_is_reproduced():
     """alpha = 1 on 12 x 1 x 6 graded 0.25 run again: every onset within twice its
     location tolerance of its row in validation/data/p33_units.csv."""
-    ref = next(r for r in read_p33_units() if r["alpha"] == "1" and r["mesh"] == "12x1x6"
+    ref = next(r for r in load("p33") if r["alpha"] == "1" and r["mesh"] == "12x1x6"
                and r["grading"] == "0.25")
     row = run_p33_unit(1.0, (12, 1, 6), grading=0.25, D0_step=float(ref["D0_step"]),
                        D0_max=float(ref["D0_max"]))

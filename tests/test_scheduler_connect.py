@@ -13,6 +13,7 @@ import pytest
 pytest.importorskip("distributed", reason="the 'cluster' extra is not installed")
 
 import validation.cli as cli  # noqa: E402
+import validation.cluster as cluster  # noqa: E402
 
 
 def _server(answer: bytes | None) -> int:
@@ -43,7 +44,7 @@ def _validate(address, tmp_path, capsys):
 
 
 def test_a_silent_peer_is_one_line_and_exit_3_within_the_limit(tmp_path, capsys, monkeypatch):
-    monkeypatch.setattr(cli, "SCHEDULER_TIMEOUT", 1.0)
+    monkeypatch.setattr(cluster, "SCHEDULER_TIMEOUT", 1.0)
     port = _server(None)
     code, err, wall = _validate(f"tcp://127.0.0.1:{port}", tmp_path, capsys)
     assert code == 3 and err.count("\n") == 1, err
@@ -53,7 +54,7 @@ def test_a_silent_peer_is_one_line_and_exit_3_within_the_limit(tmp_path, capsys,
 
 
 def test_a_peer_answering_other_bytes_is_one_line_and_exit_3(tmp_path, capsys, monkeypatch):
-    monkeypatch.setattr(cli, "SCHEDULER_TIMEOUT", 1.0)
+    monkeypatch.setattr(cluster, "SCHEDULER_TIMEOUT", 1.0)
     port = _server(b"HTTP/1.1 200 OK\r\n\r\nnot dask" * 50)
     code, err, _ = _validate(f"127.0.0.1:{port}", tmp_path, capsys)
     assert code == 3 and err.count("\n") == 1, err

@@ -1,5 +1,5 @@
 """The clamp-zone wrinkle's wavelength against the Cerda-Mahadevan scaling
-(validation.studies.wrinkle_scaling), on the committed converged loads."""
+(validation.clamp_zone.scaling), on the committed converged loads."""
 
 from __future__ import annotations
 
@@ -8,7 +8,8 @@ import math
 import numpy as np
 from scipy.optimize import brentq
 
-from validation.studies.wrinkle_scaling import main, wrinkle_scaling
+from validation.cli import main
+from validation.clamp_zone.scaling import wrinkle_scaling
 
 
 def test_the_wavelength_is_consistent_with_cerda_mahadevan_not_with_the_thickness(capsys):
@@ -39,7 +40,7 @@ def test_the_wavelength_is_consistent_with_cerda_mahadevan_not_with_the_thicknes
     assert math.isclose(r["cm_mm"], math.sqrt(r["t_mm"] * 100.0 * lam1)
                         * (lam1 - 1) ** -0.25, rel_tol=1e-9)
     assert math.isclose(r["wavelength_mm"], 100.0 / r["half_waves"], rel_tol=1e-12)
-    assert main(["--no-membrane"]) == 0
+    assert main(["clamp-zone", "scaling", "--no-membrane"]) == 0
     assert f"| 1 | {r['D0_b']:.4f} | {r['half_waves']} | {r['wavelength_mm']:.2f} |" in \
         capsys.readouterr().out
 
@@ -49,7 +50,7 @@ def test_the_membrane_compressive_zone_sits_at_the_clamps():
     uni-axial state, whose lateral stress is zero (Eq. (DEuniax): t3 = 0) to the
     discretisation's 2e-3; the compression (S33/mu down to about -0.11) sits at the clamp
     (X1 > 45 of 50 mm) over a zone of about half the width (15-30 mm) from each clamp."""
-    from validation.studies.wrinkle_scaling import compressive_zone
+    from validation.clamp_zone.scaling import compressive_zone
 
     z = compressive_zone(1.0, 3.37, n1=20, n3=10, D0_step=0.5)
     assert abs(z["P33_centre"]) < 2e-3

@@ -1,5 +1,5 @@
 """The ``skfem-dielectric`` command line: ``list | curves | simulate | validate | check |
-bench | explore | wrinkling-fe | buckling | post-buckling``.
+bench | explore | wrinkling-fe | buckling | post-buckling | clamp-zone``.
 
 Every subcommand has ``--help``. Only this module prints, and it writes files
 only into the folder given by ``--out``.
@@ -27,6 +27,8 @@ from skfem_dielectric.fem import blas_thread_limit
 from .cases import CASES
 from .check_report import write_check_report
 from .checker import CHECK_CASES, TOLERANCES, check
+from .clamp_zone.cli import add_clamp_zone_command, cmd_clamp_zone
+from .cluster import dask_executor as _dask_executor
 from .fe import bench, run_fe, simulate
 from .figures import case_figure, save_figure
 from .specs import MODELS, VARIANTS
@@ -124,6 +126,7 @@ def build_parser() -> argparse.ArgumentParser:
     c.add_argument("--out", required=True, type=out_dir, help="output folder")
 
     add_study_commands(add)
+    add_clamp_zone_command(add)
 
     v = add("validate", "run FE sweeps, overlay them on the theory (main job)",
             "Run the FE ramps of the cases, write DIR/<case>.csv step by step, the figures "
@@ -245,55 +248,6 @@ def _cmd_curves(args) -> int:
         paths = save_figure(case_figure(name), args.out, name)
         print(f"{name}: " + ", ".join(str(p) for p in paths))
     return 0
-
-
-#: seconds that ``--scheduler ADDRESS`` waits for the scheduler in all (connection,
-#: handshake, the first answer); past them the command ends with one line and exit code 3
-SCHEDULER_TIMEOUT = 30.0
-
-
-def _dask_executor(address: str, jobs: int):
-    """``(client, cluster)`` of a dask.distributed scheduler ADDRESS or a LocalCluster."""
-    try:
-        from dask.distributed import Client, LocalCluster
-    except ImportError:
-        raise ValueError(f"--scheduler needs dask.distributed (pip install -e '.[cluster]'), "
-                         f"got --scheduler {address} without it") from None
-    if address == "local":
-        # a dashboard on a free port of this machine: no warning when 8787 is taken; the
-        # workers log errors only (a task cancelled by SIGTERM is said by the one line)
-        cluster = LocalCluster(n_workers=jobs, threads_per_worker=1, processes=True,
-                               dashboard_address="127.0.0.1:0", silence_logs=logging.ERROR)
-        return Client(cluster), cluster
-    scheme = address.split("://", 1)[0].lower() if "://" in address else "tcp"
-    if scheme != "tcp":
-        raise ValueError(f"--scheduler must be a dask scheduler address tcp://HOST:PORT (or "
-                         f"HOST:PORT) or 'local'; {scheme}:// is not supported (TLS needs "
-                         f"security settings, UCX its own package), got {address!r}")
-    box: dict = {}
-
-    def connect():
-        try:
-            box["client"] = Client(address, timeout=f"{SCHEDULER_TIMEOUT:g}s")
-        except BaseException as exc:   # reported by the caller's thread, one line
-            box["error"] = exc
-
-    # the whole connection within SCHEDULER_TIMEOUT: a peer that accepts the connection
-    # and never answers (or answers what is not dask) must not hang the command
-    worker = threading.Thread(target=connect, name="dask-connect", daemon=True)
-    worker.start()
-    worker.join(SCHEDULER_TIMEOUT + 2.0)
-    if "client" in box:
-        return box["client"], None
-    exc = box.get("error")
-    if isinstance(exc, ValueError) and "://" not in address and ":" not in address:
-        raise ValueError(f"--scheduler must be a dask scheduler address (tcp://HOST:PORT) or "
-                         f"'local', got {address!r} ({_one_line(exc)})") from None
-    if exc is None:
-        raise OSError(None, f"no dask scheduler answered within {SCHEDULER_TIMEOUT:g} s",
-                      address)
-    raise OSError(None, f"no dask scheduler there ({type(exc).__name__}: "
-                        f"{_one_line(exc)[:200]})", address)
 
 
 def _validate_on_cluster(args, kw: dict) -> list:
@@ -497,7 +451,8 @@ def main(argv: list[str] | None = None) -> int:
     cmd = {"list": _cmd_list, "curves": _cmd_curves, "validate": _cmd_validate,
            "check": _cmd_check, "simulate": _cmd_simulate, "bench": _cmd_bench,
            "explore": _cmd_explore,
-           **STUDY_COMMANDS}[args.command]
+           "clamp-zone": cmd_clamp_zone, **STUDY_COMMANDS}[args.command]
+    args.argv = argv
     prefix = f"skfem-dielectric {args.command}: error:"
     atexit.unregister(remove_openmp_registration)      # once per process
     atexit.register(remove_openmp_registration, os.getpid())

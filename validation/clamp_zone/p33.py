@@ -22,61 +22,36 @@ it reached ``D0_max``).  An onset is empty where the value never falls below
 ``-BREAKDOWN_TOL`` up to the last converged state (the ``note`` says so); ``D0 = 0`` (no
 charge) never counts as an onset.
 
-Rows go to a CSV (default ``validation/data/p33_units.csv``), one per unit, written
-atomically as soon as the unit is done; a unit whose key (``alpha``, mesh, ``grading``) is
-already there is skipped, so a list of units run in the background resumes where it
-stopped.
-
-Usage::
-
-    python -m validation.studies.p33_units --alpha 1 --mesh 30x1x24 --grading 0.1
+The rows go to the ``p33`` table, one per unit, as soon as the unit is done
+(``skfem-dielectric clamp-zone p33``); a unit already there is skipped.
 """
 
 from __future__ import annotations
 
-import argparse
 import datetime
 import math
 import resource
-import shlex
-import sys
 import time
 import warnings
-from pathlib import Path
 
 import numpy as np
 
 import skfem_dielectric as fe
-from skfem_dielectric.fem import blas_thread_limit
 from skfem_dielectric.gallery.drivers import newton_guards
 from skfem_dielectric.linalg.solver_base import factorisation_count
 from skfem_dielectric.solvers.critical import critical_load
 
-from ..buckling_data import read_data_csv
 from ..fe.model import BUCKLING_NEWTON
+from ..studies.buckling import p33_measures
 from ..table import BREAKDOWN_TOL
-from .buckling import p33_measures
-from .clamp_units import UNIT_SETTINGS, append_row, mesh_text, parse_mesh
+from .data import LOCATION_TOL, P33_SETS as SETS, TABLES
+from .key import mesh_text
+from .units import UNIT_SETTINGS
 
-__all__ = ["COLUMNS", "DEFAULT_CSV", "SETS", "run_p33_unit", "read_p33_units", "main"]
+__all__ = ["COLUMNS", "SETS", "run_p33_unit"]
 
-#: where the rows are kept (provenance in the header lines)
-DEFAULT_CSV = Path(__file__).resolve().parents[1] / "data" / "p33_units.csv"
-#: the sets whose onset is located
-SETS = ("centre_line", "clamp", "interior")
-#: the columns of a row, in order
-COLUMNS = (("alpha", "mesh", "grading", "dofs", "D0_step")
-           + tuple(f"P33_onset_{k}" for k in SETS)
-           + ("newton_limit", "D0_max", "states", "trials", "factorisations", "cpu_s",
-              "peak_GB", "solver", "date", "note", "command"))
-_HEADER = """\
-# The P33 breakdown of the Keplinger plate on graded meshes, located (one alpha on one mesh
-# per row).  Written by validation.studies.p33_units (the module docstring defines every
-# column): eighth model, plain form (grad_div = 0), neo-Hookean, g = 9.81; an onset is the
-# D0 where min P33/mu on its set reaches -0.01, located to 1e-4 by Brent's method.
-"""
-#: location tolerance of an onset in D0
-ONSET_TOL = 1e-4
+#: the columns of a row, in order (the ``p33`` table)
+COLUMNS = TABLES["p33"].columns
 
 
 def run_p33_unit(alpha: float, elements, *, grading: float = 1.0, D0_step: float = 0.25,
@@ -151,7 +126,7 @@ def run_p33_unit(alpha: float, elements, *, grading: float = 1.0, D0_step: float
             try:
                 with warnings.catch_warnings():
                     warnings.simplefilter("ignore", RuntimeWarning)
-                    crit = critical_load(pb, xa, la, lb, value, tol=ONSET_TOL, **newton)
+                    crit = critical_load(pb, xa, la, lb, value, tol=LOCATION_TOL, **newton)
                 onset = float(crit.load[1])
                 trials += len(crit.evaluations)
             except ValueError as exc:     # a result: bracketed, not located
@@ -166,60 +141,3 @@ def run_p33_unit(alpha: float, elements, *, grading: float = 1.0, D0_step: float
                peak_GB=round(resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024**2, 3),
                solver=solver, date=datetime.date.today().isoformat(), note="; ".join(notes))
     return row
-
-
-def read_p33_units(path: Path = DEFAULT_CSV) -> list[dict]:
-    """The rows of the CSV (comment lines skipped), as dicts of strings."""
-    return read_data_csv(path)
-
-
-def _key(r: dict) -> tuple:
-    return f"{float(r['alpha']):g}", str(r["mesh"]), f"{float(r['grading']):g}"
-
-
-def main(argv: list[str] | None = None) -> int:
-    """Run the units ``--alpha`` x ``--mesh`` not yet in ``--csv`` and append their rows.
-
-    Parameters
-    ----------
-    argv : list of str, optional
-        The arguments (default: ``sys.argv[1:]``; see the module docstring).
-
-    Returns
-    -------
-    int
-        0; bad arguments exit with argparse's one line and code 2.
-    """
-    ap = argparse.ArgumentParser(prog="python -m validation.studies.p33_units",
-                                 description=__doc__.splitlines()[0])
-    ap.add_argument("--alpha", type=float, nargs="+", required=True)
-    ap.add_argument("--mesh", type=parse_mesh, nargs="+", required=True)
-    ap.add_argument("--grading", type=float, default=1.0)
-    ap.add_argument("--D0-step", dest="D0_step", type=float, default=0.25)
-    ap.add_argument("--D0-max", dest="D0_max", type=float, default=6.0)
-    ap.add_argument("--solver", default="auto", choices=["auto", "superlu", "pardiso"])
-    ap.add_argument("--csv", type=Path, default=DEFAULT_CSV)
-    a = ap.parse_args(argv)
-    command = "python -m validation.studies.p33_units " + " ".join(
-        shlex.quote(v) for v in (argv if argv is not None else sys.argv[1:]))
-    for alpha in a.alpha:
-        for el in a.mesh:
-            key = (f"{alpha:g}", mesh_text(el), f"{a.grading:g}")
-            if any(_key(r) == key for r in read_p33_units(a.csv)):
-                print(f"alpha = {alpha:g} {key[1]} grading {a.grading:g}: kept", flush=True)
-                continue
-            with blas_thread_limit(1):      # as the command line (docs/performance.md)
-                row = run_p33_unit(alpha, el, grading=a.grading, D0_step=a.D0_step,
-                                   D0_max=a.D0_max, solver=a.solver,
-                                   progress=lambda t: print("  " + t, flush=True))
-            row["command"] = command
-            append_row(a.csv, row, COLUMNS, _HEADER)
-            print(f"alpha = {alpha:g} {key[1]} grading {a.grading:g}: P33 onsets "
-                  + ", ".join(f"{k} {row[f'P33_onset_{k}']:.4f}" for k in SETS)
-                  + f", Newton limit {row['newton_limit']:g}, {row['dofs']} DOFs, "
-                  f"{row['cpu_s']} CPU s, {row['peak_GB']} GB", flush=True)
-    return 0
-
-
-if __name__ == "__main__":
-    sys.exit(main())

@@ -320,7 +320,7 @@ def first_firing(D0, margin) -> float:
 
     Examples
     --------
-    >>> from validation.studies.local_theory import first_firing
+    >>> from validation.clamp_zone.local_theory import first_firing
     >>> first_firing([1.0, 2.0, 3.0], [-1.0, -0.5, 0.5])
     2.5
     """

@@ -12,7 +12,7 @@ unit's row holds what the mesh says about the mode there:
 
 * ``D0_b``, the mode's class, its share at the clamp corners and its mesh scale;
 * ``half_waves``: sign changes of its top-face deflection across the whole width, at its
-  energy centroid (``validation.studies.local_theory.half_waves``), and
+  energy centroid (:func:`validation.clamp_zone.local_theory.half_waves`), and
   ``elements_per_half_wave`` (the width's elements over the half-waves);
 * ``J_min_clamp``, ``J_max_clamp``: ``J = det F`` at the mid-plane centres of the elements
   next to the clamp, at ``D0_b`` (an incompressible material has ``J = 1``; the discrete
@@ -25,31 +25,17 @@ unit's row holds what the mesh says about the mode there:
   crossing between two states that the location could not follow).
 
 The mode at ``D0_b`` (the top face's deflection over the whole plate) goes to
-``--modes`` (default ``results/clamp-modes``, one ``.npz`` per unit, not data of the
-repository); ``python -m validation.figures.clamp_modes`` draws them.
-
-Rows go to a CSV (default ``validation/data/clamp_units.csv``), one per unit, written
-atomically as soon as the unit is done; a unit whose key (``alpha``, mesh, ``grading``,
-``formulation``) is already there is skipped, so a list of units run in the background
-resumes where it stopped.
-
-Usage::
-
-    python -m validation.studies.clamp_units --alpha 1 --mesh 12x1x12 --grading 0.25
-    python -m validation.studies.clamp_units --alpha 1 0.7 --mesh 12x1x12 16x1x20 --grading 0.25
-    python -m validation.studies.clamp_units --tables     # the study's tables, from the data
+``--out``'s ``modes`` folder (one ``.npz`` per unit, :attr:`~validation.clamp_zone.key.UnitKey.stem`);
+``skfem-dielectric clamp-zone modes`` draws them.  The rows go to the ``units`` table
+(:data:`~validation.clamp_zone.data.TABLES`); ``skfem-dielectric clamp-zone units`` runs the units not yet
+there (docs/clamp-zone.md).
 """
 
 from __future__ import annotations
 
-import argparse
-import csv
 import datetime
-import io
 import math
 import resource
-import shlex
-import sys
 import time
 import warnings
 from dataclasses import replace
@@ -58,38 +44,22 @@ from pathlib import Path
 import numpy as np
 
 import skfem_dielectric as fe
-from skfem_dielectric.fem import blas_thread_limit
 from skfem_dielectric.linalg.solver_base import factorisation_count
 from skfem_dielectric.models.plate.modes import top_deflection
 from skfem_dielectric.models.plate.scan import PlateScan
 from skfem_dielectric.studies.buckling import locate_buckling
 
-from ..buckling_data import (MIN_ELEMENTS_PER_HALF_WAVE, clamp_study_tables, clamp_unit_load,
-                             read_clamp_units, read_data_csv, unit_key)
-from ..fe.model import BUCKLING_GRAD_DIV, BUCKLING_NEWTON, BUCKLING_TOL
-from ..store import write_npz_atomic, write_text_atomic
+from ..fe.model import BUCKLING_GRAD_DIV, BUCKLING_NEWTON
+from ..store import write_npz_atomic
+from .data import LOCATION_TOL, TABLES
+from .key import UnitKey, mesh_text
 from .local_theory import energy_centroid, half_waves, local_state
 
-__all__ = ["COLUMNS", "DEFAULT_CSV", "MIN_ELEMENTS_PER_HALF_WAVE", "UNIT_SETTINGS",
-           "run_unit", "read_units", "clamp_unit_load", "mesh_text", "parse_mesh",
-           "append_row", "append_rows", "foreign_table", "study_command", "unit_problem",
-           "ramp_states", "ramp_to_charge", "clamp_centre_J", "main"]
+__all__ = ["COLUMNS", "UNIT_SETTINGS", "run_unit", "unit_problem", "ramp_states",
+           "ramp_to_charge", "clamp_centre_J"]
 
-#: where the study's rows are kept (provenance in its header lines)
-DEFAULT_CSV = Path(__file__).resolve().parents[1] / "data" / "clamp_units.csv"
-#: the columns of a unit's row, in order
-COLUMNS = ("alpha", "mesh", "grading", "formulation", "dofs", "D0_step", "D0_b", "class",
-           "corner_share", "mesh_scale", "half_waves", "elements_per_half_wave",
-           "J_min_clamp", "J_max_clamp", "n_flagged_b", "states", "factorisations",
-           "cpu_s", "peak_GB", "solver", "date", "scan_counts", "note", "command")
-_HEADER = """\
-# The clamp-zone wrinkle of the Keplinger plate, unit by unit (one alpha on one mesh per row).
-# Written by validation.studies.clamp_units (the module docstring defines every column):
-# eighth model, neo-Hookean, g = 9.81, grad-div 10, grading = last / first element length
-# along x1 (towards the clamp); D0_b located to 1e-4; J at the mid-plane centres of the
-# elements next to the clamp at D0_b; cpu_s and peak_GB of the unit's process.
-"""
-
+#: the columns of a unit's row, in order (the ``units`` table)
+COLUMNS = TABLES["units"].columns
 
 #: Newton settings of a unit's ramps: the Keplinger plate's, with more cut-backs and
 #: iterations (the graded clamp layer)
@@ -157,11 +127,6 @@ def ramp_to_charge(problem, s: float, D0: float, *, solver: str = "auto", name: 
     return x, load
 
 
-def mesh_text(elements) -> str:
-    """``(n1, n2, n3)`` as the study writes it, ``"n1xn2xn3"``."""
-    return "x".join(str(int(n)) for n in elements)
-
-
 def clamp_centre_J(pb, x, load) -> tuple[float, float]:
     """Smallest and largest ``J`` at the mid-plane centres of the elements next to the
     clamp (eighth model: the last element along ``x1``, every element across ``x3``)."""
@@ -201,7 +166,7 @@ def run_unit(alpha: float, elements, *, grading: float = 1.0, D0_step: float = 0
     progress
         Optional ``progress(text)`` called once per scanned state.
     modes_dir
-        Where to write the mode at ``D0_b`` (``<alpha>_<mesh>_g<grading>_<formulation>.npz``:
+        Where to write the mode at ``D0_b`` (``<stem>.npz``, :attr:`~validation.clamp_zone.key.UnitKey.stem`:
         the top face's deflection over the whole plate, ``X1``, ``X3``, ``u2``, as
         :func:`~skfem_dielectric.models.plate.modes.top_deflection`); ``None``: not written.
 
@@ -265,7 +230,7 @@ def run_unit(alpha: float, elements, *, grading: float = 1.0, D0_step: float = 0
             if row.n_physical > 1 and refine < 2:
                 raise ValueError(f"{row.n_physical} physical modes crossed at once")
             bl = locate_buckling(pb, prev[:2], cur[:2], row.new_physical, counts=before,
-                                 method=method, tol=BUCKLING_TOL, linear_solver=solver,
+                                 method=method, tol=LOCATION_TOL, linear_solver=solver,
                                  settings=BUCKLING_NEWTON)
             break
         except ValueError as exc:   # a result: the crossing between lo and hi, unlocated
@@ -294,8 +259,8 @@ def run_unit(alpha: float, elements, *, grading: float = 1.0, D0_step: float = 0
         if modes_dir is not None:
             X1, X3, u2 = top_deflection(pb, lab.mode, lab.increments)
             Path(modes_dir).mkdir(parents=True, exist_ok=True)
-            write_npz_atomic(Path(modes_dir) / f"{alpha:g}_{mesh_text(el)}_g{grading:g}_"
-                                               f"{formulation}.npz",
+            key = UnitKey(alpha, el, grading, formulation)
+            write_npz_atomic(Path(modes_dir) / f"{key.stem}.npz",
                              X1=X1, X3=X3, u2=u2, D0_b=float(bl.D0_b))
     else:
         row.update(D0_b=math.nan, n_flagged_b=(track["row"].n_negative - track["row"].n_physical
@@ -306,124 +271,3 @@ def run_unit(alpha: float, elements, *, grading: float = 1.0, D0_step: float = 0
                peak_GB=round(resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024**2, 3),
                solver=solver, date=datetime.date.today().isoformat())
     return row
-
-
-def read_units(path: Path = DEFAULT_CSV) -> list[dict]:
-    """The rows of the study's CSV (comment lines skipped), as dicts of strings."""
-    return read_clamp_units(path)
-
-
-def _cell(v) -> str:
-    if isinstance(v, float):
-        return "" if not math.isfinite(v) else f"{v:.6g}"
-    return str(v)
-
-
-def append_rows(path: Path, rows, columns=COLUMNS, header: str = _HEADER) -> None:
-    """Rewrite a study's CSV atomically: ``header`` (``#`` lines), ``columns``, the rows it
-    holds, then ``rows`` (floats to 6 digits, ``nan`` as an empty cell)."""
-    buf = io.StringIO()
-    w = csv.DictWriter(buf, columns, restval="", extrasaction="ignore", lineterminator="\n")
-    w.writeheader()
-    w.writerows(read_data_csv(path) + [{k: _cell(r.get(k, "")) for k in columns}
-                                       for r in rows])
-    write_text_atomic(path, header + buf.getvalue())
-
-
-def foreign_table(path: Path, columns) -> bool:
-    """Whether ``path`` exists and is not a table of ``columns`` (a folder, or a file whose
-    rows have other columns): a study must not rewrite it."""
-    path = Path(path)
-    if not path.exists():
-        return False
-    if not path.is_file():
-        return True
-    rows = read_data_csv(path)
-    return bool(rows) and set(rows[0]) != set(columns)
-
-
-def study_command(module: str, argv: list[str] | None) -> str:
-    """The command line of a study's run, as its rows record it: ``python -m module``
-    and ``argv`` (default: the process's own arguments), quoted for a shell."""
-    return f"python -m {module} " + " ".join(
-        shlex.quote(v) for v in (argv if argv is not None else sys.argv[1:]))
-
-
-def append_row(path: Path, row: dict, columns=COLUMNS, header: str = _HEADER) -> None:
-    """:func:`append_rows` of one row."""
-    append_rows(path, [row], columns, header)
-
-
-def parse_mesh(text: str) -> tuple[int, int, int]:
-    """``"n1xn2xn3"`` as ``(n1, n2, n3)`` (positive counts), for ``argparse``: an
-    ``argparse.ArgumentTypeError`` naming the text otherwise."""
-    try:
-        n = tuple(int(v) for v in text.split("x"))
-    except ValueError:
-        n = ()
-    if len(n) != 3 or min(n) < 1:
-        raise argparse.ArgumentTypeError(f"a mesh is n1xn2xn3 with positive counts, "
-                                         f"got {text!r}")
-    return n
-
-
-def main(argv: list[str] | None = None) -> int:
-    """Run the units ``--alpha`` x ``--mesh`` not yet in ``--csv`` and append their rows.
-
-    Parameters
-    ----------
-    argv : list of str, optional
-        The arguments (default: ``sys.argv[1:]``; see the module docstring).
-
-    Returns
-    -------
-    int
-        0; bad arguments exit with argparse's one line and code 2.
-    """
-    ap = argparse.ArgumentParser(prog="python -m validation.studies.clamp_units",
-                                 description=__doc__.splitlines()[0])
-    ap.add_argument("--alpha", type=float, nargs="+")
-    ap.add_argument("--mesh", type=parse_mesh, nargs="+")
-    ap.add_argument("--tables", action="store_true",
-                    help="print the study's tables (Markdown) from the data files and stop")
-    ap.add_argument("--grading", type=float, default=1.0)
-    ap.add_argument("--formulation", default="mixed")
-    ap.add_argument("--D0-step", dest="D0_step", type=float, default=0.5)
-    ap.add_argument("--D0-max", dest="D0_max", type=float, default=6.0)
-    ap.add_argument("--solver", default="auto", choices=["auto", "superlu", "pardiso"])
-    ap.add_argument("--csv", type=Path, default=DEFAULT_CSV)
-    ap.add_argument("--modes", type=Path, default=Path("results") / "clamp-modes",
-                    help="folder of the modes at D0_b (default results/clamp-modes)")
-    a = ap.parse_args(argv)
-    if a.tables:
-        sys.stdout.write(clamp_study_tables())
-        return 0
-    if not a.alpha or not a.mesh:
-        ap.error("--alpha and --mesh are required (or --tables)")
-    command = "python -m validation.studies.clamp_units " + " ".join(
-        shlex.quote(v) for v in (argv if argv is not None else sys.argv[1:]))
-    for alpha in a.alpha:
-        for el in a.mesh:
-            row_key = unit_key({"alpha": alpha, "mesh": mesh_text(el),
-                                "grading": a.grading, "formulation": a.formulation})
-            if any(unit_key(r) == row_key for r in read_units(a.csv)):
-                print(f"alpha = {alpha:g} {mesh_text(el)} grading {a.grading:g}: kept",
-                      flush=True)
-                continue
-            with blas_thread_limit(1):      # as the command line (docs/performance.md)
-                row = run_unit(alpha, el, grading=a.grading, D0_step=a.D0_step,
-                               D0_max=a.D0_max, formulation=a.formulation, solver=a.solver,
-                               progress=lambda t: print("  " + t, flush=True),
-                               modes_dir=a.modes)
-            row["command"] = command
-            append_row(a.csv, row)
-            print(f"alpha = {alpha:g} {mesh_text(el)} grading {a.grading:g}: D0_b "
-                  f"{row['D0_b']:.4f} {row.get('note', '')}, "
-                  f"{row.get('half_waves', '')} half-waves, "
-                  f"{row['dofs']} DOFs, {row['cpu_s']} CPU s, {row['peak_GB']} GB",
-                  flush=True)
-    return 0
-
-
-if __name__ == "__main__":
-    sys.exit(main())

@@ -1,6 +1,6 @@
 """Negative-mode counts of the whole clamped plate at a few charges, without eigenpairs.
 
-The clamp-zone study (:mod:`validation.studies.clamp_units`) scans every state of a unit,
+The clamp-zone study's units (:mod:`validation.clamp_zone.units`) scan every state of a unit,
 which computes and classifies every negative mode; on the meshes refined in ``n1``,
 ``n2`` and ``n3`` together that scan does not fit a background unit.  This study ramps the
 same plate (eighth model, neo-Hookean, ``g = 9.81``, graded along ``x1``) to each charge of
@@ -24,57 +24,33 @@ A row per charge:
 * ``cpu_s``: the process's CPU seconds up to this row (the ramp included); ``count_cpu_s``:
   the count alone; ``peak_GB``, ``factorisations``, ``solver``, ``date``, ``command``.
 
-Rows go to a CSV (default ``validation/data/edge_counts.csv``), written atomically as each
-state is counted; a state whose key (``alpha``, mesh, ``grading``, ``formulation``,
-``grad_div``, ``pressure``, ``D0``) is there is skipped, so a unit resumes where it stopped.
-
-Usage::
-
-    python -m validation.studies.edge_counts --solver pardiso --alpha 1.5 --mesh 60x1x36 \\
-        --grading 0.1 --D0 4 4.5 4.75
+The rows go to the ``counts`` table as each state is counted
+(``skfem-dielectric clamp-zone counts``); a state already there is skipped.
 """
 
 from __future__ import annotations
 
-import argparse
 import datetime
 import math
 import resource
-import sys
 import time
 import warnings
-from pathlib import Path
 
 import numpy as np
 
 import skfem_dielectric as fe
-from skfem_dielectric.fem import blas_thread_limit
 from skfem_dielectric.linalg.solver_base import factorisation_count
 from skfem_dielectric.models.plate.scan import PlateScan
 
-from ..buckling_data import read_data_csv, unit_key
 from ..fe.model import BUCKLING_GRAD_DIV
-from .clamp_units import (UNIT_SETTINGS, append_row, foreign_table, mesh_text, parse_mesh,
-                          study_command, unit_problem)
+from .data import CLASS_COLUMNS, TABLES
+from .key import mesh_text
+from .units import UNIT_SETTINGS, unit_problem
 
-__all__ = ["COLUMNS", "CLASS_COLUMNS", "DEFAULT_CSV", "run_edge_counts", "read_edge_counts",
-           "main"]
+__all__ = ["COLUMNS", "CLASS_COLUMNS", "run_edge_counts"]
 
-#: where the study's rows are kept (provenance in its header lines)
-DEFAULT_CSV = Path(__file__).resolve().parents[1] / "data" / "edge_counts.csv"
-#: a column per symmetry class: its parities in the order x1, x2, x3
-CLASS_COLUMNS = tuple(a + b + c for a in "SA" for b in "SA" for c in "SA")
-#: the columns of a row, in order
-COLUMNS = ("alpha", "mesh", "grading", "formulation", "grad_div", "pressure", "D0", "dofs",
-           "n_negative",
-           "n_x2A") + CLASS_COLUMNS + ("cpu_s", "count_cpu_s", "peak_GB", "factorisations",
-                                       "solver", "date", "command")
-_HEADER = """\
-# Negative-mode counts of the whole clamped plate at a few charges, one row per state.
-# Written by validation.studies.edge_counts (the module docstring defines every column):
-# eighth model, neo-Hookean, g = 9.81, grading = last / first element length along x1;
-# counts by Sylvester's law of inertia (no classification: the corner quartet is 4 of them).
-"""
+#: the columns of a row, in order (the ``counts`` table)
+COLUMNS = TABLES["counts"].columns
 
 
 def _column(name: str) -> str:
@@ -91,7 +67,7 @@ def run_edge_counts(alpha: float, elements, D0, *, grading: float = 1.0,
     Parameters
     ----------
     alpha, elements, grading, formulation, grad_div, pressure
-        The plate (:func:`~validation.studies.clamp_units.unit_problem`).
+        The plate (:func:`~validation.clamp_zone.units.unit_problem`).
     D0
         The charges (positive); counted in increasing order along one ramp.
     solver
@@ -169,74 +145,3 @@ def run_edge_counts(alpha: float, elements, D0, *, grading: float = 1.0,
         raise ValueError(f"the ramp of alpha = {alpha:g} {mesh_text(el)} stopped at "
                          f"D0 = {np.asarray(res.failed_at)[-1]:g}")
     return rows
-
-
-def read_edge_counts(path: Path | None = None) -> list[dict]:
-    """The rows of the study's CSV (default: the package's), as dicts of strings."""
-    return read_data_csv(path, "data/edge_counts.csv")
-
-
-def _key(r: dict) -> tuple:
-    return (*unit_key(r), f"{float(r['grad_div']):g}", str(r.get("pressure") or "Q1"),
-            f"{float(r['D0']):g}")
-
-
-def main(argv: list[str] | None = None) -> int:
-    """Count the states ``--D0`` of the plates ``--alpha`` x ``--mesh`` not yet in ``--csv``.
-
-    Parameters
-    ----------
-    argv : list of str, optional
-        The arguments (default: ``sys.argv[1:]``; see the module docstring).
-
-    Returns
-    -------
-    int
-        0; 1 with one line where a ramp stops or ``--csv`` is another table; bad
-        arguments exit with argparse's one line and code 2.
-    """
-    ap = argparse.ArgumentParser(prog="python -m validation.studies.edge_counts",
-                                 description=__doc__.splitlines()[0])
-    ap.add_argument("--alpha", type=float, nargs="+", required=True)
-    ap.add_argument("--mesh", type=parse_mesh, nargs="+", required=True)
-    ap.add_argument("--D0", type=float, nargs="+", required=True)
-    ap.add_argument("--grading", type=float, default=1.0)
-    ap.add_argument("--formulation", default="mixed")
-    ap.add_argument("--grad-div", dest="grad_div", type=float, default=BUCKLING_GRAD_DIV)
-    ap.add_argument("--pressure", default="Q1", choices=["Q1", "P0"])
-    ap.add_argument("--solver", default="auto", choices=["auto", "superlu", "pardiso"])
-    ap.add_argument("--csv", type=Path, default=DEFAULT_CSV)
-    a = ap.parse_args(argv)
-    if foreign_table(a.csv, COLUMNS):
-        print(f"error: --csv {a.csv} is not this study's table", file=sys.stderr)
-        return 1
-    command = study_command("validation.studies.edge_counts", argv)
-    for alpha in a.alpha:
-        for el in a.mesh:
-            unit = {"alpha": alpha, "mesh": mesh_text(el), "grading": a.grading,
-                    "formulation": a.formulation, "grad_div": a.grad_div,
-                    "pressure": a.pressure}
-            done = {float(r["D0"]) for r in read_edge_counts(a.csv)
-                    if _key(r)[:6] == _key({**unit, "D0": 1.0})[:6]}
-            if {float(d) for d in a.D0} <= done:
-                print(f"alpha = {alpha:g} {mesh_text(el)}: kept", flush=True)
-                continue
-
-            def write(row):
-                row["command"] = command
-                append_row(a.csv, row, COLUMNS, _HEADER)
-
-            try:
-                with blas_thread_limit(1):
-                    run_edge_counts(alpha, el, a.D0, grading=a.grading,
-                                    formulation=a.formulation, grad_div=a.grad_div,
-                                    pressure=a.pressure, solver=a.solver, skip=done, on_row=write,
-                                    progress=lambda t: print("  " + t, flush=True))
-            except ValueError as exc:
-                print(f"error: {exc}", file=sys.stderr)
-                return 1
-    return 0
-
-
-if __name__ == "__main__":
-    sys.exit(main())

@@ -1,31 +1,25 @@
 """The clamp-zone study's modes at ``D0_b``: the top face's deflection over the whole plate.
 
-:func:`validation.studies.clamp_units.run_unit` writes one ``.npz`` per unit (``X1``,
+:func:`validation.clamp_zone.units.run_unit` writes one ``.npz`` per unit (named by :attr:`~validation.clamp_zone.key.UnitKey.stem`) (``X1``,
 ``X3`` in mm, ``u2`` the mode's deflection, ``D0_b``; each panel scales it to a largest
 ``|u2|`` of one);
 :func:`clamp_modes_figure` draws a folder of them, one panel per unit (blue and red: the
 two signs of the deflection; the clamps are the left and right edges).
 
-Usage::
-
-    python -m validation.figures.clamp_modes [results/clamp-modes] [--out results]
+``skfem-dielectric clamp-zone modes`` draws the modes of a run's ``--out``, or the
+shipped ones.
 """
 
 from __future__ import annotations
 
-import argparse
-import re
-import sys
 from pathlib import Path
 
 import numpy as np
 
-from .common import plt, save_figure
+from ..figures.common import plt
+from .key import UnitKey
 
-__all__ = ["read_clamp_modes", "clamp_modes_figure", "main"]
-
-_NAME = re.compile(r"(?P<alpha>[0-9.e+-]+)_(?P<mesh>\d+x\d+x\d+)_g(?P<grading>[0-9.e+-]+)_"
-                   r"(?P<formulation>[a-z-]+)$")
+__all__ = ["read_clamp_modes", "clamp_modes_figure"]
 
 
 def read_clamp_modes(folder) -> list[dict]:
@@ -34,7 +28,7 @@ def read_clamp_modes(folder) -> list[dict]:
     Parameters
     ----------
     folder : path-like
-        Where :func:`~validation.studies.clamp_units.run_unit` wrote them.
+        Where :func:`validation.clamp_zone.units.run_unit` wrote them.
 
     Returns
     -------
@@ -52,19 +46,19 @@ def read_clamp_modes(folder) -> list[dict]:
         raise ValueError(f"folder must be a folder of modes, got {str(folder)!r}")
     out = []
     for f in sorted(folder.glob("*.npz")):
-        m = _NAME.match(f.stem)
-        if m is None:
+        try:
+            key = UnitKey.parse(f.stem)
+        except ValueError:
             continue
         with np.load(f) as z:
-            out.append({"alpha": float(m["alpha"]), "mesh": m["mesh"],
-                        "grading": float(m["grading"]), "formulation": m["formulation"],
+            out.append({"key": key, "alpha": key.alpha, "mesh": key.mesh_text,
+                        "grading": key.grading, "formulation": key.formulation,
                         "D0_b": float(z["D0_b"]), "X1": z["X1"], "X3": z["X3"],
                         "u2": z["u2"]})
     if not out:
         raise ValueError(f"folder {str(folder)!r} holds no mode (<alpha>_<mesh>_g<grading>_"
                          f"<formulation>.npz)")
-    size = lambda r: int(np.prod([int(n) for n in r["mesh"].split("x")]))
-    return sorted(out, key=lambda r: (r["alpha"], size(r), r["formulation"]))
+    return sorted(out, key=lambda r: (r["alpha"], r["key"].elements, r["formulation"]))
 
 
 def clamp_modes_figure(modes: list[dict]):
@@ -102,35 +96,3 @@ def clamp_modes_figure(modes: list[dict]):
     fig.colorbar(tc, ax=axes, shrink=0.8, label=r"$u_2$ / max $|u_2|$ (top face)")
     fig.suptitle("Clamp-zone modes at the buckling load (whole plate, top face)", fontsize=10)
     return fig
-
-
-def main(argv: list[str] | None = None) -> int:
-    """Draw ``clamp-modes.png`` (and ``.pdf``) from a folder of modes.
-
-    Parameters
-    ----------
-    argv : list of str, optional
-        The folder (default ``results/clamp-modes``) and ``--out`` (default ``results``).
-
-    Returns
-    -------
-    int
-        0; a folder without modes exits with one line and code 2.
-    """
-    ap = argparse.ArgumentParser(prog="python -m validation.figures.clamp_modes",
-                                 description=__doc__.splitlines()[0])
-    ap.add_argument("folder", nargs="?", type=Path, default=Path("results") / "clamp-modes")
-    ap.add_argument("--out", type=Path, default=Path("results"))
-    a = ap.parse_args(argv)
-    try:
-        modes = read_clamp_modes(a.folder)
-    except ValueError as exc:
-        ap.error(str(exc))
-    a.out.mkdir(parents=True, exist_ok=True)
-    for p in save_figure(clamp_modes_figure(modes), a.out, "clamp-modes"):
-        print(p)
-    return 0
-
-
-if __name__ == "__main__":
-    sys.exit(main())

@@ -10,7 +10,7 @@ wrinkles over the sheet's length (Cerda & Mahadevan, Phys. Rev. Lett. 90, 074302
 
 ``t`` the thickness, ``L`` the length, ``gamma`` the tensile strain -- not from the local
 homogeneous state (whose only length is the thickness: ``lambda_w ∝ t``).  For each weight
-with a converged clamp-zone load (:func:`validation.buckling_data.clamp_unit_load`) this
+with a converged clamp-zone load (:func:`validation.clamp_zone.data.clamp_unit_load`) this
 module compares the measured wavelength -- the reference width over the half-wave pairs
 of the mode, ``2 W / n`` -- with both, on the homogeneous uni-axial state at ``D0_b``
 (Eq. (DEuniax): ``t = H lam2``, ``L = L0 lam1``, ``gamma = lam1 - 1``).  The data are
@@ -21,16 +21,12 @@ every weight; a few weights with an integer half-wave count cannot fix its expon
 :func:`compressive_zone` gives the plane-stress compressive zone of the membrane model at
 ``D0_b`` (where the lateral stress ``S33/mu`` -- the paper's ``P33`` -- is negative).
 
-Usage::
-
-    python -m validation.studies.wrinkle_scaling [--no-membrane]
+``skfem-dielectric clamp-zone scaling`` prints both tables (:func:`scaling_tables`).
 """
 
 from __future__ import annotations
 
-import argparse
 import math
-import sys
 
 import numpy as np
 
@@ -38,10 +34,10 @@ import analytic as an
 import skfem_dielectric as fe
 from analytic.units import keplinger_s
 
-from ..buckling_data import clamp_unit_load
+from .data import clamp_unit_load
 from ..specs import KEPLINGER
 
-__all__ = ["wrinkle_scaling", "compressive_zone", "main"]
+__all__ = ["wrinkle_scaling", "compressive_zone", "scaling_tables"]
 
 #: lateral stress ``S33/mu`` below which a point counts as compressed (the breakdown flag
 #: of the harness, ``validation.table.BREAKDOWN_TOL``)
@@ -136,47 +132,36 @@ def compressive_zone(alpha: float, D0_b: float, *, n1: int = 80, n3: int = 40,
             "area_fraction": float(np.mean(P33 < COMPRESSED)), "D0_compressed": first}
 
 
-def main(argv=None) -> int:
-    """Print the tables of :func:`wrinkle_scaling` and :func:`compressive_zone` (Markdown).
+def scaling_tables(membrane: bool = True) -> str:
+    """The tables of :func:`wrinkle_scaling` and :func:`compressive_zone`, as Markdown.
 
     Parameters
     ----------
-    argv : list of str, optional
-        ``--no-membrane``: the wavelength table only (the membrane ramps take about 10 CPU
-        seconds per weight).
+    membrane : bool
+        Also the compressive zone's table (the membrane ramps take about 10 CPU seconds
+        per weight); ``False``: the wavelength table only.
 
     Returns
     -------
-    int
-        0.
+    str
     """
-    ap = argparse.ArgumentParser(prog="python -m validation.studies.wrinkle_scaling",
-                                 description=__doc__.splitlines()[0])
-    ap.add_argument("--no-membrane", action="store_true")
-    a = ap.parse_args(argv)
     rows = wrinkle_scaling()
-    print("| alpha | D0_b | half-waves | wavelength 2W/n (mm) | lam1 | t (mm) | L (mm) | "
-          "gamma | (t L)^1/2 gamma^-1/4 (mm) | wavelength / CM | wavelength / t |")
-    print("| --- " * 11 + "|")
+    out = ["| alpha | D0_b | half-waves | wavelength 2W/n (mm) | lam1 | t (mm) | L (mm) | "
+           "gamma | (t L)^1/2 gamma^-1/4 (mm) | wavelength / CM | wavelength / t |",
+           "| --- " * 11 + "|"]
     for r in rows:
-        print(f"| {r['alpha']:g} | {r['D0_b']:.4f} | {r['half_waves']} | "
-              f"{r['wavelength_mm']:.2f} | {r['lam1']:.3f} | {r['t_mm']:.3f} | "
-              f"{r['L_mm']:.1f} | {r['gamma']:.3f} | {r['cm_mm']:.2f} | "
-              f"{r['ratio_cm']:.3f} | {r['ratio_t']:.1f} |")
-    if a.no_membrane:
-        return 0
-    print()
-    print("| alpha | D0_b | membrane S33/mu at the centre | min S33/mu (X1, X3 mm) | "
-          "compressed length from the clamp on the centre line (mm) | compressed area | "
-          "centre line compressed from D0 |")
-    print("| --- " * 7 + "|")
-    for r in rows:
-        z = compressive_zone(r["alpha"], r["D0_b"])
-        print(f"| {r['alpha']:g} | {r['D0_b']:.4f} | {z['P33_centre']:+.4f} | "
-              f"{z['P33_min']:+.4f} ({z['X1_min']:.1f}, {z['X3_min']:.1f}) | "
-              f"{z['extent_mm']:.1f} | {z['area_fraction']:.2f} | {z['D0_compressed']:g} |")
-    return 0
-
-
-if __name__ == "__main__":
-    sys.exit(main())
+        out.append(f"| {r['alpha']:g} | {r['D0_b']:.4f} | {r['half_waves']} | "
+                   f"{r['wavelength_mm']:.2f} | {r['lam1']:.3f} | {r['t_mm']:.3f} | "
+                   f"{r['L_mm']:.1f} | {r['gamma']:.3f} | {r['cm_mm']:.2f} | "
+                   f"{r['ratio_cm']:.3f} | {r['ratio_t']:.1f} |")
+    if membrane:
+        out += ["", "| alpha | D0_b | membrane S33/mu at the centre | min S33/mu (X1, X3 mm) | "
+                "compressed length from the clamp on the centre line (mm) | compressed area | "
+                "centre line compressed from D0 |", "| --- " * 7 + "|"]
+        for r in rows:
+            z = compressive_zone(r["alpha"], r["D0_b"])
+            out.append(f"| {r['alpha']:g} | {r['D0_b']:.4f} | {z['P33_centre']:+.4f} | "
+                       f"{z['P33_min']:+.4f} ({z['X1_min']:.1f}, {z['X3_min']:.1f}) | "
+                       f"{z['extent_mm']:.1f} | {z['area_fraction']:.2f} | "
+                       f"{z['D0_compressed']:g} |")
+    return "\n".join(out) + "\n"

@@ -26,24 +26,16 @@ A row per ``(state, h0, k)``:
 * ``count_cpu_s`` (this ``k``), ``base_cpu_s`` (the section's base state), ``state_cpu_s``
   (the 3D ramp), ``peak_GB``, ``date``, ``command``.
 
-Rows go to a CSV (default ``validation/data/edge_section.csv``), written atomically as each
-section mesh is done; a key already there is skipped, so a run resumes.
-
-Usage::
-
-    python -m validation.studies.edge_section --alpha 1 --D0 3.25 --mesh 40x1x36 \\
-        --grading 0.1 --h0 0.04 0.02 0.01 --solver pardiso
+The rows go to the ``section`` table as each section mesh is done
+(``skfem-dielectric clamp-zone section``); a key already there is skipped.
 """
 
 from __future__ import annotations
 
-import argparse
 import datetime
 import math
 import resource
-import sys
 import time
-from pathlib import Path
 
 import numpy as np
 
@@ -52,32 +44,18 @@ from skfem_dielectric.models.edge_base import continue_section_base
 from skfem_dielectric.models.edge_section import (EdgeSection, edge_section_grids,
                                                   plate_fields)
 
-from ..buckling_data import read_data_csv
 from ..fe.model import BUCKLING_GRAD_DIV
-from .clamp_units import (append_rows, foreign_table, mesh_text, parse_mesh, ramp_states,
-                          study_command, unit_problem)
+from .data import TABLES
+from .key import mesh_text
+from .units import ramp_states, unit_problem
 
-__all__ = ["COLUMNS", "DEFAULT_CSV", "DEFAULT_K", "run_edge_section", "read_edge_section",
-           "main"]
+__all__ = ["COLUMNS", "DEFAULT_K", "run_edge_section"]
 
-DEFAULT_CSV = Path(__file__).resolve().parents[1] / "data" / "edge_section.csv"
 #: from the plate's width (k = 2 pi / 50) to far past the 3D meshes' cut-off
 DEFAULT_K = tuple(float(f"{k:.4g}") for k in np.geomspace(2 * math.pi / 50, 200.0, 25))
-COLUMNS = ("alpha", "mesh", "grading", "grad_div", "D0", "length", "h0", "k",
-           "section_dofs", "n_negative", "base_iterations", "J_min", "J_max",
-           "F11_section", "F11_3d", "count_cpu_s", "base_cpu_s", "state_cpu_s", "peak_GB",
-           "date", "command")
-_KEY = ("alpha", "mesh", "grading", "grad_div", "D0", "length", "h0", "k")
-_HEADER = """\
-# Negative modes of the clamp-edge section against waves cos/sin(k X3), one row per k.
-# Written by validation.studies.edge_section (the module docstring defines every column):
-# eighth-model plate, neo-Hookean, g = 9.81; section at the centre plane, base state solved
-# on the section's own mesh (edge elements h0, mm, H = 1).
-"""
-
-
-def _key(r: dict) -> tuple:
-    return tuple(f"{float(r[c]):.10g}" if c != "mesh" else str(r[c]) for c in _KEY)
+#: the columns of a row, in order (the ``section`` table)
+COLUMNS = TABLES["section"].columns
+_key = TABLES["section"].key_of
 
 
 def run_edge_section(alpha: float, elements, D0: float, h0s, ks=DEFAULT_K, *,
@@ -89,7 +67,7 @@ def run_edge_section(alpha: float, elements, D0: float, h0s, ks=DEFAULT_K, *,
     Parameters
     ----------
     alpha, elements, grading, grad_div
-        The plate (:func:`~validation.studies.clamp_units.unit_problem`).
+        The plate (:func:`~validation.clamp_zone.units.unit_problem`).
     D0
         The charge of the state (positive).
     h0s, ks
@@ -164,57 +142,3 @@ def run_edge_section(alpha: float, elements, D0: float, h0s, ks=DEFAULT_K, *,
         if on_rows is not None:
             on_rows(out)
     return rows
-
-
-def read_edge_section(path: Path | None = None) -> list[dict]:
-    """The rows of the study's CSV (default: the package's), as dicts of strings."""
-    return read_data_csv(path, "data/edge_section.csv")
-
-
-def main(argv: list[str] | None = None) -> int:
-    """Run the states ``--alpha`` x ``--D0`` on ``--mesh`` not yet in ``--csv``.
-
-    Returns
-    -------
-    int
-        0; 1 with one line where a ramp or a base state fails or ``--csv`` is another
-        table; bad arguments exit with argparse's one line and code 2.
-    """
-    ap = argparse.ArgumentParser(prog="python -m validation.studies.edge_section",
-                                 description=__doc__.splitlines()[0])
-    ap.add_argument("--alpha", type=float, nargs="+", required=True)
-    ap.add_argument("--D0", type=float, nargs="+", required=True)
-    ap.add_argument("--mesh", type=parse_mesh, default=(40, 1, 36))
-    ap.add_argument("--grading", type=float, default=0.1)
-    ap.add_argument("--grad-div", dest="grad_div", type=float, default=BUCKLING_GRAD_DIV)
-    ap.add_argument("--h0", type=float, nargs="+", default=[0.04, 0.02, 0.01])
-    ap.add_argument("--k", type=float, nargs="+", default=list(DEFAULT_K))
-    ap.add_argument("--length", type=float, default=5.0)
-    ap.add_argument("--solver", default="auto", choices=["auto", "superlu", "pardiso"])
-    ap.add_argument("--csv", type=Path, default=DEFAULT_CSV)
-    a = ap.parse_args(argv)
-    if foreign_table(a.csv, COLUMNS):
-        print(f"error: --csv {a.csv} is not this study's table", file=sys.stderr)
-        return 1
-    command = study_command("validation.studies.edge_section", argv)
-
-    def write(rows):
-        append_rows(a.csv, [{**r, "command": command} for r in rows], COLUMNS, _HEADER)
-
-    for alpha in a.alpha:
-        for D0 in a.D0:
-            done = {_key(r) for r in (read_edge_section(a.csv) if a.csv.exists() else [])}
-            print(f"alpha = {alpha:g}, D0 = {D0:g}, {mesh_text(a.mesh)}", flush=True)
-            try:
-                run_edge_section(alpha, a.mesh, D0, a.h0, a.k, grading=a.grading,
-                                 grad_div=a.grad_div, length=a.length, solver=a.solver,
-                                 done=done, on_rows=write,
-                                 progress=lambda t: print("  " + t, flush=True))
-            except ValueError as exc:
-                print(f"error: {exc}", file=sys.stderr)
-                return 1
-    return 0
-
-
-if __name__ == "__main__":
-    sys.exit(main())

@@ -1,7 +1,7 @@
 """The clamp edge in section: negative modes against the wavenumber along the clamp.
 
 One panel per 3D state (weight fraction ``alpha``, charge ``D0``) of
-:mod:`validation.studies.edge_section`: the number of negative modes of the section next to
+the ``section`` table (:mod:`validation.clamp_zone.section`): the number of negative modes of the section next to
 the clamp against ``k`` (``2 pi / k`` is the reference wavelength along ``X3``, mm), one line
 per section mesh (edge elements ``h0``).  A physical edge instability is a band of ``k``
 whose lower edge stays put as ``h0`` is halved; a band that recedes towards the largest
@@ -9,26 +9,20 @@ whose lower edge stays put as ``h0`` is halved; a band that recedes towards the 
 inverted elements (``J_min <= 0``) is no state of the plate: its line is drawn grey and
 dotted, and its counts decide nothing.  The shaded band is the reach of the 3D mesh
 across the width: the wavenumbers it holds with at least
-:data:`~validation.buckling_data.MIN_ELEMENTS_PER_HALF_WAVE` elements per half-wave.
+:data:`~validation.clamp_zone.data.MIN_ELEMENTS_PER_HALF_WAVE` elements per half-wave.
 
-Usage::
-
-    python -m validation.figures.edge_band [validation/data/edge_section.csv] [--out results]
+``skfem-dielectric clamp-zone band`` draws it (``--table``: :func:`band_table`).
 """
 
 from __future__ import annotations
 
-import argparse
-import sys
-from pathlib import Path
-
 import numpy as np
 
-from ..buckling_data import MIN_ELEMENTS_PER_HALF_WAVE, read_data_csv
+from ..figures.common import plt
 from ..specs import KEPLINGER
-from .common import plt, save_figure
+from .data import MIN_ELEMENTS_PER_HALF_WAVE
 
-__all__ = ["band_onsets", "band_table", "mesh_reach", "edge_band_figure", "main"]
+__all__ = ["band_onsets", "band_table", "mesh_reach", "edge_band_figure"]
 
 
 def _state(r: dict) -> tuple:
@@ -38,7 +32,7 @@ def _state(r: dict) -> tuple:
 
 def mesh_reach(mesh: str) -> float:
     """The largest ``k`` (1/mm) a 3D eighth-model mesh ``n1xn2xn3`` holds with
-    :data:`~validation.buckling_data.MIN_ELEMENTS_PER_HALF_WAVE` elements per half-wave
+    :data:`~validation.clamp_zone.data.MIN_ELEMENTS_PER_HALF_WAVE` elements per half-wave
     across the half-width (``n3`` elements over ``W / 2``): ``pi / (m h3)``."""
     h3 = 1e3 * KEPLINGER["width"] / 2 / int(mesh.split("x")[2])
     return float(np.pi / (MIN_ELEMENTS_PER_HALF_WAVE * h3))
@@ -67,7 +61,7 @@ def band_onsets(rows: list[dict]) -> dict:
     Parameters
     ----------
     rows : list of dict
-        Rows of :func:`~validation.studies.edge_section.read_edge_section`.
+        Rows of the ``section`` table (:func:`~validation.clamp_zone.data.load`).
 
     Returns
     -------
@@ -97,7 +91,7 @@ def band_table(rows: list[dict]) -> str:
     Parameters
     ----------
     rows : list of dict
-        Rows of :func:`~validation.studies.edge_section.read_edge_section`.
+        Rows of the ``section`` table (:func:`~validation.clamp_zone.data.load`).
 
     Returns
     -------
@@ -125,7 +119,7 @@ def edge_band_figure(rows: list[dict]):
     Parameters
     ----------
     rows : list of dict
-        Rows of :func:`~validation.studies.edge_section.read_edge_section`.
+        Rows of the ``section`` table (:func:`~validation.clamp_zone.data.load`).
 
     Returns
     -------
@@ -175,45 +169,3 @@ def edge_band_figure(rows: list[dict]):
     fig.suptitle("Clamp edge in section: negative modes against the wavenumber, "
                  "three section meshes", fontsize=10)
     return fig
-
-
-def main(argv: list[str] | None = None) -> int:
-    """Draw ``edge-band.png`` (and ``.pdf``) from the study's table, or print
-    :func:`band_table` (``--table``).
-
-    Parameters
-    ----------
-    argv : list of str, optional
-        The CSV (default: the package's ``validation/data/edge_section.csv``) and ``--out``
-        (default ``results``).
-
-    Returns
-    -------
-    int
-        0; a missing or empty table exits with one line and code 2.
-    """
-    ap = argparse.ArgumentParser(prog="python -m validation.figures.edge_band",
-                                 description=__doc__.splitlines()[0])
-    ap.add_argument("csv", nargs="?", type=Path, default=None)
-    ap.add_argument("--out", type=Path, default=Path("results"))
-    ap.add_argument("--table", action="store_true",
-                    help="print the band's lower edges as a Markdown table instead")
-    a = ap.parse_args(argv)
-    if a.csv is not None and not a.csv.is_file():
-        ap.error(f"csv must be a file of the edge_section study, got {str(a.csv)!r}")
-    rows = read_data_csv(a.csv, "data/edge_section.csv")
-    if a.table:
-        print(band_table(rows), end="")
-        return 0
-    try:
-        fig = edge_band_figure(rows)
-    except (ValueError, KeyError) as exc:
-        ap.error(f"csv {str(a.csv or 'edge_section.csv')!r}: {exc}")
-    a.out.mkdir(parents=True, exist_ok=True)
-    for p in save_figure(fig, a.out, "edge-band"):
-        print(p)
-    return 0
-
-
-if __name__ == "__main__":
-    sys.exit(main())

@@ -1,6 +1,6 @@
 """The first physical crossing of each symmetry class at the clamp-zone study's bracket.
 
-Where the whole-plate scan of a unit of :mod:`validation.studies.clamp_units` finds several
+Where the whole-plate scan of a unit (:mod:`validation.clamp_zone.units`) finds several
 physical modes crossing between its last two states (the clamp-zone wrinkle of the heavier
 weights: modes one half-wave apart across the width, in the two width classes, and their
 mirror images about the plate's centre, in the two ``x1`` classes), the unit locates the
@@ -9,7 +9,7 @@ this study locates each of them.
 
 A *unit* is one weight fraction ``alpha`` on one mesh of the clamp-zone study (same plate,
 grading, formulation and solver), with that unit's row in
-``validation/data/clamp_units.csv``: its last two scanned states (``scan_counts``: the
+the ``units`` table: its last two scanned states (``scan_counts``: the
 largest charge below ``D0_b`` without and the smallest above it with a physical negative
 mode) are the bracket ``lo, hi``.  The charge ramp goes to ``lo`` and ``hi`` (targets in
 steps of the row's ``D0_step`` below ``lo``, not scanned), the classes are counted at ``lo``
@@ -34,56 +34,35 @@ unit's scan from ``D0 = 0``): the classes are located there just the same, but n
 of that mesh says that no physical mode went negative below ``LO`` (the row's ``note``
 says so; the coarser meshes' units are the evidence).
 
-Rows go to a CSV (default ``validation/data/class_onsets.csv``), written atomically as each
-class is located; a class whose key (``alpha``, mesh, ``grading``, ``formulation``,
-``class``) is there is skipped, so the units resume where they stopped.
-
-Usage::
-
-    python -m validation.studies.class_onsets --solver pardiso --alpha 1.5 --mesh 30x1x24 \\
-        --grading 0.1
+The rows go to the ``onsets`` table as each class is located
+(``skfem-dielectric clamp-zone onsets``); a class already there is skipped.
 """
 
 from __future__ import annotations
 
-import argparse
 import datetime
 import math
 import resource
-import shlex
-import sys
 import time
 import warnings
-from pathlib import Path
 
 import numpy as np
 
 import skfem_dielectric as fe
-from skfem_dielectric.fem import blas_thread_limit
 from skfem_dielectric.linalg.solver_base import factorisation_count
 from skfem_dielectric.models.plate.scan import PlateScan
 from skfem_dielectric.studies.buckling import locate_buckling
 
-from ..buckling_data import clamp_unit_row, read_data_csv, unit_key
-from ..fe.model import BUCKLING_NEWTON, BUCKLING_TOL
-from .clamp_units import UNIT_SETTINGS, append_row, mesh_text, parse_mesh, unit_problem
+from ..fe.model import BUCKLING_NEWTON
+from .data import LOCATION_TOL, TABLES, unit_row
+from .key import UnitKey, mesh_text
+from .units import UNIT_SETTINGS, unit_problem
 from .local_theory import energy_centroid, half_waves
 
-__all__ = ["COLUMNS", "DEFAULT_CSV", "bracket", "run_class_onsets", "read_class_onsets",
-           "main"]
+__all__ = ["COLUMNS", "bracket", "run_class_onsets"]
 
-#: where the study's rows are kept (provenance in its header lines)
-DEFAULT_CSV = Path(__file__).resolve().parents[1] / "data" / "class_onsets.csv"
 #: the columns of a row, in order
-COLUMNS = ("alpha", "mesh", "grading", "formulation", "class", "dofs", "lo", "hi", "D0_c",
-           "half_waves", "elements_per_half_wave", "corner_share", "mesh_scale",
-           "factorisations", "cpu_s", "peak_GB", "solver", "date", "note", "command")
-_HEADER = """\
-# The first physical crossing of each symmetry class inside the bracket of a clamp-zone unit
-# (validation/data/clamp_units.csv).  Written by validation.studies.class_onsets (the module
-# docstring defines every column): eighth model, neo-Hookean, g = 9.81, grad-div 10; D0_c
-# located to 1e-4 with the class's own indicator; cpu_s and peak_GB of the unit's process.
-"""
+COLUMNS = TABLES["onsets"].columns
 
 
 def bracket(row: dict) -> tuple[float, float]:
@@ -93,7 +72,7 @@ def bracket(row: dict) -> tuple[float, float]:
     Parameters
     ----------
     row : dict
-        A row of ``validation/data/clamp_units.csv`` with a located ``D0_b``.
+        A row of the ``units`` table with a located ``D0_b``.
 
     Raises
     ------
@@ -117,7 +96,7 @@ def bracket(row: dict) -> tuple[float, float]:
 
 def run_class_onsets(alpha: float, elements, *, grading: float = 1.0,
                      formulation: str = "mixed", solver: str = "auto", classes=None,
-                     skip=(), units: Path | None = None, progress=None,
+                     skip=(), units=None, progress=None,
                      on_row=None, given=None) -> list[dict]:
     """One unit of the study: a row of :data:`COLUMNS` per located class.
 
@@ -133,7 +112,8 @@ def run_class_onsets(alpha: float, elements, *, grading: float = 1.0,
     skip
         Names of classes not to locate (already located).
     units
-        The clamp-zone study's CSV (default: the package's).
+        A ``units`` table (file or folder) to look for the unit in before the shipped
+        one (:func:`~validation.clamp_zone.data.unit_row`).
     progress
         Optional ``progress(text)``.
     on_row
@@ -158,7 +138,7 @@ def run_class_onsets(alpha: float, elements, *, grading: float = 1.0,
     say = progress or (lambda text: None)
     el = tuple(int(n) for n in elements)
     if given is None:
-        unit = clamp_unit_row(alpha, mesh_text(el), grading, formulation, path=units)
+        unit = unit_row(UnitKey(alpha, el, grading, formulation), units)
         lo, hi = bracket(unit)
         at_lo = {float(d): p for d, p in (item.split(":")[0:2] for item in
                                           unit["scan_counts"].split())}
@@ -231,7 +211,7 @@ def run_class_onsets(alpha: float, elements, *, grading: float = 1.0,
         try:
             bl = locate_buckling(pb, states[lo][:2], states[ends[name]][:2], lowest[name],
                                  counts=None,
-                                 method=method, tol=BUCKLING_TOL, linear_solver=solver,
+                                 method=method, tol=LOCATION_TOL, linear_solver=solver,
                                  settings=BUCKLING_NEWTON)
         except ValueError as exc:     # a result: the class's crossing not located
             row.update(D0_c=math.nan, note=f"not located: {exc}")
@@ -257,75 +237,3 @@ def run_class_onsets(alpha: float, elements, *, grading: float = 1.0,
         if on_row is not None:
             on_row(row)
     return rows
-
-
-def read_class_onsets(path: Path = DEFAULT_CSV) -> list[dict]:
-    """The rows of the study's CSV (comment lines skipped), as dicts of strings."""
-    return read_data_csv(path)
-
-
-def _key(r: dict) -> tuple:
-    return (*unit_key(r), str(r["class"]))
-
-
-def main(argv: list[str] | None = None) -> int:
-    """Locate each class of the units ``--alpha`` x ``--mesh`` not yet in ``--csv``.
-
-    Parameters
-    ----------
-    argv : list of str, optional
-        The arguments (default: ``sys.argv[1:]``; see the module docstring).
-
-    Returns
-    -------
-    int
-        0; 1 with one line where a unit cannot be run (no clamp-zone row, a physical mode
-        at ``lo``); bad arguments exit with argparse's one line and code 2.
-    """
-    ap = argparse.ArgumentParser(prog="python -m validation.studies.class_onsets",
-                                 description=__doc__.splitlines()[0])
-    ap.add_argument("--alpha", type=float, nargs="+", required=True)
-    ap.add_argument("--mesh", type=parse_mesh, nargs="+", required=True)
-    ap.add_argument("--grading", type=float, default=1.0)
-    ap.add_argument("--formulation", default="mixed")
-    ap.add_argument("--classes", nargs="+", default=None,
-                    help="class names to locate, e.g. 'x1 S, x2 A, x3 S' (default: every "
-                         "class with a physical negative mode at hi)")
-    ap.add_argument("--solver", default="auto", choices=["auto", "superlu", "pardiso"])
-    ap.add_argument("--csv", type=Path, default=DEFAULT_CSV)
-    ap.add_argument("--units", type=Path, default=None,
-                    help="the clamp-zone study's CSV (default: the package's)")
-    ap.add_argument("--bracket", type=float, nargs=2, metavar=("LO", "HI"), default=None,
-                    help="the bracket instead of a unit's (no unit of the mesh needed; "
-                         "nothing checks the states below LO)")
-    a = ap.parse_args(argv)
-    command = "python -m validation.studies.class_onsets " + " ".join(
-        shlex.quote(v) for v in (argv if argv is not None else sys.argv[1:]))
-    for alpha in a.alpha:
-        for el in a.mesh:
-            unit = unit_key({"alpha": alpha, "mesh": mesh_text(el), "grading": a.grading,
-                             "formulation": a.formulation})
-            done = {_key(r)[4] for r in read_class_onsets(a.csv) if _key(r)[:4] == unit}
-            if a.classes is not None and set(a.classes) <= done:
-                print(f"alpha = {alpha:g} {mesh_text(el)}: kept", flush=True)
-                continue
-
-            def write(row):
-                row["command"] = command
-                append_row(a.csv, row, COLUMNS, _HEADER)
-
-            try:
-                with blas_thread_limit(1):
-                    run_class_onsets(alpha, el, grading=a.grading, formulation=a.formulation,
-                                     solver=a.solver, classes=a.classes, skip=done,
-                                     units=a.units, given=a.bracket,
-                                     progress=lambda t: print("  " + t, flush=True),
-                                     on_row=write)
-            except ValueError as exc:
-                print(f"error: {exc}", file=sys.stderr)
-                return 1
-    return 0
-
-
-if __name__ == "__main__":
-    sys.exit(main())

@@ -1,0 +1,571 @@
+"""``skfem-dielectric clamp-zone SUBCOMMAND``: the clamp-zone study's one command.
+
+Every subcommand that computes writes its table into ``--out`` (default
+``results/clamp-zone``) under the table's lock, one unit's rows as soon as the unit is
+done; a rerun skips the units there, so a killed run resumes.  Inputs are checked before
+anything is allocated; every error is one line (the exit codes of ``skfem-dielectric``).
+``--into-package`` writes into the shipped tables instead: a maintainer's step, from a
+source checkout only.  ``units --scheduler local|ADDRESS`` farms the units to a
+dask.distributed cluster; the rows are written by this process as units finish.
+"""
+
+from __future__ import annotations
+
+import functools
+import math
+import shlex
+import sys
+from pathlib import Path
+
+from skfem_dielectric.fem import blas_thread_limit
+
+from ..cluster import dask_executor
+from ..fe.model import BUCKLING_GRAD_DIV
+from ..figures.common import save_figure
+from ..options import out_dir, solver_name
+from .band import band_table, edge_band_figure
+from .counts import run_edge_counts
+from .data import TABLES, load, shipped_path
+from .flagged import run_flagged_modes
+from .key import FORMULATIONS, UnitKey, parse_mesh
+from .layer import run_clamp_layer
+from .modes import clamp_modes_figure, read_clamp_modes
+from .onsets import run_class_onsets
+from .p33 import run_p33_unit
+from .scaling import scaling_tables
+from .section import DEFAULT_K, run_edge_section
+from .spec import read_table
+from .table import TableWriter
+from .tables import clamp_study_tables
+from .units import run_unit
+
+__all__ = ["add_clamp_zone_command", "cmd_clamp_zone", "MAX_ELEMENTS", "DEFAULT_OUT",
+           "package_data_dir"]
+
+#: the largest eighth-model mesh (``n1 n2 n3`` elements) a run accepts without
+#: ``--max-elements``: about 42 unknowns and 1.1 GB of peak memory per 1000 elements
+MAX_ELEMENTS = 5000
+#: where a run writes by default
+DEFAULT_OUT = Path("results") / "clamp-zone"
+#: the most charge steps a ramp of ``--D0-max / --D0-step`` may have
+MAX_STEPS = 400
+
+_HELP = ("the clamp-zone study: units, class onsets, the clamp layer, P33 onsets, flagged "
+         "modes, counts, the edge section, tables, figures")
+
+
+def package_data_dir() -> Path:
+    """The shipped tables' folder, if this package runs from a source checkout.
+
+    Raises
+    ------
+    ValueError
+        The package is installed (no ``pyproject.toml`` beside it): the shipped tables are
+        read-only there.
+    """
+    root = Path(__file__).resolve().parents[2]
+    if not (root / "pyproject.toml").is_file() or not (root / "validation" / "data").is_dir():
+        raise ValueError(f"--into-package writes the shipped tables of a source checkout; "
+                         f"this package is installed at {root} (use --out)")
+    return root / "validation" / "data"
+
+
+# -- the options ------------------------------------------------------------------------
+def _common(p, *, meshes: bool = True, mesh_default=None, grading: float = 1.0,
+            formulation: bool = True) -> None:
+    p.add_argument("--alpha", nargs="+", type=float, required=True, metavar="A",
+                   help="weight fractions (> 0)")
+    if meshes:
+        p.add_argument("--mesh", nargs="+", required=True, metavar="N1xN2xN3",
+                       help="eighth-model meshes")
+    else:
+        p.add_argument("--mesh", default=mesh_default, metavar="N1xN2xN3",
+                       help="the 3D eighth-model mesh")
+    p.add_argument("--grading", type=float, default=grading,
+                   help="last / first element length along x1 (< 1: finer at the clamp)")
+    if formulation:
+        p.add_argument("--formulation", default="mixed", choices=FORMULATIONS,
+                       help="how J = 1 is imposed")
+    p.add_argument("--solver", choices=["auto", "superlu", "pardiso"], default="auto",
+                   help="linear solver (auto: PARDISO if installed)")
+    p.add_argument("--out", type=out_dir, default=DEFAULT_OUT,
+                   help="folder of the tables (and modes) this run writes")
+    p.add_argument("--into-package", action="store_true",
+                   help="write into the shipped tables (a maintainer's step, from a source "
+                        "checkout only)")
+    p.add_argument("--max-elements", type=int, default=MAX_ELEMENTS,
+                   help="largest mesh accepted, in elements n1 n2 n3 (about 1.1 GB per "
+                        "1000)")
+
+
+def add_clamp_zone_command(add) -> None:
+    """Add ``clamp-zone`` and its subcommands.
+
+    Parameters
+    ----------
+    add : callable
+        ``add(name, help, description) -> ArgumentParser``, the sub-parser factory of
+        :func:`validation.cli.build_parser`.
+    """
+    z = add("clamp-zone", _HELP,
+            "The clamp-zone study of the clamped Keplinger plate (docs/clamp-zone.md): a unit "
+            "is one weight fraction on one graded eighth-model mesh. Each subcommand writes "
+            "its table into --out (default results/clamp-zone), a unit's rows as it is "
+            "done; a rerun resumes.")
+    sub = z.add_subparsers(dest="clamp_command", metavar="SUBCOMMAND", required=True,
+                           help="what to run or show (each has --help)")
+
+    def new(name, help):
+        return sub.add_parser(name, help=help, description=help[0].upper() + help[1:] + ".",
+                              formatter_class=z.formatter_class)
+
+    u = new("units", "locate the first physical buckling load D0_b of each unit, with its "
+                     "mode (table units, modes/<unit>.npz)")
+    _common(u)
+    u.add_argument("--D0-step", dest="D0_step", type=float, default=0.5,
+                   help="charge step of the scanned ramp")
+    u.add_argument("--D0-max", dest="D0_max", type=float, default=6.0,
+                   help="last charge target")
+    u.add_argument("--scheduler", default=None, metavar="ADDRESS",
+                   help="run the units on a dask.distributed cluster: a scheduler ADDRESS "
+                        "(tcp://HOST:PORT) or 'local' for a LocalCluster of --jobs workers "
+                        "(the 'cluster' extra)")
+    u.add_argument("--jobs", type=int, default=2, help="workers of --scheduler local")
+
+    o = new("onsets", "locate each symmetry class's crossing in a unit's bracket "
+                      "(table onsets)")
+    _common(o)
+    o.add_argument("--classes", nargs="+", default=None, metavar="CLASS",
+                   help="class names, e.g. 'x1 S, x2 A, x3 S' (default: every class with "
+                        "a physical negative mode at the bracket's top)")
+    o.add_argument("--bracket", nargs=2, type=float, metavar=("LO", "HI"), default=None,
+                   help="the bracket instead of a unit's (no unit of the mesh needed)")
+
+    la = new("layer", "J and volume ratios in the clamp layer at a unit's D0_b "
+                      "(table layer)")
+    _common(la)
+
+    p = new("p33", "locate the plain form's P33 onsets and Newton limit (table p33)")
+    _common(p, formulation=False)
+    p.add_argument("--D0-step", dest="D0_step", type=float, default=0.25,
+                   help="charge step of the ramp")
+    p.add_argument("--D0-max", dest="D0_max", type=float, default=6.0,
+                   help="last charge target")
+
+    f = new("flagged", "every negative mode of the whole plate at one charge "
+                       "(table flagged)")
+    _common(f, formulation=False)
+    f.add_argument("--D0", type=float, required=True, help="the charge")
+
+    c = new("counts", "negative-mode counts per symmetry class at a few charges "
+                      "(table counts)")
+    _common(c)
+    c.add_argument("--D0", nargs="+", type=float, required=True, help="the charges")
+    c.add_argument("--grad-div", dest="grad_div", type=float, default=None,
+                   help="grad-div weight (units of mu; default that of the units)")
+    c.add_argument("--pressure", choices=["Q1", "P0"], default="Q1", help="pressure space")
+
+    s = new("section", "the clamp edge in section against waves along the clamp "
+                       "(table section)")
+    _common(s, meshes=False, mesh_default="40x1x36", grading=0.1, formulation=False)
+    s.add_argument("--D0", nargs="+", type=float, required=True, help="the charges")
+    s.add_argument("--grad-div", dest="grad_div", type=float, default=None,
+                   help="grad-div weight (units of mu; default that of the units)")
+    s.add_argument("--h0", nargs="+", type=float, default=[0.04, 0.02, 0.01],
+                   help="edge element sizes of the section (mm)")
+    s.add_argument("--k", nargs="+", type=float, default=None,
+                   help="wavenumbers along x3 (1/mm; default 25 from 2 pi/50 to 200)")
+    s.add_argument("--length", type=float, default=5.0, help="the section's length (mm)")
+
+    t = new("tables", "print the study's Markdown tables from its tables")
+    t.add_argument("--from", dest="source", type=out_dir, default=None, metavar="DIR",
+                   help="a run's --out (default: the shipped tables)")
+
+    w = new("scaling", "print the wavelength against the Cerda-Mahadevan scaling")
+    w.add_argument("--no-membrane", action="store_true",
+                   help="the wavelength table only (no membrane ramps)")
+
+    b = new("band", "draw the clamp-edge band, edge-band.png|pdf (or print its table)")
+    b.add_argument("--from", dest="source", type=out_dir, default=None, metavar="DIR",
+                   help="a run's --out (default: the shipped section table)")
+    b.add_argument("--table", action="store_true", help="print the band's table instead")
+    b.add_argument("--out", type=out_dir, default=DEFAULT_OUT, help="figure folder")
+
+    m = new("modes", "draw the modes at D0_b, clamp-modes.png|pdf")
+    m.add_argument("--from", dest="source", type=out_dir, default=None, metavar="DIR",
+                   help="a run's --out (default: the shipped modes)")
+    m.add_argument("--out", type=out_dir, default=DEFAULT_OUT, help="figure folder")
+
+
+# -- checks before anything is allocated -------------------------------------------------
+def _finite(name: str, value, *, low: float = 0.0, zero: bool = False) -> float:
+    value = float(value)
+    ok = math.isfinite(value) and (value >= low if zero else value > low)
+    if not ok:
+        raise ValueError(f"{name} must be {'>=' if zero else '>'} {low:g} and finite, "
+                         f"got {value:g}")
+    return value
+
+
+def _meshes(args, texts) -> list[tuple]:
+    if args.max_elements < 1:
+        raise ValueError(f"--max-elements must be >= 1, got {args.max_elements}")
+    out = []
+    for text in texts:
+        try:
+            el = parse_mesh(text)
+        except ValueError as exc:
+            raise ValueError(f"--mesh: {exc}") from None
+        if math.prod(el) > args.max_elements:
+            raise ValueError(f"--mesh {text} has {math.prod(el)} elements, more than "
+                             f"--max-elements {args.max_elements} (about "
+                             f"{1.1 * math.prod(el) / 1000:.0f} GB); raise --max-elements "
+                             f"to run it")
+        out.append(el)
+    return list(dict.fromkeys(out))
+
+
+def _charges(name: str, values) -> list[float]:
+    return list(dict.fromkeys(_finite(name, v) for v in values))
+
+
+def _ramp(step: float, top: float) -> None:
+    _finite("--D0-step", step)
+    _finite("--D0-max", top)
+    if top / step > MAX_STEPS:
+        raise ValueError(f"--D0-max / --D0-step must be at most {MAX_STEPS} steps, got "
+                         f"{top:g} / {step:g}")
+
+
+def _settings(args) -> dict:
+    """The checked options shared by the computing subcommands."""
+    alphas = _charges("--alpha", args.alpha)
+    grading = _finite("--grading", args.grading)
+    if grading > 1e3:
+        raise ValueError(f"--grading must be at most 1000, got {grading:g}")
+    return {"alphas": alphas, "grading": grading, "solver": solver_name(args.solver)}
+
+
+# -- the tasks: one unit of work each, run here or on a dask worker ------------------------
+def _units_task(key: UnitKey, *, D0_step, D0_max, solver, modes_dir, progress=None):
+
+    with blas_thread_limit(1):
+        return [run_unit(key.alpha, key.mesh, grading=key.grading, D0_step=D0_step,
+                         D0_max=D0_max, formulation=key.formulation, solver=solver,
+                         progress=progress, modes_dir=modes_dir)]
+
+
+def _onsets_task(key: UnitKey, *, solver, classes, skip, units, bracket, progress=None,
+                 emit=None):
+
+    with blas_thread_limit(1):
+        return run_class_onsets(key.alpha, key.mesh, grading=key.grading,
+                                formulation=key.formulation, solver=solver, classes=classes,
+                                skip=skip, units=units, given=bracket, progress=progress,
+                                on_row=None if emit is None else (lambda r: emit([r])))
+
+
+def _layer_task(key: UnitKey, *, solver, units, progress=None):
+
+    with blas_thread_limit(1):
+        return [run_clamp_layer(key.alpha, key.mesh, grading=key.grading,
+                                formulation=key.formulation, solver=solver, units=units)]
+
+
+def _p33_task(key: UnitKey, *, D0_step, D0_max, solver, progress=None):
+
+    with blas_thread_limit(1):
+        return [run_p33_unit(key.alpha, key.mesh, grading=key.grading, D0_step=D0_step,
+                             D0_max=D0_max, solver=solver, progress=progress)]
+
+
+def _flagged_task(key: UnitKey, *, D0, solver, progress=None):
+
+    with blas_thread_limit(1):
+        return run_flagged_modes(key.alpha, key.mesh, D0, grading=key.grading, solver=solver)
+
+
+def _counts_task(key: UnitKey, *, D0, grad_div, pressure, solver, skip, progress=None,
+                 emit=None):
+
+    with blas_thread_limit(1):
+        return run_edge_counts(key.alpha, key.mesh, D0, grading=key.grading,
+                               formulation=key.formulation, grad_div=grad_div,
+                               pressure=pressure, solver=solver, skip=skip, progress=progress,
+                               on_row=None if emit is None else (lambda r: emit([r])))
+
+
+def _section_task(key: UnitKey, *, D0, h0s, ks, grad_div, length, solver, done,
+                  progress=None, emit=None):
+    return run_edge_section(key.alpha, key.mesh, D0, h0s, ks, grading=key.grading,
+                            grad_div=grad_div, length=length, solver=solver, done=done,
+                            on_rows=emit, progress=progress)
+
+
+# -- running the tasks ------------------------------------------------------------------
+def _say(text: str) -> None:
+    print(text, flush=True)
+
+
+def _table_path(args, name: str) -> Path:
+    folder = package_data_dir() if args.into_package else Path(args.out)
+    if folder.exists() and not folder.is_dir():
+        raise NotADirectoryError(20, "not a folder", str(folder))
+    return folder / TABLES[name].file
+
+
+def _command(argv) -> str:
+    args = list(sys.argv[1:] if argv is None else argv)
+    return "skfem-dielectric " + " ".join(shlex.quote(a) for a in args)
+
+
+def _run(args, name: str, tasks, show, *, incremental: bool = False) -> int:
+    """Run ``tasks`` (``[(label, row_key, callable)]``) not yet in the table ``name``,
+    writing each task's rows (with the run's command) as soon as they exist."""
+    path = _table_path(args, name)
+    command = _command(getattr(args, "argv", None))
+    with TableWriter(path, TABLES[name], note=_say) as table:
+        todo = []
+        for label, row_key, task in tasks:
+            if row_key is not None and table.done(row_key):
+                _say(f"{label}: kept")
+            else:
+                todo.append((label, task))
+
+        def write(rows):
+            table.add([{**r, "command": command} for r in rows])
+            for r in rows:
+                show(r)
+
+        scheduler = getattr(args, "scheduler", None)
+        if scheduler:
+            _on_cluster(args, todo, write)
+        else:
+            for label, task in todo:
+                _say(f"{label}:")
+                progress = lambda t: _say("  " + t)      # noqa: E731
+                if incremental:
+                    task(progress=progress, emit=write)
+                else:
+                    write(task(progress=progress))
+    _say(f"wrote {path}")
+    return 0
+
+
+def _on_cluster(args, todo, write) -> None:
+    """The tasks on the dask cluster of ``--scheduler``; rows written here as they end."""
+    if args.jobs < 1:
+        raise ValueError(f"--jobs must be >= 1, got {args.jobs}")
+    client, cluster = dask_executor(args.scheduler, args.jobs)
+    try:
+        from distributed import as_completed
+        futures = {client.submit(task, pure=False): label for label, task in todo}
+        for fut in as_completed(futures):
+            _say(f"{futures[fut]}: done on the cluster")
+            write(fut.result())
+    finally:
+        client.close()
+        if cluster is not None:
+            cluster.close()
+
+
+def _cmd_units(args) -> int:
+    opts = _settings(args)
+    _ramp(args.D0_step, args.D0_max)
+    meshes = _meshes(args, args.mesh)
+    modes = (package_data_dir() / "modes" if args.into_package else Path(args.out) / "modes")
+    tasks = []
+    for a in opts["alphas"]:
+        for el in meshes:
+            key = UnitKey(a, el, opts["grading"], args.formulation)
+            tasks.append((str(key), dict(zip(TABLES["units"].key, key.cells)),
+                          functools.partial(_units_task, key, D0_step=args.D0_step,
+                                            D0_max=args.D0_max, solver=opts["solver"],
+                                            modes_dir=modes)))
+
+    def show(r):
+        _say(f"  {UnitKey.from_row(r)}: D0_b {float(r['D0_b'] or 'nan'):.4f} "
+             + (f"({r['note']}) " if r.get('note') else "")
+             + f"{r.get('half_waves', '')} half-waves, {r['dofs']} DOFs, "
+             f"{r['cpu_s']} CPU s, {r['peak_GB']} GB")
+    return _run(args, "units", tasks, show)
+
+
+def _units_source(args):
+    return None if args.into_package else Path(args.out)
+
+
+def _cmd_onsets(args) -> int:
+    opts = _settings(args)
+    meshes = _meshes(args, args.mesh)
+    bracket = None
+    if args.bracket is not None:
+        lo, hi = (_finite("--bracket", v) for v in args.bracket)
+        if not lo < hi:
+            raise ValueError(f"--bracket must be LO < HI, got {lo:g} {hi:g}")
+        bracket = (lo, hi)
+    path = _table_path(args, "onsets")
+    have = read_table(path, TABLES["onsets"])
+    tasks = []
+    for a in opts["alphas"]:
+        for el in meshes:
+            key = UnitKey(a, el, opts["grading"], args.formulation)
+            done = {r["class"] for r in have if UnitKey.from_row(r) == key}
+            if args.classes is not None and set(args.classes) <= done:
+                _say(f"{key}: kept")
+                continue
+            tasks.append((str(key), None, functools.partial(
+                _onsets_task, key, solver=opts["solver"], classes=args.classes, skip=done,
+                units=_units_source(args), bracket=bracket)))
+    return _run(args, "onsets", tasks, lambda r: None, incremental=True)
+
+
+def _cmd_layer(args) -> int:
+    opts = _settings(args)
+    meshes = _meshes(args, args.mesh)
+    if any(el[0] < 2 for el in meshes):
+        raise ValueError("--mesh: the clamp layer needs n1 >= 2 (two element layers at the "
+                         "clamp)")
+    tasks = [(str(k), dict(zip(TABLES["layer"].key, k.cells)),
+              functools.partial(_layer_task, k, solver=opts["solver"],
+                                units=_units_source(args)))
+             for k in (UnitKey(a, el, opts["grading"], args.formulation)
+                       for a in opts["alphas"] for el in meshes)]
+
+    def show(r):
+        _say(f"  {UnitKey.from_row(r)} at D0 = {float(r['D0']):g}: first layer J "
+             f"{float(r['J_first_min']):.4f}-{float(r['J_first_max']):.4f}, "
+             f"{r['cpu_s']} CPU s")
+    return _run(args, "layer", tasks, show)
+
+
+def _cmd_p33(args) -> int:
+    opts = _settings(args)
+    _ramp(args.D0_step, args.D0_max)
+    meshes = _meshes(args, args.mesh)
+    tasks = [(str(k), {"alpha": k.alpha, "mesh": k.mesh_text, "grading": k.grading},
+              functools.partial(_p33_task, k, D0_step=args.D0_step, D0_max=args.D0_max,
+                                solver=opts["solver"]))
+             for k in (UnitKey(a, el, opts["grading"]) for a in opts["alphas"]
+                       for el in meshes)]
+
+    def show(r):
+        _say(f"  {UnitKey.from_row(r)}: P33 onsets " + ", ".join(
+            f"{s} {r[f'P33_onset_{s}'] or 'none'}" for s in ("centre_line", "clamp",
+                                                             "interior"))
+             + f", Newton limit {r['newton_limit'] or 'none'}, {r['cpu_s']} CPU s")
+    return _run(args, "p33", tasks, show)
+
+
+def _cmd_flagged(args) -> int:
+    opts = _settings(args)
+    D0 = _finite("--D0", args.D0)
+    meshes = _meshes(args, args.mesh)
+    tasks = [(f"{k} D0 = {D0:g}", {"alpha": k.alpha, "mesh": k.mesh_text,
+                                   "grading": k.grading, "D0": D0},
+              functools.partial(_flagged_task, k, D0=D0, solver=opts["solver"]))
+             for k in (UnitKey(a, el, opts["grading"]) for a in opts["alphas"]
+                       for el in meshes)]
+
+    def show(r):
+        _say(f"  {r['kind']} {r['class']} eigenvalue {r['eigenvalue']}")
+    return _run(args, "flagged", tasks, show)
+
+
+def _grad_div(args) -> float:
+    return (BUCKLING_GRAD_DIV if args.grad_div is None
+            else _finite("--grad-div", args.grad_div, zero=True))
+
+
+def _cmd_counts(args) -> int:
+    opts = _settings(args)
+    D0 = _charges("--D0", args.D0)
+    meshes = _meshes(args, args.mesh)
+    grad_div = _grad_div(args)
+    path = _table_path(args, "counts")
+    have = read_table(path, TABLES["counts"])
+    tasks = []
+    for a in opts["alphas"]:
+        for el in meshes:
+            key = UnitKey(a, el, opts["grading"], args.formulation)
+            done = {float(r["D0"]) for r in have if UnitKey.from_row(r) == key
+                    and float(r["grad_div"]) == grad_div and r["pressure"] == args.pressure}
+            if set(D0) <= done:
+                _say(f"{key}: kept")
+                continue
+            tasks.append((str(key), None, functools.partial(
+                _counts_task, key, D0=D0, grad_div=grad_div, pressure=args.pressure,
+                solver=opts["solver"], skip=done)))
+    return _run(args, "counts", tasks, lambda r: None, incremental=True)
+
+
+def _cmd_section(args) -> int:
+    opts = _settings(args)
+    D0 = _charges("--D0", args.D0)
+    (el,) = _meshes(args, [args.mesh])
+    grad_div = _grad_div(args)
+    length = _finite("--length", args.length)
+    h0s = _charges("--h0", args.h0)
+    if max(h0s) >= length:
+        raise ValueError(f"--h0 must be below --length {length:g}, got {max(h0s):g}")
+    ks = DEFAULT_K if args.k is None else _charges("--k", args.k)
+    path = _table_path(args, "section")
+    done = {TABLES["section"].key_of(r) for r in read_table(path, TABLES["section"])}
+    tasks = [(f"{UnitKey(a, el, opts['grading'])} D0 = {d:g}", None, functools.partial(
+        _section_task, UnitKey(a, el, opts["grading"]), D0=d, h0s=h0s, ks=ks,
+        grad_div=grad_div, length=length, solver=opts["solver"], done=done))
+        for a in opts["alphas"] for d in D0]
+    return _run(args, "section", tasks, lambda r: None, incremental=True)
+
+
+def _cmd_tables(args) -> int:
+    sys.stdout.write(clamp_study_tables(_source(args)))
+    return 0
+
+
+def _cmd_scaling(args) -> int:
+    sys.stdout.write(scaling_tables(membrane=not args.no_membrane))
+    return 0
+
+
+def _source(args):
+    if args.source is not None and not Path(args.source).is_dir():
+        raise ValueError(f"--from must be a folder of the study's tables, got "
+                         f"{str(args.source)!r}")
+    return args.source
+
+
+def _cmd_band(args) -> int:
+    rows = load("section", _source(args))
+    if args.table:
+        sys.stdout.write(band_table(rows))
+        return 0
+    if not rows:
+        raise ValueError(f"--from {args.source}: the section table has no rows")
+    Path(args.out).mkdir(parents=True, exist_ok=True)
+    for p in save_figure(edge_band_figure(rows), Path(args.out), "edge-band"):
+        _say(str(p))
+    return 0
+
+
+def _cmd_modes(args) -> int:
+    folder = (Path(args.source) / "modes" if _source(args) is not None
+              else shipped_path("units").parent / "modes")
+    modes = read_clamp_modes(folder)
+    Path(args.out).mkdir(parents=True, exist_ok=True)
+    for p in save_figure(clamp_modes_figure(modes), Path(args.out), "clamp-modes"):
+        _say(str(p))
+    return 0
+
+
+_SUBCOMMANDS = {"units": _cmd_units, "onsets": _cmd_onsets, "layer": _cmd_layer,
+                "p33": _cmd_p33, "flagged": _cmd_flagged, "counts": _cmd_counts,
+                "section": _cmd_section, "tables": _cmd_tables, "scaling": _cmd_scaling,
+                "band": _cmd_band, "modes": _cmd_modes}
+
+
+def cmd_clamp_zone(args) -> int:
+    """``skfem-dielectric clamp-zone``: the handler of ``args.clamp_command``; returns the
+    exit code 0 (errors are raised: ``ValueError`` bad input, ``OSError`` a path)."""
+    return _SUBCOMMANDS[args.clamp_command](args)
+

@@ -1,0 +1,157 @@
+"""What a table of the clamp-zone study holds (:class:`TableSpec`) and reading one back
+with its damaged rows named (:func:`read_table`); :mod:`validation.clamp_zone.table` writes one under its lock.
+
+A table is a CSV whose first line declares which of the study's tables it is
+(``# clamp-zone table: <name>``), then ``#`` lines saying what it holds, the header and
+one row per unit (or per state, or per class: :attr:`TableSpec.key`).  A file that does
+not declare the same table, or whose header has other columns, is another table and is
+never rewritten.  A row that cannot be read back (cut short by a kill, another number of
+cells, text in a number column) or that repeats a key is named in a note and left out, so
+its unit is computed again; the file is rewritten atomically (temporary file, ``fsync``,
+``os.replace``) with each new unit's rows, under a lock that refuses a second writer and
+names the holder.
+"""
+
+from __future__ import annotations
+
+import csv
+from dataclasses import dataclass
+from pathlib import Path
+
+__all__ = ["TableSpec", "ForeignTableError", "read_table", "DECLARATION"]
+
+#: the first line of every table of the study: ``DECLARATION.format(name=...)``
+DECLARATION = "# clamp-zone table: {name}"
+
+
+class ForeignTableError(ValueError):
+    """A file that is not the table asked for (exit code 2 of the CLI); the message names
+    it and what it is."""
+
+
+@dataclass(frozen=True)
+class TableSpec:
+    """One table of the study.
+
+    Attributes
+    ----------
+    name
+        The table's name (``"units"``), declared in its first line and used by
+        :func:`validation.clamp_zone.data.load`.
+    file
+        Its file name, in ``--out`` and among the shipped data (``"clamp_units.csv"``).
+    columns
+        Its header.
+    key
+        The columns that name a row's unit of work: one row per key, unless ``multi``.
+    about
+        The ``#`` lines after the declaration (what the columns mean, who writes them).
+    text
+        The columns that hold text; every other cell is a number or empty.
+    multi
+        Several rows share a key (written together: the negative modes of one state).
+    """
+
+    name: str
+    file: str
+    columns: tuple
+    key: tuple
+    about: str
+    text: frozenset = frozenset({"mesh", "formulation", "class", "solver", "date",
+                                 "scan_counts", "note", "command", "pressure", "kind"})
+    multi: bool = False
+
+    @property
+    def declaration(self) -> str:
+        """The table's first line."""
+        return DECLARATION.format(name=self.name)
+
+    def key_of(self, row: dict) -> tuple:
+        """The key of ``row`` (text or numbers) as text: numbers to 10 digits."""
+        return tuple(str(row[c]) if c in self.text else f"{float(row[c]):.10g}"
+                     for c in self.key)
+
+
+def _bad_cell(spec: TableSpec, row: dict) -> str:
+    for c in spec.columns:
+        t = row[c]
+        if c in spec.text or t == "":
+            continue
+        try:
+            float(t)
+        except ValueError:
+            return f"has {t!r} in the number column {c!r}"
+    return ""
+
+
+def read_table(path, spec: TableSpec, *, note=None) -> list[dict]:
+    """The rows of a table, as dicts of the cells' text; ``[]`` if there is no file.
+
+    Parameters
+    ----------
+    path : path-like
+        The CSV.
+    spec : TableSpec
+        The table it must be.
+    note : callable, optional
+        ``note(message)``: one line for each row left out (cut short, another number of
+        cells, text in a number column, a repeated key), naming the file and the row.
+
+    Raises
+    ------
+    ForeignTableError
+        ``path`` is a folder, does not declare ``spec``'s table, or has other columns.
+    """
+    path = Path(path)
+    note = note or (lambda msg: None)
+    if path.exists() and not path.is_file():
+        raise ForeignTableError(f"{path} is a folder, not the clamp-zone {spec.name} table")
+    if not path.exists():
+        return []
+    try:
+        text = path.read_text(encoding="utf-8")
+    except UnicodeDecodeError:
+        raise ForeignTableError(f"{path} is not text, not the clamp-zone {spec.name} "
+                                f"table") from None
+    if not text:
+        return []
+    first = text.split("\n", 1)[0].strip()
+    if first != spec.declaration:
+        what = (f"it declares {first.lstrip('# ')!r}" if first.startswith(DECLARATION[:20])
+                else "it declares no clamp-zone table")
+        raise ForeignTableError(f"{path} is not the clamp-zone {spec.name} table ({what}); "
+                                f"choose another --out")
+    lines = text.split("\n")
+    cut = not text.endswith("\n")
+    body = [(i + 1, ln) for i, ln in enumerate(lines[:-1] if not cut else lines)
+            if ln and not ln.startswith("#")]
+    if cut and body:
+        note(f"{path}: line {body[-1][0]} is incomplete (no line end); left out, its unit "
+             f"is computed again")
+        body = body[:-1]
+    if not body:
+        return []
+    header = next(csv.reader([body[0][1]]))
+    if tuple(header) != tuple(spec.columns):
+        raise ForeignTableError(f"{path} has other columns than the clamp-zone {spec.name} "
+                                f"table ({len(header)} against {len(spec.columns)}); choose "
+                                f"another --out")
+    out, seen = [], set()
+    for line, ln in body[1:]:
+        cells = next(csv.reader([ln]), [])
+        why = ""
+        if len(cells) != len(spec.columns):
+            why = f"has {len(cells)} cells, the header {len(spec.columns)}"
+        else:
+            row = dict(zip(spec.columns, cells))
+            why = _bad_cell(spec, row)
+            if not why and not spec.multi:
+                k = spec.key_of(row)
+                if k in seen:
+                    why = "repeats the key " + ", ".join(k)
+                seen.add(k)
+        if why:
+            note(f"{path}: line {line} {why}; left out, its unit is computed again")
+            continue
+        out.append(row)
+    return out

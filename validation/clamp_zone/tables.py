@@ -1,0 +1,106 @@
+"""The clamp-zone study as Markdown tables, from its tables alone
+(``skfem-dielectric clamp-zone tables``; docs/clamp-zone.md shows the shipped ones)."""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+from .data import TABLES, clamp_unit_load
+from .data import load as load_table
+
+__all__ = ["clamp_study_tables"]
+
+
+def _file(where, name: str):
+    return None if where is None else Path(where) / TABLES[name].file
+
+
+def clamp_study_tables(where=None) -> str:
+    """The clamp-zone study as four Markdown tables, from the data files alone
+    (``skfem-dielectric clamp-zone tables``).
+
+    The first has a row per unit (``formulation``, weight, mesh, grading; by weight and
+    unknowns); the second a row per weight: the load of :func:`clamp_unit_load` (or why
+    there is none), and the plain form's located ``P33`` onsets and Newton limit on the
+    finest graded mesh of the ``p33`` table for the weight; the third a row per located
+    class of the ``onsets`` table; the fourth a row per unit of the ``layer`` table.
+
+    Parameters
+    ----------
+    where : path-like, optional
+        A folder of the study's tables (a run's ``--out``); default: the shipped tables.
+
+    Returns
+    -------
+    str
+    """
+    rows = [r for r in load_table("units", where) if r["D0_b"]]
+    rows.sort(key=lambda r: (float(r["alpha"]), r["formulation"] != "mixed", r["formulation"],
+                             int(r["dofs"])))
+    out = ["| alpha | mesh (grading) | formulation | unknowns | half-waves | elements per "
+           "half-wave | `D0_b` | `J` at the clamp | flagged at `D0_b` | CPU s (solver) |",
+           "| --- " * 10 + "|"]
+    for r in rows:
+        out.append(f"| {float(r['alpha']):g} | {r['mesh']} ({r['grading']}) | "
+                   f"{r['formulation']} | {int(r['dofs'])} | {r['half_waves']} | "
+                   f"{float(r['elements_per_half_wave']):.1f} | {float(r['D0_b']):.4f} | "
+                   f"{float(r['J_min_clamp']):.2f}-{float(r['J_max_clamp']):.2f} | "
+                   f"{r['n_flagged_b']} | {r['cpu_s']} ({r['solver']}) |")
+    p33 = load_table("p33", where)
+    out += ["", "| alpha | `D0_b` (two finest meshes, spread) | `P33` onset: centre line / "
+            "clamp line / interior (mesh) | Newton limit, plain form |", "| --- " * 4 + "|"]
+    for a in sorted({float(r["alpha"]) for r in rows}):
+        try:
+            g = clamp_unit_load(a, path=_file(where, "units"),
+                                classes_path=_file(where, "onsets"))
+            load = (f"**{g['D0_b']:.4f}** ({g['meshes'][0]}, {g['meshes'][1]}; "
+                    f"{g['spread']:.4f})")
+            if g["tied"]:
+                load += (f"; `{g['class']}`, {g['half_waves']} half-waves on both, tied "
+                         f"with " + ", ".join(f"`{c}` ({n})" for c, n in g["tied"].items()
+                                              if c != g["class"]))
+        except ValueError as exc:
+            load = "none: " + str(exc).split(";")[0]
+        mine = [r for r in p33 if math.isclose(float(r["alpha"]), a, abs_tol=1e-9)
+                and r["grading"] != "0.25"]
+        if mine:
+            r = max(mine, key=lambda r: int(r["dofs"]))
+            def cell(k):
+                name = k.removeprefix("P33_onset_")
+                if not r[k]:
+                    return "none"
+                if f"{name}: below at the first target" in r["note"]:
+                    return f"<= {float(r[k]):g} (below from the first step)"
+                return f"{float(r[k]):.4f}"
+
+            on = " / ".join(cell(k) for k in ("P33_onset_centre_line", "P33_onset_clamp",
+                                               "P33_onset_interior"))
+            onset, newton = (f"{on} ({r['mesh']} ({r['grading']}))",
+                             r["newton_limit"] or f"none up to {float(r['D0_max']):g}")
+        else:
+            onset, newton = "not run", "not run"
+        out.append(f"| {a:g} | {load} | {onset} | {newton} |")
+    classes = [r for r in load_table("onsets", where) if r["D0_c"]]
+    classes.sort(key=lambda r: (float(r["alpha"]), int(r["dofs"]), r["class"]))
+    out += ["", "| alpha | mesh (grading) | class | half-waves | elements per half-wave | "
+            "`D0_c` | bracket |", "| --- " * 7 + "|"]
+    for r in classes:
+        out.append(f"| {float(r['alpha']):g} | {r['mesh']} ({r['grading']}) | "
+                   f"`{r['class']}` | {r['half_waves']} | "
+                   f"{float(r['elements_per_half_wave']):.1f} | {float(r['D0_c']):.5f} | "
+                   f"{r['lo']}-{r['hi']} |")
+    layer = load_table("layer", where)
+    layer.sort(key=lambda r: (float(r["alpha"]), int(r["dofs"])))
+    out += ["", "| alpha | mesh (grading) | `D0` | mean `J`, first / second element layer | "
+            "`J` at the first layer's centres | volume ratio, layer 0.5 / 1 / 2 mm | "
+            "whole model |", "| --- " * 7 + "|"]
+    for r in layer:
+        f = {k: float(v) for k, v in r.items() if k.startswith(("J_", "V_"))}
+        out.append(f"| {float(r['alpha']):g} | {r['mesh']} ({r['grading']}) | "
+                   f"{float(r['D0']):.4f} | {f['J_first_min']:.3f}-{f['J_first_max']:.3f} / "
+                   f"{f['J_second_min']:.3f}-{f['J_second_max']:.3f} | "
+                   f"{f['J_centre_min']:.3f}-{f['J_centre_max']:.3f} | "
+                   f"{f['V_0.5mm']:.4f} / {f['V_1mm']:.4f} / {f['V_2mm']:.4f} | "
+                   f"{f['V_plate']:.6f} |")
+    return "\n".join(out) + "\n"
