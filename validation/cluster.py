@@ -6,7 +6,7 @@ from __future__ import annotations
 import logging
 import threading
 
-__all__ = ["SCHEDULER_TIMEOUT", "dask_executor"]
+__all__ = ["SCHEDULER_TIMEOUT", "dask_executor", "check_scheduler"]
 
 
 def _one_line(text) -> str:
@@ -16,6 +16,18 @@ def _one_line(text) -> str:
 #: seconds that ``--scheduler ADDRESS`` waits for the scheduler in all (connection,
 #: handshake, the first answer); past them the command ends with one line and exit code 3
 SCHEDULER_TIMEOUT = 30.0
+
+
+def check_scheduler(address: str) -> None:
+    """``ValueError`` naming ``--scheduler`` unless ``address`` is ``local`` or a TCP
+    address (``tcp://HOST:PORT`` or ``HOST:PORT``): checked before anything is written."""
+    if not address.strip():
+        raise ValueError("--scheduler must be a scheduler address or 'local', got ''")
+    scheme = address.split("://", 1)[0].lower() if "://" in address else "tcp"
+    if address != "local" and scheme != "tcp":
+        raise ValueError(f"--scheduler must be a dask scheduler address tcp://HOST:PORT (or "
+                         f"HOST:PORT) or 'local'; {scheme}:// is not supported (TLS needs "
+                         f"security settings, UCX its own package), got {address!r}")
 
 
 def dask_executor(address: str, jobs: int):
@@ -41,11 +53,7 @@ def dask_executor(address: str, jobs: int):
         cluster = LocalCluster(n_workers=jobs, threads_per_worker=1, processes=True,
                                dashboard_address="127.0.0.1:0", silence_logs=logging.ERROR)
         return Client(cluster), cluster
-    scheme = address.split("://", 1)[0].lower() if "://" in address else "tcp"
-    if scheme != "tcp":
-        raise ValueError(f"--scheduler must be a dask scheduler address tcp://HOST:PORT (or "
-                         f"HOST:PORT) or 'local'; {scheme}:// is not supported (TLS needs "
-                         f"security settings, UCX its own package), got {address!r}")
+    check_scheduler(address)
     box: dict = {}
 
     def connect():

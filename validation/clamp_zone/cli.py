@@ -19,7 +19,7 @@ from pathlib import Path
 
 from skfem_dielectric.fem import blas_thread_limit
 
-from ..cluster import dask_executor
+from ..cluster import check_scheduler, dask_executor
 from ..fe.model import BUCKLING_GRAD_DIV
 from ..figures.common import save_figure
 from ..options import out_dir, solver_name
@@ -37,7 +37,7 @@ from .section import DEFAULT_K, run_edge_section
 from .spec import read_table
 from .table import TableWriter
 from .tables import clamp_study_tables
-from .units import run_unit
+from .units import run_unit, write_mode
 
 __all__ = ["add_clamp_zone_command", "cmd_clamp_zone", "MAX_ELEMENTS", "DEFAULT_OUT",
            "package_data_dir"]
@@ -247,17 +247,15 @@ def _settings(args) -> dict:
 
 
 # -- the tasks: one unit of work each, run here or on a dask worker ------------------------
-def _units_task(key: UnitKey, *, D0_step, D0_max, solver, modes_dir, progress=None):
-
+def _units_task(key: UnitKey, *, D0_step, D0_max, solver, progress=None):
     with blas_thread_limit(1):
         return [run_unit(key.alpha, key.mesh, grading=key.grading, D0_step=D0_step,
                          D0_max=D0_max, formulation=key.formulation, solver=solver,
-                         progress=progress, modes_dir=modes_dir)]
+                         progress=progress)]
 
 
 def _onsets_task(key: UnitKey, *, solver, classes, skip, units, bracket, progress=None,
                  emit=None):
-
     with blas_thread_limit(1):
         return run_class_onsets(key.alpha, key.mesh, grading=key.grading,
                                 formulation=key.formulation, solver=solver, classes=classes,
@@ -266,7 +264,6 @@ def _onsets_task(key: UnitKey, *, solver, classes, skip, units, bracket, progres
 
 
 def _layer_task(key: UnitKey, *, solver, units, progress=None):
-
     with blas_thread_limit(1):
         return [run_clamp_layer(key.alpha, key.mesh, grading=key.grading,
                                 formulation=key.formulation, solver=solver, units=units)]
@@ -280,14 +277,12 @@ def _p33_task(key: UnitKey, *, D0_step, D0_max, solver, progress=None):
 
 
 def _flagged_task(key: UnitKey, *, D0, solver, progress=None):
-
     with blas_thread_limit(1):
         return run_flagged_modes(key.alpha, key.mesh, D0, grading=key.grading, solver=solver)
 
 
 def _counts_task(key: UnitKey, *, D0, grad_div, pressure, solver, skip, progress=None,
                  emit=None):
-
     with blas_thread_limit(1):
         return run_edge_counts(key.alpha, key.mesh, D0, grading=key.grading,
                                formulation=key.formulation, grad_div=grad_div,
@@ -354,8 +349,6 @@ def _run(args, name: str, tasks, show, *, incremental: bool = False) -> int:
 
 def _on_cluster(args, todo, write) -> None:
     """The tasks on the dask cluster of ``--scheduler``; rows written here as they end."""
-    if args.jobs < 1:
-        raise ValueError(f"--jobs must be >= 1, got {args.jobs}")
     client, cluster = dask_executor(args.scheduler, args.jobs)
     try:
         from distributed import as_completed
@@ -370,6 +363,10 @@ def _on_cluster(args, todo, write) -> None:
 
 
 def _cmd_units(args) -> int:
+    if args.scheduler is not None:
+        check_scheduler(args.scheduler)
+    if args.jobs < 1:
+        raise ValueError(f"--jobs must be >= 1, got {args.jobs}")
     opts = _settings(args)
     _ramp(args.D0_step, args.D0_max)
     meshes = _meshes(args, args.mesh)
@@ -380,10 +377,11 @@ def _cmd_units(args) -> int:
             key = UnitKey(a, el, opts["grading"], args.formulation)
             tasks.append((str(key), dict(zip(TABLES["units"].key, key.cells)),
                           functools.partial(_units_task, key, D0_step=args.D0_step,
-                                            D0_max=args.D0_max, solver=opts["solver"],
-                                            modes_dir=modes)))
+                                            D0_max=args.D0_max, solver=opts["solver"])))
 
-    def show(r):
+    def show(r):           # after the row: a mode file without its row is rewritten
+        if "mode" in r:
+            write_mode(modes, UnitKey.from_row(r), r["mode"])
         _say(f"  {UnitKey.from_row(r)}: D0_b {float(r['D0_b'] or 'nan'):.4f} "
              + (f"({r['note']}) " if r.get('note') else "")
              + f"{r.get('half_waves', '')} half-waves, {r['dofs']} DOFs, "

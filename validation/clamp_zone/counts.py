@@ -30,19 +30,17 @@ The rows go to the ``counts`` table as each state is counted
 
 from __future__ import annotations
 
-import datetime
 import math
-import resource
 import time
 import warnings
 
 import numpy as np
 
 import skfem_dielectric as fe
-from skfem_dielectric.linalg.solver_base import factorisation_count
 from skfem_dielectric.models.plate.scan import PlateScan
 
 from ..fe.model import BUCKLING_GRAD_DIV
+from .costs import Meter
 from .data import CLASS_COLUMNS, TABLES
 from .key import mesh_text
 from .units import UNIT_SETTINGS, unit_problem
@@ -90,7 +88,7 @@ def run_edge_counts(alpha: float, elements, D0, *, grading: float = 1.0,
         A charge not positive and finite, or the ramp stopping before the last charge
         (the rows of the charges before it are returned through ``on_row`` first).
     """
-    t0, f0 = time.process_time(), factorisation_count()
+    meter = Meter()
     D0 = sorted({float(d) for d in D0})
     for d in D0:
         if not (math.isfinite(d) and d > 0):
@@ -118,11 +116,7 @@ def run_edge_counts(alpha: float, elements, D0, *, grading: float = 1.0,
                "n_x2A": sum(v for k, v in counts.items() if _column(k)[1] == "A"),
                **{_column(k): v for k, v in counts.items()},
                "count_cpu_s": round(time.process_time() - t1, 1),
-               "cpu_s": round(time.process_time() - t0, 1),
-               "peak_GB": round(resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
-                                / 1024**2, 3),
-               "factorisations": factorisation_count() - f0, "solver": solver,
-               "date": datetime.date.today().isoformat()}
+               **meter.columns(solver)}
         if progress is not None:
             progress(f"D0 = {d:g}: {row['n_negative']} negative ({row['n_x2A']} in x2 A), "
                      f"{row['count_cpu_s']} CPU s")

@@ -24,12 +24,10 @@ a unit already there is skipped.
 
 from __future__ import annotations
 
-import datetime
-import resource
-import time
 
 import numpy as np
 
+from .costs import Meter
 from .data import LAYER_WIDTHS, TABLES, unit_row
 from .key import UnitKey, mesh_text
 from .units import clamp_centre_J, ramp_to_charge, unit_problem
@@ -101,7 +99,7 @@ def run_clamp_layer(alpha: float, elements, *, grading: float = 1.0,
     ValueError
         ``D0`` is ``None`` and the unit has no located ``D0_b``; the ramp stops first.
     """
-    t0 = time.process_time()
+    meter = Meter()
     el = tuple(int(n) for n in elements)
     if D0 is None:
         unit = unit_row(UnitKey(alpha, el, grading, formulation), units)
@@ -117,7 +115,5 @@ def run_clamp_layer(alpha: float, elements, *, grading: float = 1.0,
     row = {"alpha": alpha, "mesh": mesh_text(el), "grading": grading,
            "formulation": formulation, "dofs": pb.ndofs, "D0": D0,
            **volume_ratios(pb, x, load), "J_centre_min": j_min, "J_centre_max": j_max,
-           "cpu_s": round(time.process_time() - t0, 1),
-           "peak_GB": round(resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024**2, 3),
-           "solver": solver, "date": datetime.date.today().isoformat()}
+           **meter.columns(solver)}
     return row

@@ -40,20 +40,18 @@ The rows go to the ``onsets`` table as each class is located
 
 from __future__ import annotations
 
-import datetime
 import math
-import resource
 import time
 import warnings
 
 import numpy as np
 
 import skfem_dielectric as fe
-from skfem_dielectric.linalg.solver_base import factorisation_count
 from skfem_dielectric.models.plate.scan import PlateScan
 from skfem_dielectric.studies.buckling import locate_buckling
 
 from ..fe.model import BUCKLING_NEWTON
+from .costs import Meter
 from .data import LOCATION_TOL, TABLES, unit_row
 from .key import UnitKey, mesh_text
 from .units import UNIT_SETTINGS, unit_problem
@@ -134,7 +132,7 @@ def run_class_onsets(alpha: float, elements, *, grading: float = 1.0,
         ``lo``; a class of
         ``classes`` without a physical negative mode at ``hi``.
     """
-    t0, f0 = time.process_time(), factorisation_count()
+    meter = Meter()
     say = progress or (lambda text: None)
     el = tuple(int(n) for n in elements)
     if given is None:
@@ -226,11 +224,7 @@ def run_class_onsets(alpha: float, elements, *, grading: float = 1.0,
                 row["note"] = f"located the crossing of {lab.symmetry} first"
         if note:
             row["note"] = "; ".join(v for v in (row.get("note", ""), note) if v)
-        row.update(factorisations=factorisation_count() - f0,
-                   cpu_s=round(time.process_time() - t0, 1),
-                   peak_GB=round(resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
-                                 / 1024**2, 3),
-                   solver=solver, date=datetime.date.today().isoformat())
+        row.update(meter.columns(solver))
         say(f"{name}: D0_c {row['D0_c']:.5f}, {row.get('half_waves', '')} half-waves "
             f"{row.get('note', '')}")
         rows.append(row)

@@ -28,22 +28,19 @@ The rows go to the ``p33`` table, one per unit, as soon as the unit is done
 
 from __future__ import annotations
 
-import datetime
 import math
-import resource
-import time
 import warnings
 
 import numpy as np
 
 import skfem_dielectric as fe
 from skfem_dielectric.gallery.drivers import newton_guards
-from skfem_dielectric.linalg.solver_base import factorisation_count
 from skfem_dielectric.solvers.critical import critical_load
 
 from ..fe.model import BUCKLING_NEWTON
 from ..studies.buckling import p33_measures
 from ..table import BREAKDOWN_TOL
+from .costs import Meter
 from .data import LOCATION_TOL, P33_SETS as SETS, TABLES
 from .key import mesh_text
 from .units import UNIT_SETTINGS
@@ -79,7 +76,7 @@ def run_p33_unit(alpha: float, elements, *, grading: float = 1.0, D0_step: float
         An onset is ``nan`` where ``min P33/mu`` stays above ``-BREAKDOWN_TOL`` on every
         converged state (``note`` says up to where).
     """
-    t0, f0 = time.process_time(), factorisation_count()
+    meter = Meter()
     el = tuple(int(n) for n in elements)
     pb = fe.gallery.keplinger_problem(elements=el, symmetry="eighth", grading=grading,
                                       options=fe.PlateOptions())
@@ -136,8 +133,5 @@ def run_p33_unit(alpha: float, elements, *, grading: float = 1.0, D0_step: float
         row[f"P33_onset_{k}"] = onset
         if progress is not None:
             progress(f"P33 onset ({k}): {onset:.4f}")
-    row.update(trials=trials, factorisations=factorisation_count() - f0,
-               cpu_s=round(time.process_time() - t0, 1),
-               peak_GB=round(resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024**2, 3),
-               solver=solver, date=datetime.date.today().isoformat(), note="; ".join(notes))
+    row.update(trials=trials, note="; ".join(notes), **meter.columns(solver))
     return row

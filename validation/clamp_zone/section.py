@@ -34,7 +34,6 @@ from __future__ import annotations
 
 import datetime
 import math
-import resource
 import time
 
 import numpy as np
@@ -45,6 +44,7 @@ from skfem_dielectric.models.edge_section import (EdgeSection, edge_section_grid
                                                   plate_fields)
 
 from ..fe.model import BUCKLING_GRAD_DIV
+from .costs import peak_GB
 from .data import TABLES
 from .key import mesh_text
 from .units import ramp_states, unit_problem
@@ -131,8 +131,7 @@ def run_edge_section(alpha: float, elements, D0: float, h0s, ks=DEFAULT_K, *,
                         "F11_section": round(F11_sec, 5), "F11_3d": round(F11_3d, 5),
                         "count_cpu_s": round(time.process_time() - t2, 2),
                         "base_cpu_s": round(base_cpu, 1), "state_cpu_s": round(state_cpu, 1),
-                        "peak_GB": round(resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
-                                         / 1024**2, 3),
+                        "peak_GB": peak_GB(),
                         "date": datetime.date.today().isoformat()})
         if progress is not None:
             neg = [f"{r['k']:g}:{r['n_negative']}" for r in out if r["n_negative"]]

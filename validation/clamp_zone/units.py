@@ -33,10 +33,7 @@ there (docs/clamp-zone.md).
 
 from __future__ import annotations
 
-import datetime
 import math
-import resource
-import time
 import warnings
 from dataclasses import replace
 from pathlib import Path
@@ -44,19 +41,19 @@ from pathlib import Path
 import numpy as np
 
 import skfem_dielectric as fe
-from skfem_dielectric.linalg.solver_base import factorisation_count
 from skfem_dielectric.models.plate.modes import top_deflection
 from skfem_dielectric.models.plate.scan import PlateScan
 from skfem_dielectric.studies.buckling import locate_buckling
 
 from ..fe.model import BUCKLING_GRAD_DIV, BUCKLING_NEWTON
 from ..store import write_npz_atomic
+from .costs import Meter
 from .data import LOCATION_TOL, TABLES
 from .key import UnitKey, mesh_text
 from .local_theory import energy_centroid, half_waves, local_state
 
-__all__ = ["COLUMNS", "UNIT_SETTINGS", "run_unit", "unit_problem", "ramp_states",
-           "ramp_to_charge", "clamp_centre_J"]
+__all__ = ["COLUMNS", "UNIT_SETTINGS", "run_unit", "write_mode", "unit_problem",
+           "ramp_states", "ramp_to_charge", "clamp_centre_J"]
 
 #: the columns of a unit's row, in order (the ``units`` table)
 COLUMNS = TABLES["units"].columns
@@ -173,10 +170,11 @@ def run_unit(alpha: float, elements, *, grading: float = 1.0, D0_step: float = 0
     Returns
     -------
     dict
-        ``D0_b`` is ``nan`` (and the mode columns empty) when no physical mode crossed up
-        to ``D0_max`` or the ramp stopped first.
+        The columns; ``D0_b`` is ``nan`` (and the mode columns empty) when no physical mode
+        crossed up to ``D0_max`` or the ramp stopped first.  Where it crossed, ``mode``
+        holds the mode's arrays (``X1``, ``X3``, ``u2``, ``D0_b``) for :func:`write_mode`.
     """
-    t0, f0 = time.process_time(), factorisation_count()
+    meter = Meter()
     el = tuple(int(n) for n in elements)
     pb, s = unit_problem(alpha, el, grading=grading, formulation=formulation)
     track = {"prev": None, "before": None, "row": None, "cur": None, "states": 0,
@@ -256,18 +254,23 @@ def run_unit(alpha: float, elements, *, grading: float = 1.0, D0_step: float = 0
                    half_waves=n_half, elements_per_half_wave=n3 / n_half,
                    J_min_clamp=jmin, J_max_clamp=jmax,
                    n_flagged_b=track["row"].n_negative - track["row"].n_physical)
+        X1, X3, u2 = top_deflection(pb, lab.mode, lab.increments)
+        row["mode"] = {"X1": X1, "X3": X3, "u2": u2, "D0_b": float(bl.D0_b)}
         if modes_dir is not None:
-            X1, X3, u2 = top_deflection(pb, lab.mode, lab.increments)
-            Path(modes_dir).mkdir(parents=True, exist_ok=True)
-            key = UnitKey(alpha, el, grading, formulation)
-            write_npz_atomic(Path(modes_dir) / f"{key.stem}.npz",
-                             X1=X1, X3=X3, u2=u2, D0_b=float(bl.D0_b))
+            write_mode(modes_dir, UnitKey(alpha, el, grading, formulation), row["mode"])
     else:
         row.update(D0_b=math.nan, n_flagged_b=(track["row"].n_negative - track["row"].n_physical
                                                 if track["row"] is not None else ""),
                    note=stopped or f"no physical crossing up to D0 = {D0_max:g}")
-    row.update(factorisations=factorisation_count() - f0,
-               cpu_s=round(time.process_time() - t0, 1),
-               peak_GB=round(resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024**2, 3),
-               solver=solver, date=datetime.date.today().isoformat())
+    row.update(meter.columns(solver))
     return row
+
+
+def write_mode(folder, key: UnitKey, mode: dict) -> Path:
+    """Write a unit's mode at ``D0_b`` (the ``mode`` of :func:`run_unit`'s row) atomically
+    to ``folder/<stem>.npz`` (:attr:`~validation.clamp_zone.key.UnitKey.stem`); returns the
+    path."""
+    path = Path(folder) / f"{key.stem}.npz"
+    path.parent.mkdir(parents=True, exist_ok=True)
+    write_npz_atomic(path, **mode)
+    return path

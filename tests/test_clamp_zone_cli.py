@@ -1,0 +1,272 @@
+"""``skfem-dielectric clamp-zone``: its tables cannot lose or double a row (a lock per
+table, damaged rows named and recomputed, another table refused), inputs are refused
+before anything is allocated, every bad value is one line and a documented exit code, and
+units farmed to a dask LocalCluster give the serial run's rows."""
+
+from __future__ import annotations
+
+import math
+import subprocess
+import sys
+import textwrap
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import validation.clamp_zone.cli as zone_cli
+from validation.cli import main
+from validation.clamp_zone.data import TABLES, load
+from validation.clamp_zone.key import UnitKey
+
+ROOT = Path(__file__).resolve().parents[1]
+#: the smallest unit: alpha = 1 on 6 x 1 x 3 graded 0.5, charge steps of 1 (about 3 CPU s)
+SMALL = ["--alpha", "1", "--mesh", "6x1x3", "--grading", "0.5", "--D0-step", "1",
+         "--solver", "superlu"]
+#: the columns of a unit's row that are physics (no cost, date or command)
+PHYSICS = ("alpha", "mesh", "grading", "formulation", "dofs", "D0_step", "D0_b", "class",
+           "corner_share", "mesh_scale", "half_waves", "elements_per_half_wave",
+           "J_min_clamp", "J_max_clamp", "n_flagged_b", "states", "scan_counts", "note")
+
+
+def _exit(argv) -> int:
+    """The exit code of the console script (argparse's errors exit from ``main``)."""
+    try:
+        return main(argv)
+    except SystemExit as exc:
+        return exc.code
+
+
+def _units(out: Path, capsys, *extra) -> tuple[int, str, str]:
+    code = main(["clamp-zone", "units", *SMALL, *extra, "--out", str(out)])
+    got = capsys.readouterr()
+    return code, got.out, got.err
+
+
+@pytest.fixture(scope="module")
+def small_run(tmp_path_factory):
+    """One run of the smallest unit: its folder (the table and the mode)."""
+    out = tmp_path_factory.mktemp("small") / "run"
+    assert main(["clamp-zone", "units", *SMALL, "--out", str(out)]) == 0
+    return out
+
+
+def test_a_run_writes_the_row_and_the_mode_and_a_rerun_keeps_them(small_run, tmp_path, capsys):
+    """The row's D0_b equals the mode file's; the table declares itself; a rerun of the
+    same command leaves the table byte for byte and says 'kept'."""
+    (row,) = load("units", small_run)
+    key = UnitKey.from_row(row)
+    with np.load(small_run / "modes" / f"{key.stem}.npz") as z:
+        assert math.isclose(float(z["D0_b"]), float(row["D0_b"]), rel_tol=1e-5)
+    text = (small_run / "clamp_units.csv").read_text()
+    assert text.startswith("# clamp-zone table: units\n")
+    out = tmp_path / "again"
+    out.mkdir()
+    (out / "clamp_units.csv").write_text(text)
+    code, stdout, _ = _units(out, capsys)
+    assert code == 0 and "alpha = 1 6x1x3 grading 0.5: kept" in stdout
+    assert (out / "clamp_units.csv").read_text() == text
+
+
+def test_a_second_writer_is_refused_naming_the_holder(tmp_path, capsys):
+    """Another process holds the units table of --out: the run ends with exit 2 and one
+    line naming that process, and the table is untouched."""
+    out = tmp_path / "run"
+    holder = subprocess.Popen(
+        [sys.executable, "-c", textwrap.dedent(f"""
+            import sys, time
+            from validation.clamp_zone.data import TABLES
+            from validation.clamp_zone.table import TableWriter
+            with TableWriter({str(out / 'clamp_units.csv')!r}, TABLES["units"]):
+                print("held", flush=True)
+                time.sleep(60)
+        """)], cwd=ROOT, stdout=subprocess.PIPE, text=True)
+    try:
+        assert holder.stdout.readline().strip() == "held"
+        code, _, err = _units(out, capsys)
+        assert code == 2 and err.count("\n") == 1, err
+        assert f"pid {holder.pid}" in err and "being written by another process" in err
+        assert not (out / "clamp_units.csv").exists()
+    finally:
+        holder.kill()
+        holder.wait()
+
+
+@pytest.mark.parametrize("damage, why", [
+    (lambda t: t.rstrip("\n"), "is incomplete (no line end)"),
+    (lambda t: t.replace(",mixed,", ",mixed,extra,", 1), "has 25 cells, the header 24"),
+    (lambda t: t.replace("\n1,6x1x3,0.5,mixed,854,1,", "\n1,6x1x3,0.5,mixed,854,one,"),
+     "has 'one' in the number column 'D0_step'"),
+])
+def test_a_damaged_row_is_named_and_recomputed(small_run, tmp_path, capsys, damage, why):
+    """A row cut short, with a cell too many or text in a number column: the run names
+    the file and the line, leaves the row out and computes the unit again; the new row's
+    physics equals the undamaged one's."""
+    good = (small_run / "clamp_units.csv").read_text()
+    out = tmp_path / "run"
+    out.mkdir()
+    bad = damage(good)
+    assert bad != good
+    (out / "clamp_units.csv").write_text(bad)
+    code, stdout, _ = _units(out, capsys)
+    assert code == 0
+    line = len(good.splitlines())
+    assert f"clamp_units.csv: line {line} {why}; left out" in stdout, stdout
+    (new,) = load("units", out)
+    (old,) = load("units", small_run)
+    assert all(new[c] == old[c] for c in PHYSICS), [c for c in PHYSICS if new[c] != old[c]]
+
+
+def test_a_repeated_key_is_one_row(small_run, tmp_path, capsys):
+    """The same unit written twice (two runs that raced before the lock existed): the
+    second row is named and left out, so a load is never one mesh compared with itself."""
+    text = (small_run / "clamp_units.csv").read_text()
+    out = tmp_path / "run"
+    out.mkdir()
+    (out / "clamp_units.csv").write_text(text + text.splitlines(keepends=True)[-1])
+    code, stdout, _ = _units(out, capsys)
+    assert code == 0 and "repeats the key 1, 6x1x3, 0.5, mixed; left out" in stdout
+    assert "kept" in stdout and len(load("units", out)) == 1
+
+
+@pytest.mark.parametrize("content", [
+    "alpha,mesh,D0_b\n1,2x1x2,3\n",                                  # no declaration
+    "# clamp-zone table: layer\nalpha,mesh\n",                       # another table
+    "# clamp-zone table: units\nalpha,mesh,grading\n1,2x1x2,0.5\n",  # other columns
+])
+def test_another_table_is_refused_and_left_as_it_is(tmp_path, capsys, content):
+    out = tmp_path / "run"
+    out.mkdir()
+    (out / "clamp_units.csv").write_text(content)
+    code, _, err = _units(out, capsys)
+    assert code == 2 and err.count("\n") == 1 and "Traceback" not in err
+    assert "is not the clamp-zone units table" in err or "other columns" in err
+    assert (out / "clamp_units.csv").read_text() == content
+
+
+def test_a_mesh_too_large_is_refused_before_anything_is_allocated(tmp_path, capsys,
+                                                                 monkeypatch):
+    """100 x 10 x 100 (100,000 elements, about 110 GB): one line naming --max-elements,
+    exit 2, no plate built and nothing written; raising the bound lets it through to the
+    (here replaced) runner."""
+    def no_plate(*a, **k):
+        raise AssertionError("a plate was built")
+
+    monkeypatch.setattr(zone_cli, "run_unit", no_plate)
+    out = tmp_path / "run"
+    code = main(["clamp-zone", "units", "--alpha", "1", "--mesh", "100x10x100",
+                 "--out", str(out)])
+    err = capsys.readouterr().err
+    assert code == 2 and err.count("\n") == 1
+    assert "--mesh 100x10x100 has 100000 elements, more than --max-elements 5000" in err
+    assert not out.exists()
+    calls = []
+    monkeypatch.setattr(zone_cli, "run_unit", lambda *a, **k: calls.append(a) or {})
+    with pytest.raises(Exception):
+        main(["clamp-zone", "units", "--alpha", "1", "--mesh", "100x10x100",
+              "--max-elements", "100000", "--out", str(out)])
+    assert calls and calls[0][1] == (100, 10, 100)
+
+
+BAD = {
+    "units": [("--alpha", v) for v in ("-1", "0", "nan", "inf", "x")]
+    + [("--mesh", v) for v in ("0x1x1", "6x1", "axbxc", "-2x1x1", "")]
+    + [("--grading", v) for v in ("0", "-1", "nan", "1e9", "x")]
+    + [("--D0-step", v) for v in ("0", "-1", "nan", "1e-9")]
+    + [("--D0-max", v) for v in ("0", "-1", "nan", "inf")]
+    + [("--formulation", "plain"), ("--solver", "mumps"), ("--out", ""),
+       ("--max-elements", "0"), ("--jobs", "0"), ("--scheduler", ""),
+       ("--scheduler", "udp://h:1")],
+    "onsets": [("--alpha", "nan"), ("--mesh", "2x2"), ("--bracket", "2 1"),
+               ("--bracket", "0 1"), ("--bracket", "1 nan")],
+    "layer": [("--mesh", "1x1x1"), ("--grading", "inf")],
+    "p33": [("--D0-step", "0"), ("--D0-max", "nan"), ("--alpha", "-0.5")],
+    "flagged": [("--D0", "-1"), ("--D0", "nan"), ("--D0", "x")],
+    "counts": [("--D0", "0"), ("--grad-div", "-1"), ("--grad-div", "nan"),
+               ("--pressure", "P1")],
+    "section": [("--D0", "inf"), ("--h0", "0"), ("--h0", "6"), ("--k", "-1"),
+                ("--length", "0"), ("--mesh", "40x1"), ("--mesh", "1000x10x100")],
+    "tables": [("--from", "missing")],
+    "band": [("--from", "missing")],
+    "modes": [("--from", "missing")],
+}
+GOOD = {"units": ["--alpha", "1", "--mesh", "4x1x2"],
+        "onsets": ["--alpha", "1", "--mesh", "4x1x2"],
+        "layer": ["--alpha", "1", "--mesh", "4x1x2"],
+        "p33": ["--alpha", "1", "--mesh", "4x1x2"],
+        "flagged": ["--alpha", "1", "--mesh", "4x1x2", "--D0", "1"],
+        "counts": ["--alpha", "1", "--mesh", "4x1x2", "--D0", "1"],
+        "section": ["--alpha", "1", "--D0", "1"],
+        "tables": [], "band": [], "modes": []}
+
+
+@pytest.mark.parametrize("command, option, value",
+                         [(c, o, v) for c, items in BAD.items() for o, v in items])
+def test_every_bad_value_is_one_line_and_exit_2(tmp_path, capsys, monkeypatch, command,
+                                                option, value):
+    """Each option of each subcommand with a bad value: one line on stderr, exit code 2,
+    no traceback, nothing written and no runner called."""
+    for name in ("run_unit", "run_class_onsets", "run_clamp_layer", "run_p33_unit",
+                 "run_flagged_modes", "run_edge_counts", "run_edge_section"):
+        monkeypatch.setattr(zone_cli, name, lambda *a, **k: pytest.fail("a runner ran"))
+    argv = list(GOOD[command])
+    if option in argv:
+        i = argv.index(option)
+        del argv[i:i + 2]
+    out = tmp_path / "run"
+    has_out = command not in ("tables",)
+    values = value.split(" ") if option == "--bracket" else [value]
+    tail = ([] if option == "--out" or not has_out else ["--out", str(out)])
+    if command in ("tables", "band", "modes") and option == "--from":
+        values = [str(tmp_path / value)]
+    code = _exit(["clamp-zone", command, *argv, option, *values, *tail])
+    err = capsys.readouterr().err
+    assert code == 2, (code, err)
+    assert err.count("\n") == 1 and "Traceback" not in err, err
+    assert not out.exists()
+
+
+def test_an_out_that_is_a_file_is_exit_3(tmp_path, capsys):
+    out = tmp_path / "file"
+    out.write_text("x")
+    code, _, err = _units(out, capsys)
+    assert code == 3 and err.count("\n") == 1 and str(out) in err
+
+
+def test_the_shipped_tables_are_written_from_a_checkout_only(tmp_path, monkeypatch):
+    """--into-package names the shipped folder in a source checkout and is refused (a
+    ValueError naming the install) where no pyproject.toml is beside the package."""
+    assert zone_cli.package_data_dir() == ROOT / "validation" / "data"
+    fake = tmp_path / "site-packages" / "validation" / "clamp_zone" / "cli.py"
+    fake.parent.mkdir(parents=True)
+    monkeypatch.setattr(zone_cli, "__file__", str(fake))
+    with pytest.raises(ValueError, match="--into-package writes the shipped tables of a "
+                                         "source checkout; this package is installed"):
+        zone_cli.package_data_dir()
+
+
+def test_two_units_on_a_local_cluster_give_the_serial_rows(small_run, tmp_path, capsys):
+    """alpha = 1 and 0.7 on the smallest mesh, on a LocalCluster of two workers: the same
+    rows (every physics column, as written) as one after the other here, and the same
+    modes to the eigensolver's tolerance (1e-8 of the largest deflection; the worker
+    processes differ in the last digits of the iterative eigenvectors)."""
+    pytest.importorskip("distributed", reason="the 'cluster' extra is not installed")
+    two = ["--alpha", "1", "0.7", "--mesh", "6x1x3", "--grading", "0.5", "--D0-step", "1",
+           "--solver", "superlu"]
+    serial, farm = tmp_path / "serial", tmp_path / "farm"
+    assert main(["clamp-zone", "units", *two, "--out", str(serial)]) == 0
+    assert main(["clamp-zone", "units", *two, "--out", str(farm), "--scheduler", "local",
+                 "--jobs", "2"]) == 0
+    assert "done on the cluster" in capsys.readouterr().out
+    key = lambda r: UnitKey.from_row(r)      # noqa: E731
+    a = {key(r): r for r in load("units", serial)}
+    b = {key(r): r for r in load("units", farm)}
+    assert set(a) == set(b) and len(a) == 2
+    for k in a:
+        assert all(a[k][c] == b[k][c] for c in PHYSICS), k
+        with np.load(serial / "modes" / f"{k.stem}.npz") as x, \
+                np.load(farm / "modes" / f"{k.stem}.npz") as y:
+            # the mode of the iterative eigensolver, to its tolerance in each process
+            np.testing.assert_allclose(x["u2"], y["u2"], rtol=0,
+                                       atol=1e-8 * np.abs(x["u2"]).max())
+    assert TABLES["units"].key == ("alpha", "mesh", "grading", "formulation")
