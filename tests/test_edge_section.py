@@ -246,7 +246,7 @@ def test_band_onsets_and_the_figure(tmp_path):
 
 
 def test_the_docs_show_the_committed_band_table():
-    """docs/validation.md shows ``band_table`` of the committed rows verbatim, and every
+    """docs/clamp-zone.md shows ``band_table`` of the committed rows verbatim, and every
     state of the committed rows has three section meshes."""
     from pathlib import Path
 
@@ -255,5 +255,5 @@ def test_the_docs_show_the_committed_band_table():
 
     rows = load("section")
     assert all(len(by_h) == 3 for by_h in band_onsets(rows).values())
-    docs = (Path(__file__).resolve().parents[1] / "docs" / "validation.md").read_text()
+    docs = (Path(__file__).resolve().parents[1] / "docs" / "clamp-zone.md").read_text()
     assert band_table(rows) in docs

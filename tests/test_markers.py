@@ -32,7 +32,8 @@ from validation.markers import (AFTER_BREAKDOWN, CONVERGED_BUCKLING, LIMIT_POINT
 from validation.studies.voltage_control import VOLTAGE_COLUMNS, voltage_figure  # noqa: E402
 
 DOCS = Path(__file__).resolve().parents[1] / "docs"
-PAGES = ("breakdown.md", "gallery.md", "validation.md", "cli.md", "explore.md")
+PAGES = ("breakdown.md", "gallery.md", "validation.md", "clamp-zone.md", "cli.md",
+         "explore.md")
 
 
 def _units(text: str) -> list[str]:
