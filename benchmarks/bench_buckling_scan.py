@@ -47,6 +47,7 @@ from skfem_dielectric.studies.buckling import buckling_load
 from validation.cases import CASES
 from validation.fe.model import BUCKLING_NEWTON, BUCKLING_TOL
 from validation.fe.runner import grad_div_states
+from validation.clamp_zone.units import UNIT_SETTINGS
 
 
 def _mesh(text: str) -> tuple[int, int, int]:
@@ -91,7 +92,7 @@ def graded_states_of(alpha: float, mesh, D0, grading: float, solver: str = "auto
         fe.gallery.run_ramp(pb, fe.gallery.preload_then_charge(
             s, [d for d in D0 if d > 0], fe.gallery.KEPLINGER_PRELOAD_STEPS), on_step=keep,
             linear_solver=solver,
-            settings=replace(fe.gallery.KEPLINGER_SETTINGS, max_cutbacks=6, max_iter=25))
+            settings=UNIT_SETTINGS)
     return pb, states, time.process_time() - t, factorisation_count() - f0
 
 

@@ -27,7 +27,6 @@ import argparse
 import math
 import time
 import warnings
-from dataclasses import replace
 
 import numpy as np
 
@@ -63,6 +62,7 @@ def run(alpha: float, mesh: str, D0_max: float = 5.0, solver: str = "auto",
     from skfem_dielectric.models.plate.modes import lowest_physical
     from validation.fe.model import BUCKLING_GRAD_DIV
     from validation.clamp_zone.local_theory import energy_centroid, half_waves, local_state
+    from validation.clamp_zone.units import UNIT_SETTINGS
 
     el = tuple(int(v) for v in mesh.split("x"))
     D0_b = D0_B[(alpha, mesh)] if D0_b is None else D0_b
@@ -73,8 +73,7 @@ def run(alpha: float, mesh: str, D0_max: float = 5.0, solver: str = "auto",
         res = fe.keplinger_plate(alpha, D0=targets, elements=el, symmetry="eighth",
                                  options=fe.PlateOptions(grad_div=BUCKLING_GRAD_DIV),
                                  linear_solver=solver,
-                                 settings=replace(fe.gallery.KEPLINGER_SETTINGS,
-                                                  max_cutbacks=6, max_iter=25))
+                                 settings=UNIT_SETTINGS)
     pb = res.problem
     states = [st for st in res.steps if float(np.asarray(st.load)[1]) > 0]
     D0 = np.array([float(np.asarray(st.load)[1]) for st in states])

@@ -5,17 +5,17 @@ from __future__ import annotations
 
 import math
 import warnings
-from dataclasses import replace
 
 import numpy as np
 import pytest
 
 import skfem_dielectric as fe
 from skfem_dielectric.studies.buckling import buckling_load
-from validation.fe.model import BUCKLING_GRAD_DIV, BUCKLING_NEWTON, BUCKLING_TOL
+from validation.fe.model import BUCKLING_GRAD_DIV, BUCKLING_NEWTON
 from validation.cli import main
 from validation.clamp_zone.data import TABLES, clamp_unit_load, load
-from validation.clamp_zone.units import COLUMNS, run_unit
+from validation.clamp_zone.data import LOCATION_TOL as BUCKLING_TOL
+from validation.clamp_zone.units import COLUMNS, UNIT_SETTINGS, run_unit
 
 
 def test_a_unit_locates_the_buckling_studys_load_and_writes_its_row(tmp_path):
@@ -44,8 +44,7 @@ def test_a_unit_locates_the_buckling_studys_load_and_writes_its_row(tmp_path):
         warnings.simplefilter("ignore", RuntimeWarning)
         res = fe.keplinger_plate(1.0, D0=[1.0, 2.0, 3.0, 4.0], elements=(6, 1, 3),
                                  grading=0.5, options=fe.PlateOptions(grad_div=BUCKLING_GRAD_DIV),
-                                 settings=replace(fe.gallery.KEPLINGER_SETTINGS,
-                                                  max_cutbacks=6, max_iter=25))
+                                 settings=UNIT_SETTINGS)
     charge = [st for st in res.steps if st.load[1] > 0]
     states = [res.steps[len(res.steps) - len(charge) - 1]] + charge
     ref = buckling_load(res.problem, [(st.x, st.load) for st in states], tol=BUCKLING_TOL,

@@ -7,7 +7,7 @@ from __future__ import annotations
 import pytest
 
 from validation.clamp_zone.counts import CLASS_COLUMNS, COLUMNS, run_edge_counts
-from validation.clamp_zone.data import load, unit_row
+from validation.clamp_zone.data import load, scan_states, unit_row
 from validation.clamp_zone.key import UnitKey
 
 
@@ -17,8 +17,7 @@ def test_the_counts_equal_the_units_full_scan():
     classified) counted 38 negative modes at D0 = 2.5 and 100 at D0 = 3 (its
     ``scan_counts``); Sylvester's counts of one ramp give the same integers."""
     unit = unit_row(UnitKey(1.0, (10, 1, 24), 0.1))
-    scanned = {float(d): int(c.split("/")[0]) for d, c in
-               (item.split(":") for item in unit["scan_counts"].split())}
+    scanned = {d: n for d, n, _ in scan_states(unit)}
     rows = run_edge_counts(1.0, (10, 1, 24), [2.5, 3.0], grading=0.1)
     assert [r["D0"] for r in rows] == [2.5, 3.0]
     for r in rows:

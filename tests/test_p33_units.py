@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import math
 import warnings
-from dataclasses import replace
 
 import numpy as np
 
@@ -13,6 +12,7 @@ from validation.studies.buckling import p33_measures
 from validation.cli import main
 from validation.clamp_zone.data import LOCATION_TOL as ONSET_TOL, load
 from validation.clamp_zone.p33 import COLUMNS, SETS, run_p33_unit
+from validation.clamp_zone.units import UNIT_SETTINGS
 from validation.table import BREAKDOWN_TOL
 
 
@@ -30,8 +30,7 @@ def test_a_located_onset_is_where_an_independent_ramp_crosses_the_flag(tmp_path)
             warnings.simplefilter("ignore", RuntimeWarning)
             res = fe.keplinger_plate(1.0, D0=[d - 2 * ONSET_TOL, d + 2 * ONSET_TOL],
                                      elements=(8, 1, 4), grading=0.25,
-                                     settings=replace(fe.gallery.KEPLINGER_SETTINGS,
-                                                      max_cutbacks=6, max_iter=25))
+                                     settings=UNIT_SETTINGS)
         pb = res.problem
         lo, hi = (p33_measures(pb, st.x, st.load, st.quantities)[k]
                   for st in res.steps[-2:])

@@ -16,7 +16,8 @@ from pathlib import Path
 from .key import UnitKey
 from .spec import TableSpec, read_table
 
-__all__ = ["TABLES", "load", "shipped_path", "unit_row", "clamp_unit_load", "tied_classes",
+__all__ = ["TABLES", "load", "shipped_path", "unit_row", "scan_states", "clamp_unit_load",
+           "tied_classes",
            "MIN_ELEMENTS_PER_HALF_WAVE", "LOCATION_TOL", "CLASS_TIE", "LAYER_WIDTHS",
            "P33_SETS", "CLASS_COLUMNS"]
 
@@ -161,6 +162,32 @@ def load(name: str, where=None, *, note=None) -> list[dict]:
         if path.is_dir():
             path = path / spec.file
     return read_table(path, spec, note=note)
+
+
+def scan_states(row: dict) -> list[tuple[float, int, int]]:
+    """Every state a unit scanned, ``(D0, negative, physical)`` in scan order (refined
+    steps last), from its row's ``scan_counts`` cell (``D0:negative/physical ...``).
+
+    Raises
+    ------
+    ValueError
+        The cell is not of that form; the message names the unit and the item.
+
+    Examples
+    --------
+    >>> scan_states({"alpha": "1", "mesh": "4x1x2", "scan_counts": "0.5:4/0 1:6/1"})
+    [(0.5, 4, 0), (1.0, 6, 1)]
+    """
+    out = []
+    for item in str(row.get("scan_counts") or "").split():
+        try:
+            d, counts = item.split(":")
+            neg, phys = counts.split("/")
+            out.append((float(d), int(neg), int(phys)))
+        except ValueError:
+            raise ValueError(f"the unit alpha = {row.get('alpha')} {row.get('mesh')} has "
+                             f"{item!r} in scan_counts, not D0:negative/physical") from None
+    return out
 
 
 def unit_row(key: UnitKey, where=None) -> dict:

@@ -52,7 +52,7 @@ from skfem_dielectric.studies.buckling import locate_buckling
 
 from ..fe.model import BUCKLING_NEWTON
 from .costs import Meter
-from .data import LOCATION_TOL, TABLES, unit_row
+from .data import LOCATION_TOL, TABLES, scan_states, unit_row
 from .key import UnitKey, mesh_text
 from .units import UNIT_SETTINGS, unit_problem
 from .local_theory import energy_centroid, half_waves
@@ -84,7 +84,7 @@ def bracket(row: dict) -> tuple[float, float]:
     if not math.isfinite(d0b):
         raise ValueError(f"the unit alpha = {row.get('alpha')} {row.get('mesh')} has no "
                          f"located D0_b: no bracket")
-    D0 = [float(item.split(":")[0]) for item in str(row.get("scan_counts", "")).split()]
+    D0 = [d for d, _, _ in scan_states(row)]
     below, above = [d for d in D0 if d < d0b], [d for d in D0 if d > d0b]
     if not below or not above:
         raise ValueError(f"the unit alpha = {row.get('alpha')} {row.get('mesh')} has no "
@@ -138,9 +138,8 @@ def run_class_onsets(alpha: float, elements, *, grading: float = 1.0,
     if given is None:
         unit = unit_row(UnitKey(alpha, el, grading, formulation), units)
         lo, hi = bracket(unit)
-        at_lo = {float(d): p for d, p in (item.split(":")[0:2] for item in
-                                          unit["scan_counts"].split())}
-        if not str(at_lo.get(lo, "/?")).endswith("/0"):
+        at_lo = {d: (n, p) for d, n, p in scan_states(unit)}
+        if at_lo.get(lo, (0, 1))[1] != 0:
             raise ValueError(f"the unit alpha = {alpha:g} {mesh_text(el)} has physical "
                              f"negative modes at lo = {lo:g} ({at_lo.get(lo)})")
         step, note = float(unit["D0_step"]), ""

@@ -24,6 +24,7 @@ from skfem_dielectric.gallery.defaults import (EQUIBIAXIAL_PRELOAD_STEPS, EQUIBI
                                                KEPLINGER_RTOL, KEPLINGER_SIZE)
 from skfem_dielectric.gallery.loads import keplinger_s
 
+from ..clamp_zone.data import LOCATION_TOL
 from ..specs import GENT_JM, KEPLINGER, RunSpec
 
 __all__ = ["BUCKLING_GRAD_DIV", "BUCKLING_TOL", "BUCKLING_NEWTON", "with_dead_load",
@@ -53,9 +54,10 @@ CHORD = KEPLINGER_CHORD
 #: column is of")
 BUCKLING_GRAD_DIV = 10.0
 #: the buckling load ``D0_b`` is located to this tolerance in ``D0``
-#: (:func:`skfem_dielectric.studies.buckling.buckling_load`), by the harness and the study
-#: ``buckling`` alike
-BUCKLING_TOL = 1e-4
+#: (:func:`skfem_dielectric.studies.buckling.buckling_load`), by the harness, the study
+#: ``buckling`` and the clamp-zone study alike (one number:
+#: :data:`validation.clamp_zone.data.LOCATION_TOL`)
+BUCKLING_TOL = LOCATION_TOL
 #: Newton settings of the trial states of that location
 BUCKLING_NEWTON = fe.RampSettings(rtol=1e-9, max_cutbacks=6, max_iter=25)
 
