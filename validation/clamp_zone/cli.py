@@ -36,7 +36,7 @@ from .scaling import scaling_tables
 from .section import DEFAULT_K, run_edge_section
 from .spec import read_table
 from .table import TableWriter
-from .tables import clamp_study_tables
+from .tables import breakdown_table, clamp_study_tables
 from .units import run_unit, write_mode
 
 __all__ = ["add_clamp_zone_command", "cmd_clamp_zone", "MAX_ELEMENTS", "DEFAULT_OUT",
@@ -178,6 +178,8 @@ def add_clamp_zone_command(add) -> None:
     s.add_argument("--length", type=float, default=5.0, help="the section's length (mm)")
 
     t = new("tables", "print the study's Markdown tables from its tables")
+    t.add_argument("--breakdown", action="store_true",
+                   help="only the three meanings of breakdown per weight (docs/breakdown.md)")
     t.add_argument("--from", dest="source", type=out_dir, default=None, metavar="DIR",
                    help="a run's --out (default: the shipped tables)")
 
@@ -517,7 +519,8 @@ def _cmd_section(args) -> int:
 
 
 def _cmd_tables(args) -> int:
-    sys.stdout.write(clamp_study_tables(_source(args)))
+    source = _source(args)
+    sys.stdout.write(breakdown_table(source) if args.breakdown else clamp_study_tables(source))
     return 0
 
 

@@ -6,10 +6,10 @@ from __future__ import annotations
 import math
 from pathlib import Path
 
-from .data import TABLES, clamp_unit_load
+from .data import LOCATION_TOL, TABLES, clamp_unit_load
 from .data import load as load_table
 
-__all__ = ["clamp_study_tables"]
+__all__ = ["clamp_study_tables", "breakdown_numbers", "breakdown_table"]
 
 
 def _file(where, name: str):
@@ -104,3 +104,67 @@ def clamp_study_tables(where=None) -> str:
                    f"{f['V_0.5mm']:.4f} / {f['V_1mm']:.4f} / {f['V_2mm']:.4f} | "
                    f"{f['V_plate']:.6f} |")
     return "\n".join(out) + "\n"
+
+
+def breakdown_numbers(where=None) -> list[dict]:
+    """The three meanings of "breakdown" per weight, each located and with its mesh: the
+    plain form's ``P33`` onsets on the finest graded mesh of the ``p33`` table, the
+    converged buckling load of :func:`~validation.clamp_zone.data.clamp_unit_load` and the
+    plain form's Newton limit on that ``P33`` mesh.
+
+    Parameters
+    ----------
+    where : path-like, optional
+        A folder of the study's tables; default: the shipped tables.
+
+    Returns
+    -------
+    list of dict
+        One per weight with a converged load and a graded ``P33`` row, in increasing
+        ``alpha``: ``alpha``, ``centre``, ``interior`` (the onsets), ``p33_mesh``,
+        ``D0_b``, ``error`` (the two meshes' spread, at least the location tolerance),
+        ``meshes``, ``newton_limit`` (``nan``: none up to ``D0_max``), ``D0_max``.
+    """
+    out = []
+    p33 = load_table("p33", where)
+    for a in sorted({float(r["alpha"]) for r in p33}):
+        mine = [r for r in p33 if math.isclose(float(r["alpha"]), a, abs_tol=1e-9)
+                and r["grading"] != "0.25" and r["P33_onset_interior"]]
+        try:
+            g = clamp_unit_load(a, path=_file(where, "units"),
+                                classes_path=_file(where, "onsets"))
+        except ValueError:
+            continue
+        if not mine:
+            continue
+        r = max(mine, key=lambda r: int(r["dofs"]))
+        out.append({"alpha": a, "centre": float(r["P33_onset_centre_line"]),
+                    "interior": float(r["P33_onset_interior"]),
+                    "p33_mesh": f"{r['mesh']} g{r['grading']}", "D0_b": g["D0_b"],
+                    "error": max(g["spread"], LOCATION_TOL),
+                    "meshes": tuple(f"{m} g{g['rows'][-2 + i]['grading']}"
+                                    for i, m in enumerate(g["meshes"])),
+                    "newton_limit": float(r["newton_limit"] or "nan"),
+                    "D0_max": float(r["D0_max"])})
+    return out
+
+
+def breakdown_table(where=None) -> str:
+    """:func:`breakdown_numbers` as a Markdown table (docs/breakdown.md shows it, generated
+    by ``skfem-dielectric clamp-zone tables --breakdown``).
+
+    Returns
+    -------
+    str
+    """
+    lines = ["| alpha | `P33` onset, centre line / interior (plain form) | `D0_b` (grad-div "
+             "form) | `D0_b` minus the interior onset | Newton limit, plain form | meshes "
+             "(graded): `P33` and Newton limit / `D0_b` |", "| --- " * 6 + "|"]
+    for n in breakdown_numbers(where):
+        newton = (f"{n['newton_limit']:g}" if math.isfinite(n["newton_limit"])
+                  else f"none up to {n['D0_max']:g}")
+        lines.append(f"| {n['alpha']:g} | {n['centre']:.4f} / {n['interior']:.4f} | "
+                     f"{n['D0_b']:.4f} +- {n['error']:.4f} | "
+                     f"{n['D0_b'] - n['interior']:.3f} | {newton} | {n['p33_mesh']} / "
+                     f"{', '.join(n['meshes'])} |")
+    return "\n".join(lines) + "\n"
