@@ -270,3 +270,20 @@ def test_two_units_on_a_local_cluster_give_the_serial_rows(small_run, tmp_path, 
             np.testing.assert_allclose(x["u2"], y["u2"], rtol=0,
                                        atol=1e-8 * np.abs(x["u2"]).max())
     assert TABLES["units"].key == ("alpha", "mesh", "grading", "formulation")
+
+
+def test_the_shipped_modes_are_those_of_the_shipped_units(tmp_path, capsys):
+    """Each shipped mode file (computed again by ``clamp-zone units`` on the smallest
+    resolving meshes) has the D0_b of its unit's shipped row within twice the location
+    tolerance, and ``clamp-zone modes`` draws them without a run (one panel each)."""
+    from validation.clamp_zone.data import LOCATION_TOL, shipped_path
+    from validation.clamp_zone.modes import read_clamp_modes
+
+    modes = read_clamp_modes(shipped_path("units").parent / "modes")
+    rows = {UnitKey.from_row(r): r for r in load("units")}
+    assert {m["alpha"] for m in modes} == {0.05, 0.3, 0.7, 1.0}
+    for m in modes:
+        assert abs(m["D0_b"] - float(rows[m["key"]]["D0_b"])) <= 2 * LOCATION_TOL, m["key"]
+        assert m["u2"].shape == m["X1"].shape and np.abs(m["u2"]).max() > 0
+    assert main(["clamp-zone", "modes", "--out", str(tmp_path)]) == 0
+    assert (tmp_path / "clamp-modes.png").stat().st_size > 10_000
