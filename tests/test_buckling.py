@@ -271,7 +271,10 @@ def test_validate_and_buckling_quick_report_the_same_D0_b(tmp_path):
     write_report(every, tmp_path / "v", quick=True)
     summary = json.loads((tmp_path / "v" / "summary.json").read_text())
     assert summary["cases"]["uni-axial-ideal"]["buckling_D0"][spec.key] == D0_b
-    assert f"D0_b = {D0_b:.4g}" in (tmp_path / "v" / "report.md").read_text()
+    report = (tmp_path / "v" / "report.md").read_text()
+    assert f"D0_b = {D0_b:.4f}" in report
+    from validation.report import meaning_lines
+    assert "\n".join(meaning_lines()) in report     # the three meanings and the located order
 
 
 def test_the_study_figure_passes_through_zero_at_D0_b_and_names_the_forms(tmp_path):

@@ -191,13 +191,17 @@ def test_breakdown_map_draws_each_meaning_where_the_data_put_it():
     (p,) = _by_gid(ax, "p33-coupled")
     np.testing.assert_array_equal(p.get_xydata(), [[0.05, 0.5], [1.0, 3.0]])
     assert p.get_marker() == "o" and p.get_markerfacecolor() == "none"
-    # the run's crosses and Newton limit, the loads' Newton limits (the uniform 20 x 1 x 10's
-    # or the graded meshes' plain ramps, where they stop)
+    # the run's crosses and Newton limit, the loads' Newton limits: one per weight, the
+    # graded mesh's of docs/breakdown.md's table where the weight has one (the one source
+    # of both), else the uniform 20 x 1 x 10's
     np.testing.assert_array_equal(_by_gid(ax, "buckling-run")[0].get_xydata(), [[1.0, 2.68]])
     assert _by_gid(ax, "buckling-run")[0].get_marker() == "x"
     np.testing.assert_array_equal(_by_gid(ax, "newton-run")[0].get_xydata(), [[0.3, 5.5]])
     nl = [[a, d] for a, d, _ in newton_limits()]
-    assert [0.05, 3.91] in nl and [0.3, 5.125] in nl     # the uniform 20 x 1 x 10's
+    from validation.clamp_zone.tables import breakdown_numbers
+    graded = [[r["alpha"], r["newton_limit"]] for r in breakdown_numbers()]
+    assert nl == [[0.05, 3.91]] + graded                 # 0.05: the uniform 20 x 1 x 10's
+    assert len({a for a, _ in nl}) == len(nl)
     np.testing.assert_array_equal(_by_gid(ax, "newton-limit")[0].get_xydata(), nl)
     # the homogeneous paths of s > 0 never reach the wrinkling limits (docs/wrinkling.md):
     # arrows at the top for every weight, no limit line

@@ -92,3 +92,36 @@ def test_clamp_zone_md_numbers_are_the_units_rows():
     g = clamp_unit_load(1.0)
     assert g["meshes"] == ("40x1x48", "40x1x52")
     assert f"clamp layer is therefore **{g['D0_b']:.4f}** (40 x 1 x 48 and 40 x 1 x 52" in text
+
+
+def test_the_three_meanings_are_said_in_the_same_words_everywhere():
+    """report.md (its lines), the README and docs/breakdown.md say each meaning of
+    "breakdown" in the words of validation.markers.BREAKDOWN_MEANINGS, in that order."""
+    from validation.markers import BREAKDOWN_MEANINGS
+    from validation.report import meaning_lines
+
+    readme = " ".join((DOCS.parent / "README.md").read_text().split())
+    pages = {"report.md": " ".join(" ".join(meaning_lines()).split()),
+             "README.md": readme, "breakdown.md": _page("breakdown.md")}
+    for where, text in pages.items():
+        at = [text.find(f"**{name}**: {sentence}.") for name, sentence in BREAKDOWN_MEANINGS]
+        assert all(i >= 0 for i in at) and at == sorted(at), (where, at)
+
+
+def test_report_map_and_breakdown_md_give_the_same_order_for_every_weight():
+    """For every weight of the breakdown table: the map's diamond and Newton triangle
+    (validation.buckling_data, what breakdown_map draws) are the table's D0_b and Newton
+    limit, report.md's row has the same numbers, and the order is P33 onset < D0_b <
+    Newton limit in all three."""
+    from validation.buckling_data import buckling_loads, newton_limits
+    from validation.report import meaning_lines
+
+    loads = {e.alpha: e for e in buckling_loads()}
+    newton = {a: d for a, d, _ in newton_limits()}
+    report = "\n".join(meaning_lines())
+    for n in breakdown_numbers():
+        a = n["alpha"]
+        assert loads[a].D0_b == n["D0_b"] and newton[a] == n["newton_limit"]
+        assert (f"| {a:g} | {n['interior']:.4f} | {n['D0_b']:.4f} | "
+                f"{n['newton_limit']:g} |") in report
+        assert n["interior"] < loads[a].D0_b < newton[a]

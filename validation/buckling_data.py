@@ -32,7 +32,7 @@ import math
 from dataclasses import dataclass
 from importlib import resources
 
-from .clamp_zone.data import LOCATION_TOL, clamp_unit_load, load
+from .clamp_zone.data import LOCATION_TOL, clamp_unit_load, load, plain_p33_row
 
 __all__ = ["BUCKLING_LOADS_FILE", "CLAMP_UNITS_FILE", "BucklingEntry", "buckling_loads",
            "uniform_buckling_loads", "buckling_provenance", "converged_buckling_load",
@@ -61,8 +61,9 @@ class BucklingEntry:
         Richardson extrapolation of ``D0_b_mesh``, its error estimate (distance from the
         finest mesh's value) and the observed order; ``nan`` where not converged.
     newton_limit
-        Where the plain form (``grad_div = 0``) stops on the finest mesh; ``nan`` if it
-        reached every target (or, for a ``"graded"`` entry, was not run there).
+        Where the plain form (``grad_div = 0``) stops on the finest mesh (for a ``"graded"``
+        entry, the weight's finest graded ``P33`` mesh); ``nan`` if it reached every target
+        (or, for a ``"graded"`` entry, was not run on a graded mesh).
     source
         ``"uniform"``: the three uniform meshes of :data:`BUCKLING_LOADS_FILE`, ``D0_b``
         their Richardson extrapolation; ``"graded"``: the two finest graded meshes of the
@@ -120,14 +121,14 @@ def uniform_buckling_loads() -> tuple[BucklingEntry, ...]:
     return tuple(sorted(out, key=lambda e: e.alpha))
 
 
-def _plain_newton_limit(alpha: float, mesh: str, grading: str) -> float:
-    """The plain form's Newton limit on a graded mesh (``data/p33_units.csv``), ``nan``
-    where it reached every target or was not run."""
-    for r in load("p33"):
-        if (math.isclose(float(r["alpha"]), alpha, rel_tol=0.0, abs_tol=1e-9)
-                and r["mesh"] == mesh and r["grading"] == grading):
-            return _float(r["newton_limit"])
-    return math.nan
+def _plain_newton_limit(alpha: float) -> tuple[float, str]:
+    """The plain form's Newton limit of ``alpha`` on its finest graded mesh and that mesh
+    (:func:`~validation.clamp_zone.data.plain_p33_row`); ``nan`` where the ramp reached
+    every target or was not run."""
+    r = plain_p33_row(alpha)
+    if r is None:
+        return math.nan, ""
+    return _float(r["newton_limit"]), f"{r['mesh']} g{r['grading']}"
 
 
 def buckling_loads() -> tuple[BucklingEntry, ...]:
@@ -155,30 +156,34 @@ def buckling_loads() -> tuple[BucklingEntry, ...]:
         except ValueError:
             continue
         rows = g["rows"][-2:]                  # the two finest, that agree
-        fine = rows[-1]
         out[a] = BucklingEntry(
             alpha=a, meshes=tuple(f"{r['mesh']} g{r['grading']}" for r in rows),
             D0_b_mesh=tuple(float(r["D0_b"]) for r in rows), D0_b=g["D0_b"],
             error=max(g["spread"], LOCATION_TOL), order=math.nan,
-            newton_limit=_plain_newton_limit(a, fine["mesh"], fine["grading"]),
+            newton_limit=_plain_newton_limit(a)[0],
             source="graded")
     return tuple(sorted(out.values(), key=lambda e: e.alpha))
 
 
 def newton_limits() -> list[tuple[float, float, str]]:
-    """Where the plain form's Newton ramp stops, per weight and mesh: ``(alpha, D0, mesh)``
-    of every uniform entry's finest mesh and every graded entry's finest mesh whose plain
-    ramp stopped (the clamp-zone ``p33`` table), in increasing ``alpha``.
+    """Where the plain form's Newton ramp stops, one per weight: ``(alpha, D0, mesh)``, in
+    increasing ``alpha``.  A weight with a graded ``P33`` row takes its finest graded mesh's
+    (the clamp-zone ``p33`` table, the mesh the docs' breakdown table quotes), else the
+    finest uniform mesh's; a weight whose ramp reached every target has none.
 
     Returns
     -------
     list of tuple
     """
-    out = [(e.alpha, e.newton_limit, e.meshes[-1]) for e in uniform_buckling_loads()
-           if math.isfinite(e.newton_limit)]
-    out += [(e.alpha, e.newton_limit, e.meshes[-1]) for e in buckling_loads()
-            if e.source == "graded" and math.isfinite(e.newton_limit)]
-    return sorted(out)
+    uniform = {round(e.alpha, 9): e for e in uniform_buckling_loads()}
+    out = []
+    for a in sorted(set(uniform) | {round(e.alpha, 9) for e in buckling_loads()}):
+        d, mesh = _plain_newton_limit(a)
+        if not mesh and a in uniform:
+            d, mesh = uniform[a].newton_limit, uniform[a].meshes[-1]
+        if math.isfinite(d):
+            out.append((a, d, mesh))
+    return out
 
 
 def converged_buckling_load(alpha: float) -> BucklingEntry:

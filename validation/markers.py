@@ -20,7 +20,8 @@ from dataclasses import dataclass, field
 __all__ = ["Marker", "P33_BREAKDOWN", "AFTER_BREAKDOWN", "RUN_BUCKLING", "CONVERGED_BUCKLING",
            "MESH_BUCKLING", "NEWTON_LIMIT", "RUN_NEWTON", "WRINKLING_NOT_REACHED",
            "STABLE_STATE", "UNSTABLE_STATE", "LIMIT_POINT", "VOCABULARY", "P33_SHAPES",
-           "PAPER_P33_WORDS", "NOT_CONVERGED_NOTE", "legend_style", "find_marker"]
+           "PAPER_P33_WORDS", "NOT_CONVERGED_NOTE", "BREAKDOWN_MEANINGS", "legend_style",
+           "find_marker"]
 
 
 @dataclass(frozen=True)
@@ -112,6 +113,19 @@ LIMIT_POINT = Marker(
 VOCABULARY = (P33_BREAKDOWN, AFTER_BREAKDOWN, RUN_BUCKLING, CONVERGED_BUCKLING,
               MESH_BUCKLING, NEWTON_LIMIT, RUN_NEWTON, WRINKLING_NOT_REACHED, STABLE_STATE,
               UNSTABLE_STATE, LIMIT_POINT)
+
+#: The three meanings of "breakdown", in the order the charge meets them, each in one
+#: sentence that report.md, the README and docs/breakdown.md say in these words
+#: (tests/test_docs_data.py): ``(name, sentence)``.
+BREAKDOWN_MEANINGS = (
+    ("the P33 criterion", "the first charge at which P33/mu falls below -0.01 on the centre "
+     "line at least two thicknesses from the clamps, where the paper's COMSOL runs stopped: "
+     "a warning of the lateral compression next to the clamps, not an instability"),
+    ("the buckling load D0_b", "the charge at which the whole plate's lowest physical "
+     "eigenvalue crosses zero: the loss of stability, a wrinkle next to each clamp"),
+    ("the Newton limit", "the charge at which the plain form's Newton ramp stops at the "
+     "clamp/free-edge corner: a failure of the solver, after D0_b"),
+)
 
 #: How the pages name the paper's own marker of its P33 criterion (not one of ours).
 PAPER_P33_WORDS = "the paper's red crosses"

@@ -7,7 +7,9 @@ from dataclasses import asdict
 from pathlib import Path
 
 from .cases import get_case
+from .clamp_zone.tables import breakdown_numbers
 from .figures import PAPER_FIGURE
+from .markers import BREAKDOWN_MEANINGS
 from .store import write_text_atomic
 from .studies.extra_cases import EXTRA_CASES
 
@@ -155,6 +157,33 @@ def verdict_lines(results) -> list[str]:
     return out
 
 
+def meaning_lines() -> list[str]:
+    """The lines of report.md on the three meanings of "breakdown"
+    (:data:`~validation.markers.BREAKDOWN_MEANINGS`) and their order as located on the meshes
+    that resolve the clamp layer (:func:`~validation.clamp_zone.tables.breakdown_numbers`,
+    the table of docs/breakdown.md).
+
+    Returns
+    -------
+    list of str
+    """
+    out = ["", "What \"breakdown\" means (docs/breakdown.md): three things, met in this "
+           "order as the charge grows:", ""]
+    out += [f"{i}. **{name}**: {text}." for i, (name, text) in
+            enumerate(BREAKDOWN_MEANINGS, 1)]
+    out += ["", "This run's values above are read on its own charge steps and its own coarse "
+            "mesh: its P33 step can lie above the converged D0_b, and its D0_b is the "
+            "coarse mesh's (too low for the heavier weights, whose clamp-zone wrinkle the "
+            "mesh cannot hold).  Located to 1e-4 on meshes graded towards the clamp (the "
+            "shipped data; `skfem-dielectric clamp-zone tables --breakdown`):", "",
+            "| alpha | P33 onset (interior) | D0_b | Newton limit |", "| --- | --- | --- | --- |"]
+    for n in breakdown_numbers():
+        out.append(f"| {n['alpha']:g} | {n['interior']:.4f} | {n['D0_b']:.4f} | "
+                   + (f"{n['newton_limit']:g} |" if n["newton_limit"] == n["newton_limit"]
+                      else "none |"))
+    return out
+
+
 def write_report(results, folder, *, quick: bool) -> Path:
     """Write ``folder/report.md``: what the error is, one table row per case with its
     verdict against the stated tolerance, the breakdown points and a link to every figure
@@ -205,8 +234,10 @@ def write_report(results, folder, *, quick: bool) -> Path:
                   "that run's mesh - the quick run's is coarse and not mesh-converged; the "
                   "mesh study is `skfem-dielectric buckling`):", ""]
         lines += [f"- {name} / {k}: " + ("no physical negative eigenvalue up to the last D0"
-                                         if v is None else f"D0_b = {v:.4g}")
+                                         if v is None else f"D0_b = {v:.4f}")
                   for name, k, v in bk]
+    if brk or bk:
+        lines += meaning_lines()
     fails = [(r.name, k, v) for r in results for k, v in r.reasons.items()]
     if fails:
         lines += ["", "Runs that stopped (solver):", ""]

@@ -16,7 +16,8 @@ from pathlib import Path
 from .key import UnitKey
 from .spec import TableSpec, read_table
 
-__all__ = ["TABLES", "load", "shipped_path", "unit_row", "scan_states", "clamp_unit_load",
+__all__ = ["TABLES", "load", "shipped_path", "unit_row", "scan_states", "plain_p33_row",
+           "clamp_unit_load",
            "tied_classes",
            "MIN_ELEMENTS_PER_HALF_WAVE", "LOCATION_TOL", "CLASS_TIE", "LAYER_WIDTHS",
            "P33_SETS", "CLASS_COLUMNS"]
@@ -188,6 +189,23 @@ def scan_states(row: dict) -> list[tuple[float, int, int]]:
             raise ValueError(f"the unit alpha = {row.get('alpha')} {row.get('mesh')} has "
                              f"{item!r} in scan_counts, not D0:negative/physical") from None
     return out
+
+
+def plain_p33_row(alpha: float, where=None) -> dict | None:
+    """The ``p33`` row of weight ``alpha`` on its finest graded mesh (most unknowns): the
+    plain form's located ``P33`` onsets and Newton limit that the docs and the figures
+    quote for the weight; ``None`` if the weight has no row.
+
+    Parameters
+    ----------
+    alpha : float
+        Weight fraction (matched to ``1e-9``).
+    where : path-like, optional
+        The ``p33`` table (a file or folder; default: the shipped one).
+    """
+    mine = [r for r in load("p33", where)
+            if math.isclose(float(r["alpha"]), float(alpha), rel_tol=0.0, abs_tol=1e-9)]
+    return max(mine, key=lambda r: int(r["dofs"])) if mine else None
 
 
 def unit_row(key: UnitKey, where=None) -> dict:

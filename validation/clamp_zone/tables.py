@@ -6,7 +6,7 @@ from __future__ import annotations
 import math
 from pathlib import Path
 
-from .data import LOCATION_TOL, TABLES, clamp_unit_load
+from .data import LOCATION_TOL, TABLES, clamp_unit_load, plain_p33_row
 from .data import load as load_table
 
 __all__ = ["clamp_study_tables", "breakdown_numbers", "breakdown_table"]
@@ -126,18 +126,15 @@ def breakdown_numbers(where=None) -> list[dict]:
         ``meshes``, ``newton_limit`` (``nan``: none up to ``D0_max``), ``D0_max``.
     """
     out = []
-    p33 = load_table("p33", where)
-    for a in sorted({float(r["alpha"]) for r in p33}):
-        mine = [r for r in p33 if math.isclose(float(r["alpha"]), a, abs_tol=1e-9)
-                and r["grading"] != "0.25" and r["P33_onset_interior"]]
+    for a in sorted({float(r["alpha"]) for r in load_table("p33", where)}):
+        r = plain_p33_row(a, _file(where, "p33"))
         try:
             g = clamp_unit_load(a, path=_file(where, "units"),
                                 classes_path=_file(where, "onsets"))
         except ValueError:
             continue
-        if not mine:
+        if not r["P33_onset_interior"]:
             continue
-        r = max(mine, key=lambda r: int(r["dofs"]))
         out.append({"alpha": a, "centre": float(r["P33_onset_centre_line"]),
                     "interior": float(r["P33_onset_interior"]),
                     "p33_mesh": f"{r['mesh']} g{r['grading']}", "D0_b": g["D0_b"],
