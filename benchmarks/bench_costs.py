@@ -4,8 +4,8 @@ The one place that states what the commands of the README cost: each command run
 child process (a fresh temporary folder as its working folder, so that its ``results/``
 lands there; the test suite and the site build run in the checkout, as the README says)
 and the script records its **CPU seconds** (user + system of the child and its worker
-processes, the difference of ``resource.getrusage(RUSAGE_CHILDREN)`` around it: the figure
-that does not depend on other jobs), its **wall seconds** with the **load average** before
+processes, the difference of ``resource.getrusage(RUSAGE_CHILDREN)`` around it: less
+dependent on other jobs than the wall time, not independent of them), its **wall seconds** with the **load average** before
 and after (other jobs slow every CPU-bound step), and its **peak memory** (the largest
 resident set of the child or a worker, from ``os.wait4``).  Also counted: the tests that
 ``python -m pytest`` runs (``--collect-only``).
@@ -182,8 +182,11 @@ def render(rows: dict[str, str], count: str | None, cpu: str) -> str:
         *textwrap.wrap("The README's commands, each run in a child process by `python "
         "benchmarks/bench_costs.py` in the virtual environment of the README's install: "
         "**CPU seconds** are user + system time of the command and its worker processes "
-        "(`getrusage(RUSAGE_CHILDREN)`), the figure that does not depend on what else the "
-        "machine runs; **wall seconds** come with the load average before and after (about "
+        "(`getrusage(RUSAGE_CHILDREN)`): they depend on the load much less than wall "
+        "seconds, but they do depend on it (on a 2-core machine whose hyper-threads share "
+        "caches and memory bandwidth the same commands used 1.4 to 2.3 times the CPU seconds "
+        "below at a load average of 5 to 7), so compare rows measured at a similar load; "
+        "**wall seconds** come with the load average before and after (about "
         "1 per busy core: other jobs slow every CPU-bound step); **peak memory** is the "
         "largest resident set of the command or a worker.  Each row says when and on what "
         "machine (cores, memory, the linear solver of `--solver auto`: SuperLU without the "

@@ -125,3 +125,19 @@ def test_report_map_and_breakdown_md_give_the_same_order_for_every_weight():
         assert (f"| {a:g} | {n['interior']:.4f} | {n['D0_b']:.4f} | "
                 f"{n['newton_limit']:g} |") in report
         assert n["interior"] < loads[a].D0_b < newton[a]
+
+
+def test_the_breakdown_column_is_described_as_it_is_computed():
+    """A uni-axial state past the P33 breakdown keeps the flag (validation.table
+    .is_breakdown is per state), and theory.md and cli.md say so ("at every step")."""
+    from types import SimpleNamespace
+
+    from validation.table import is_breakdown
+
+    spec = SimpleNamespace(geometry="uniaxial")
+    flags = [is_breakdown(spec, SimpleNamespace(min_P33_interior=p, min_P33=p))
+             for p in (0.1, -0.02, -0.3)]
+    assert flags == [False, True, True]
+    for page in ("theory.md", "cli.md"):
+        assert "`True` at every step" in _page(page) and "at the first step with" not in \
+            _page(page)
