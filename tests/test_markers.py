@@ -270,3 +270,93 @@ def test_the_voltage_control_figure_draws_the_vocabulary():
             drawn.add(m.name)
     assert drawn == {STABLE_STATE.name, UNSTABLE_STATE.name, LIMIT_POINT.name}
     plt.close(ax[0].figure)
+
+
+def _voltage_rows():
+    col = {c: i for i, c in enumerate(VOLTAGE_COLUMNS)}
+    rows = []
+    for point, (E0, D0, stable, kind) in enumerate(((0.2, 0.25, True, "regular"),
+                                                   (0.69, 1.8, False, "limit"))):
+        r = [None] * len(VOLTAGE_COLUMNS)
+        for k, v in dict(case="voltage-control", run="eq", point=point, model="neo-Hookean",
+                         loading="equibiaxial", variant="coupled", s=0.0, alpha=None,
+                         kind=kind, E0=E0, D0=D0, lam1_fe=1.0 + E0, stable=stable).items():
+            if k in col:
+                r[col[k]] = v
+        rows.append(r)
+    return rows
+
+
+_SHAPES = {"x": "cross", "X": "cross", "o": "circle", "s": "square", "^": "triangle up",
+           "v": "triangle down", "D": "diamond", "d": "diamond", "h": "hexagon",
+           "H": "hexagon", "P": "plus", "+": "plus", "*": "star", ".": "dot"}
+
+
+def _look_of(h):
+    """What a reader sees of a legend handle: shape, colour, filled or open, large or
+    small (``None`` for a handle without a marker: a line or a patch)."""
+    from matplotlib.colors import to_hex
+
+    h = getattr(h, "lines", [h])[0] or h
+    if not hasattr(h, "get_marker") or h.get_marker() in (None, "None", "", " "):
+        return None
+    shape = _SHAPES.get(h.get_marker(), str(h.get_marker()))
+    edge = h.get_markeredgecolor()
+    colour = to_hex(edge if h.get_markerfacecolor() == "none" else h.get_markerfacecolor())
+    return (shape, colour, h.get_markerfacecolor() == "none", h.get_markersize() >= 10)
+
+
+def _meaning(label: str) -> str:
+    m = find_marker(label)
+    return m.name if m is not None else re.split(r" \(|, ", label)[0]
+
+
+def test_one_look_one_meaning_across_every_figures_legend(tmp_path):
+    """The legends of the Keplinger figure, the breakdown map, the voltage-control figure,
+    the FE wrinkling figure and a check figure with failing rows: a marker that looks the
+    same (shape, colour, open or filled, large or small) means the same thing in all of
+    them (the red cross is the run's buckling load, not a row beyond its tolerance; an
+    open square is the Maxwell-traction plate, not an antisymmetric mode)."""
+    from validation.check_report import check_figure
+    from validation.checker import check
+    from validation.studies.wrinkling import wrinkling_figure
+
+    legends = []
+    fig, ax = plt.subplots()
+    plot_uniaxial_wrinkling(fe=_fake_keplinger(), ax=ax)
+    legends += [("uni-axial-ideal", *lh) for lh in _legend(ax)]
+    fig2, ax2 = plt.subplots()
+    plot_breakdown_map(p33={"coupled": {0.05: 0.5, 1.0: 3.0}, "maxwell": {1.0: 3.0},
+                            "membrane": {1.0: 3.5}},
+                       run_buckling={1.0: 2.9147}, run_newton={0.3: 5.5},
+                       run_mesh="10 x 1 x 5", ax=ax2)
+    legends += [("breakdown map", *lh) for lh in _legend(ax2)]
+    axv = voltage_figure(_voltage_rows())
+    legends += [("voltage-control", *lh) for lh in _legend(axv[0])]
+    rows = [["charge", mode, 1.5, kh, 4.0, 4.0, 0.0, "8x2", 0, 0, ""]
+            for mode in ("symmetric", "antisymmetric") for kh in (0.5, 2.0)]
+    elastic = [["antisymmetric", 1.0, 0.95, 0.95, 0.0, "8x4", ""]]
+    axw = wrinkling_figure(rows, elastic=elastic, quick=True)
+    for a in axw:
+        if a.get_legend() is not None:
+            legends += [("wrinkling-fe", *lh) for lh in _legend(a)]
+    example = DOCS / "examples" / "ex14_external_nh-d-e.csv"
+    result = check(example, tol=["lam1=1e-15"])
+    assert not result.passed
+    for case in result.cases:
+        f = check_figure(case)
+        for a in f.axes:
+            if a.get_legend() is not None:
+                legends += [(f"check {case.name}", *lh) for lh in _legend(a)]
+    seen: dict = {}
+    for where, label, h in legends:
+        look = _look_of(h)
+        if look is None:
+            continue
+        seen.setdefault(look, set()).add((_meaning(label), where))
+    clash = {k: v for k, v in seen.items() if len({m for m, _ in v}) > 1}
+    assert not clash, clash
+    names = {m for v in seen.values() for m, _ in v}
+    assert {RUN_BUCKLING.name, "beyond its tolerance", "2D cross-section, antisymmetric",
+            "3D Maxwell traction"} <= names
+    plt.close("all")

@@ -3,8 +3,8 @@
 :func:`check_figure` draws one figure per case of a :class:`~validation.checker.CheckResult`
 with the closed-form curves of the paper's figure (the plotting functions of
 :mod:`validation.figures`: Figs. nh-d-e, gent-d-e, gent-equi-biaxial, figde,
-uni-axial-ideal) and, on top, the checked rows: a dot in the colour of its curve, a red
-cross for a row beyond its tolerance.  :func:`write_check_report` renders every figure
+uni-axial-ideal) and, on top, the checked rows: a dot in the colour of its curve, an
+orange X for a row beyond its tolerance (``beyond its tolerance``).  :func:`write_check_report` renders every figure
 first and then writes ``<case>.png``, ``check.md`` and ``check.json`` into the report
 folder, each file atomically, so that a failure leaves no half of a report.
 """
@@ -32,21 +32,20 @@ from .figures import (BUCKLING_NAME, LIMIT_NAME, add_caption, plot_equibiaxial_l
                       plot_equibiaxial_wrinkling, plot_uniaxial_loading,
                       plot_uniaxial_wrinkling, tag_panels)
 from .figures.common import colors
-from .markers import CONVERGED_BUCKLING
+from .markers import BEYOND_TOLERANCE, CONVERGED_BUCKLING
 from .specs import KEPLINGER
 
 __all__ = ["check_figure", "report_markdown", "report_json", "write_check_report"]
 
 _DOT = dict(marker="o", ms=5, mec="k", mew=0.6, ls="none", zorder=6, clip_on=False)
-_BAD = dict(marker="X", ms=11, color="red", mec="darkred", mew=0.8, ls="none", zorder=8,
-            clip_on=False)
+_BAD = dict(BEYOND_TOLERANCE.style, ls="none", clip_on=False)
 
 
 def _legend_extra(case: CaseCheck) -> list:
     files = ", ".join(case.files)
     out = [Line2D([], [], color="0.6", label=f"checked: {files}"[:60], **_DOT)]
     if not case.passed:
-        out.append(Line2D([], [], label="beyond its tolerance", **_BAD))
+        out.append(Line2D([], [], label=BEYOND_TOLERANCE.name, **_BAD))
     return out
 
 
@@ -73,8 +72,9 @@ def _upper(values, floor: float, cap: float) -> float:
 
 
 def _dots(ax, x, y, ok, color):
-    """Dots of the rows within tolerance (in ``color``), red crosses for the others; rows
-    far outside the axes (or not finite) are not drawn."""
+    """Dots of the rows within tolerance (in ``color``), an orange X
+    (:data:`~validation.markers.BEYOND_TOLERANCE`) for the others; rows far outside the axes
+    (or not finite) are not drawn."""
     x, y, ok = np.asarray(x, dtype=float), np.asarray(y, dtype=float), np.asarray(ok, bool)
     (x0, x1), (y0, y1) = ax.get_xlim(), ax.get_ylim()
     with np.errstate(invalid="ignore"):
@@ -253,7 +253,7 @@ def check_figure(case: CaseCheck):
     Eq. DEuniax with the ``det H* = 0`` locus, the wrinkling limits, the Keplinger plate's
     curves with the converged buckling loads; the dispersion relation for
     ``wrinkling-fe``), drawn by :mod:`validation.figures` at the file's own ``s`` (or
-    ``alpha``) values; a red cross marks a row beyond its tolerance.  The caption line
+    ``alpha``) values; an orange X marks a row beyond its tolerance.  The caption line
     names the files and the verdict.
 
     Parameters

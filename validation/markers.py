@@ -19,7 +19,9 @@ from dataclasses import dataclass, field
 
 __all__ = ["Marker", "P33_BREAKDOWN", "AFTER_BREAKDOWN", "RUN_BUCKLING", "CONVERGED_BUCKLING",
            "MESH_BUCKLING", "NEWTON_LIMIT", "RUN_NEWTON", "WRINKLING_NOT_REACHED",
-           "STABLE_STATE", "UNSTABLE_STATE", "LIMIT_POINT", "VOCABULARY", "P33_SHAPES",
+           "STABLE_STATE", "UNSTABLE_STATE", "LIMIT_POINT", "SECTION_SYMMETRIC",
+           "SECTION_ANTISYMMETRIC", "BEYOND_TOLERANCE", "VOCABULARY",
+           "P33_SHAPES",
            "PAPER_P33_WORDS", "NOT_CONVERGED_NOTE", "BREAKDOWN_MEANINGS", "legend_style",
            "find_marker"]
 
@@ -109,10 +111,26 @@ LIMIT_POINT = Marker(
     "the located maximum of E0 on a voltage-controlled path",
     dict(marker="*", color="crimson", ms=12, mec="k", mew=0.5, zorder=4))
 
+SECTION_SYMMETRIC = Marker(
+    "2D cross-section, symmetric", "open hexagon",
+    "a critical point of the FE cross-section (one Fourier mode, sliding ends) whose mode is "
+    "symmetric about the mid-plane (wrinkling-fe; the colour is the curve's)",
+    dict(marker="h", color="k", mfc="none", ms=8))
+SECTION_ANTISYMMETRIC = Marker(
+    "2D cross-section, antisymmetric", "filled hexagon",
+    "a critical point of the FE cross-section whose mode is antisymmetric about the "
+    "mid-plane (wrinkling-fe; the colour is the curve's)",
+    dict(marker="h", color="k", ms=6))
+BEYOND_TOLERANCE = Marker(
+    "beyond its tolerance", "orange X",
+    "check: a row of the checked results beyond its tolerance (drawn above the others)",
+    dict(marker="X", color="darkorange", mec="saddlebrown", ms=11, mew=0.8, zorder=10))
+
 #: Every marker, in the order the docs' tables list them.
 VOCABULARY = (P33_BREAKDOWN, AFTER_BREAKDOWN, RUN_BUCKLING, CONVERGED_BUCKLING,
               MESH_BUCKLING, NEWTON_LIMIT, RUN_NEWTON, WRINKLING_NOT_REACHED, STABLE_STATE,
-              UNSTABLE_STATE, LIMIT_POINT)
+              UNSTABLE_STATE, LIMIT_POINT, SECTION_SYMMETRIC, SECTION_ANTISYMMETRIC,
+              BEYOND_TOLERANCE)
 
 #: The three meanings of "breakdown", in the order the charge meets them, each in one
 #: sentence that report.md, the README and docs/breakdown.md say in these words

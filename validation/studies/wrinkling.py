@@ -30,6 +30,7 @@ import analytic as an
 import skfem_dielectric as fe
 
 from ..figures import MODEL_NAME, add_caption, mesh_caption, run_caption, save_figure, tag_panels
+from ..markers import SECTION_ANTISYMMETRIC, SECTION_SYMMETRIC
 from ..store import RowFile, StudyStore
 
 __all__ = ["WRINKLING_COLUMNS", "ELASTIC_COLUMNS", "TABLE", "ELASTIC", "wrinkling_grid",
@@ -208,16 +209,20 @@ def _fmt(v) -> str:
     return "" if math.isnan(v) else format(v, ".10g")     # nan: no value, an empty cell
 
 
+#: the FE cross-section's markers by mode (validation.markers)
+_SECTION = {"symmetric": SECTION_SYMMETRIC, "antisymmetric": SECTION_ANTISYMMETRIC}
+
+
 def _elastic_panel(a, rows):
     kh = np.logspace(np.log10(0.3), np.log10(30.0), 40)
-    for mode, ls, mk in (("antisymmetric", "--", "s"), ("symmetric", "-", "o")):
+    for mode, ls in (("antisymmetric", "--"), ("symmetric", "-")):
         a.plot(kh, [stroh_critical_stretch(k, mode) for k in kh], ls, color="k", lw=1.2,
                label=f"Stroh, {mode}")
         pts = [(r[1], r[2]) for r in rows if r[0] == mode and r[2] is not None]
         if pts:
             x, y = zip(*pts)
-            a.plot(x, y, mk, mfc="none", color="C3", ms=7,
-                   label=f"{MODEL_NAME['section']}, {mode}")
+            mk = _SECTION[mode]
+            a.plot(x, y, ls="none", label=mk.name, **mk.style)
     a.axhline(an.surface_instability_stretch(), color="0.5", lw=0.8, ls=":",
               label=r"thick-plate limit $\lambda = 0.666$")
     thin = kh[kh < 2.5]
@@ -264,9 +269,10 @@ def wrinkling_figure(rows: list[list], ax=None, elastic: list[list] | None = Non
                      quick: bool | None = None):
     """FE critical loads on the Stroh dispersion curves ``D0(kh)``.
 
-    One panel per control (open markers: the FE cross-section,
-    :data:`validation.figures.MODEL_NAME` ``"section"``; circles symmetric, squares
-    antisymmetric modes; lines: :func:`analytic.critical_D0`) and, with ``elastic``
+    One panel per control (hexagons: the FE cross-section, open for symmetric and filled
+    for antisymmetric modes, :data:`validation.markers.SECTION_SYMMETRIC` and
+    :data:`~validation.markers.SECTION_ANTISYMMETRIC`; lines: :func:`analytic.critical_D0`)
+    and, with ``elastic``
     rows, a third panel of the uncharged plate's critical stretch.  The caption line is
     :func:`wrinkling_caption`.
 
@@ -294,11 +300,11 @@ def wrinkling_figure(rows: list[list], ax=None, elastic: list[list] | None = Non
     kh = np.logspace(np.log10(0.3), np.log10(8.0), 60)
     lams = sorted({r[2] for r in rows})
     colours = dict(zip(lams, plt.cm.viridis(np.linspace(0.1, 0.8, len(lams)))))
-    styles = (("symmetric", "-", "o"), ("antisymmetric", "--", "s"))
+    styles = (("symmetric", "-"), ("antisymmetric", "--"))
     drawn = set()
     for a, control in zip(ax, CONTROLS):
         for lam in lams:
-            for mode, ls, mk in styles:
+            for mode, ls in styles:
                 a.plot(kh, an.critical_D0(lam, kh, mode=mode, control=control), ls,
                        color=colours[lam], lw=1.2,
                        label=f"Stroh, $\\lambda = {lam:g}$, {mode}"
@@ -307,7 +313,8 @@ def wrinkling_figure(rows: list[list], ax=None, elastic: list[list] | None = Non
                        if r[0] == control and r[1] == mode and r[2] == lam and r[4] is not None]
                 if pts:
                     x, y = zip(*pts)
-                    a.plot(x, y, mk, mfc="none", color=colours[lam], ms=7)
+                    a.plot(x, y, ls="none", **{**_SECTION[mode].style,
+                                               "color": colours[lam]})
                     drawn.add(mode)
         a.set_xscale("log")
         a.set_xticks([0.3, 0.5, 1, 2, 5])
@@ -317,9 +324,8 @@ def wrinkling_figure(rows: list[list], ax=None, elastic: list[list] | None = Non
         a.set_ylabel(r"critical $D_0$" + (r" $= \lambda^4 E_0$" if control == "voltage" else ""))
         a.set_title(f"{control} control", fontsize=10)
     handles, _ = ax[0].get_legend_handles_labels()
-    handles += [Line2D([], [], ls="none", marker=mk, mfc="none", color="k", ms=7,
-                       label=f"{MODEL_NAME['section']}, {mode}")
-                for mode, _, mk in styles if mode in drawn]
+    handles += [Line2D([], [], ls="none", label=_SECTION[mode].name, **_SECTION[mode].style)
+                for mode, _ in styles if mode in drawn]
     ax[0].legend(handles=handles, fontsize=7, loc="upper right")
     tag_panels(ax)
     add_caption(ax[0].figure, wrinkling_caption(rows, elastic, quick))
