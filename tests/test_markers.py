@@ -248,7 +248,7 @@ def test_the_breakdown_map_draws_the_vocabulary():
     plt.close(fig)
 
 
-def test_the_voltage_control_figure_draws_the_vocabulary():
+def _voltage_rows():
     """Two points of one equi-biaxial path: stable, then a limit point (unstable)."""
     col = {c: i for i, c in enumerate(VOLTAGE_COLUMNS)}
     rows = []
@@ -261,7 +261,12 @@ def test_the_voltage_control_figure_draws_the_vocabulary():
             if k in col:
                 r[col[k]] = v
         rows.append(r)
-    ax = voltage_figure(rows)
+    return rows
+
+
+def test_the_voltage_control_figure_draws_the_vocabulary():
+    """Two points of one equi-biaxial path: stable, then a limit point (unstable)."""
+    ax = voltage_figure(_voltage_rows())
     drawn = set()
     for label, h in _legend(ax[0]):
         m = find_marker(label)
@@ -270,21 +275,6 @@ def test_the_voltage_control_figure_draws_the_vocabulary():
             drawn.add(m.name)
     assert drawn == {STABLE_STATE.name, UNSTABLE_STATE.name, LIMIT_POINT.name}
     plt.close(ax[0].figure)
-
-
-def _voltage_rows():
-    col = {c: i for i, c in enumerate(VOLTAGE_COLUMNS)}
-    rows = []
-    for point, (E0, D0, stable, kind) in enumerate(((0.2, 0.25, True, "regular"),
-                                                   (0.69, 1.8, False, "limit"))):
-        r = [None] * len(VOLTAGE_COLUMNS)
-        for k, v in dict(case="voltage-control", run="eq", point=point, model="neo-Hookean",
-                         loading="equibiaxial", variant="coupled", s=0.0, alpha=None,
-                         kind=kind, E0=E0, D0=D0, lam1_fe=1.0 + E0, stable=stable).items():
-            if k in col:
-                r[col[k]] = v
-        rows.append(r)
-    return rows
 
 
 _SHAPES = {"x": "cross", "X": "cross", "o": "circle", "s": "square", "^": "triangle up",
