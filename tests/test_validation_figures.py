@@ -81,3 +81,16 @@ def test_plots_return_axes_and_validate_args():
     with pytest.raises(ValueError, match="needs FE fields"):
         case_figure("zs22")
     plt.close("all")
+
+
+def test_figde_legend_says_which_panel_has_s_4():
+    """Paper Fig. figde: (a) has s = 0 ... 4, (b) s = 0 ... 3 (the paper's caption); the
+    shared legend's s = 4 entry says so, and (b) draws no fifth curve."""
+    import matplotlib.pyplot as plt
+
+    fig = case_figure("figde")
+    texts = [t.get_text() for leg in fig.legends for t in leg.get_texts()]
+    assert "$s = 4$ ((a) only, as in the paper)" in texts and "$s = 4$" not in texts
+    b = fig.axes[1]
+    assert sum(ln.get_label().startswith("$s = ") for ln in b.lines) == 4
+    plt.close(fig)

@@ -108,6 +108,9 @@ def _case_figure(name, fe, fields):
         plot_uniaxial_loading("neo-Hookean", palette, "D0", fe=fe, ax=axes[0])
         plot_uniaxial_loading("neo-Hookean", (0, 1, 2, 3), "E0", fe=fe, ax=axes[1],
                               palette=palette)
+        for txt in axes[0].get_legend().get_texts():     # the paper's (b): s = 0 ... 3
+            if txt.get_text() == "$s = 4$":
+                txt.set_text("$s = 4$ ((a) only, as in the paper)")
         shared_legend(fig, axes)             # (a)'s legend covered the s = 3, 4 curves
         tag_panels(axes)
         return fig
