@@ -408,3 +408,28 @@ def test_newton_accepts_a_list_pair_from_assemble():
     res = newton(lambda x: list(prob.assemble(x, 2.0)), np.full(3, 0.5),
                  settings=NewtonSettings(atol=1e-14, rtol=0))
     np.testing.assert_allclose(res.x, cardano(2.0 * prob.c), rtol=1e-13)
+
+
+def test_a_stop_predicate_ends_the_ramp_as_a_result():
+    """``stop`` asked at every converged target: the ramp ends after the first target it
+    accepts (``stopped_at``, ``converged``: every step it took converged), no later target
+    is attempted, and the steps taken equal the unstopped ramp's bit for bit; a stop that
+    is not callable is a ValueError naming it."""
+    prob = Cubic()
+    loads = [1.0, 4.0, 9.0, 20.0]
+    settings = RampSettings(atol=1e-12, rtol=0)
+    full = ramp(prob, loads, settings=settings)
+    asked = []
+
+    def past_two(step):
+        asked.append(step.load)
+        return step.quantities["x2"] > cardano(5.0 * 2.0)
+
+    res = ramp(prob, loads, settings=settings, stop=past_two)
+    assert res.converged and res.stopped_at == 4.0 and asked == [1.0, 4.0]
+    assert [s.load for s in res.steps] == [1.0, 4.0]
+    for a, b in zip(res.steps, full.steps):
+        assert np.array_equal(a.x, b.x)
+    assert full.stopped_at is None
+    with pytest.raises(ValueError, match="stop"):
+        ramp(prob, loads, stop=1.0)

@@ -277,7 +277,10 @@ def test_validate_writes_only_into_out(tmp_path, monkeypatch):
     assert set(summary["cases"]["zs22"]["breakdown_D0"].values()) == {3.5}
     assert summary["cases"]["uni-axial-ideal"]["breakdown_D0_by_alpha"] == {
         v: {"0.3": 1.5, "1": 3.5} for v in ("coupled", "maxwell")}
-    assert (out / "report.md").read_text().count("\n| ") == 5   # header, rule, 3 cases
+    report = (out / "report.md").read_text()
+    cases_table = report.split("\n\nBreakdown (")[0]
+    assert cases_table.count("\n| ") == 5                       # header, rule, 3 cases
+    assert "What \"breakdown\" means" in report                 # and the three meanings
     assert plt.get_fignums() == []                               # figures closed
 
 

@@ -135,7 +135,7 @@ def run_ramp(problem: Problem, targets: Sequence[Any], *,
     extra
         Quantities added to every step (e.g. ``alpha``); each step also gets ``phase``.
     **ramp_options
-        ``settings`` (:class:`~skfem_dielectric.solvers.ramp.RampSettings`),
+        ``settings`` (:class:`~skfem_dielectric.solvers.ramp.RampSettings`), ``stop``,
         ``state_analysis``, ``step_limit`` and ``admissible`` of
         :func:`~skfem_dielectric.solvers.ramp.ramp`.  For a
         :class:`~skfem_dielectric.models.plate.problem.PlateProblem` the last two default to

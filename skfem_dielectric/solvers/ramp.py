@@ -193,6 +193,10 @@ class RampResult:
     unstable_at
         With ``stop_on_instability``: load of the converged (sub-)step whose tangent was
         judged unstable, where the ramp stopped (``None`` otherwise).
+    stopped_at
+        Load of the target step after which the ramp's ``stop`` predicate ended it
+        (``None`` otherwise); the ramp is ``converged`` (every step it took converged) and
+        the targets after it were not attempted.
     failure
         Where a model's driver diagnoses a Newton failure (the 3D plate:
         :func:`~skfem_dielectric.gallery.drivers.run_ramp`), its measured cause, else empty.
@@ -217,6 +221,7 @@ class RampResult:
     assembly_times: list[float] = field(default_factory=list)
     solve_times: list[float] = field(default_factory=list)
     unstable_at: Any = None
+    stopped_at: Any = None
     factorisations: int = 0
     chord_steps: int = 0
     residual_times: list[float] = field(default_factory=list)
@@ -524,7 +529,7 @@ class _Ramp:
 
 
 #: The callbacks :func:`ramp` accepts, each callable or ``None``.
-CALLBACKS = ("on_step", "step_limit", "admissible", "state_analysis")
+CALLBACKS = ("on_step", "stop", "step_limit", "admissible", "state_analysis")
 
 
 def check_callbacks(options: dict[str, Any]) -> None:
@@ -538,6 +543,7 @@ def check_callbacks(options: dict[str, Any]) -> None:
 def ramp(problem: Problem, loads: Sequence[Any], *, x0: np.ndarray | None = None,
          start: Any = None, back: tuple[np.ndarray, Any] | None = None,
          on_step: Callable[[StepResult], Any] | None = None,
+         stop: Callable[[StepResult], bool] | None = None,
          linear_solver: str | LinearSolver = "superlu",
          settings: RampSettings = RampSettings(),
          step_limit: Callable[[np.ndarray, np.ndarray, Any], float] | None = None,
@@ -565,6 +571,10 @@ def ramp(problem: Problem, loads: Sequence[Any], *, x0: np.ndarray | None = None
         the Newton tolerance.
     on_step
         Called as ``on_step(step)`` after every converged target.
+    stop
+        Optional predicate ``stop(step) -> bool``, asked after ``on_step`` at every
+        converged target: ``True`` ends the ramp there (``stopped_at``), a result rather
+        than an exception; the targets after it are not attempted.
     linear_solver
         Name or instance (see :func:`skfem_dielectric.linalg.linear.get_linear_solver`; a name
         gives a non-symmetric solver for a problem whose ``symmetric`` is False); one
@@ -606,8 +616,8 @@ def ramp(problem: Problem, loads: Sequence[Any], *, x0: np.ndarray | None = None
     if not isinstance(problem, Problem):
         raise ValueError("problem must be a skfem_dielectric.Problem (see "
                          f"skfem_dielectric.problem), got {type(problem).__name__}")
-    check_callbacks({"on_step": on_step, "step_limit": step_limit, "admissible": admissible,
-                     "state_analysis": state_analysis})
+    check_callbacks({"on_step": on_step, "stop": stop, "step_limit": step_limit,
+                     "admissible": admissible, "state_analysis": state_analysis})
     check_settings("settings", settings, RampSettings)
     t_start = time.perf_counter()
     solver = get_linear_solver(linear_solver, symmetric=problem.symmetric)
@@ -649,5 +659,8 @@ def ramp(problem: Problem, loads: Sequence[Any], *, x0: np.ndarray | None = None
             break
         run.load = target
         run.record(target, True)
+        if stop is not None and stop(out.steps[-1]):
+            out.stopped_at = target
+            break
     out.wall_seconds = time.perf_counter() - t_start
     return out

@@ -134,10 +134,6 @@ def clamp_centre_J(pb, x, load) -> tuple[float, float]:
     return float(min(Js)), float(max(Js))
 
 
-class _Crossed(Exception):
-    pass
-
-
 def run_unit(alpha: float, elements, *, grading: float = 1.0, D0_step: float = 0.5,
              D0_max: float = 6.0, formulation: str = "mixed", solver: str = "auto",
              progress=None, modes_dir: Path | None = None) -> dict:
@@ -192,21 +188,22 @@ def run_unit(alpha: float, elements, *, grading: float = 1.0, D0_step: float = 0
             progress(f"D0 = {load[1]:.4f}: {row.n_negative} negative, {row.n_physical} "
                      f"physical, {row.cpu:.1f} CPU s")
         if row.n_physical > 0 and track["prev"] is not None:
-            track.update(before=before, row=row, cur=(step.x, load, step.back))
-            raise _Crossed
+            track.update(before=before, row=row, cur=(step.x, load, step.back), crossed=True)
+            return
         track["prev"] = (step.x, load, step.back)
+
+    def crossed(step):          # the ramp's stop predicate: the first physical crossing
+        return track.pop("crossed", False)
 
     def ramp_to(targets, start=None):
         track["row"] = None
-        try:
-            with warnings.catch_warnings():
-                warnings.simplefilter("ignore", RuntimeWarning)
-                res = fe.gallery.run_ramp(
-                    pb, targets, on_step=on_step, linear_solver=solver, settings=UNIT_SETTINGS,
-                    **({} if start is None else dict(x0=start[0], start=start[1],
-                                                     back=start[2])))
-        except _Crossed:
-            return ""
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", RuntimeWarning)
+            res = fe.gallery.run_ramp(
+                pb, targets, on_step=on_step, stop=crossed, linear_solver=solver,
+                settings=UNIT_SETTINGS,
+                **({} if start is None else dict(x0=start[0], start=start[1],
+                                                 back=start[2])))
         return "" if res.converged else \
             f"ramp stopped at D0 = {np.asarray(res.failed_at)[-1]:g}"
 

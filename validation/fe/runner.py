@@ -41,10 +41,6 @@ from .model import (BUCKLING_NEWTON, BUCKLING_TOL, buckling_problem, build_probl
 __all__ = ["run_fe"]
 
 
-class _Stop(Exception):
-    """Raised inside ``on_step`` to end a ramp at the breakdown."""
-
-
 def _analysis(monitor, step, load):
     """The monitor's analysis of ``step`` (``None`` without a monitor, or where the ramp
     could not factorise the step's tangent and the monitor did not see it)."""
@@ -197,17 +193,16 @@ def run_fe(spec, start, state, on_step, linear_solver="superlu"):
                 after = scan.state
                 saved["scan_counts"], saved["scan_physical"] = after["counts"], after["physical"]
             saved["located"] = np.array(track["located"])
-        if on_step(i, rec, saved):
-            raise _Stop
+        track["stop"] = bool(on_step(i, rec, saved))
 
-    try:
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore", RuntimeWarning)   # the failure is recorded
-            res = fe.ramp(problem, targets, x0=x0, start=start_load,
-                          back=_saved_back(state), on_step=cb,
-                          state_analysis=monitor, **ramp_settings(spec, linear_solver),
-                          **fe.gallery.newton_guards(problem))
-    except _Stop:
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", RuntimeWarning)   # the failure is recorded
+        res = fe.ramp(problem, targets, x0=x0, start=start_load,
+                      back=_saved_back(state), on_step=cb,
+                      stop=lambda step: track.pop("stop", False),   # at the breakdown
+                      state_analysis=monitor, **ramp_settings(spec, linear_solver),
+                      **fe.gallery.newton_guards(problem))
+    if res.stopped_at is not None:
         return RunOutcome(True)
     failed = None if res.failed_at is None else float(np.asarray(res.failed_at).ravel()[-1])
     return RunOutcome(bool(res.converged), res.reason, failed)
