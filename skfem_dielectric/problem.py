@@ -184,6 +184,13 @@ class Problem(ABC):
         """meshio ``Mesh`` of a state (for :mod:`skfem_dielectric.export`)."""
         raise ValueError(f"{type(self).__name__} does not export meshes (step_mesh)")
 
+    def newton_guards(self) -> dict[str, Any]:
+        """Ramp options that keep Newton's iterates admissible states of the model:
+        ``step_limit(x, dx, load) -> alpha_max`` and ``admissible(x, load) -> reason`` of
+        :func:`~skfem_dielectric.solvers.ramp.ramp`; none (``{}``) by default.  The drivers
+        pass them to every ramp of the model."""
+        return {}
+
     def stability(self, inertia: tuple[int, int, int] | None) -> bool | None:
         """Stability verdict from the inertia ``(n_pos, n_neg, n_zero)`` of the reduced
         tangent: ``True`` iff it has exactly ``layout.n_multipliers`` negative and no zero

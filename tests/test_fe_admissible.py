@@ -79,3 +79,20 @@ def test_segment_det_limit_simple_double_and_touching_roots():
     d = np.diag([-2.5, 0.0, -2.5])[None]
     assert abs(segment_det_limit(I, d) - 0.4) < 1e-4
     assert segment_det_limit(-I, d) == 0.0
+
+
+def test_the_newton_guards_are_part_of_the_problem_contract():
+    """A Problem has no guards by default; the plate's are its own methods, and the
+    gallery's newton_guards and plate_admissible answer what the problem answers (the
+    inverted state: test_plain_ramp_finds_the_inverted_state_and_plate_admissible_names_it)."""
+    from skfem_dielectric.gallery import newton_guards
+
+    pb = sd.gallery.equibiaxial_problem(model="Gent")
+    guards = newton_guards(pb)
+    assert guards == pb.newton_guards()
+    assert guards["step_limit"] == pb.max_step and guards["admissible"] == pb.admissible
+    x = pb.initial_state()
+    load = np.array([1.0, 0.0])
+    assert pb.admissible(x, load) == "" == plate_admissible(pb, x, load)
+    cs = sd.CrossSection(sd.section_mesh(4.0, 1.0, 2, 1), sd.NeoHookeanDielectric())
+    assert cs.newton_guards() == {} == newton_guards(cs)

@@ -23,7 +23,6 @@ solver).
 from __future__ import annotations
 
 from dataclasses import replace
-from functools import partial
 from typing import Any, Callable, Sequence
 
 import numpy as np
@@ -68,22 +67,9 @@ def _phase(load) -> str:
 
 
 def plate_admissible(problem: PlateProblem, x: np.ndarray, load) -> str:
-    """Why the plate state ``x`` is inverted, or ``""`` if it is not.
-
-    Inverted: ``det F <= 0`` at a quadrature point, or ``F11 <= 0`` or ``F33 <= 0`` at the
-    plate centre (the plate turned inside out through a symmetry plane: ``F11 = F33 =
-    -lam``, ``F22 = lam^-2`` has ``det F = 1`` and ``|F e1| = lam``, an equilibrium of the
-    discrete equations that no deformation of the plate reaches).
-    """
-    for _, F, _, _ in problem.quadrature_fields(x, load):
-        J = np.linalg.det(np.moveaxis(F.reshape(3, 3, -1), 2, 0))
-        if not np.all(J > 0):
-            return f"det F = {float(J.min()):.3g} <= 0 at a quadrature point"
-    F = problem.evaluate(x, load, np.zeros((3, 1)))["F"][:, :, 0]
-    if not (F[0, 0] > 0 and F[2, 2] > 0):
-        return (f"inverted deformation: F11 = {F[0, 0]:.6g}, F33 = {F[2, 2]:.6g} at the plate "
-                f"centre (must be > 0)")
-    return ""
+    """Why the plate state ``x`` is inverted, or ``""`` if it is not
+    (:meth:`~skfem_dielectric.models.plate.problem.PlateProblem.admissible`)."""
+    return problem.admissible(x, load)
 
 
 def _triple(name: str, value, check) -> tuple:
@@ -98,17 +84,11 @@ def _triple(name: str, value, check) -> tuple:
 
 
 def newton_guards(problem: Problem) -> dict:
-    """Ramp options that keep a plate's Newton iterates orientation preserving.
-
-    For a :class:`~skfem_dielectric.models.plate.problem.PlateProblem`:
-    ``step_limit=problem.max_step`` (``det F > 0`` along every Newton step) and
-    ``admissible``: :func:`plate_admissible` (no converged inverted state); ``{}`` for other
-    problems.  Pass them to
-    :func:`~skfem_dielectric.solvers.ramp.ramp` (:func:`run_ramp` does).
-    """
-    if not isinstance(problem, PlateProblem):
-        return {}
-    return {"step_limit": problem.max_step, "admissible": partial(plate_admissible, problem)}
+    """The model's own Newton guards (:meth:`~skfem_dielectric.problem.Problem.newton_guards`:
+    for a plate ``det F > 0`` along every Newton step and no converged inverted state;
+    ``{}`` for a model without them).  Pass them to
+    :func:`~skfem_dielectric.solvers.ramp.ramp` (:func:`run_ramp` does)."""
+    return problem.newton_guards()
 
 
 def run_ramp(problem: Problem, targets: Sequence[Any], *,

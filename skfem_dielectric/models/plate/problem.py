@@ -483,6 +483,29 @@ class PlateProblem(Problem):
                                                  np.moveaxis(F1 - F0, 2, 0)))
         return alpha
 
+    def admissible(self, x: np.ndarray, load) -> str:
+        """Why the plate state ``x`` is inverted, or ``""`` if it is not.
+
+        Inverted: ``det F <= 0`` at a quadrature point, or ``F11 <= 0`` or ``F33 <= 0`` at
+        the plate centre (the plate turned inside out through a symmetry plane: ``F11 = F33
+        = -lam``, ``F22 = lam^-2`` has ``det F = 1`` and ``|F e1| = lam``, an equilibrium of
+        the discrete equations that no deformation of the plate reaches).
+        """
+        for _, F, _, _ in self.quadrature_fields(x, load):
+            J = np.linalg.det(np.moveaxis(F.reshape(3, 3, -1), 2, 0))
+            if not np.all(J > 0):
+                return f"det F = {float(J.min()):.3g} <= 0 at a quadrature point"
+        F = self.evaluate(x, load, np.zeros((3, 1)))["F"][:, :, 0]
+        if not (F[0, 0] > 0 and F[2, 2] > 0):
+            return (f"inverted deformation: F11 = {F[0, 0]:.6g}, F33 = {F[2, 2]:.6g} at the "
+                    f"plate centre (must be > 0)")
+        return ""
+
+    def newton_guards(self) -> dict[str, Any]:
+        """``step_limit``: :meth:`max_step` (``det F > 0`` along every Newton step) and
+        ``admissible``: :meth:`admissible` (no converged inverted state)."""
+        return {"step_limit": self.max_step, "admissible": self.admissible}
+
     # ------------------------------------------------------------ post-processing
     def evaluate(self, x: np.ndarray, load, points: np.ndarray) -> dict[str, np.ndarray]:
         """Fields ``u (3, n)``, ``phi (n)``, ``p (n)`` (zeros for the penalty),
