@@ -316,9 +316,10 @@ def _command(argv) -> str:
     return "skfem-dielectric " + " ".join(shlex.quote(a) for a in args)
 
 
-def _run(args, name: str, tasks, show, *, incremental: bool = False) -> int:
+def _run(args, name: str, tasks, show, *, incremental: bool = False, files=None) -> int:
     """Run ``tasks`` (``[(label, row_key, callable)]``) not yet in the table ``name``,
-    writing each task's rows (with the run's command) as soon as they exist."""
+    writing each task's rows (with the run's command) as soon as they exist; ``files(row)``
+    writes a row's own files first (a row in the table has them)."""
     path = _table_path(args, name)
     command = _command(getattr(args, "argv", None))
     with TableWriter(path, TABLES[name], note=_say) as table:
@@ -330,6 +331,8 @@ def _run(args, name: str, tasks, show, *, incremental: bool = False) -> int:
                 todo.append((label, task))
 
         def write(rows):
+            for r in rows if files is not None else ():
+                files(r)
             table.add([{**r, "command": command} for r in rows])
             for r in rows:
                 show(r)
@@ -381,14 +384,16 @@ def _cmd_units(args) -> int:
                           functools.partial(_units_task, key, D0_step=args.D0_step,
                                             D0_max=args.D0_max, solver=opts["solver"])))
 
-    def show(r):           # after the row: a mode file without its row is rewritten
+    def mode(r):           # before the row: a unit in the table has its mode
         if "mode" in r:
             write_mode(modes, UnitKey.from_row(r), r["mode"])
+
+    def show(r):
         _say(f"  {UnitKey.from_row(r)}: D0_b {float(r['D0_b'] or 'nan'):.4f} "
              + (f"({r['note']}) " if r.get('note') else "")
              + f"{r.get('half_waves', '')} half-waves, {r['dofs']} DOFs, "
              f"{r['cpu_s']} CPU s, {r['peak_GB']} GB")
-    return _run(args, "units", tasks, show)
+    return _run(args, "units", tasks, show, files=mode)
 
 
 def _units_source(args):
