@@ -283,13 +283,15 @@ _SHAPES = {"x": "cross", "X": "cross", "o": "circle", "s": "square", "^": "trian
 
 
 def _look_of(h):
-    """What a reader sees of a legend handle: shape, colour, filled or open, large or
-    small (``None`` for a handle without a marker: a line or a patch)."""
+    """What a reader sees of a marker in a legend: shape, colour, filled or open, large or
+    small (``None`` for a handle that is a line, a patch or a curve with points)."""
     from matplotlib.colors import to_hex
 
     h = getattr(h, "lines", [h])[0] or h
     if not hasattr(h, "get_marker") or h.get_marker() in (None, "None", "", " "):
         return None
+    if h.get_linestyle() not in ("None", "", " "):
+        return None        # a curve with its points: its colour names a series, not an event
     shape = _SHAPES.get(h.get_marker(), str(h.get_marker()))
     edge = h.get_markeredgecolor()
     colour = to_hex(edge if h.get_markerfacecolor() == "none" else h.get_markerfacecolor())
@@ -302,8 +304,9 @@ def _meaning(label: str) -> str:
 
 
 def test_one_look_one_meaning_across_every_figures_legend(tmp_path):
-    """The legends of the Keplinger figure, the breakdown map, the voltage-control figure,
-    the FE wrinkling figure and a check figure with failing rows: a marker that looks the
+    """The legends of the Keplinger figure (with FE rows and as `curves` draws it), the
+    breakdown map, the voltage-control figure, the FE wrinkling figure, a check figure
+    with failing rows, the paper's loading figures and the clamp-edge band: a marker that looks the
     same (shape, colour, open or filled, large or small) means the same thing in all of
     them (the red cross is the run's buckling load, not a row beyond its tolerance; an
     open square is the Maxwell-traction plate, not an antisymmetric mode)."""
@@ -338,6 +341,18 @@ def test_one_look_one_meaning_across_every_figures_legend(tmp_path):
         for a in f.axes:
             if a.get_legend() is not None:
                 legends += [(f"check {case.name}", *lh) for lh in _legend(a)]
+    from validation.clamp_zone.band import edge_band_figure
+    from validation.clamp_zone.data import load
+    from validation.figures import case_figure
+
+    figs = {name: case_figure(name) for name in ("nh-d-e", "gent-d-e", "gent-equi-biaxial",
+                                                 "figde", "uni-axial-ideal")}
+    figs["edge-band"] = edge_band_figure(load("section"))
+    for name, f in figs.items():
+        for leg in list(f.legends) + [a.get_legend() for a in f.axes if a.get_legend()]:
+            legends += [(name, t.get_text(), h)
+                        for t, h in zip(leg.get_texts(), leg.legend_handles)]
+    assert len({w for w, _, _ in legends}) >= 10
     seen: dict = {}
     for where, label, h in legends:
         look = _look_of(h)
