@@ -345,10 +345,11 @@ def buckling_figure(rows, scan, modes_dir: Path, path: Path, footer: str = "",
                                 label=m)
             c = line.get_color()
             if sc:
-                ax3[0].plot(*zip(*sc), "o", ms=3.5, color=c, gid="scanned",
+                ax3[0].plot(*zip(*sc), "o", ms=6, mfc="none", mew=1.2, color=c,
+                            gid="scanned", zorder=4,
                             label="scanned states" if k == 0 else None)
-            if tr:
-                ax3[0].plot(*zip(*tr), "x", ms=5, color=c, gid="trials",
+            if tr:               # below the scanned states' rings: a shared end shows both
+                ax3[0].plot(*zip(*tr), "x", ms=4, color=c, gid="trials", zorder=3,
                             label="trial states of the location" if k == 0 else None)
             b = next(r for r in mine if r["mesh"] == m)["D0_b"]
             if np.isfinite(b):
@@ -372,7 +373,7 @@ def buckling_figure(rows, scan, modes_dir: Path, path: Path, footer: str = "",
                                label=f"P33 onset (interior), {form}: {onset_D0:.3f}")
         ax3[1].set(xlabel="D0", ylabel="min P33/mu",
                    title=f"{fine}: P33 minima of the {GRAD_DIV_FORM}")
-        ax3[1].legend(fontsize=7)
+        ax3[1].legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.22), ncol=2)
         f = modes_dir / f"{alpha:g}_{fine}.npz"
         if f.exists():
             d = np.load(f)
