@@ -60,8 +60,8 @@ def test_the_demos_write_the_figures_the_page_names(tmp_path, monkeypatch):
     monkeypatch.chdir(tmp_path)
     for argv in _commands():
         assert main(argv) == 0, argv
-    named = re.findall(r"\*\*`(lecture/[^`]+\.png)`\*\*", _text())
-    named += re.findall(r"`(lecture/[a-z-]+\.png)`", _text())
+    named = re.findall(r"\*\*`(results/lecture/[^`]+\.png)`\*\*", _text())
+    named += re.findall(r"`(results/lecture/[a-z-]+\.png)`", _text())
     assert len(set(named)) >= 6
     for png in set(named):
         assert (tmp_path / png).stat().st_size > 10_000, png
