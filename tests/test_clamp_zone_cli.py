@@ -245,6 +245,7 @@ def test_the_shipped_tables_are_written_from_a_checkout_only(tmp_path, monkeypat
         zone_cli.package_data_dir()
 
 
+@pytest.mark.slow
 def test_two_units_on_a_local_cluster_give_the_serial_rows(small_run, tmp_path, capsys):
     """alpha = 1 and 0.7 on the smallest mesh, on a LocalCluster of two workers: the same
     rows (every physics column, as written) as one after the other here, and the same
@@ -289,6 +290,7 @@ def test_the_shipped_modes_are_those_of_the_shipped_units(tmp_path, capsys):
     assert (tmp_path / "clamp-modes.png").stat().st_size > 10_000
 
 
+@pytest.mark.slow
 def test_sigterm_keeps_the_finished_units_and_a_rerun_resumes(tmp_path):
     """SIGTERM after the first of two units: exit 143 with one line, the table holds the
     finished unit's complete row (and its mode), and the same command run again computes
