@@ -71,6 +71,7 @@ def test_bad_input_is_one_line(tmp_path, capsys):
     assert not (tmp_path / "class_onsets.csv").exists()
 
 
+@pytest.mark.slow
 def test_a_given_bracket_needs_no_unit_and_says_so():
     """The bracket of the 10 x 1 x 24 unit given by hand (no unit row read): the same
     class located within twice the tolerance of the unit's D0_b, and the row's note says
