@@ -22,7 +22,7 @@ from skfem_dielectric.fem import blas_thread_limit
 from ..cluster import check_scheduler, dask_executor
 from ..fe.model import BUCKLING_GRAD_DIV
 from ..figures.common import save_figure
-from ..options import out_dir, solver_name
+from ..options import out_dir, positive, solver_name
 from .band import band_table, edge_band_figure
 from .counts import run_edge_counts
 from .data import TABLES, load, shipped_path
@@ -200,12 +200,10 @@ def add_clamp_zone_command(add) -> None:
 
 
 # -- checks before anything is allocated -------------------------------------------------
-def _finite(name: str, value, *, low: float = 0.0, zero: bool = False) -> float:
+def _finite(name: str, value, *, zero: bool = False) -> float:
+    """``value`` as a float, checked by :func:`validation.options.positive`."""
     value = float(value)
-    ok = math.isfinite(value) and (value >= low if zero else value > low)
-    if not ok:
-        raise ValueError(f"{name} must be {'>=' if zero else '>'} {low:g} and finite, "
-                         f"got {value:g}")
+    positive(name, value, zero=zero)
     return value
 
 

@@ -13,7 +13,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..store import FolderLock, write_text_atomic
+from ..store import command_lock, write_text_atomic
 from .spec import TableSpec, read_table
 
 __all__ = ["TableWriter"]
@@ -72,10 +72,8 @@ class TableWriter:
         self.rows: list[dict] = []
 
     def __enter__(self) -> "TableWriter":
-        state = self.path.parent / ".state"
-        state.mkdir(parents=True, exist_ok=True)
-        self._lock = FolderLock(state / f"{self.path.name}.lock",
-                                f"the clamp-zone {self.spec.name} table {self.path}")
+        self._lock = command_lock(self.path.parent, self.path.name,
+                                  f"the clamp-zone {self.spec.name} table {self.path}")
         self._lock.__enter__()
         try:
             for tmp in self.path.parent.glob(f".{self.path.name}.*.tmp"):   # a killed write

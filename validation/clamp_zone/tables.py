@@ -47,7 +47,6 @@ def clamp_study_tables(where=None) -> str:
                    f"{float(r['elements_per_half_wave']):.1f} | {float(r['D0_b']):.4f} | "
                    f"{float(r['J_min_clamp']):.2f}-{float(r['J_max_clamp']):.2f} | "
                    f"{r['n_flagged_b']} | {r['cpu_s']} ({r['solver']}) |")
-    p33 = load_table("p33", where)
     out += ["", "| alpha | `D0_b` (two finest meshes, spread) | `P33` onset: centre line / "
             "clamp line / interior (mesh) | Newton limit, plain form |", "| --- " * 4 + "|"]
     for a in sorted({float(r["alpha"]) for r in rows}):
@@ -62,10 +61,8 @@ def clamp_study_tables(where=None) -> str:
                                               if c != g["class"]))
         except ValueError as exc:
             load = "none: " + str(exc).split(";")[0]
-        mine = [r for r in p33 if math.isclose(float(r["alpha"]), a, abs_tol=1e-9)
-                and r["grading"] != "0.25"]
-        if mine:
-            r = max(mine, key=lambda r: int(r["dofs"]))
+        r = plain_p33_row(a, _file(where, "p33"))
+        if r is not None:
             def cell(k):
                 name = k.removeprefix("P33_onset_")
                 if not r[k]:
