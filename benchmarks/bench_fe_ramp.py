@@ -20,6 +20,15 @@ Usage::
     python benchmarks/bench_fe_ramp.py --scaling             # s/iteration vs unknowns
     python benchmarks/bench_fe_ramp.py --save ramp.npz       # lam1, fields per step
     python benchmarks/bench_fe_ramp.py --smoke               # 2 x 1 x 1, 2 load steps
+    python benchmarks/bench_fe_ramp.py --against OLD --one-core   # beside another tree
+
+``--against OLD`` runs the same ramp with the packages of the source tree ``OLD`` (e.g.
+``git archive 13becd9 | tar -x -C OLD``) and of this tree in alternation (``--repeat``
+times each, default 3), each in its own subprocess, and prints the counts, the medians of
+wall and CPU time, the ratio of the medians and the largest difference of every per-step
+column (``lam1``, ``lam3``, ``min_P33``, ...).  ``--one-core`` runs every ramp on one core
+(``taskset -c 0``); set ``OMP_NUM_THREADS=MKL_NUM_THREADS=OPENBLAS_NUM_THREADS=1`` for one
+thread of the linear solver as well.
 
 ``--smoke`` runs the same code path on the full plate of 2 x 1 x 1 elements, the pre-load
 in one step and ``D0 = 0.25`` with the default solver: a check that the script runs, its
@@ -51,16 +60,21 @@ def run(a) -> dict:
 
     load0 = os.getloadavg()
     solver = get_linear_solver(a.solver)
-    t0 = time.perf_counter()
+    t0, c0 = time.perf_counter(), time.process_time()
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         res = keplinger_plate(1.0, D0=np.arange(a.D0_step, a.D0_max + 1e-9, a.D0_step),
                               elements=tuple(a.elements), symmetry=a.symmetry,
                               preload_steps=a.preload_steps, linear_solver=solver,
                               settings=replace(
-                                  KEPLINGER_SETTINGS, chord=0.0 if a.plain else a.chord,
-                                  predictor="none" if a.plain else a.predictor))
-    wall = time.perf_counter() - t0
+                                  KEPLINGER_SETTINGS,
+                                  chord=0.0 if a.plain else (KEPLINGER_SETTINGS.chord
+                                                             if a.chord is None else a.chord),
+                                  predictor="none" if a.plain else a.predictor,
+                                  **({"acceleration": 0, "keep_factors": False}
+                                     if a.plain and hasattr(KEPLINGER_SETTINGS,
+                                                            "keep_factors") else {})))
+    wall, cpu = time.perf_counter() - t0, time.process_time() - c0
 
     def med(v):
         return float(np.median(v)) if len(v) else float("nan")
@@ -82,10 +96,19 @@ def run(a) -> dict:
         "residual_median_s": med(res.residual_times), "chord_median_s": med(res.chord_times),
         "assembly_s": res.assembly_seconds, "solve_s": res.solve_seconds,
         "residual_s": float(sum(res.residual_times)), "chord_s": float(sum(res.chord_times)),
-        "wall_s": wall, "peak_rss_MB": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024,
+        "wall_s": wall, "cpu_s": cpu,
+        "peak_rss_MB": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024,
         "load_average": [load0, os.getloadavg()],
         "lam1_last": float(res.steps[-1]["lam1"]) if steps else float("nan"),
+        "columns": {name: [float(st.quantities[name]) for st in res.steps]
+                    for name in COLUMNS if steps and name in res.steps[0].quantities},
+        "threads": len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else None,
     }
+
+
+#: The per-step columns compared between two trees (``--against``): those of the
+#: validation CSVs of the Keplinger plate.
+COLUMNS = ("lam1", "lam3", "min_P33", "x1_min_P33", "min_P33_clamp", "x3_min_P33_clamp")
 
 
 def report(r: dict) -> None:
@@ -103,26 +126,79 @@ def report(r: dict) -> None:
     print(f"  totals: assembly {r['assembly_s']:.1f} s, factorisation + solve "
           f"{r['solve_s']:.1f} s, residuals {r['residual_s']:.1f} s, chord {r['chord_s']:.1f} s")
     la = r["load_average"]
-    print(f"  wall {r['wall_s']:.1f} s, peak RSS {r['peak_rss_MB']:.0f} MB, load average "
+    print(f"  wall {r['wall_s']:.1f} s, CPU {r.get('cpu_s', float('nan')):.1f} s, peak RSS "
+          f"{r['peak_rss_MB']:.0f} MB, load average "
           f"{la[0][0]:.2f} -> {la[1][0]:.2f} (1 min), lam1 at the last step "
           f"{r['lam1_last']:.8f}")
 
 
-def child(a, **over) -> dict:
-    """Run one benchmark in a subprocess (its own peak memory); returns its JSON."""
+def child(a, tree: str | None = None, **over) -> dict:
+    """Run one benchmark in a subprocess (its own peak memory); returns its JSON.
+
+    ``tree``: a source tree whose packages the subprocess imports (``PYTHONPATH``) instead
+    of the installed ones; ``a.one_core``: the subprocess runs on one core."""
     d = dict(vars(a), **over)
-    cmd = [sys.executable, __file__, "--json", "--solver", d["solver"], "--symmetry",
+    env = dict(os.environ)
+    if tree is not None:
+        env["PYTHONPATH"] = os.path.abspath(tree)
+    prefix = ["taskset", "-c", "0"] if d.get("one_core") else []
+    cmd = prefix + [sys.executable, __file__, "--json", "--solver", d["solver"], "--symmetry",
            d["symmetry"], "--elements", *map(str, d["elements"]), "--preload-steps",
            str(d["preload_steps"]), "--D0-step", str(d["D0_step"]), "--D0-max",
-           str(d["D0_max"]), "--chord", str(d["chord"]), "--predictor", d["predictor"]]
+           str(d["D0_max"]), "--predictor", d["predictor"]]
+    if d["chord"] is not None:
+        cmd += ["--chord", str(d["chord"])]
     if d["plain"]:
         cmd.append("--plain")
     if d["save"]:
         cmd += ["--save", d["save"]]
-    p = subprocess.run(cmd, capture_output=True, text=True)
+    p = subprocess.run(cmd, capture_output=True, text=True, env=env,
+                       cwd=tree if tree is not None else None)
     if p.returncode != 0:
         raise RuntimeError(p.stderr[-2000:])
     return json.loads(p.stdout.strip().splitlines()[-1])
+
+
+def against(a) -> None:
+    """The reference ramp of this tree and of the tree ``a.against`` in alternation,
+    ``a.repeat`` times each: counts, medians of wall and CPU time, peak memory, the time
+    ratio and the largest difference of every per-step column."""
+    import numpy as np
+
+    here = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+    trees = {"this tree": here, "reference": a.against}
+    runs = {k: [] for k in trees}
+    for _ in range(a.repeat):
+        for name, tree in trees.items():
+            r = child(a, tree=tree)
+            runs[name].append(r)
+            print(f"  {name:>9}: wall {r['wall_s']:6.1f} s, CPU {r['cpu_s']:6.1f} s, "
+                  f"load {r['load_average'][0][0]:.2f} -> {r['load_average'][1][0]:.2f}",
+                  flush=True)
+    print(f"{'':>10} {'unknowns':>9} {'steps':>5} {'iter.':>5} {'fact.':>5} "
+          f"{'wall s':>7} {'CPU s':>7} {'peak MB':>7}")
+    med = {}
+    for name, rs in runs.items():
+        r = rs[0]
+        med[name] = (float(np.median([x["wall_s"] for x in rs])),
+                     float(np.median([x["cpu_s"] for x in rs])))
+        print(f"{name:>10} {r['dofs']:>9} {r['steps']:>5} {r['iterations']:>5} "
+              f"{r['factorisations']:>5} {med[name][0]:>7.1f} {med[name][1]:>7.1f} "
+              f"{max(x['peak_rss_MB'] for x in rs):>7.0f}")
+    print(f"time ratio (this tree / reference, medians): wall "
+          f"{med['this tree'][0] / med['reference'][0]:.3f}, CPU "
+          f"{med['this tree'][1] / med['reference'][1]:.3f}")
+    new, ref = runs["this tree"][0]["columns"], runs["reference"][0]["columns"]
+    for col in COLUMNS:
+        if col in new and col in ref and len(new[col]) == len(ref[col]):
+            x, y = np.array(new[col]), np.array(ref[col])
+            scale = max(float(np.max(np.abs(y))), 1e-300)
+            d = np.abs(x - y)
+            k = int(np.argmax(d))
+            print(f"  {col:>17}: max |difference| {d[k]:.2e} (relative to its largest value "
+                  f"{d[k] / scale:.2e}) at step {k}: {x[k]:.10g} against {y[k]:.10g}"
+                  + (f"; steps that differ: {np.flatnonzero(d > 0).tolist()}"
+                     if col.startswith("x") else ""))
 
 
 def scaling(a) -> None:
@@ -156,14 +232,21 @@ def main(argv=None) -> int:
     ap.add_argument("--preload-steps", type=int, default=6)
     ap.add_argument("--D0-step", type=float, default=0.25)
     ap.add_argument("--D0-max", type=float, default=5.0)
-    ap.add_argument("--chord", type=float, default=0.1,
-                    help="chord contraction of the Newton solves (keplinger_plate's default)")
+    ap.add_argument("--chord", type=float, default=None,
+                    help="chord contraction of the Newton solves (default: keplinger_plate's)")
     ap.add_argument("--predictor", choices=["none", "secant"], default="secant")
     ap.add_argument("--plain", action="store_true",
                     help="plain Newton: factorise in every iteration, no predictor")
     ap.add_argument("--save", default=None, help="write lam1, lam3, min P33 and x to NPZ")
     ap.add_argument("--scaling", action="store_true",
                     help="time per iteration on four meshes and the fitted exponent")
+    ap.add_argument("--against", default=None, metavar="TREE",
+                    help="also run the ramp with the packages of the source tree TREE (e.g. "
+                         "a 'git archive' of an earlier commit), in alternation, and compare")
+    ap.add_argument("--repeat", type=int, default=3,
+                    help="runs of each tree with --against (default: 3)")
+    ap.add_argument("--one-core", action="store_true",
+                    help="run each ramp on one core (taskset -c 0)")
     ap.add_argument("--json", action="store_true", help="run here, print JSON (internal)")
     ap.add_argument("--smoke", action="store_true",
                     help="2 x 1 x 1 elements, the pre-load in one step and D0 = 0.25, default "
@@ -178,6 +261,9 @@ def main(argv=None) -> int:
     print("NOTE: counts and memory are deterministic; wall times depend on the machine's load.")
     if a.scaling:
         scaling(a)
+        return 0
+    if a.against:
+        against(a)
         return 0
     report(child(a))
     return 0

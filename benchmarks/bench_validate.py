@@ -16,6 +16,14 @@ Usage::
     python benchmarks/bench_validate.py --quick
     python benchmarks/bench_validate.py --solver pardiso [--case uni-axial-ideal zs22]
     python benchmarks/bench_validate.py --smoke    # --quick --case figde
+    python benchmarks/bench_validate.py --quick --against OLD --repeat 2
+
+``--against OLD`` runs the job with the packages of the source tree ``OLD`` (e.g. ``git
+archive 13becd9 | tar -x -C OLD``) and of this tree in alternation (``--repeat`` times
+each), prints each run's CPU and wall seconds with the load average, the medians and
+their ratio, and compares the case CSVs of the two trees column by column: the largest
+difference of every numeric column that differs (``D0_b``, the located buckling load,
+among them).
 
 ``--smoke`` runs the same code path on the cheapest case of the quick job (``figde``,
 SuperLU unless ``--solver`` says otherwise): a check that the script runs, its numbers
@@ -59,6 +67,91 @@ def _verdicts(report: Path) -> dict[str, str]:
     return out
 
 
+def _columns(path: Path) -> dict[str, list[str]]:
+    """Columns of a case CSV (cells as text)."""
+    with open(path, newline="") as fh:
+        rows = list(csv.DictReader(r for r in fh if not r.startswith("#")))
+    return {k: [r[k] for r in rows] for k in (rows[0] if rows else {})}
+
+
+def _float(cell: str) -> float | None:
+    try:
+        return float(cell)
+    except ValueError:
+        return None
+
+
+def compare_outputs(a: Path, b: Path) -> list[tuple[str, str, float]]:
+    """``(csv, column, largest |difference|)`` of the numeric columns of the case CSVs of
+    two output folders that differ (cells that are not numbers must be equal, or the
+    column is reported with ``inf``)."""
+    out = []
+    for fa in sorted(a.glob("*.csv")):
+        fb = b / fa.name
+        if not fb.is_file():
+            out.append((fa.name, "(missing)", float("inf")))
+            continue
+        ca, cb = _columns(fa), _columns(fb)
+        for col in ca:
+            va, vb = ca[col], cb.get(col)
+            if vb is None or len(va) != len(vb):
+                out.append((fa.name, col, float("inf")))
+                continue
+            worst = 0.0
+            for x, y in zip(va, vb):
+                fx, fy = _float(x), _float(y)
+                if fx is None or fy is None:
+                    worst = worst if x == y else float("inf")
+                elif not (fx == fy or (fx != fx and fy != fy)):
+                    worst = max(worst, abs(fx - fy))
+            if worst > 0:
+                out.append((fa.name, col, worst))
+    return out
+
+
+def against(args, cmd_tail: list[str]) -> int:
+    """The job with this tree and with the tree ``args.against`` in alternation."""
+    import statistics
+
+    here = Path(__file__).resolve().parents[1]
+    trees = {"this tree": here, "reference": Path(args.against).resolve()}
+    runs: dict[str, list[tuple[float, float]]] = {k: [] for k in trees}
+    with tempfile.TemporaryDirectory(prefix="bench-validate-") as tmp:
+        for i in range(args.repeat):
+            for name, tree in trees.items():
+                out = Path(tmp) / f"{name.replace(' ', '-')}-{i}"
+                env = dict(os.environ, PYTHONPATH=str(tree))
+                before = resource.getrusage(resource.RUSAGE_CHILDREN)
+                load0 = os.getloadavg()[0]
+                t0 = time.perf_counter()
+                proc = subprocess.run([sys.executable, "-m", "validation.cli", "validate",
+                                       "--out", str(out)] + cmd_tail, cwd=tree, env=env,
+                                      stdout=subprocess.DEVNULL, stderr=subprocess.PIPE,
+                                      text=True)
+                wall = time.perf_counter() - t0
+                after = resource.getrusage(resource.RUSAGE_CHILDREN)
+                cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
+                if proc.returncode != 0:
+                    print(f"{name}: exit code {proc.returncode}: "
+                          f"{proc.stderr.strip().splitlines()[-1:]}")
+                    return 1
+                runs[name].append((cpu, wall))
+                print(f"  {name:>9}: CPU {cpu:6.1f} s, wall {wall:6.1f} s, load "
+                      f"{load0:.2f} -> {os.getloadavg()[0]:.2f}", flush=True)
+        med = {k: (statistics.median(c for c, _ in v), statistics.median(w for _, w in v))
+               for k, v in runs.items()}
+        for k, (c, w) in med.items():
+            print(f"{k:>10}: median CPU {c:.1f} s, median wall {w:.1f} s")
+        print(f"ratio (this tree / reference, medians): CPU "
+              f"{med['this tree'][0] / med['reference'][0]:.3f}, wall "
+              f"{med['this tree'][1] / med['reference'][1]:.3f}")
+        diffs = compare_outputs(Path(tmp) / "this-tree-0", Path(tmp) / "reference-0")
+        print(f"columns that differ between the trees: {len(diffs)}")
+        for f, col, d in sorted(diffs, key=lambda t: -t[2])[:25]:
+            print(f"  {f:28s} {col:24s} {d:.2e}")
+    return 0
+
+
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--quick", action="store_true", help="the README's quick job")
@@ -68,9 +161,17 @@ def main(argv=None) -> int:
     ap.add_argument("--smoke", action="store_true",
                     help="--quick with the cheapest case, figde, unless --case is given (a "
                          "check that the script runs, not a measurement)")
+    ap.add_argument("--against", default=None, metavar="TREE",
+                    help="also run the job with the packages of the source tree TREE, in "
+                         "alternation, and compare times and CSVs")
+    ap.add_argument("--repeat", type=int, default=2,
+                    help="runs of each tree with --against (default: 2)")
     args = ap.parse_args(argv)
     if args.smoke:
         args.quick, args.case = True, args.case or ["figde"]
+    if args.against:
+        tail = ["--solver", args.solver, "--no-progress"] + (["--quick"] if args.quick else [])
+        return against(args, tail + (["--case", *args.case] if args.case else []))
 
     tmp = None
     if args.out is None:

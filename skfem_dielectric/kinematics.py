@@ -94,12 +94,6 @@ def second_piola(F: np.ndarray, P: np.ndarray) -> np.ndarray:
     return np.einsum("Ka...,aL...->KL...", inv3(F), P)
 
 
-def _cof(A: np.ndarray) -> np.ndarray:
-    """Cofactor matrices of ``A[..., 3, 3]`` (rows are cross products of rows of ``A``)."""
-    return np.stack([np.cross(A[..., 1, :], A[..., 2, :]), np.cross(A[..., 2, :], A[..., 0, :]),
-                     np.cross(A[..., 0, :], A[..., 1, :])], axis=-2)
-
-
 def segment_det_limit(F0: np.ndarray, dF: np.ndarray, tol: float = 1e-8) -> float:
     """Largest ``alpha`` in ``(0, 1]`` with ``det(F0 + a dF) > tol det F0`` for all ``a`` in
     ``[0, alpha)`` at every point.
@@ -125,14 +119,15 @@ def segment_det_limit(F0: np.ndarray, dF: np.ndarray, tol: float = 1e-8) -> floa
     points of the cubic it is monotone, so its first crossing of the floor is bracketed
     and found by bisection.
     """
-    F0 = np.asarray(F0, dtype=float).reshape(-1, 3, 3)
-    dF = np.asarray(dF, dtype=float).reshape(-1, 3, 3)
-    c0 = np.linalg.det(F0)
+    # tensor indices first (views): the coefficients by the closed forms of det3 and cof3
+    F0 = np.moveaxis(np.asarray(F0, dtype=float).reshape(-1, 3, 3), 0, 2)
+    dF = np.moveaxis(np.asarray(dF, dtype=float).reshape(-1, 3, 3), 0, 2)
+    c0 = det3(F0)
     if not np.all(c0 > 0):
         return 0.0
-    c1 = np.einsum("nij,nij->n", _cof(F0), dF)
-    c2 = np.einsum("nij,nij->n", _cof(dF), F0)
-    c3 = np.linalg.det(dF)
+    c1 = np.einsum("ijn,ijn->n", cof3(F0), dF)
+    c2 = np.einsum("ijn,ijn->n", cof3(dF), F0)
+    c3 = det3(dF)
     g0 = (1.0 - tol) * c0
     # on [0, 1] the cubic is at least g0 - |c1| - |c2| - |c3|: where that is positive the
     # point cannot cross the floor (most points of a Newton step), the others are analysed

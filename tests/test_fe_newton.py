@@ -433,3 +433,67 @@ def test_a_stop_predicate_ends_the_ramp_as_a_result():
     assert full.stopped_at is None
     with pytest.raises(ValueError, match="stop"):
         ramp(prob, loads, stop=1.0)
+
+
+@pytest.mark.parametrize("m, bound", [(0, None), (6, 7)])
+def test_accelerated_chord_steps_are_gmres_on_a_linear_problem(m, bound):
+    # A x = b on the factors of K0 = A - E: plain chord steps contract by the spectral
+    # radius of K0^-1 E (0.37 here) per step; with Anderson depth m >= n they are
+    # GMRES preconditioned by K0, exact after at most n + 1 steps (finite termination)
+    rng = np.random.default_rng(3)
+    n = 6
+    A = np.diag(np.linspace(2.0, 4.0, n)) + 0.1 * rng.standard_normal((n, n))
+    E = 0.2 * np.diag(rng.uniform(2.0, 3.0, n))
+    K0 = A - E
+    b = rng.standard_normal(n)
+    rho = max(abs(np.linalg.eigvals(np.linalg.solve(K0, E))))
+    assert 0.3 < rho < 0.5
+    solver = get_linear_solver("superlu")
+    solver.solve(sp.csr_matrix(K0), np.zeros(n))          # the old factors at hand
+    res = newton(lambda x: (sp.csr_matrix(A), A @ x - b), np.zeros(n),
+                 residual=lambda x: A @ x - b, linear_solver=solver, reuse_factors=True,
+                 settings=NewtonSettings(atol=1e-11, rtol=0, chord=0.95, acceleration=m,
+                                         max_iter=200))
+    assert res.converged, res.reason
+    np.testing.assert_allclose(res.x, np.linalg.solve(A, b), rtol=0, atol=1e-10)
+    assert res.factorisations == 0 and res.chord_steps == res.iterations
+    if bound is None:       # linear rate rho: log(1e-11 / ||b||) / log(rho) steps at least
+        assert res.iterations >= np.log(1e-11 / np.linalg.norm(b)) / np.log(rho) - 1
+    else:
+        assert res.iterations <= bound
+
+
+def test_kept_factors_cut_factorisations_and_resume_bit_for_bit():
+    prob = Cubic()
+    loads = list(np.linspace(1.0, 8.0, 8))
+    base = RampSettings(atol=1e-12, rtol=0, chord=0.5)
+    plain = ramp(prob, loads, settings=base)
+    kept = ramp(prob, loads, settings=RampSettings(atol=1e-12, rtol=0, chord=0.5,
+                                                   acceleration=3, keep_factors=True))
+    for res in (plain, kept):
+        assert res.converged
+        np.testing.assert_allclose(res.column("x2"), cardano(5.0 * np.array(loads)),
+                                   rtol=0, atol=1e-12)
+    assert kept.factorisations < plain.factorisations
+    # each step records the state whose tangent its factors are of (only when kept)
+    assert all(st.factors is None for st in plain.steps)
+    assert all(st.factors is not None and len(st.factors) == 2 for st in kept.steps)
+    saved = kept.steps[3]
+    part = ramp(prob, loads[4:], x0=saved.x, start=saved.load, back=saved.back,
+                factors=saved.factors, settings=kept_settings(saved))
+    assert all(np.array_equal(a.x, b.x) for a, b in zip(part.steps, kept.steps[4:]))
+    assert part.factorisations == 1 + sum(st.factorisations for st in kept.steps[4:])
+    with pytest.raises(ValueError, match="factors given without x0"):
+        ramp(prob, loads, factors=saved.factors, settings=kept_settings(saved))
+    with pytest.raises(ValueError, match="factors must be a pair"):
+        ramp(prob, loads[4:], x0=saved.x, start=saved.load, factors=saved.x,
+             settings=kept_settings(saved))
+    with pytest.raises(ValueError, match="acceleration"):
+        NewtonSettings(acceleration=-1)
+    with pytest.raises(ValueError, match="keep_factors must be True or False"):
+        RampSettings(keep_factors="yes")
+
+
+def kept_settings(_step):
+    """The settings of the kept-factors ramp above (a resume repeats them)."""
+    return RampSettings(atol=1e-12, rtol=0, chord=0.5, acceleration=3, keep_factors=True)

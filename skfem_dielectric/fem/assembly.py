@@ -25,12 +25,28 @@ import numpy as np
 import scipy
 import scipy.sparse as sp
 
-__all__ = ["BlockScatter", "DofReduction", "OrderedSum", "ScatterMap", "blas_threads",
+__all__ = ["BlockScatter", "DofReduction", "OrderedSum", "ScatterMap", "assembly_threads",
+           "blas_threads",
            "blas_thread_limit",
            "drop_spare_slots", "single_threaded_blas", "trim_heap"]
 
 _OPENBLAS: list = []      # [(get_num_threads, set_num_threads) or None], found on first use
 _MALLOC_TRIM: list = []   # [malloc_trim or None], found on first use
+
+
+def assembly_threads() -> int:
+    """Default worker threads of a batched assembly: ``min(2, cores this process may
+    run on)`` (``os.sched_getaffinity``, else ``os.cpu_count``).
+
+    On one core a pool only hands the chunks from the calling thread to a worker and
+    waits for it, so the assembly then runs in the calling thread; beyond two threads the
+    batched products gain nothing (docs/performance.md).
+    """
+    try:
+        cores = len(os.sched_getaffinity(0))
+    except (AttributeError, OSError):      # not Linux
+        cores = os.cpu_count() or 1
+    return max(1, min(2, cores))
 
 
 def trim_heap() -> bool:

@@ -33,7 +33,6 @@ plain scikit-fem integrands (the maths, readably); the two are tested equal.
 from __future__ import annotations
 
 import math
-import os
 import threading
 from concurrent.futures import ThreadPoolExecutor
 
@@ -41,10 +40,15 @@ import numpy as np
 from skfem import Basis, ElementHex0, ElementHex1, ElementHex2
 
 from ..fem.assembly import (BlockScatter, DofReduction, OrderedSum, ScatterMap,
-                        drop_spare_slots, single_threaded_blas, trim_heap)
+                            assembly_threads, drop_spare_slots, single_threaded_blas,
+                            trim_heap)
 from ..materials import MIXED_FORMULATIONS, dielectric_response
 
-__all__ = ["MixedUPPhiForm", "PRESSURE_ELEMENTS"]
+__all__ = ["MixedUPPhiForm", "PRESSURE_ELEMENTS", "RESIDUAL_BATCH"]
+
+#: Batches of the residual-only evaluation, in assembly chunks (the residual of the
+#: 40 x 1 x 20 plate: 12.4 ms in chunks of 50 elements, 10.2 ms in chunks of 200).
+RESIDUAL_BATCH = 4
 
 #: the pressure spaces: continuous Q1 (Taylor-Hood) or one constant per element (Q2-P0)
 PRESSURE_ELEMENTS = ("Q1", "P0")
@@ -168,7 +172,7 @@ class MixedUPPhiForm:
         self.grad_div = grad_div
         self.elastic_volume = elastic_volume
         self.chunk = int(chunk)
-        self.threads = max(1, int(min(2, os.cpu_count() or 1) if threads is None else threads))
+        self.threads = max(1, int(assembly_threads() if threads is None else threads))
         self._pool = None
         self.b2 = Basis(mesh, ElementHex2(), intorder=intorder)
         self.b1 = Basis(mesh, ElementHex1(), intorder=intorder)
@@ -255,9 +259,10 @@ class MixedUPPhiForm:
             cache[key] = pos
         return pos
 
-    def chunks(self):
-        """Element slices of the batches (at least one per worker thread)."""
-        n = max(1, -(-self.nel // self.chunk))
+    def chunks(self, size: int | None = None):
+        """Element slices of the batches of ``size`` elements (default ``chunk``; at least
+        one per worker thread)."""
+        n = max(1, -(-self.nel // (self.chunk if size is None else size)))
         if self.threads > 1:
             n = max(n, self.threads)
         bounds = np.linspace(0, self.nel, n + 1).round().astype(int)
@@ -419,9 +424,11 @@ class MixedUPPhiForm:
             self._response(xf, sl, need_tangent=False), sl) for sl in self.chunks()])
 
     def residual(self, xf: np.ndarray) -> np.ndarray:
-        """Full internal force vector only (cheaper; the line search)."""
+        """Full internal force vector only (cheaper; the line search).  In batches of
+        :data:`RESIDUAL_BATCH` times ``chunk`` elements: without the tangent a batch is
+        small, and fewer batches cost less overhead."""
         rf = np.zeros(self.n_full)
-        for sl in self.chunks():
+        for sl in self.chunks(RESIDUAL_BATCH * self.chunk):
             re = self._element_residual(self._response(xf, sl, need_tangent=False), sl)
             rf += np.bincount(self.edofs[sl].ravel(), weights=re.ravel(),
                               minlength=self.n_full)

@@ -13,7 +13,8 @@ from .drivers import (EQUIBIAXIAL_SETTINGS, KEPLINGER_SETTINGS, MAXWELL_KEPLINGE
                       maxwell_equibiaxial, maxwell_keplinger, membrane_ramp,
                       membrane_keplinger, cross_section_ramp)
 from .defaults import (EQUIBIAXIAL_PRELOAD_STEPS, EQUIBIAXIAL_RTOL, EQUIBIAXIAL_SIZE, GENT_JM,
-                       KEPLINGER_CHORD, KEPLINGER_PRELOAD_STEPS, KEPLINGER_RTOL, KEPLINGER_SIZE)
+                       KEPLINGER_ACCELERATION, KEPLINGER_CHORD, KEPLINGER_MAX_ITER,
+                       KEPLINGER_PRELOAD_STEPS, KEPLINGER_RTOL, KEPLINGER_SIZE)
 from .loads import keplinger_s, charge_targets, preload_then_charge, remaining_targets
 from .plates import PlateOptions
 
@@ -26,4 +27,5 @@ __all__ = [
     "PlateOptions",
     "GENT_JM", "EQUIBIAXIAL_SIZE", "KEPLINGER_SIZE", "EQUIBIAXIAL_PRELOAD_STEPS",
     "KEPLINGER_PRELOAD_STEPS", "EQUIBIAXIAL_RTOL", "KEPLINGER_RTOL", "KEPLINGER_CHORD",
+    "KEPLINGER_ACCELERATION", "KEPLINGER_MAX_ITER",
 ]

@@ -14,10 +14,12 @@ load of every step is the pair
 post-processed values of the model plus ``phase`` (``"preload"`` or ``"charge"``) and
 ``stable`` (inertia verdict with PARDISO, else ``None``).
 
-Resuming: pass ``x0=step.x``, ``start=step.load`` and ``back=step.back`` of a saved step
-together with the *same* arguments; targets up to and including ``start`` are skipped and
-the remaining steps are bit-for-bit those of the uninterrupted run (deterministic linear
-solver).
+Resuming: pass ``x0=step.x``, ``start=step.load``, ``back=step.back`` and
+``factors=step.factors`` of a saved step together with the *same* arguments; targets up to
+and including ``start`` are skipped and the remaining steps are bit-for-bit those of the
+uninterrupted run (deterministic linear solver).  ``factors`` is where the factors the next
+step starts on come from (``keep_factors`` of the settings, as in :data:`KEPLINGER_SETTINGS`);
+``None`` for settings without it.
 """
 
 from __future__ import annotations
@@ -39,7 +41,8 @@ from ..problem import Problem
 from ..solvers.newton import check_settings
 from ..solvers.ramp import RampResult, RampSettings, StepResult, check_callbacks, ramp
 from .defaults import (EQUIBIAXIAL_PRELOAD_STEPS, EQUIBIAXIAL_RTOL, EQUIBIAXIAL_SIZE, GENT_JM,
-                       KEPLINGER_CHORD, KEPLINGER_PRELOAD_STEPS, KEPLINGER_RTOL, KEPLINGER_SIZE)
+                       KEPLINGER_ACCELERATION, KEPLINGER_CHORD, KEPLINGER_MAX_ITER,
+                       KEPLINGER_PRELOAD_STEPS, KEPLINGER_RTOL, KEPLINGER_SIZE)
 from .loads import charge_targets, keplinger_s, preload_then_charge, remaining_targets
 from .plates import PlateOptions
 
@@ -55,8 +58,9 @@ EQUIBIAXIAL_SETTINGS = RampSettings(atol=0.0, rtol=EQUIBIAXIAL_RTOL, max_cutback
 #: load alone, chord steps while the residual contracts tenfold, and a small Newton budget
 #: (converged steps need <= 6 iterations on the 40 x 20 eighth model up to ``D0 = 5``, up
 #: to 9 right before the breakdown; a low limit makes the attempts beyond it cheap).
-KEPLINGER_SETTINGS = RampSettings(atol=0.0, rtol=KEPLINGER_RTOL, max_iter=12, max_cutbacks=4,
-                                  chord=KEPLINGER_CHORD)
+KEPLINGER_SETTINGS = RampSettings(atol=0.0, rtol=KEPLINGER_RTOL, max_iter=KEPLINGER_MAX_ITER,
+                                  max_cutbacks=4, chord=KEPLINGER_CHORD,
+                                  acceleration=KEPLINGER_ACCELERATION, keep_factors=True)
 #: How :func:`maxwell_keplinger` solves its load steps: :data:`KEPLINGER_SETTINGS` with
 #: the ramp's default Newton budget (6 cut-backs, 25 iterations).
 MAXWELL_KEPLINGER_SETTINGS = replace(KEPLINGER_SETTINGS, max_iter=25, max_cutbacks=6)
@@ -108,15 +112,16 @@ def run_ramp(problem: Problem, targets: Sequence[Any], *,
         The whole load path (e.g. :func:`~skfem_dielectric.gallery.loads.preload_then_charge`).
     on_step, x0, start, back
         Callback and resume state: with ``start`` (the load of a saved step, which must be
-        one of ``targets``), ``x0`` (its state) and ``back`` (its ``StepResult.back``, the
+        one of ``targets``), ``x0`` (its state), ``factors`` (its ``StepResult.factors``,
+        in ``ramp_options``) and ``back`` (its ``StepResult.back``, the
         secant predictor's second point) the ramp continues after ``start``.
     linear_solver
         Name or instance (:func:`~skfem_dielectric.linalg.linear.get_linear_solver`).
     extra
         Quantities added to every step (e.g. ``alpha``); each step also gets ``phase``.
     **ramp_options
-        ``settings`` (:class:`~skfem_dielectric.solvers.ramp.RampSettings`), ``stop``,
-        ``state_analysis``, ``step_limit`` and ``admissible`` of
+        ``settings`` (:class:`~skfem_dielectric.solvers.ramp.RampSettings`), ``factors``,
+        ``stop``, ``state_analysis``, ``step_limit`` and ``admissible`` of
         :func:`~skfem_dielectric.solvers.ramp.ramp`.  For a
         :class:`~skfem_dielectric.models.plate.problem.PlateProblem` the last two default to
         ``step_limit=problem.max_step`` (``det F > 0`` along every Newton step) and
@@ -239,6 +244,7 @@ def equibiaxial_plate(s: float, D0: Sequence[float], *, model: Any = "neo-Hookea
                       on_step: Callable[[StepResult], Any] | None = None,
                       x0: np.ndarray | None = None, start: Any = None,
                       back: tuple[np.ndarray, Any] | None = None,
+                      factors: tuple[np.ndarray, Any] | None = None,
                       settings: RampSettings = EQUIBIAXIAL_SETTINGS) -> RampResult:
     """Equi-biaxial dead-load plate: pre-load ``s``, then the charge ramp ``D0``.
 
@@ -258,7 +264,7 @@ def equibiaxial_plate(s: float, D0: Sequence[float], *, model: Any = "neo-Hookea
     linear_solver
         ``"auto"``, ``"superlu"`` or ``"pardiso"`` (for ``coupling="maxwell"`` PARDISO is
         its general LU).
-    on_step, x0, start, back
+    on_step, x0, start, back, factors
         Callback and resume state, see the module docstring.
     settings
         How the load steps are solved (:class:`~skfem_dielectric.solvers.ramp.RampSettings`;
@@ -280,8 +286,8 @@ def equibiaxial_plate(s: float, D0: Sequence[float], *, model: Any = "neo-Hookea
     if options.coupling == "maxwell":
         extra["variant"] = f"maxwell-{options.field}"
     out = run_ramp(prob, preload_then_charge(s, D0, preload_steps), on_step=on_step, x0=x0,
-                   start=start, back=back, linear_solver=linear_solver, extra=extra,
-                   settings=settings)
+                   start=start, back=back, factors=factors, linear_solver=linear_solver,
+                   extra=extra, settings=settings)
     out.targets = _charge_loads(s, D0)
     return out
 
@@ -297,7 +303,8 @@ def keplinger_plate(alpha: float | None = 1.0, D0: Sequence[float] = (1, 2, 3, 4
                     state_analysis: Callable[..., dict] | None = None,
                     on_step: Callable[[StepResult], Any] | None = None,
                     x0: np.ndarray | None = None, start: Any = None,
-                    back: tuple[np.ndarray, Any] | None = None) -> RampResult:
+                    back: tuple[np.ndarray, Any] | None = None,
+                    factors: tuple[np.ndarray, Any] | None = None) -> RampResult:
     """The uni-axial Keplinger plate: weight on a rigid clamp, then the charge ramp.
 
     Parameters
@@ -333,7 +340,7 @@ def keplinger_plate(alpha: float | None = 1.0, D0: Sequence[float] = (1, 2, 3, 4
         Analysis of every converged state on the factorisation of its tangent, e.g.
         ``StabilityMonitor(k=5)`` (:mod:`skfem_dielectric.stability.monitor`); see
         :func:`~skfem_dielectric.solvers.ramp.ramp`.
-    on_step, x0, start, back
+    on_step, x0, start, back, factors
         Callback and resume state (see the module docstring).
 
     Returns
@@ -356,8 +363,8 @@ def keplinger_plate(alpha: float | None = 1.0, D0: Sequence[float] = (1, 2, 3, 4
     if options.coupling == "maxwell":
         extra["variant"] = f"maxwell-{options.field}"
     out = run_ramp(prob, preload_then_charge(s, D0, preload_steps), on_step=on_step, x0=x0,
-                   start=start, back=back, linear_solver=linear_solver, extra=extra,
-                   settings=settings, state_analysis=state_analysis)
+                   start=start, back=back, factors=factors, linear_solver=linear_solver,
+                   extra=extra, settings=settings, state_analysis=state_analysis)
     out.targets = _charge_loads(s, D0)
     return out
 

@@ -2,7 +2,7 @@
 
 Sylvester's law: ``P K P^T = L D L^T`` has as many positive, negative and zero pivots in
 ``D`` as ``K`` has eigenvalues of each sign.  The factorisation is MKL PARDISO's
-(Bunch-Kaufman, ``fast`` extra), or scipy's SuperLU in symmetric mode with diagonal pivots
+(LDL^T, ``fast`` extra), or scipy's SuperLU in symmetric mode with diagonal pivots
 (``diag_pivot_thresh = 0``; the row and column permutations are checked to be equal, so
 that ``U = D L^T``), or, for small systems, a dense eigenvalue count.
 
@@ -40,7 +40,7 @@ def tangent_inertia(K: sp.spmatrix, method: str = "auto") -> tuple[int, int, int
     K
         Symmetric (possibly indefinite, saddle-point) matrix.
     method
-        ``"pardiso"`` (MKL, Bunch-Kaufman LDL^T), ``"superlu"`` (symmetric-mode LU with
+        ``"pardiso"`` (MKL, LDL^T), ``"superlu"`` (symmetric-mode LU with
         diagonal pivots, ``U = D L^T``), ``"dense"`` (eigenvalues; small systems) or
         ``"auto"`` (PARDISO if installed, else SuperLU).
 

@@ -68,6 +68,9 @@ class NewtonResult:
     residual_seconds, chord_seconds
         Wall time of every residual-only evaluation of a trial point (``chord > 0`` with
         ``residual``) and of every chord back-substitution.
+    factors_at
+        The iterate whose tangent was factorised last (the factors the linear solver
+        holds afterwards), ``None`` if no tangent was factorised.
     """
 
     x: np.ndarray
@@ -83,6 +86,7 @@ class NewtonResult:
     chord_steps: int = 0
     residual_seconds: list[float] = field(default_factory=list)
     chord_seconds: list[float] = field(default_factory=list)
+    factors_at: np.ndarray | None = None
 
 
 @dataclass(frozen=True)
@@ -112,6 +116,10 @@ class NewtonSettings:
     chord
         Contraction below which the factorisation is reused, in ``[0, 1)``; 0 factorises
         the tangent in every iteration (see :func:`newton`).
+    acceleration
+        Depth ``m >= 0`` of the Anderson acceleration of the chord steps: each chord step
+        is combined with the last ``m`` ones made on the same factors (see
+        :func:`newton`); 0 takes the plain chord steps.
 
     Raises
     ------
@@ -126,6 +134,7 @@ class NewtonSettings:
     line_search: bool = True
     max_backtracks: int = 8
     chord: float = 0.0
+    acceleration: int = 0
 
     def __post_init__(self) -> None:
         atol, rtol = check_tolerances(self.atol, self.rtol)
@@ -139,7 +148,8 @@ class NewtonSettings:
                        line_search=bool(self.line_search),
                        max_backtracks=check_nonnegative_int("max_backtracks",
                                                             self.max_backtracks),
-                       chord=chord)
+                       chord=chord,
+                       acceleration=check_nonnegative_int("acceleration", self.acceleration))
         for name, value in checked.items():     # the checked values, as the solver uses them
             object.__setattr__(self, name, value)
 
@@ -219,6 +229,8 @@ class _NewtonIteration:
         self.K = self.r = None
         self.rn = self.tol = np.inf
         self.chord_step = False
+        # (iterate, chord correction) pairs on the factors at hand, for the acceleration
+        self.history: list[tuple[np.ndarray, np.ndarray]] = []
         self.result = NewtonResult(x=x, converged=False, iterations=0, residual_norms=[])
 
     # --- evaluations, timed into the result
@@ -294,15 +306,40 @@ class _NewtonIteration:
             dxc = self.solver.resolve(self.r)
             res.chord_seconds.append(time.perf_counter() - t)
             if dxc is not None and np.all(np.isfinite(dxc)):
-                dx = -dxc
+                dx = self.accelerated(-dxc)
                 res.chord_steps += 1
                 res.iterations = it
         if dx is None:
             self.chord_step = False
             dx = self.newton_step(it)
+            self.history = [(self.x, dx)]     # a Newton step is the first chord step
         if not np.all(np.isfinite(dx)):
             raise _Failed("non-finite Newton increment (singular tangent?)")
         return dx
+
+    def accelerated(self, g: np.ndarray) -> np.ndarray:
+        """The chord correction ``g = -K_old^-1 r`` at ``x``, Anderson-accelerated.
+
+        With the iterates ``x_i`` and chord corrections ``g_i`` of the last ``m``
+        (``acceleration``) steps on the same factors, the differences ``dX``, ``dG`` of
+        consecutive pairs give ``gamma = argmin ||g - dG gamma||`` and the step ``g - (dX
+        + dG) gamma`` (Anderson's type-II update of the fixed-point map ``x + g(x)``,
+        Walker & Ni, SIAM J. Numer. Anal. 49, 2011).  On a linear problem it is GMRES
+        preconditioned by the old factors; the plain chord step where ``m = 0`` or no
+        earlier pair exists.
+        """
+        m = self.settings.acceleration
+        if m == 0:
+            return g
+        self.history = (self.history + [(self.x, g)])[-(m + 1):]
+        h = self.history
+        if len(h) < 2:
+            return g
+        dX = np.stack([b[0] - a[0] for a, b in zip(h[:-1], h[1:])], axis=1)
+        dG = np.stack([b[1] - a[1] for a, b in zip(h[:-1], h[1:])], axis=1)
+        gamma = np.linalg.lstsq(dG, g, rcond=1e-12)[0]
+        step = g - (dX + dG) @ gamma
+        return step if np.all(np.isfinite(step)) else g
 
     def newton_step(self, it: int) -> np.ndarray:
         """Factorise the tangent at ``x`` (assembled now if a chord step came here) and
@@ -322,6 +359,7 @@ class _NewtonIteration:
         res.solve_seconds.append(time.perf_counter() - t)
         self.K = None           # factorised: free its data before the next assembly
         res.factorisations += 1
+        res.factors_at = self.x
         res.inertia = getattr(self.solver, "inertia", None)
         res.iterations = it
         return dx
@@ -433,6 +471,11 @@ def newton(assemble: Callable[[np.ndarray], tuple[sp.spmatrix, np.ndarray]],
         r`` with the factors at hand (a back-substitution, no new tangent), and so on
         while each chord step contracts as much; a chord step that contracts less is kept
         if it reduces ``||r||`` (the next step factorises again), else it is discarded.
+        With ``acceleration = m > 0`` every chord step is Anderson-accelerated with the
+        last ``m`` steps on the same factors (Anderson's type-II update, Walker & Ni,
+        SIAM J. Numer. Anal. 49, 2011: on a linear problem GMRES preconditioned by the
+        old factors), so that old factors keep contracting where plain chord steps
+        would stall.
         With ``residual`` given, the trial points are then evaluated by ``residual`` and
         the tangent is assembled only where it is factorised.  The converged state
         satisfies the same test, so the solution changes only within the tolerance.

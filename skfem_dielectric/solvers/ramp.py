@@ -73,6 +73,13 @@ class RampSettings(NewtonSettings):
         depends on the state before the last one, which every step keeps
         (``StepResult.back``): a ramp resumed with it repeats the uninterrupted one bit for
         bit.
+    keep_factors
+        Start every Newton solve with chord steps on the factors the linear solver holds
+        from the solve before (``reuse_factors`` of
+        :func:`~skfem_dielectric.solvers.newton.newton`): a load step factorises only
+        when the old factors stop contracting (by ``chord``).  Each step records where
+        its factors come from (``StepResult.factors``); a ramp resumed with them repeats
+        the uninterrupted one bit for bit.
     stop_on_instability
         Stop at the first converged sub-step that ``problem.stability(inertia)`` judges
         unstable (needs a solver that reports the inertia, i.e. PARDISO; otherwise the
@@ -89,16 +96,18 @@ class RampSettings(NewtonSettings):
     max_cutbacks: int = 6
     predictor: str = "secant"
     stop_on_instability: bool = False
+    keep_factors: bool = False
 
     def __post_init__(self) -> None:
         super().__post_init__()
         check_choice("predictor", self.predictor, PREDICTORS)
-        if not isinstance(self.stop_on_instability, (bool, np.bool_)):
-            raise ValueError(f"stop_on_instability must be True or False, "
-                             f"got {self.stop_on_instability!r}")
+        for name in ("stop_on_instability", "keep_factors"):
+            if not isinstance(getattr(self, name), (bool, np.bool_)):
+                raise ValueError(f"{name} must be True or False, "
+                                 f"got {getattr(self, name)!r}")
+            object.__setattr__(self, name, bool(getattr(self, name)))
         object.__setattr__(self, "max_cutbacks",
                            check_nonnegative_int("max_cutbacks", self.max_cutbacks))
-        object.__setattr__(self, "stop_on_instability", bool(self.stop_on_instability))
 
 
 @dataclass
@@ -139,6 +148,12 @@ class StepResult:
         secant predictor.  Pass it as ``back=`` together with ``x0=step.x`` and
         ``start=step.load`` to resume a ramp bit for bit (``None`` for the first step of a
         ramp started without ``back``: its start is a guess, not a converged state).
+    factors
+        With ``keep_factors``: where the factors the linear solver holds after this step
+        come from, ``(x, load)``, the state whose tangent was factorised last (the
+        converged state itself where a ``state_analysis`` factorised it); the next step
+        starts on them, so pass it as ``factors=`` to resume a ramp bit for bit.  ``None``
+        otherwise.
     """
 
     load: Any
@@ -155,6 +170,7 @@ class StepResult:
     target_reached: bool = True
     factorisations: int = 0
     back: tuple[np.ndarray, Any] | None = None
+    factors: tuple[np.ndarray, Any] | None = None
 
     def __getitem__(self, key: str) -> Any:
         return self.quantities[key]
@@ -304,39 +320,41 @@ def _as_load(load: Any) -> Any:
     return float(arr) if arr.ndim == 0 else arr.copy()
 
 
-def _check_back(back: Any, x0: Any, n: int) -> tuple[np.ndarray, Any] | None:
-    """``back`` of :func:`ramp` checked: ``None`` or ``(x, load)`` with ``x`` a finite
-    vector of length ``n``; only with ``x0``."""
+def _check_back(back: Any, x0: Any, n: int, name: str = "back"
+                ) -> tuple[np.ndarray, Any] | None:
+    """``back`` (or ``factors``) of :func:`ramp` checked: ``None`` or ``(x, load)`` with
+    ``x`` a finite vector of length ``n``; only with ``x0``."""
     if back is None:
         return None
     if x0 is None:
-        raise ValueError("back given without x0 (it is the state before x0)")
+        raise ValueError(f"{name} given without x0 (it is a state of the ramp before x0)")
     if not isinstance(back, (tuple, list)) or len(back) != 2:
-        raise ValueError(f"back must be a pair (x, load) (StepResult.back), got {back!r:.80}")
-    return (np.array(check_vector("back", back[0], n), dtype=float), _as_load(back[1]))
+        raise ValueError(f"{name} must be a pair (x, load) (StepResult.{name}), "
+                         f"got {back!r:.80}")
+    return (np.array(check_vector(name, back[0], n), dtype=float), _as_load(back[1]))
 
 
 def _secant_guess(problem: Problem, x: np.ndarray, at: Any, back: tuple | None,
-                  load: Any) -> np.ndarray:
+                  load: Any) -> tuple[np.ndarray, np.ndarray | None]:
     """Start of the Newton solve at ``load`` from the converged ``x`` at load ``at``: the
     secant extrapolation through the converged state ``back = (x_old, load_old)`` when the
     new load increment continues the last one (same direction) and lowers the residual,
-    else ``x``."""
+    else ``x``; with the residual at the start where it was evaluated (else ``None``)."""
     if back is None:
-        return x
+        return x, None
     d_old = np.atleast_1d(np.asarray(at, float) - np.asarray(back[1], float))
     d_new = np.atleast_1d(np.asarray(load, float) - np.asarray(at, float))
     n_old, n_new = float(np.linalg.norm(d_old)), float(np.linalg.norm(d_new))
     if not (n_old > 0 and n_new > 0) or abs(d_old @ d_new - n_old * n_new) > 1e-9 * n_old * n_new:
-        return x
+        return x, None
     guess = x + (n_new / n_old) * (x - back[0])
     try:
         r_guess, r_x = problem.residual(guess, load), problem.residual(x, load)
     except (FloatingPointError, ValueError, ZeroDivisionError):
-        return x
+        return x, None
     if np.all(np.isfinite(r_guess)) and np.linalg.norm(r_guess) < np.linalg.norm(r_x):
-        return guess
-    return x
+        return guess, r_guess
+    return x, r_x
 
 
 @dataclass
@@ -389,7 +407,8 @@ class _Ramp:
         self.x, self.load = x, load
         self.back = None     # the converged state before x and its load (secant predictor)
         self.solved = False  # x is a solution (not the initial guess of a fresh ramp)
-        self.reuse = False   # the solver holds the factors of the converged state's tangent
+        self.reuse = False   # the next solve starts with chord steps on the factors at hand
+        self.factors = None  # (x, load) whose tangent the solver's factors are of
         self.no_verdict_warned = False
         self.out = RampResult(steps=[], converged=True)
         self.approach: _Approach | None = None
@@ -405,9 +424,9 @@ class _Ramp:
             load = ap.load_at(f_new)
             scale = self.problem.residual_scale(load)
             at = ap.load_at(ap.fraction) if ap.fraction > 0 else self.load
-            x_start = (_secant_guess(self.problem, self.x, at, self.back, load)
-                       if self.settings.predictor == "secant" else self.x)
-            nr = self.solve(load, x_start, scale)
+            x_start, r_start = (_secant_guess(self.problem, self.x, at, self.back, load)
+                                if self.settings.predictor == "secant" else (self.x, None))
+            nr = self.solve(load, x_start, scale, r_start)
             if nr.converged:
                 # the secant's second point is a solution: a converged (sub-)step, or the
                 # resumed step whose own back was given (not a mere initial guess)
@@ -431,19 +450,33 @@ class _Ramp:
                 ap.step *= 0.5
         return ap
 
-    def solve(self, load: Any, x_start: np.ndarray, scale: float | None) -> NewtonResult:
-        """One Newton solve at ``load`` from ``x_start``, its counts added to the approach
-        and to the ramp's totals."""
+    def solve(self, load: Any, x_start: np.ndarray, scale: float | None,
+              r_start: np.ndarray | None = None) -> NewtonResult:
+        """One Newton solve at ``load`` from ``x_start`` (whose residual ``r_start`` the
+        predictor may have evaluated already), its counts added to the approach and to
+        the ramp's totals."""
         problem, step_limit, admissible = self.problem, self.step_limit, self.admissible
-        nr = newton(lambda xx: self.tangent(xx, load), x_start,
-                    residual=lambda xx: problem.residual(xx, load),
+
+        first = [r_start]
+
+        def residual(xx):
+            r0, first[0] = first[0], None
+            if r0 is not None and np.array_equal(xx, x_start):  # the predictor's evaluation
+                return r0
+            return problem.residual(xx, load)
+
+        nr = newton(lambda xx: self.tangent(xx, load), x_start, residual=residual,
                     linear_solver=self.solver, settings=self.settings, scale=scale,
                     step_limit=None if step_limit is None else
                     (lambda xx, dd: step_limit(xx, dd, load)),
                     admissible=None if admissible is None else
                     (lambda xx: admissible(xx, load)),
                     reuse_factors=self.reuse)
-        self.reuse = False
+        if nr.factorisations:
+            self.factors = (nr.factors_at, load)
+        # the next solve starts on these factors (a failed solve's are not trusted)
+        self.reuse = (self.settings.keep_factors and nr.converged
+                      and self.factors is not None)
         ap, out = self.approach, self.out
         ap.iterations += nr.iterations
         ap.factorisations += nr.factorisations
@@ -472,16 +505,24 @@ class _Ramp:
                           "(use linear_solver='pardiso')", RuntimeWarning, stacklevel=4)
         return verdict is False
 
-    def prime(self) -> None:
-        """Factorise the tangent of the starting state, as :meth:`analyse` did at that
-        state in the uninterrupted ramp, so that a resumed ramp with a
-        ``state_analysis`` starts with the same chord step on the same factors."""
-        K, _ = self.problem.assemble(self.x, self.load)
+    def prime(self, factors: tuple[np.ndarray, Any] | None = None) -> None:
+        """Factorise the tangent the uninterrupted ramp held at the resumed step, so
+        that the resumed ramp starts with the same chord steps on the same factors: that
+        at ``factors = (x, load)`` (``StepResult.factors``, with ``keep_factors``), or
+        that of the starting state, which :meth:`analyse` factorised (a
+        ``state_analysis``)."""
+        if factors is None:
+            x, load = self.x, self.load
+            K, _ = self.problem.assemble(x, load)
+        else:
+            x, load = factors
+            K, _ = self.tangent(x, load)
         try:
             self.solver.solve(K, np.zeros(K.shape[0]))
         except Exception:   # a singular tangent: the first sub-step factorises its own
             return
         self.out.factorisations += 1
+        self.factors = (x, load)
         self.reuse = True
 
     def analyse(self, load: Any) -> tuple[dict, tuple[int, int, int] | None]:
@@ -503,6 +544,7 @@ class _Ramp:
         ap.factorisations += 1
         self.out.factorisations += 1
         self.reuse = True
+        self.factors = (self.x, load)
         return (dict(self.state_analysis(self.problem, self.x, load, K, solver)),
                 solver.factor_inertia())
 
@@ -519,7 +561,8 @@ class _Ramp:
                           assembly_seconds=ap.assembly_seconds,
                           solve_seconds=ap.solve_seconds, inertia=ap.inertia,
                           target_reached=target_reached, factorisations=ap.factorisations,
-                          back=self.back)
+                          back=self.back,
+                          factors=self.factors if self.settings.keep_factors else None)
         step.quantities = dict(self.problem.postprocess(self.x, load))
         step.quantities.update(extra)
         step.quantities.setdefault("stable", self.problem.stability(ap.inertia))
@@ -542,6 +585,7 @@ def check_callbacks(options: dict[str, Any]) -> None:
 
 def ramp(problem: Problem, loads: Sequence[Any], *, x0: np.ndarray | None = None,
          start: Any = None, back: tuple[np.ndarray, Any] | None = None,
+         factors: tuple[np.ndarray, Any] | None = None,
          on_step: Callable[[StepResult], Any] | None = None,
          stop: Callable[[StepResult], bool] | None = None,
          linear_solver: str | LinearSolver = "superlu",
@@ -569,6 +613,12 @@ def ramp(problem: Problem, loads: Sequence[Any], *, x0: np.ndarray | None = None
         state) is taken as a guess, not as a solution: the secant starts from the second
         converged sub-step, and a resumed ramp repeats the uninterrupted one only within
         the Newton tolerance.
+    factors
+        With ``settings.keep_factors``: the state whose tangent the uninterrupted ramp
+        held factorised after ``x0``, ``(x, load)`` (``StepResult.factors``); it is
+        factorised first so that the resumed ramp repeats the uninterrupted one bit for
+        bit.  Without it a resumed ramp with ``keep_factors`` and no ``state_analysis``
+        factorises afresh and repeats the uninterrupted one within the Newton tolerance.
     on_step
         Called as ``on_step(step)`` after every converged target.
     stop
@@ -635,7 +685,10 @@ def ramp(problem: Problem, loads: Sequence[Any], *, x0: np.ndarray | None = None
                 x, _as_load(start))
     run.back = _check_back(back, x0, len(x_init))
     run.solved = run.back is not None
-    if x0 is not None and state_analysis is not None and targets:
+    factors = _check_back(factors, x0, len(x_init), "factors")
+    if targets and factors is not None and settings.keep_factors:
+        run.prime(factors)
+    elif x0 is not None and state_analysis is not None and targets:
         run.prime()
     out = run.out
     for target in targets:

@@ -20,7 +20,8 @@ import numpy as np
 
 import skfem_dielectric as fe
 from skfem_dielectric.gallery.defaults import (EQUIBIAXIAL_PRELOAD_STEPS, EQUIBIAXIAL_RTOL,
-                                               KEPLINGER_CHORD, KEPLINGER_PRELOAD_STEPS,
+                                               KEPLINGER_ACCELERATION, KEPLINGER_CHORD,
+                                               KEPLINGER_PRELOAD_STEPS,
                                                KEPLINGER_RTOL, KEPLINGER_SIZE)
 from skfem_dielectric.gallery.loads import keplinger_s
 
@@ -40,12 +41,16 @@ PRELOAD_STEPS = {"equibiaxial": EQUIBIAXIAL_PRELOAD_STEPS, "uniaxial": KEPLINGER
 #: equibiaxial_plate and of keplinger_plate; the membrane keeps the plain ramp's tolerances.
 RTOL = {"equibiaxial": EQUIBIAXIAL_RTOL, "uniaxial": KEPLINGER_RTOL}
 #: chord factor of the ramps' Newton solves (:func:`skfem_dielectric.solvers.newton.newton`),
-#: that of keplinger_plate: a factorisation is reused while the residual contracts at least
-#: tenfold per step.  Every Newton solve starts from the secant through the last two
-#: converged states (the ramp's default predictor); the state before the last one is saved
-#: with each row's state, so that a resumed ramp repeats the uninterrupted one bit for bit
-#: (timings: docs/performance.md).
+#: that of keplinger_plate: a factorisation is reused, within a load step and across load
+#: steps, while the residual contracts by at least this factor per (Anderson-accelerated,
+#: :data:`ACCELERATION`) chord step.  Every Newton solve starts from the secant through the
+#: last two converged states (the ramp's default predictor); the state before the last one
+#: and the origin of the factors the next step starts on are saved with each row's state,
+#: so that a resumed ramp repeats the uninterrupted one bit for bit (timings:
+#: docs/performance.md).
 CHORD = KEPLINGER_CHORD
+#: depth of the Anderson acceleration of the ramps' chord steps, that of keplinger_plate
+ACCELERATION = KEPLINGER_ACCELERATION
 #: grad-div stabilisation (units of mu) of the form ramped for the whole plate's spectrum
 #: and ``D0_b``: the second ramp of the uni-axial runs analysed for buckling
 #: (``RunSpec.buckling``, :func:`buckling_problem`), and the ramps of the studies
@@ -209,12 +214,13 @@ def ramp_settings(spec: RunSpec, linear_solver="superlu") -> dict:
     -------
     dict
         ``settings``: the ramp's :class:`skfem_dielectric.RampSettings` (its tolerances,
-        cut-backs and Newton budget) with ``chord`` :data:`CHORD`, and in 3D ``atol = 0``
+        cut-backs and Newton budget) with ``chord`` :data:`CHORD`, ``acceleration``
+        :data:`ACCELERATION` and ``keep_factors``, and in 3D ``atol = 0``
         and ``rtol`` :data:`RTOL`; and ``linear_solver``.
     """
     if "maxwell" in spec.variant:
         linear_solver = fe.linalg.nonsymmetric_solver(linear_solver)
-    settings = fe.RampSettings(chord=CHORD)
+    settings = fe.RampSettings(chord=CHORD, acceleration=ACCELERATION, keep_factors=True)
     if not is_membrane(spec):
         settings = replace(settings, atol=0.0, rtol=RTOL[spec.geometry])
     return {"settings": settings, "linear_solver": linear_solver}

@@ -76,7 +76,7 @@ def _stabilised_states(spec, targets, state, linear_solver) -> dict:
         return {"problem": problem, "x": {}}      # that ramp had stopped before
     x0 = None if state is None else np.asarray(state["x_stab"], dtype=float)
     start = None if state is None else np.asarray(state["load"], dtype=float)
-    states, backs = {}, {}
+    states, backs, factors = {}, {}, {}
 
     def cb(step):
         load = np.asarray(step.load, dtype=float)
@@ -85,13 +85,14 @@ def _stabilised_states(spec, targets, state, linear_solver) -> dict:
             report_step(f"{spec.key} D0={load[1]:.3g} (grad-div form, for the whole "
                         f"plate's spectrum)")
             backs[float(load[1])] = step.back
+            factors[float(load[1])] = step.factors
 
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", RuntimeWarning)       # its rows show the failure
         fe.ramp(problem, targets, x0=x0, start=start, back=_saved_back(state, "stab_"),
-                on_step=cb, **ramp_settings(spec, linear_solver),
-                **fe.gallery.newton_guards(problem))
-    return {"problem": problem, "x": states, "back": backs}
+                factors=_saved_back(state, "stab_", "factors"), on_step=cb,
+                **ramp_settings(spec, linear_solver), **fe.gallery.newton_guards(problem))
+    return {"problem": problem, "x": states, "back": backs, "factors": factors}
 
 
 def grad_div_states(spec, linear_solver: str = "superlu") -> tuple:
@@ -104,20 +105,23 @@ def grad_div_states(spec, linear_solver: str = "superlu") -> tuple:
     return st["problem"], [(x, np.array([spec.s, d])) for d, x in sorted(st["x"].items())]
 
 
-def _saved_back(state, prefix="") -> tuple | None:
-    """The secant predictor's second point saved with a row's state (``x_back`` and
-    ``load_back``, or those of the grad-div form with ``prefix="stab_"``), else ``None``."""
-    if state is None or f"x_{prefix}back" not in state:
+def _saved_back(state, prefix="", name="back") -> tuple | None:
+    """A state ``(x, load)`` of the ramp saved with a row's state: the secant predictor's
+    second point (``name="back"``: ``x_back``, ``load_back``) or the origin of the factors
+    the next step starts on (``name="factors"``, ``StepResult.factors``), or those of the
+    grad-div form with ``prefix="stab_"``; ``None`` if not saved."""
+    if state is None or f"x_{prefix}{name}" not in state:
         return None
-    return (np.asarray(state[f"x_{prefix}back"], dtype=float),
-            np.asarray(state[f"load_{prefix}back"], dtype=float))
+    return (np.asarray(state[f"x_{prefix}{name}"], dtype=float),
+            np.asarray(state[f"load_{prefix}{name}"], dtype=float))
 
 
-def _save_back(saved: dict, back, prefix="") -> None:
-    """Add the secant predictor's second point ``back = (x, load)`` to a row's state."""
+def _save_back(saved: dict, back, prefix="", name="back") -> None:
+    """Add a state ``back = (x, load)`` of the ramp to a row's state (see
+    :func:`_saved_back`)."""
     if back is not None:
-        saved[f"x_{prefix}back"] = back[0]
-        saved[f"load_{prefix}back"] = np.asarray(back[1], dtype=float)
+        saved[f"x_{prefix}{name}"] = back[0]
+        saved[f"load_{prefix}{name}"] = np.asarray(back[1], dtype=float)
 
 
 def run_fe(spec, start, state, on_step, linear_solver="superlu"):
@@ -176,6 +180,7 @@ def run_fe(spec, start, state, on_step, linear_solver="superlu"):
         rec = step_record(spec, problem, step, _analysis(monitor, step, load))
         saved = {"x": step.x, "load": load}
         _save_back(saved, step.back)
+        _save_back(saved, step.factors, name="factors")
         if stab is not None:
             xs = stab["x"].get(float(load[1]))
             if xs is not None:
@@ -190,6 +195,7 @@ def run_fe(spec, start, state, on_step, linear_solver="superlu"):
                 track["prev"] = (xs, load)
                 saved["x_stab"] = xs
                 _save_back(saved, stab["back"].get(float(load[1])), "stab_")
+                _save_back(saved, stab["factors"].get(float(load[1])), "stab_", "factors")
                 after = scan.state
                 saved["scan_counts"], saved["scan_physical"] = after["counts"], after["physical"]
             saved["located"] = np.array(track["located"])
@@ -198,7 +204,8 @@ def run_fe(spec, start, state, on_step, linear_solver="superlu"):
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", RuntimeWarning)   # the failure is recorded
         res = fe.ramp(problem, targets, x0=x0, start=start_load,
-                      back=_saved_back(state), on_step=cb,
+                      back=_saved_back(state), factors=_saved_back(state, name="factors"),
+                      on_step=cb,
                       stop=lambda step: track.pop("stop", False),   # at the breakdown
                       state_analysis=monitor, **ramp_settings(spec, linear_solver),
                       **fe.gallery.newton_guards(problem))

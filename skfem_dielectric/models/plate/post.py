@@ -14,6 +14,7 @@ import math
 from typing import Any
 
 import numpy as np
+import scipy.sparse as sp
 from skfem.io.meshio import to_meshio
 
 from ...forms.maxwell_traction import maxwell_nominal_stress
@@ -24,8 +25,73 @@ __all__ = ["evaluate_fields", "plate_stresses", "centre_line_points", "clamp_lin
            "plate_quantities", "plate_step_mesh"]
 
 
+#: Point sets whose evaluation operator a problem keeps (the oldest is dropped first).
+POINT_CACHE_SIZE = 32
+
+
+def _point_operator(problem, points: np.ndarray) -> sp.csr_matrix:
+    """The sparse operator from the full dof vector to the fields at reference ``points``.
+
+    Rows, in blocks of ``n = points.shape[1]``: ``u_a`` (3), ``F_aK - delta_aK`` (9),
+    ``phi`` (1), ``Grad phi`` (3), ``p`` (1).  The mesh is the reference configuration, so
+    the elements holding the points, their reference coordinates and the basis values and
+    gradients there depend on the points only: they are found once per point set and
+    problem (kept in ``problem._point_ops``, at most :data:`POINT_CACHE_SIZE` sets) and an
+    evaluation is one sparse product.
+    """
+    key = (points.shape, points.tobytes())
+    cache = problem.__dict__.setdefault("_point_ops", {})
+    op = cache.get(key)
+    if op is not None:
+        return op
+    b2, bphi, bp = problem.b2, problem.bphi, problem.bp
+    mp = b2.mapping
+    cells = problem.plate.mesh.element_finder(mapping=mp)(*points)
+    X = mp.invF(points[:, :, None], tind=cells)
+    n = points.shape[1]
+    j = np.arange(n)
+    rows, cols, vals = [], [], []
+
+    def add(row0, col, v):
+        rows.append(row0 * n + j)
+        cols.append(col)
+        vals.append(np.asarray(v, dtype=float))
+
+    ed2 = b2.element_dofs[:, cells]
+    for i in range(ed2.shape[0]):
+        df = b2.elem.gbasis(mp, X, i, tind=cells)[0]
+        v, g = np.asarray(df)[:, 0], df.grad[:, :, 0]
+        for a in range(3):
+            col = 3 * ed2[i] + a
+            add(a, col, v)
+            for K in range(3):
+                add(3 + 3 * a + K, col, g[K])
+    edf = bphi.element_dofs[:, cells]
+    for i in range(edf.shape[0]):
+        df = bphi.elem.gbasis(mp, X, i, tind=cells)[0]
+        col = problem.off_phi + edf[i]
+        add(12, col, np.asarray(df)[:, 0])
+        for K in range(3):
+            add(13 + K, col, df.grad[K, :, 0])
+    if problem.n_p:
+        ed1 = bp.element_dofs[:, cells]
+        for i in range(ed1.shape[0]):
+            df = bp.elem.gbasis(mp, X, i, tind=cells)[0]
+            add(16, problem.off_p + ed1[i], np.asarray(df)[:, 0])
+    op = sp.csr_matrix((np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))),
+                       shape=(17 * n, problem.n_full))
+    if len(cache) >= POINT_CACHE_SIZE:
+        cache.pop(next(iter(cache)))
+    cache[key] = op
+    return op
+
+
 def evaluate_fields(problem, xf: np.ndarray, points: np.ndarray) -> dict[str, np.ndarray]:
     """Fields of the full dof vector ``xf`` at reference points ``points`` ``(3, n)``.
+
+    The finite-element interpolation ``u = sum_i u_i N_i(X)``, ``F = I + Grad u``,
+    ``phi``, ``Grad phi`` and ``p`` at the points, as one sparse product with an operator
+    built once per point set (the reference mesh does not move).
 
     Returns
     -------
@@ -33,36 +99,12 @@ def evaluate_fields(problem, xf: np.ndarray, points: np.ndarray) -> dict[str, np
         ``u (3, n)``, ``phi (n)``, ``p (n)`` (zeros for the penalty), ``F (3, 3, n)``,
         ``G = Grad phi (3, n)`` at the points.
     """
-    points = np.asarray(points, dtype=float)
-    b2, bphi, bp = problem.b2, problem.bphi, problem.bp
-    mp = b2.mapping
-    cells = problem.plate.mesh.element_finder(mapping=mp)(*points)
-    X = mp.invF(points[:, :, None], tind=cells)
+    points = np.ascontiguousarray(points, dtype=float)
     n = points.shape[1]
-    u = np.zeros((3, n))
-    F = np.zeros((3, 3, n))
-    ed2 = b2.element_dofs[:, cells]
-    for i in range(ed2.shape[0]):
-        df = b2.elem.gbasis(mp, X, i, tind=cells)[0]
-        for a in range(3):
-            ca = xf[3 * ed2[i] + a]
-            u[a] += ca * np.array(df)[:, 0]
-            F[a] += ca * df.grad[:, :, 0]
-    F += np.eye(3)[:, :, None]
-    phi, G = np.zeros(n), np.zeros((3, n))
-    edf = bphi.element_dofs[:, cells]
-    for i in range(edf.shape[0]):
-        df = bphi.elem.gbasis(mp, X, i, tind=cells)[0]
-        c = xf[problem.off_phi + edf[i]]
-        phi += c * np.array(df)[:, 0]
-        G += c * df.grad[:, :, 0]
-    p = np.zeros(n)
-    if problem.n_p:
-        ed1 = bp.element_dofs[:, cells]
-        for i in range(ed1.shape[0]):
-            df = bp.elem.gbasis(mp, X, i, tind=cells)[0]
-            p += xf[problem.off_p + ed1[i]] * np.array(df)[:, 0]
-    return {"u": u, "phi": phi, "p": p, "F": F, "G": G}
+    v = (_point_operator(problem, points) @ np.asarray(xf, dtype=float)).reshape(17, n)
+    F = v[3:12].reshape(3, 3, n) + np.eye(3)[:, :, None]
+    return {"u": v[0:3].copy(), "phi": v[12].copy(), "p": v[16].copy(), "F": F,
+            "G": v[13:16].copy()}
 
 
 def plate_stresses(problem, F: np.ndarray, G: np.ndarray, p: np.ndarray | None,

@@ -59,7 +59,7 @@ from ...fem.assembly import DofReduction
 from ...fem.mesh import PlateMesh
 from ...forms.maxwell_traction import MaxwellBoundary
 from ...forms.mixed_upphi import PRESSURE_ELEMENTS, MixedUPPhiForm
-from ...kinematics import segment_det_limit
+from ...kinematics import det3, segment_det_limit
 from ...linalg.symmetric import SymmetricUpper
 from ...materials import FORMULATIONS, MIXED_FORMULATIONS
 from ...problem import Layout, Problem
@@ -476,12 +476,13 @@ class PlateProblem(Problem):
         point for all ``a`` in ``[0, alpha]`` (a ``step_limit`` of
         :func:`~skfem_dielectric.solvers.newton.newton`, by
         :func:`~skfem_dielectric.kinematics.segment_det_limit`); 0.0 if ``det F(x) <= 0``."""
-        x0, x1, alpha = self.full(x, load), self.full(x + dx, load), 1.0
-        for sl in self.form.chunks():
-            F0, F1 = (self.form.deformation_gradient(v, sl).reshape(3, 3, -1) for v in (x0, x1))
-            alpha = min(alpha, segment_det_limit(np.moveaxis(F0, 2, 0),
-                                                 np.moveaxis(F1 - F0, 2, 0)))
-        return alpha
+        every = slice(0, self.nel)              # F of every element at once: 9 values a point
+        F0 = self.form.deformation_gradient(self.full(x, load), every).reshape(3, 3, -1)
+        dF = self.form.deformation_gradient(self.red.expand(dx), every).reshape(3, 3, -1)
+        dF[0, 0] -= 1.0                         # Grad dx (no prescribed part): I taken out
+        dF[1, 1] -= 1.0
+        dF[2, 2] -= 1.0
+        return segment_det_limit(np.moveaxis(F0, 2, 0), np.moveaxis(dF, 2, 0))
 
     def admissible(self, x: np.ndarray, load) -> str:
         """Why the plate state ``x`` is inverted, or ``""`` if it is not.
@@ -491,10 +492,9 @@ class PlateProblem(Problem):
         = -lam``, ``F22 = lam^-2`` has ``det F = 1`` and ``|F e1| = lam``, an equilibrium of
         the discrete equations that no deformation of the plate reaches).
         """
-        for _, F, _, _ in self.quadrature_fields(x, load):
-            J = np.linalg.det(np.moveaxis(F.reshape(3, 3, -1), 2, 0))
-            if not np.all(J > 0):
-                return f"det F = {float(J.min()):.3g} <= 0 at a quadrature point"
+        J = det3(self.form.deformation_gradient(self.full(x, load), slice(0, self.nel)))
+        if not np.all(J > 0):
+            return f"det F = {float(J.min()):.3g} <= 0 at a quadrature point"
         F = self.evaluate(x, load, np.zeros((3, 1)))["F"][:, :, 0]
         if not (F[0, 0] > 0 and F[2, 2] > 0):
             return (f"inverted deformation: F11 = {F[0, 0]:.6g}, F33 = {F[2, 2]:.6g} at the "

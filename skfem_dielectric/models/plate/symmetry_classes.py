@@ -16,7 +16,6 @@ some class) and restricted by sparse prolongations ``K_c = P_c^T K P_c``.
 
 from __future__ import annotations
 
-import os
 import weakref
 from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass, field
@@ -26,7 +25,7 @@ import numpy as np
 import scipy.sparse as sp
 
 from ...checks import check_count
-from ...fem.assembly import DofReduction
+from ...fem.assembly import DofReduction, assembly_threads
 from ...linalg.linear import pardiso_available
 from ...problem import Layout
 from ...stability.analysis import StabilityResult, tangent_stability
@@ -181,7 +180,7 @@ def class_threads(method: str) -> int:
     classes at once use both cores), one where PARDISO does (its MKL threads already use
     them)."""
     uses_pardiso = method == "pardiso" or (method == "auto" and pardiso_available())
-    return 1 if uses_pardiso else max(1, min(2, os.cpu_count() or 1))
+    return 1 if uses_pardiso else assembly_threads()
 
 
 def class_stability(problem: PlateProblem, x: np.ndarray, load: Any, *, k: int = 1,
