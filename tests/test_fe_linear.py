@@ -178,3 +178,37 @@ def test_pardiso_factorises_a_given_upper_triangle():
     x2 = s.solve(SymmetricUpper(T2), b)             # the same analysis, new factors
     np.testing.assert_allclose(x2, x / 2.0, rtol=1e-10, atol=1e-14)
     np.testing.assert_allclose(s.resolve(b), x2, rtol=1e-10, atol=1e-14)
+
+
+def zero_diagonal(n: int, seed: int) -> sp.csr_matrix:
+    """Symmetric indefinite matrix with half its diagonal zero (stored explicitly): 1x1
+    diagonal pivots alone must perturb some of them."""
+    rng = np.random.default_rng(seed)
+    A = sp.random(n, n, density=0.1, random_state=seed, format="csr")
+    A = (A + A.T).tolil()
+    A.setdiag(np.r_[np.zeros(n // 2), rng.uniform(-1.0, 1.0, n - n // 2)])
+    A = A.tocsr()
+    A.sort_indices()
+    return A
+
+
+@pytest.mark.parametrize("seed", [0, 1])
+def test_a_perturbed_1x1_pivot_is_refactorised_with_bunch_kaufman(seed):
+    # the default 1x1 pivots perturb pivots of this matrix: the solver factorises it again
+    # with Bunch-Kaufman pivoting (its own analysis) and solves, counts and back-
+    # substitutes with those factors; the reference is numpy's dense solve and eigenvalues
+    K = zero_diagonal(40, seed)
+    b = np.sin(np.arange(40.0))
+    dense = K.toarray()
+    ev = np.linalg.eigvalsh(dense)
+    s = PardisoSolver()
+    x = s.solve(K, b)
+    assert s.fallbacks == 1
+    np.testing.assert_allclose(x, np.linalg.solve(dense, b), rtol=1e-9, atol=1e-9)
+    assert s.inertia == (int((ev > 0).sum()), int((ev < 0).sum()), 0)
+    np.testing.assert_allclose(s.resolve(2.0 * b), 2.0 * x, rtol=1e-9, atol=1e-9)
+    # a matrix without a perturbed pivot goes back to the 1x1 factors
+    K2, b2 = saddle(30, 10, 3), np.cos(np.arange(40.0))
+    x2 = s.solve(K2, b2)
+    assert s.fallbacks == 1 and s.perturbed_pivots() == 0
+    np.testing.assert_allclose(s.resolve(b2), x2, rtol=1e-10, atol=1e-12)

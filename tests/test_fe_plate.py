@@ -373,3 +373,36 @@ def test_equibiaxial_q2_p0_matches_closed_form(grad_div):
         assert abs(st["lam1"] / lam_ref - 1) < 1e-8
         assert abs(st["lam2"] * lam_ref**2 - 1) < 1e-8
         assert abs(st["D0_centre"] - st.load[1]) < 1e-8 * max(1.0, st.load[1])
+
+
+def test_plates_of_one_mesh_share_their_setup_and_fields_are_exact_for_affine_states():
+    from skfem_dielectric.gallery.drivers import keplinger_problem
+    from skfem_dielectric.models.plate.post import evaluate_fields
+
+    p1 = keplinger_problem(elements=(3, 1, 2), symmetry="eighth")
+    p2 = keplinger_problem(model=NeoHookeanDielectric(mu=2.5, eps=4.0), elements=(3, 1, 2),
+                           symmetry="eighth")
+    p3 = keplinger_problem(elements=(4, 1, 2), symmetry="eighth")
+    assert p1.layout_key == p2.layout_key != p3.layout_key
+    # the unit loads scale with the material: traction mu N, charge sqrt(mu eps)
+    np.testing.assert_allclose(p2.f_s, 2.5 * p1.f_s, rtol=1e-15, atol=0)
+    np.testing.assert_allclose(p2.q_D0, math.sqrt(2.5 * 4.0) * p1.q_D0, rtol=1e-15, atol=0)
+    assert p2.clamp_area == p1.clamp_area == pytest.approx(0.5 * 1.0 * 0.5 * 50.0)
+    # an affine state u = A X, phi = c . X, p = p0 is interpolated exactly by Q2/Q1/Q2:
+    # F = I + A, Grad phi = c at any point, whichever plate of the mesh asks
+    A = np.array([[0.1, -0.02, 0.03], [0.01, -0.05, 0.0], [0.02, 0.04, -0.03]])
+    c = np.array([0.3, -1.2, 0.7])
+    for prob in (p1, p2):
+        xf = np.zeros(prob.n_full)
+        X2 = prob.b2.doflocs
+        for a in range(3):
+            xf[a:prob.n_u:3] = A[a] @ X2
+        xf[prob.off_phi:] = c @ prob.bphi.doflocs
+        xf[prob.off_p:prob.off_phi] = 0.25
+        pts = np.array([[1.0, 17.3, 49.9], [0.1, 0.2, 0.45], [0.5, 11.0, 24.0]])
+        fld = evaluate_fields(prob, xf, pts)
+        np.testing.assert_allclose(fld["F"], (np.eye(3) + A)[:, :, None] * np.ones(3),
+                                   rtol=0, atol=1e-13)
+        np.testing.assert_allclose(fld["G"], c[:, None] * np.ones(3), rtol=0, atol=1e-12)
+        np.testing.assert_allclose(fld["u"], A @ pts, rtol=0, atol=1e-12)
+        np.testing.assert_allclose(fld["p"], 0.25, rtol=0, atol=1e-14)

@@ -25,7 +25,8 @@ import numpy as np
 import scipy
 import scipy.sparse as sp
 
-__all__ = ["BlockScatter", "DofReduction", "OrderedSum", "ScatterMap", "assembly_threads",
+__all__ = ["BlockScatter", "DofReduction", "OrderedSum", "ScatterMap", "TRIM_MIN_UNKNOWNS",
+           "assembly_threads",
            "blas_threads",
            "blas_thread_limit",
            "drop_spare_slots", "single_threaded_blas", "trim_heap"]
@@ -49,7 +50,13 @@ def assembly_threads() -> int:
     return max(1, min(2, cores))
 
 
-def trim_heap() -> bool:
+#: Systems smaller than this are not worth a :func:`trim_heap`: their temporaries are
+#: small, and handing the memory back only makes the next allocations fault it in again
+#: (docs/performance.md).
+TRIM_MIN_UNKNOWNS = 20_000
+
+
+def trim_heap(unknowns: int | None = None) -> bool:
     """Give the free memory of glibc's heaps back to the system (``malloc_trim(0)``).
 
     glibc serves allocations above ``M_MMAP_THRESHOLD`` by ``mmap`` and unmaps them when
@@ -59,14 +66,23 @@ def trim_heap() -> bool:
     space stays resident and is not reused by the larger arrays that follow.  Called
     after each assembly and each factorisation (cheap beside either); fixing the
     threshold instead (``mallopt``) made every large temporary a fresh ``mmap`` and the
-    assembly slower.  A no-op where the C library is not glibc.  Sizes and costs:
-    docs/performance.md, "Measurements behind the code".
+    assembly slower.  A no-op where the C library is not glibc, and for a system of fewer
+    than :data:`TRIM_MIN_UNKNOWNS` unknowns.  Sizes and costs: docs/performance.md,
+    "Measurements behind the code".
+
+    Parameters
+    ----------
+    unknowns
+        Unknowns of the system whose temporaries were just freed (``None``: trim
+        whatever the size).
 
     Returns
     -------
     bool
         Whether memory was returned.
     """
+    if unknowns is not None and unknowns < TRIM_MIN_UNKNOWNS:
+        return False
     f = _malloc_trim()
     return bool(f is not None and f(0))
 

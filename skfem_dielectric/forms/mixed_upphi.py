@@ -46,8 +46,7 @@ from ..materials import MIXED_FORMULATIONS, dielectric_response
 
 __all__ = ["MixedUPPhiForm", "PRESSURE_ELEMENTS", "RESIDUAL_BATCH"]
 
-#: Batches of the residual-only evaluation, in assembly chunks (the residual of the
-#: 40 x 1 x 20 plate: 12.4 ms in chunks of 50 elements, 10.2 ms in chunks of 200).
+#: Batches of the residual-only evaluation, in assembly chunks (docs/performance.md).
 RESIDUAL_BATCH = 4
 
 #: the pressure spaces: continuous Q1 (Taylor-Hood) or one constant per element (Q2-P0)
@@ -412,7 +411,7 @@ class MixedUPPhiForm:
             else:
                 for k, sl in enumerate(chunks):
                     self._assemble_chunk(xf, k, sl, grad_div, total, upper)
-        trim_heap()     # the chunks' freed temporaries
+        trim_heap(self.n_full)     # the chunks' freed temporaries
         if upper:
             return drop_spare_slots(total.data, scatter.indptr), total.vector
         return total.data[: scatter.nnz], total.vector

@@ -154,9 +154,12 @@ class PardisoSolver(LinearSolver):
     results may differ in the last bits between runs because MKL is multi-threaded.
 
     Pivoting: after the symmetric scaling and weighted matching of the analysis, the
-    factorisation first takes 1x1 diagonal pivots (``iparm(21) = 0``); a factorisation
-    that had to perturb a pivot (``iparm(14) > 0``) is redone at once with Bunch-Kaufman
-    1x1 and 2x2 pivoting (``iparm(21) = 1``), which was the only pivoting before.  On
+    factorisation takes 1x1 diagonal pivots (``iparm(21) = 0``); a matrix whose
+    factorisation had to perturb a pivot (``iparm(14) > 0``) is factorised again at once
+    with Bunch-Kaufman 1x1 and 2x2 pivoting (``iparm(21) = 1``, which was the only
+    pivoting before) by a second solver with its own analysis (the pivoting cannot change
+    between an analysis and its factorisations), whose factors then serve
+    :meth:`resolve` and the inertia; :attr:`fallbacks` counts them.  On
     every converged state of the Keplinger ramps (eighth and full plate, up to ``D0 =
     6.5``) both give the same inertia and residuals and no perturbed pivot, and the 1x1
     pivots factorise in 0.7 times the time (docs/performance.md).
@@ -192,6 +195,11 @@ class PardisoSolver(LinearSolver):
         self.refine = int(refine)
         self.refine_tol = float(refine_tol)
         self.ordering = ordering
+        self._robust: PardisoSolver | None = None   # Bunch-Kaufman, for perturbed pivots
+        self._active: PardisoSolver | None = None   # it holds the last factors
+        self._last = None
+        #: factorisations redone with Bunch-Kaufman pivoting after a perturbed 1x1 pivot
+        self.fallbacks = 0
         self.inertia = None
 
     def _call(self, phase: int, A: sp.csr_matrix, b: np.ndarray) -> np.ndarray:
@@ -206,7 +214,7 @@ class PardisoSolver(LinearSolver):
         else:
             x = self._call_direct(phase, A, b)
         if phase in (22, 33):
-            trim_heap()
+            trim_heap(A.shape[0])
         return x
 
     def _call_direct(self, phase: int, A: sp.csr_matrix, b: np.ndarray) -> np.ndarray:
@@ -293,24 +301,44 @@ class PardisoSolver(LinearSolver):
             self._pattern = ((U.indptr, U.indices) if not (U.indptr.flags.writeable
                                                            or U.indices.flags.writeable)
                              else (U.indptr.copy(), U.indices.copy()))
+        if self._robust is not None:
+            self._robust.discard()      # its factors were of an earlier matrix
+        self._active = None
         self._call(22, U, b)
-        if self._fallback and self.perturbed_pivots() > 0:
-            for i, v in self._fallback.items():     # once more, with the robust pivoting
-                self._ps.set_iparm(i, v)
-            try:
-                self._call(22, U, b)
-            finally:
-                for i in self._fallback:
-                    self._ps.set_iparm(i, self._pivoting[i])
         count_factorisation()
+        if self._fallback and int(self._ps.iparm[13]) > 0:
+            # a perturbed pivot: this matrix again with Bunch-Kaufman pivoting, which needs
+            # its own analysis (a second PARDISO handle); these factors are freed
+            self._call(0, U, b)
+            self._last = None
+            robust = self._robust_solver()
+            x = robust.solve(K, b)
+            self._active, self.inertia = robust, robust.inertia
+            self.fallbacks += 1
+            return x
         self.inertia = self._read_inertia(K.shape[0])
         x = self._call(33, U, b)
         self._last = U
         return np.ascontiguousarray(self._refined(K, b, x))
 
     def perturbed_pivots(self) -> int:
-        """Pivots the last factorisation perturbed (PARDISO ``iparm(14)``)."""
+        """Pivots the last factorisation perturbed (PARDISO ``iparm(14)``; that of the
+        Bunch-Kaufman factorisation where the 1x1 pivots perturbed one)."""
+        if self._active is not None:
+            return self._active.perturbed_pivots()
         return int(self._ps.iparm[13])
+
+    def _robust_solver(self) -> "PardisoSolver":
+        """The solver with Bunch-Kaufman pivoting that factorises the matrices whose 1x1
+        pivots were perturbed (made on first use; its analysis is kept)."""
+        if self._robust is None:
+            robust = PardisoSolver(refine=self.refine, ordering=self.ordering,
+                                   refine_tol=self.refine_tol)
+            for i, v in self._fallback.items():
+                robust._ps.set_iparm(i, v)
+            robust._fallback = {}
+            self._robust = robust
+        return self._robust
 
     def _refined(self, K: sp.csr_matrix, b: np.ndarray, x: np.ndarray) -> np.ndarray:
         """Up to ``refine`` steps ``x += K^-1 (b - K x)`` with the factors, while the
@@ -337,18 +365,23 @@ class PardisoSolver(LinearSolver):
         memory, docs/performance.md; the analysis is kept) and the matrix it
         belongs to, so that they are not held while the next tangent is assembled and
         factorised; :meth:`resolve` returns ``None`` until the next :meth:`solve`."""
+        if self._active is not None:
+            self._active.discard()
+            self._active = None
         U = getattr(self, "_last", None)
         if U is None:
             return
         self._last = None
         self._call(0, U, np.zeros(U.shape[0]))
-        trim_heap()
+        trim_heap(U.shape[0])
 
     def resolve(self, b: np.ndarray) -> np.ndarray | None:
         """Solve with the last numerical factorisation (PARDISO phase 33), without
         iterative refinement: the callers (chord steps, the monotonicity test of
         :func:`~skfem_dielectric.solvers.newton.newton`) use the old factors for an approximate
         correction, which refinement against the old matrix does not improve."""
+        if self._active is not None:
+            return self._active.resolve(b)
         U = getattr(self, "_last", None)
         if U is None:
             return None

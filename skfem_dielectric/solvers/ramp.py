@@ -6,9 +6,11 @@ and sub-stepped adaptively: a sub-step whose Newton iteration fails is halved (c
 to ``max_cutbacks`` times, and after a success the sub-step doubles again (never beyond the
 target).  Every target starts from the full interval, so a target's solution depends only on
 the state at the previous target and the converged state before it (the secant
-predictor's second point, ``StepResult.back``): resuming a ramp with ``x0=step.x,
-start=step.load, back=step.back`` gives bit-for-bit the same subsequent steps as the
-uninterrupted run (for a deterministic linear solver such as SuperLU).
+predictor's second point, ``StepResult.back``) and, with ``keep_factors``, on the factors
+the solver holds (``StepResult.factors``): resuming a ramp with ``x0=step.x,
+start=step.load, back=step.back, factors=step.factors`` gives bit-for-bit the same
+subsequent steps as the uninterrupted run (for a deterministic linear solver such as
+SuperLU).
 
 After each converged target, ``problem.postprocess(x, load)`` gives a dict of quantities
 stored in the :class:`StepResult`, together with ``stable``, the verdict of

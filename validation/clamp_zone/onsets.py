@@ -155,7 +155,7 @@ def run_class_onsets(alpha: float, elements, *, grading: float = 1.0,
     def on_step(st):
         load = np.asarray(st.load, dtype=float)
         if st.target_reached and load[0] == s:
-            states[float(load[1])] = (st.x, load, st.back)
+            states[float(load[1])] = (st.x, load, st.back, st.factors)
 
     def ramp(targets, start=None):
         with warnings.catch_warnings():
@@ -163,7 +163,7 @@ def run_class_onsets(alpha: float, elements, *, grading: float = 1.0,
             res = fe.gallery.run_ramp(
                 pb, targets, on_step=on_step, linear_solver=solver, settings=UNIT_SETTINGS,
                 **({} if start is None else dict(x0=start[0], start=start[1],
-                                                 back=start[2])))
+                                                 back=start[2], factors=start[3])))
         if not res.converged:
             raise ValueError(f"the ramp of alpha = {alpha:g} {mesh_text(el)} stopped at "
                              f"D0 = {np.asarray(res.failed_at)[-1]:g}")

@@ -188,9 +188,10 @@ def run_unit(alpha: float, elements, *, grading: float = 1.0, D0_step: float = 0
             progress(f"D0 = {load[1]:.4f}: {row.n_negative} negative, {row.n_physical} "
                      f"physical, {row.cpu:.1f} CPU s")
         if row.n_physical > 0 and track["prev"] is not None:
-            track.update(before=before, row=row, cur=(step.x, load, step.back), crossed=True)
+            track.update(before=before, row=row, cur=(step.x, load, step.back, step.factors),
+                         crossed=True)
             return
-        track["prev"] = (step.x, load, step.back)
+        track["prev"] = (step.x, load, step.back, step.factors)
 
     def crossed(step):          # the ramp's stop predicate: the first physical crossing
         return track.pop("crossed", False)
@@ -203,7 +204,7 @@ def run_unit(alpha: float, elements, *, grading: float = 1.0, D0_step: float = 0
                 pb, targets, on_step=on_step, stop=crossed, linear_solver=solver,
                 settings=UNIT_SETTINGS,
                 **({} if start is None else dict(x0=start[0], start=start[1],
-                                                 back=start[2])))
+                                                 back=start[2], factors=start[3])))
         return "" if res.converged else \
             f"ramp stopped at D0 = {np.asarray(res.failed_at)[-1]:g}"
 

@@ -11,6 +11,7 @@ material, so its stress ``gamma (J - 1) J F^-T`` is left out.
 from __future__ import annotations
 
 import math
+import threading
 from typing import Any
 
 import numpy as np
@@ -25,8 +26,11 @@ __all__ = ["evaluate_fields", "plate_stresses", "centre_line_points", "clamp_lin
            "plate_quantities", "plate_step_mesh"]
 
 
-#: Point sets whose evaluation operator a problem keeps (the oldest is dropped first).
-POINT_CACHE_SIZE = 32
+#: Point operators built so far in this process, by the plate's layout and the points
+#: (at most :data:`POINT_CACHE_SIZE`, the oldest dropped first).
+_POINT_OPS: dict = {}
+_POINT_LOCK = threading.Lock()
+POINT_CACHE_SIZE = 256
 
 
 def _point_operator(problem, points: np.ndarray) -> sp.csr_matrix:
@@ -35,13 +39,13 @@ def _point_operator(problem, points: np.ndarray) -> sp.csr_matrix:
     Rows, in blocks of ``n = points.shape[1]``: ``u_a`` (3), ``F_aK - delta_aK`` (9),
     ``phi`` (1), ``Grad phi`` (3), ``p`` (1).  The mesh is the reference configuration, so
     the elements holding the points, their reference coordinates and the basis values and
-    gradients there depend on the points only: they are found once per point set and
-    problem (kept in ``problem._point_ops``, at most :data:`POINT_CACHE_SIZE` sets) and an
-    evaluation is one sparse product.
+    gradients there depend on the mesh, the elements and the points only: they are found
+    once per point set and plate layout (``problem.layout_key``; plates of one mesh share
+    them) and an evaluation is one sparse product.
     """
-    key = (points.shape, points.tobytes())
-    cache = problem.__dict__.setdefault("_point_ops", {})
-    op = cache.get(key)
+    layout = getattr(problem, "layout_key", None)
+    key = (layout, points.shape, points.tobytes())
+    op = _POINT_OPS.get(key) if layout is not None else None
     if op is not None:
         return op
     b2, bphi, bp = problem.b2, problem.bphi, problem.bp
@@ -80,9 +84,11 @@ def _point_operator(problem, points: np.ndarray) -> sp.csr_matrix:
             add(16, problem.off_p + ed1[i], np.asarray(df)[:, 0])
     op = sp.csr_matrix((np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))),
                        shape=(17 * n, problem.n_full))
-    if len(cache) >= POINT_CACHE_SIZE:
-        cache.pop(next(iter(cache)))
-    cache[key] = op
+    if layout is not None:
+        with _POINT_LOCK:
+            while len(_POINT_OPS) >= POINT_CACHE_SIZE:
+                _POINT_OPS.pop(next(iter(_POINT_OPS)))
+            _POINT_OPS[key] = op
     return op
 
 

@@ -47,7 +47,9 @@ Loads (``load = (s, D0)`` or ``(s, E0)`` under voltage control, ``s`` = nominal 
 
 from __future__ import annotations
 
+import hashlib
 import math
+import threading
 from typing import Any
 
 import numpy as np
@@ -170,10 +172,58 @@ def increment_classes(sym) -> list[dict[int, str]]:
             for i in range(2 ** len(sym))]
 
 
+#: Unit loads of the plates built so far in this process, by :func:`layout_key` and
+#: loading (at most :data:`LAYOUT_CACHE_SIZE`; a sweep builds many plates of one mesh).
+_UNIT_LOADS: dict = {}
+_LAYOUT_LOCK = threading.Lock()
+#: Meshes and layouts whose set-up a process keeps (unit loads, point operators).
+LAYOUT_CACHE_SIZE = 64
+
+
+def layout_key(problem, intorder: int) -> str:
+    """A digest of what a plate's discrete operators depend on besides its material: the
+    mesh (nodes, elements, named boundaries), the elements and quadrature and the dof
+    layout.  Plates with the same key share their unit loads and point operators
+    (:func:`~skfem_dielectric.models.plate.post.evaluate_fields`)."""
+    m = problem.plate.mesh
+    h = hashlib.sha1()
+    for a in (m.p, m.t):
+        h.update(np.ascontiguousarray(a).tobytes())
+    for name in sorted(m.boundaries):
+        h.update(name.encode())
+        h.update(np.ascontiguousarray(m.boundaries[name]).tobytes())
+    h.update(repr((type(problem.bphi.elem).__name__, problem.pressure, int(intorder),
+                   problem.n_u, problem.n_p, problem.off_p, problem.off_phi,
+                   problem.n_full)).encode())
+    return h.hexdigest()
+
+
+def remember(cache: dict, key, value):
+    """Keep ``value`` under ``key`` in a process-wide set-up cache, dropping the oldest
+    entry beyond :data:`LAYOUT_CACHE_SIZE`; returns ``value``."""
+    with _LAYOUT_LOCK:
+        while len(cache) >= LAYOUT_CACHE_SIZE:
+            cache.pop(next(iter(cache)))
+        cache[key] = value
+    return value
+
+
 def _unit_loads(problem, intorder: int):
     """Unit external vectors of a plate: traction ``mu N`` per unit ``s``, charge per unit
-    ``D0``, and the reference area of the clamp face."""
-    m, mu, eps = problem.plate.mesh, problem.material.mu, problem.material.eps
+    ``D0``, and the reference area of the clamp face.  Assembled once per layout and
+    loading (:func:`layout_key`) and scaled by the material's ``mu`` and ``eps``."""
+    mu, eps = problem.material.mu, problem.material.eps
+    key = (problem.layout_key, problem.loading)
+    got = _UNIT_LOADS.get(key)
+    if got is None:
+        got = remember(_UNIT_LOADS, key, _assembled_unit_loads(problem, intorder))
+    f_s, q_D0, clamp_area = got
+    return mu * f_s, math.sqrt(mu * eps) * q_D0, clamp_area
+
+
+def _assembled_unit_loads(problem, intorder: int):
+    """:func:`_unit_loads` for ``mu = eps = 1``."""
+    m, mu, eps = problem.plate.mesh, 1.0, 1.0
     names = set(m.boundaries)
     f_s = np.zeros(problem.n_full)
     faces = {"equibiaxial": ("x1_plus", "x1_minus", "x3_plus", "x3_minus"),
@@ -337,6 +387,7 @@ class PlateProblem(Problem):
         self.red = plate_reduction(self, increments)
         f.bind(self.red)
         self._layout = Layout.from_reduction(self.red, f.fields, ("p", "phi"))
+        self.layout_key = layout_key(self, intorder)
         self.f_s, self.q_D0, self.clamp_area = _unit_loads(self, intorder)
         self.boundary = (MaxwellBoundary(m, self.bphi.elem, self.off_phi, self.red,
                                          material.eps, field, intorder)
