@@ -32,18 +32,16 @@ from __future__ import annotations
 
 import math
 import time
-import warnings
 
 import numpy as np
 
-import skfem_dielectric as fe
 from skfem_dielectric.models.plate.scan import PlateScan
 
 from ..fe.model import BUCKLING_GRAD_DIV
 from .costs import Meter
 from .data import CLASS_COLUMNS, TABLES
 from .key import mesh_text
-from .units import UNIT_SETTINGS, unit_problem
+from .units import charge_path, unit_problem, unit_ramp
 
 __all__ = ["COLUMNS", "CLASS_COLUMNS", "run_edge_counts"]
 
@@ -129,12 +127,7 @@ def run_edge_counts(alpha: float, elements, D0, *, grading: float = 1.0,
     top = max(wanted)
     targets = sorted({*np.round(np.arange(0.5, top, 0.5), 10).tolist(),
                       *[d for d in D0 if d <= top]})
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", RuntimeWarning)
-        res = fe.gallery.run_ramp(
-            pb, fe.gallery.preload_then_charge(s, np.asarray(targets),
-                                               fe.gallery.KEPLINGER_PRELOAD_STEPS),
-            on_step=on_step, linear_solver=solver, settings=UNIT_SETTINGS)
+    res = unit_ramp(pb, charge_path(s, targets), on_step=on_step, solver=solver)
     if not res.converged:
         raise ValueError(f"the ramp of alpha = {alpha:g} {mesh_text(el)} stopped at "
                          f"D0 = {np.asarray(res.failed_at)[-1]:g}")

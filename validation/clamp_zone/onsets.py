@@ -42,11 +42,9 @@ from __future__ import annotations
 
 import math
 import time
-import warnings
 
 import numpy as np
 
-import skfem_dielectric as fe
 from skfem_dielectric.models.plate.scan import PlateScan
 from skfem_dielectric.studies.buckling import locate_buckling
 
@@ -54,7 +52,7 @@ from ..fe.model import BUCKLING_NEWTON
 from .costs import Meter
 from .data import LOCATION_TOL, TABLES, scan_states, unit_row
 from .key import UnitKey, mesh_text
-from .units import UNIT_SETTINGS, unit_problem
+from .units import charge_path, unit_problem, unit_ramp
 from .local_theory import energy_centroid, half_waves
 
 __all__ = ["COLUMNS", "bracket", "run_class_onsets"]
@@ -158,17 +156,12 @@ def run_class_onsets(alpha: float, elements, *, grading: float = 1.0,
             states[float(load[1])] = (st.x, load, st.back, st.factors)
 
     def ramp(targets, start=None):
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore", RuntimeWarning)
-            res = fe.gallery.run_ramp(
-                pb, targets, on_step=on_step, linear_solver=solver, settings=UNIT_SETTINGS,
-                **({} if start is None else dict(x0=start[0], start=start[1],
-                                                 back=start[2], factors=start[3])))
+        res = unit_ramp(pb, targets, on_step=on_step, solver=solver, start=start)
         if not res.converged:
             raise ValueError(f"the ramp of alpha = {alpha:g} {mesh_text(el)} stopped at "
                              f"D0 = {np.asarray(res.failed_at)[-1]:g}")
 
-    ramp(fe.gallery.preload_then_charge(s, np.asarray(D0), fe.gallery.KEPLINGER_PRELOAD_STEPS))
+    ramp(charge_path(s, D0))
     # lo has no physical negative mode (the unit's scan says so): its counts alone
     scan = PlateScan(pb)
     t1 = time.process_time()

@@ -43,7 +43,7 @@ from ..table import BREAKDOWN_TOL
 from .costs import Meter
 from .data import LOCATION_TOL, P33_SETS as SETS, TABLES
 from .key import mesh_text
-from .units import UNIT_SETTINGS
+from .units import charge_path, unit_ramp
 
 __all__ = ["COLUMNS", "SETS", "run_p33_unit"]
 
@@ -92,11 +92,7 @@ def run_p33_unit(alpha: float, elements, *, grading: float = 1.0, D0_step: float
             if progress is not None:
                 progress(f"D0 = {load[1]:.4f}: " + ", ".join(f"{k} {m[k]:+.4f}" for k in SETS))
 
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", RuntimeWarning)
-        res = fe.gallery.run_ramp(pb, fe.gallery.preload_then_charge(
-            s, D0, fe.gallery.KEPLINGER_PRELOAD_STEPS), on_step=on_step,
-            linear_solver=solver, settings=UNIT_SETTINGS)
+    res = unit_ramp(pb, charge_path(s, D0), on_step=on_step, solver=solver)
     newton_limit = math.nan if res.converged else (float(states[-1][1][1]) if states else 0.0)
     row = {"alpha": alpha, "mesh": mesh_text(el), "grading": grading, "dofs": pb.ndofs,
            "D0_step": D0_step, "newton_limit": newton_limit, "D0_max": D0_max,

@@ -53,7 +53,7 @@ from .key import UnitKey, mesh_text
 from .local_theory import energy_centroid, half_waves, local_state
 
 __all__ = ["COLUMNS", "UNIT_SETTINGS", "run_unit", "write_mode", "unit_problem",
-           "ramp_states", "ramp_to_charge", "clamp_centre_J"]
+           "charge_path", "unit_ramp", "ramp_states", "ramp_to_charge", "clamp_centre_J"]
 
 #: the columns of a unit's row, in order (the ``units`` table)
 COLUMNS = TABLES["units"].columns
@@ -80,6 +80,30 @@ def unit_problem(alpha: float, elements, *, grading: float = 1.0,
     return pb, fe.gallery.keplinger_s(alpha, g=9.81)
 
 
+def charge_path(s: float, D0) -> list:
+    """A unit's load path: the dead load ``s`` in the Keplinger pre-load steps, then the
+    charges ``D0`` (:func:`~skfem_dielectric.gallery.loads.preload_then_charge`)."""
+    return fe.gallery.preload_then_charge(s, np.asarray(D0),
+                                          fe.gallery.KEPLINGER_PRELOAD_STEPS)
+
+
+def unit_ramp(problem, targets, *, on_step, solver: str = "auto", start=None, **options):
+    """A unit's ramp of ``problem`` through ``targets`` with :data:`UNIT_SETTINGS`, its
+    ``RuntimeWarning`` silenced (the caller reports a ramp that stopped).
+
+    ``start``: a converged state ``(x, load, back, factors)`` of an earlier ramp of the same
+    plate (its step's ``x``, ``load``, ``back`` and ``factors``) to continue from, bit for
+    bit; ``options``: more options of :func:`~skfem_dielectric.gallery.drivers.run_ramp`
+    (e.g. ``stop``).  Returns the :class:`~skfem_dielectric.solvers.ramp.RampResult`.
+    """
+    resume = {} if start is None else dict(x0=start[0], start=start[1], back=start[2],
+                                           factors=start[3])
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", RuntimeWarning)
+        return fe.gallery.run_ramp(problem, targets, on_step=on_step, linear_solver=solver,
+                                   settings=UNIT_SETTINGS, **resume, **options)
+
+
 def ramp_states(problem, s: float, D0: float, *, solver: str = "auto",
                 name: str = "") -> list[tuple[float, np.ndarray, np.ndarray]]:
     """The converged states ``(D0_i, x, load)`` of a unit's ramp to the charge ``D0``: the
@@ -99,12 +123,7 @@ def ramp_states(problem, s: float, D0: float, *, solver: str = "auto",
         if step.target_reached and step.load[0] == s:
             states[float(step.load[1])] = (float(step.load[1]), step.x, step.load)
 
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", RuntimeWarning)
-        res = fe.gallery.run_ramp(
-            problem, fe.gallery.preload_then_charge(s, np.asarray(targets),
-                                                    fe.gallery.KEPLINGER_PRELOAD_STEPS),
-            on_step=on_step, linear_solver=solver, settings=UNIT_SETTINGS)
+    res = unit_ramp(problem, charge_path(s, targets), on_step=on_step, solver=solver)
     if not res.converged or D0 not in states:
         raise ValueError(f"the ramp{' of ' + name if name else ''} stopped before "
                          f"D0 = {D0:g}")
@@ -198,13 +217,8 @@ def run_unit(alpha: float, elements, *, grading: float = 1.0, D0_step: float = 0
 
     def ramp_to(targets, start=None):
         track["row"] = None
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore", RuntimeWarning)
-            res = fe.gallery.run_ramp(
-                pb, targets, on_step=on_step, stop=crossed, linear_solver=solver,
-                settings=UNIT_SETTINGS,
-                **({} if start is None else dict(x0=start[0], start=start[1],
-                                                 back=start[2], factors=start[3])))
+        res = unit_ramp(pb, targets, on_step=on_step, solver=solver, start=start,
+                        stop=crossed)
         return "" if res.converged else \
             f"ramp stopped at D0 = {np.asarray(res.failed_at)[-1]:g}"
 
@@ -214,7 +228,7 @@ def run_unit(alpha: float, elements, *, grading: float = 1.0, D0_step: float = 0
     # again in four steps (twice at most)
     scan = PlateScan(pb)
     D0 = np.round(np.arange(D0_step, D0_max + 1e-9, D0_step), 10)
-    stopped = ramp_to(fe.gallery.preload_then_charge(s, D0, fe.gallery.KEPLINGER_PRELOAD_STEPS))
+    stopped = ramp_to(charge_path(s, D0))
     bl, step = None, D0_step
     method = "pardiso" if solver == "pardiso" else "auto"
     for refine in range(3):
