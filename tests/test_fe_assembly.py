@@ -241,3 +241,13 @@ def test_symmetric_upper_products_and_whole_matrix():
         SymmetricUpper(np.eye(3))
     with pytest.raises(ValueError, match="x must have 60 rows"):
         S @ np.ones(5)
+
+
+def test_setup_cache_keeps_the_newest_entries():
+    from skfem_dielectric.fem.assembly import SetupCache
+
+    c = SetupCache(2)
+    for k in "abc":
+        assert c.put(k, k.upper()) == k.upper()
+    # at most two entries, the oldest ("a") dropped first
+    assert [c.get(k) for k in "abc"] == [None, "B", "C"]

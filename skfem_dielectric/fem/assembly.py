@@ -25,7 +25,8 @@ import numpy as np
 import scipy
 import scipy.sparse as sp
 
-__all__ = ["BlockScatter", "DofReduction", "OrderedSum", "ScatterMap", "TRIM_MIN_UNKNOWNS",
+__all__ = ["BlockScatter", "DofReduction", "OrderedSum", "ScatterMap", "SetupCache",
+           "TRIM_MIN_UNKNOWNS",
            "assembly_threads",
            "blas_threads",
            "blas_thread_limit",
@@ -48,6 +49,36 @@ def assembly_threads() -> int:
     except (AttributeError, OSError):      # not Linux
         cores = os.cpu_count() or 1
     return max(1, min(2, cores))
+
+
+class SetupCache:
+    """Set-up shared by the models of one process, by key: at most ``size`` entries, the
+    oldest dropped first, safe to share between threads (a sweep builds many plates of
+    one mesh, whose operators depend on the mesh only).
+
+    Parameters
+    ----------
+    size
+        Entries kept, ``>= 1``.
+    """
+
+    def __init__(self, size: int):
+        self.size = int(size)
+        self._entries: dict = {}
+        self._lock = threading.Lock()
+
+    def get(self, key):
+        """The entry under ``key``, or ``None``."""
+        return self._entries.get(key)
+
+    def put(self, key, value):
+        """Keep ``value`` under ``key`` (dropping the oldest entries beyond ``size``);
+        returns ``value``."""
+        with self._lock:
+            while len(self._entries) >= self.size:
+                self._entries.pop(next(iter(self._entries)))
+            self._entries[key] = value
+        return value
 
 
 #: Systems smaller than this are not worth a :func:`trim_heap`: their temporaries are

@@ -11,13 +11,13 @@ material, so its stress ``gamma (J - 1) J F^-T`` is left out.
 from __future__ import annotations
 
 import math
-import threading
 from typing import Any
 
 import numpy as np
 import scipy.sparse as sp
 from skfem.io.meshio import to_meshio
 
+from ...fem.assembly import SetupCache
 from ...forms.maxwell_traction import maxwell_nominal_stress
 from ...kinematics import inv3
 from ...materials import ideal_dielectric_response
@@ -27,10 +27,8 @@ __all__ = ["evaluate_fields", "plate_stresses", "centre_line_points", "clamp_lin
 
 
 #: Point operators built so far in this process, by the plate's layout and the points
-#: (at most :data:`POINT_CACHE_SIZE`, the oldest dropped first).
-_POINT_OPS: dict = {}
-_POINT_LOCK = threading.Lock()
-POINT_CACHE_SIZE = 256
+#: (at most 256, the oldest dropped first).
+_POINT_OPS = SetupCache(256)
 
 
 def _point_operator(problem, points: np.ndarray) -> sp.csr_matrix:
@@ -85,10 +83,7 @@ def _point_operator(problem, points: np.ndarray) -> sp.csr_matrix:
     op = sp.csr_matrix((np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))),
                        shape=(17 * n, problem.n_full))
     if layout is not None:
-        with _POINT_LOCK:
-            while len(_POINT_OPS) >= POINT_CACHE_SIZE:
-                _POINT_OPS.pop(next(iter(_POINT_OPS)))
-            _POINT_OPS[key] = op
+        _POINT_OPS.put(key, op)
     return op
 
 

@@ -49,7 +49,6 @@ from __future__ import annotations
 
 import hashlib
 import math
-import threading
 from typing import Any
 
 import numpy as np
@@ -57,7 +56,7 @@ from skfem import ElementHex1, ElementHex2, FacetBasis, LinearForm, asm
 
 from ...checks import (check_choice, check_count, check_instance, check_material,
                        check_nonnegative, check_positive)
-from ...fem.assembly import DofReduction
+from ...fem.assembly import DofReduction, SetupCache
 from ...fem.mesh import PlateMesh
 from ...forms.maxwell_traction import MaxwellBoundary
 from ...forms.mixed_upphi import PRESSURE_ELEMENTS, MixedUPPhiForm
@@ -173,11 +172,8 @@ def increment_classes(sym) -> list[dict[int, str]]:
 
 
 #: Unit loads of the plates built so far in this process, by :func:`layout_key` and
-#: loading (at most :data:`LAYOUT_CACHE_SIZE`; a sweep builds many plates of one mesh).
-_UNIT_LOADS: dict = {}
-_LAYOUT_LOCK = threading.Lock()
-#: Meshes and layouts whose set-up a process keeps (unit loads, point operators).
-LAYOUT_CACHE_SIZE = 64
+#: loading (a sweep builds many plates of one mesh).
+_UNIT_LOADS = SetupCache(64)
 
 
 def layout_key(problem, intorder: int) -> str:
@@ -198,16 +194,6 @@ def layout_key(problem, intorder: int) -> str:
     return h.hexdigest()
 
 
-def remember(cache: dict, key, value):
-    """Keep ``value`` under ``key`` in a process-wide set-up cache, dropping the oldest
-    entry beyond :data:`LAYOUT_CACHE_SIZE`; returns ``value``."""
-    with _LAYOUT_LOCK:
-        while len(cache) >= LAYOUT_CACHE_SIZE:
-            cache.pop(next(iter(cache)))
-        cache[key] = value
-    return value
-
-
 def _unit_loads(problem, intorder: int):
     """Unit external vectors of a plate: traction ``mu N`` per unit ``s``, charge per unit
     ``D0``, and the reference area of the clamp face.  Assembled once per layout and
@@ -216,7 +202,7 @@ def _unit_loads(problem, intorder: int):
     key = (problem.layout_key, problem.loading)
     got = _UNIT_LOADS.get(key)
     if got is None:
-        got = remember(_UNIT_LOADS, key, _assembled_unit_loads(problem, intorder))
+        got = _UNIT_LOADS.put(key, _assembled_unit_loads(problem, intorder))
     f_s, q_D0, clamp_area = got
     return mu * f_s, math.sqrt(mu * eps) * q_D0, clamp_area
 
