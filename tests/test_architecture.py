@@ -235,8 +235,8 @@ def test_imports_at_module_level_except_optional_dependencies():
     bad = []
     for module, tree in TREES.items():
         top = set(map(id, tree.body))
-        for stmt in tree.body:   # module-level try/if blocks are module level too
-            if isinstance(stmt, (ast.Try, ast.If)):
+        for stmt in tree.body:   # module-level try/if/with blocks are module level too
+            if isinstance(stmt, (ast.Try, ast.If, ast.With)):
                 top.update(id(n) for n in ast.walk(stmt)
                            if isinstance(n, (ast.Import, ast.ImportFrom)))
         for node, target, _ in _imports(module):

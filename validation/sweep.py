@@ -422,7 +422,9 @@ def _stop_workers(ex: ProcessPoolExecutor, grace: float = WORKER_GRACE_S) -> Non
 def remove_openmp_registration(pid: int | None = None) -> None:
     """Remove Intel OpenMP's ``/dev/shm/__KMP_REGISTERED_LIB_<pid>_0`` of the process
     ``pid`` (default: this one; loaded with PARDISO for the inertia), which a process
-    stopped by a signal leaves."""
+    stopped by a signal leaves (Linux only: elsewhere there is no such file)."""
+    if not sys.platform.startswith("linux"):
+        return
     path = Path(f"/dev/shm/__KMP_REGISTERED_LIB_{pid or os.getpid()}_0")
     try:
         path.unlink()

@@ -3,17 +3,92 @@
 from __future__ import annotations
 
 import datetime
-import resource
+import math
+import sys
 import time
 
 from skfem_dielectric.linalg.solver_base import factorisation_count
 
-__all__ = ["Meter", "peak_GB"]
+try:                                  # POSIX only
+    import resource
+except ImportError:                   # Windows
+    resource = None
+if sys.platform == "win32":
+    import ctypes
+    from ctypes import wintypes
+
+__all__ = ["Meter", "peak_GB", "peak_bytes"]
+
+
+def _rusage_peak() -> int | None:
+    """``ru_maxrss`` in bytes where :mod:`resource` exists (kilobytes on Linux and the
+    BSDs, bytes on macOS), else ``None``."""
+    if resource is None:
+        return None
+    maxrss = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
+    return int(maxrss) if sys.platform == "darwin" else int(maxrss) * 1024
+
+
+def _proc_peak() -> int | None:
+    """``VmHWM`` of ``/proc/self/status`` in bytes (Linux), else ``None``."""
+    try:
+        with open("/proc/self/status", encoding="ascii", errors="replace") as fh:
+            for line in fh:
+                if line.startswith("VmHWM:"):
+                    return int(line.split()[1]) * 1024
+    except (OSError, ValueError, IndexError):
+        return None
+    return None
+
+
+def _windows_peak() -> int | None:
+    """The peak working set in bytes (Windows' ``GetProcessMemoryInfo``), else ``None``."""
+    if sys.platform != "win32":
+        return None
+
+    class _Counters(ctypes.Structure):
+        _fields_ = [("cb", wintypes.DWORD), ("PageFaultCount", wintypes.DWORD),
+                    ("PeakWorkingSetSize", ctypes.c_size_t),
+                    ("WorkingSetSize", ctypes.c_size_t),
+                    ("QuotaPeakPagedPoolUsage", ctypes.c_size_t),
+                    ("QuotaPagedPoolUsage", ctypes.c_size_t),
+                    ("QuotaPeakNonPagedPoolUsage", ctypes.c_size_t),
+                    ("QuotaNonPagedPoolUsage", ctypes.c_size_t),
+                    ("PagefileUsage", ctypes.c_size_t),
+                    ("PeakPagefileUsage", ctypes.c_size_t)]
+
+    counters = _Counters()
+    counters.cb = ctypes.sizeof(counters)
+    try:
+        psapi = ctypes.WinDLL("psapi")
+        kernel32 = ctypes.WinDLL("kernel32")
+        kernel32.GetCurrentProcess.restype = wintypes.HANDLE
+        ok = psapi.GetProcessMemoryInfo(kernel32.GetCurrentProcess(),
+                                        ctypes.byref(counters), counters.cb)
+    except (OSError, AttributeError):
+        return None
+    return int(counters.PeakWorkingSetSize) if ok else None
+
+
+def peak_bytes() -> float:
+    """The process's peak resident memory so far, in bytes; ``nan`` where the system
+    does not tell.
+
+    Read from ``getrusage`` where :mod:`resource` exists (its ``ru_maxrss`` is in
+    kilobytes on Linux and in bytes on macOS), else from ``VmHWM`` of
+    ``/proc/self/status`` (Linux), else from the peak working set (Windows).
+    """
+    for read in (_rusage_peak, _proc_peak, _windows_peak):
+        value = read()
+        if value is not None:
+            return float(value)
+    return math.nan
 
 
 def peak_GB() -> float:
-    """The process's peak resident memory so far, GB (3 decimals)."""
-    return round(resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024**2, 3)
+    """The process's peak resident memory so far, GB (``1024**3`` bytes, 3 decimals);
+    ``nan`` where the system does not tell (:func:`peak_bytes`)."""
+    return round(peak_bytes() / 1024**3, 3)
 
 
 class Meter:

@@ -1,7 +1,7 @@
 """Files of a validation folder that must survive crashes and concurrent writers.
 
-* :class:`FolderLock` -- an exclusive ``flock`` on a lock file that is never deleted,
-  so that ``--force`` or a change of settings cannot make a second process lock a
+* :class:`FolderLock` -- an exclusive lock on a lock file that is never deleted (on
+  POSIX), so that ``--force`` or a change of settings cannot make a second process lock a
   fresh file while the first one still writes; the holder's pid and command line are
   written into the file, so that a refused process can name it.
 * :func:`write_text_atomic`, :func:`write_csv_atomic`, :func:`write_npz_atomic` -- a temporary file in the same
@@ -22,15 +22,15 @@ import json
 import os
 import shlex
 import sys
+import warnings
 import zipfile
 from pathlib import Path
 
 import numpy as np
 
-try:
-    import fcntl
-except ImportError:                   # pragma: no cover - Windows
-    fcntl = None
+with warnings.catch_warnings():       # where there is neither fcntl nor Windows' locking,
+    warnings.simplefilter("ignore")   # filelock warns that it locks by existence
+    import filelock
 
 __all__ = ["LockedError", "FolderLock", "write_text_atomic", "write_csv_atomic",
            "write_npz_atomic", "csv_line",
@@ -51,7 +51,8 @@ def _command() -> str:
 
 
 class FolderLock:
-    """Exclusive ``flock`` on ``path`` (created, never deleted) while a process writes.
+    """Exclusive lock on ``path`` while a process writes (:mod:`filelock`: ``flock`` on
+    POSIX, ``LockFileEx`` on Windows).
 
     Parameters
     ----------
@@ -64,13 +65,16 @@ class FolderLock:
 
     Notes
     -----
-    The operating system releases an ``flock`` when its process dies, so a killed
-    run never blocks its own resume. Where ``fcntl`` is unavailable (Windows) the
-    lock is a no-op.
+    The operating system releases the lock when its process dies, so a killed run never
+    blocks its own resume. On POSIX the file stays after release (a second process
+    cannot lock a fresh file while the first still writes) and holds the holder's pid and
+    command line, which a refused process names. Where neither ``fcntl`` nor Windows'
+    locking exists, the lock is the file's existence, written with the holder's pid and
+    broken when that process is gone.
     """
 
     def __init__(self, path, what: str, *, wait: bool = False):
-        self.path, self.what, self.wait, self.fd = Path(path), what, wait, None
+        self.path, self.what, self.wait, self._lock = Path(path), what, wait, None
 
     def holder(self) -> str:
         """Pid and command line of the process that holds (or last held) the lock."""
@@ -78,31 +82,38 @@ class FolderLock:
             text = self.path.read_text(errors="replace").strip()
         except OSError:
             text = ""
-        return text.splitlines()[0] if text else "pid unknown"
+        first = text.splitlines()[0] if text else ""
+        if first.isdigit():                 # the existence lock's own record: its pid
+            first = f"pid {first}"
+        return first or "pid unknown"
 
     def __enter__(self) -> "FolderLock":
-        if fcntl is None:             # pragma: no cover - Windows
-            return self
-        fd = os.open(self.path, os.O_RDWR | os.O_CREAT, 0o644)
+        lock = filelock.FileLock(str(self.path), timeout=-1 if self.wait else 0,
+                                 thread_local=False)
         try:
-            fcntl.flock(fd, fcntl.LOCK_EX | (0 if self.wait else fcntl.LOCK_NB))
-        except BlockingIOError:
-            os.close(fd)
+            lock.acquire()
+        except filelock.Timeout:
             raise LockedError(f"{self.what} is being written by another process "
                               f"({self.holder()}); wait for it to end or choose another "
                               f"--out") from None
-        except BaseException:
-            os.close(fd)
-            raise
-        os.ftruncate(fd, 0)
-        os.pwrite(fd, f"pid {os.getpid()}: {_command()}\n".encode(), 0)
-        self.fd = fd
+        self._lock = lock
+        if isinstance(lock, filelock.UnixFileLock):
+            # the holder's name, in the locked file itself (kept after release)
+            try:
+                fd = os.open(self.path, os.O_WRONLY)
+                try:
+                    os.ftruncate(fd, 0)
+                    os.write(fd, f"pid {os.getpid()}: {_command()}\n".encode())
+                finally:
+                    os.close(fd)
+            except OSError:
+                pass
         return self
 
     def __exit__(self, *exc) -> None:
-        if self.fd is not None:
-            os.close(self.fd)         # releases the lock; the file stays
-            self.fd = None
+        if self._lock is not None:
+            self._lock.release()
+            self._lock = None
 
 
 def _tmp_path(path: Path) -> Path:
