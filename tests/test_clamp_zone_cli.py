@@ -146,9 +146,12 @@ def test_another_table_is_refused_and_left_as_it_is(tmp_path, capsys, content):
 
 def test_a_mesh_too_large_is_refused_before_anything_is_allocated(tmp_path, capsys,
                                                                  monkeypatch):
-    """100 x 10 x 100 (100,000 elements, about 110 GB): one line naming --max-elements,
-    exit 2, no plate built and nothing written; raising the bound lets it through to the
-    (here replaced) runner."""
+    """100 x 10 x 100 (100,000 elements): one line naming --max-elements, exit 2, no plate
+    built and nothing written; with the bound raised it is still refused, by its
+    estimated memory (1.8 GB per 1000 elements: 180 GB) against the machine's; a mesh
+    above the bound that fits in memory goes through to the (here replaced) runner."""
+    from validation.clamp_zone.costs import estimated_GB
+
     def no_plate(*a, **k):
         raise AssertionError("a plate was built")
 
@@ -159,13 +162,21 @@ def test_a_mesh_too_large_is_refused_before_anything_is_allocated(tmp_path, caps
     err = capsys.readouterr().err
     assert code == 2 and err.count("\n") == 1
     assert "--mesh 100x10x100 has 100000 elements, more than --max-elements 5000" in err
+    monkeypatch.setattr(zone_cli, "physical_GB", lambda: 24.0)
+    code = main(["clamp-zone", "units", "--alpha", "1", "--mesh", "100x10x100",
+                 "--max-elements", "100000", "--out", str(out)])
+    err = capsys.readouterr().err
+    assert code == 2 and err.count("\n") == 1
+    assert estimated_GB(100_000) == pytest.approx(180.3)
+    assert ("--mesh 100x10x100 needs about 180 GB of memory (100000 elements), more than "
+            "this machine's 24 GB") in err
     assert not out.exists()
     calls = []
     monkeypatch.setattr(zone_cli, "run_unit", lambda *a, **k: calls.append(a) or {})
     with pytest.raises(Exception):
-        main(["clamp-zone", "units", "--alpha", "1", "--mesh", "100x10x100",
-              "--max-elements", "100000", "--out", str(out)])
-    assert calls and calls[0][1] == (100, 10, 100)
+        main(["clamp-zone", "units", "--alpha", "1", "--mesh", "60x2x50",
+              "--max-elements", "6000", "--out", str(out)])
+    assert calls and calls[0][1] == (60, 2, 50)
 
 
 BAD = {

@@ -163,7 +163,8 @@ def test_a_cut_or_edited_voltage_path_is_recomputed_with_one_line(fake, tmp_path
     fake.clear()
     assert main(argv("voltage-control", tmp_path)) == 0
     err = capsys.readouterr().err
-    note = f"{path}: its last row is incomplete (no line end); dropped"
+    note = (f"{path}: its last row is incomplete (no line end); kept aside in "
+            f"{path.name}.damaged")
     assert err.splitlines() == [f"skfem-dielectric: {note}",
                                 f"skfem-dielectric: {path}: kept 1 of 2 paths (5 rows) of an "
                                 f"earlier run"]

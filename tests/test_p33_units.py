@@ -20,7 +20,7 @@ def test_a_located_onset_is_where_an_independent_ramp_crosses_the_flag(tmp_path)
     """alpha = 1 on the graded 8 x 1 x 4 eighth model: each located onset lies inside its
     bracketing step, and an independent ramp from D0 = 0 (not the trial states of the
     location) to 2 ONSET_TOL below and above it reads min P33/mu above and below
-    -BREAKDOWN_TOL there; the row holds every column and a rerun keeps it."""
+    -BREAKDOWN_TOL there; the row holds every column and a rerun with its settings keeps it."""
     row = run_p33_unit(1.0, (8, 1, 4), grading=0.25, D0_step=0.5, D0_max=4.0)
     assert math.isnan(row["newton_limit"]) and row["states"] == 8
     for k in SETS:
@@ -41,8 +41,8 @@ def test_a_located_onset_is_where_an_independent_ramp_crosses_the_flag(tmp_path)
     rows = load("p33", out)
     assert len(rows) == 1 and list(rows[0]) == list(COLUMNS)
     assert main(["clamp-zone", "p33", "--alpha", "1", "--mesh", "6x1x3", "--grading", "0.5",
-                 "--out", str(out)]) == 0
-    assert load("p33", out) == rows
+                 "--D0-step", "1", "--D0-max", "3", "--out", str(out)]) == 0
+    assert load("p33", out) == rows          # the same settings: kept
 
 
 def test_the_smallest_committed_unit_is_reproduced():

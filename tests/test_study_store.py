@@ -89,6 +89,12 @@ STUDIES = {
 @pytest.fixture
 def fake(monkeypatch):
     """Patch both studies' FE work and figures; returns the list of computed units."""
+    return patch_fakes(monkeypatch)
+
+
+def patch_fakes(monkeypatch) -> list:
+    """Patch both studies' FE work and figures (:func:`fake_buckling`, :func:`fake_post`);
+    returns the list of computed units."""
     calls = []
     one, plain = fake_buckling(calls)
     monkeypatch.setattr(bk, "run_one", one)
@@ -163,8 +169,14 @@ def test_a_half_written_last_row_is_recomputed(fake, tmp_path, capsys):
     fake.clear()
     code, _, err = run(argv, tmp_path, capsys)
     assert code == 0
-    assert err.count("\n") == 4     # the cut row dropped; its unit's scan, trial and plain rows
-    assert f"{table}: its last row is incomplete (no line end); dropped" in err
+    assert err.count("\n") == 4     # the cut row kept aside; its unit's scan, trial, plain rows
+    assert (f"{table}: its last row is incomplete (no line end); kept aside in "
+            f"buckling.csv.damaged") in err
+    # the cut row is in the side file, named by its line, not lost
+    cut = ref["buckling.csv"][:-7].decode().splitlines()
+    aside = (tmp_path / "buckling.csv.damaged").read_text().splitlines()
+    assert aside[0].startswith(f"# buckling.csv line {len(cut)} (")
+    assert aside[0].endswith("): incomplete (no line end)") and aside[1:] == cut[-1:]
     assert fake == [(0.5, (3, 1, 1), 0.5, 1.0)]         # only that unit recomputed
     assert files_of(tmp_path, "buckling") == ref
     fake.clear()

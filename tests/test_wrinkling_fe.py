@@ -95,11 +95,14 @@ def test_wrinkling_rows_resume_from_the_csv(tmp_path, monkeypatch):
     again = rows()
     assert len(calls) == 3 and again == first and notes == []
     assert path.read_text() == text
-    path.write_text("control,mode,other\n")          # another file: recomputed
+    path.write_text("control,mode,other\nx,y,z\n")   # another file: recomputed
     calls.clear()
     assert rows() == first and len(calls) == n
     assert notes == [f"{path} has other columns than {', '.join(wr.WRINKLING_COLUMNS)}; its "
-                     f"results are discarded and recomputed"]
+                     f"results are discarded and recomputed (their rows kept in "
+                     f"{path.name}.damaged)"]
+    # the row of the other file is not lost: it is in the side file, after its line
+    assert (path.parent / f"{path.name}.damaged").read_text().splitlines()[1:] == ["x,y,z"]
 
 
 def test_the_mode_near_zero_is_the_mode_of_the_full_search():
@@ -163,7 +166,8 @@ def test_a_cut_last_row_is_recomputed_with_a_note_naming_the_file(tmp_path, monk
     calls.clear()
     assert main(argv) == 0
     err = capsys.readouterr().err
-    note = f"skfem-dielectric: {path}: its last row is incomplete (no line end); dropped"
+    note = (f"skfem-dielectric: {path}: its last row is incomplete (no line end); kept "
+            f"aside in {path.name}.damaged")
     elastic = out / "wrinkling-fe-elastic.csv"
     assert err.splitlines() == [
         note, f"skfem-dielectric: {path}: kept 7 of 8 rows of an earlier run",
@@ -180,7 +184,7 @@ def test_a_cut_last_row_is_recomputed_with_a_note_naming_the_file(tmp_path, monk
     assert main(["wrinkling-fe", "--quick", "--out", str(out)]) == 0
     err = capsys.readouterr().err
     assert err.splitlines() == [f"skfem-dielectric: {elastic}: its last row is incomplete "
-                                f"(no line end); dropped",
+                                f"(no line end); kept aside in {elastic.name}.damaged",
                                 f"skfem-dielectric: {path}: kept 8 of 8 rows of an earlier run",
                                 f"skfem-dielectric: {elastic}: kept 1 of 2 rows of an earlier "
                                 f"run"]

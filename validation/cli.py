@@ -480,6 +480,11 @@ def main(argv: list[str] | None = None) -> int:
     except OSError as exc:
         print(f"{prefix} {_os_message(exc)}", file=sys.stderr)
         return 3
+    except MemoryError as exc:      # an estimate that was too low: still one line
+        what = _one_line(exc)[:160] or "an allocation failed"
+        print(f"{prefix} not enough memory for this run ({what}); choose a smaller mesh",
+              file=sys.stderr)
+        return 2
     except KeyboardInterrupt:
         print("\ninterrupted; rerun the same command to resume", file=sys.stderr)
         return 130

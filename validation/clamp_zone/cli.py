@@ -12,9 +12,12 @@ dask.distributed cluster; the rows are written by this process as units finish.
 from __future__ import annotations
 
 import functools
+import logging
 import math
+import re
 import shlex
 import sys
+from concurrent.futures import CancelledError
 from pathlib import Path
 
 from skfem_dielectric.fem import blas_thread_limit
@@ -24,8 +27,9 @@ from ..fe.model import BUCKLING_GRAD_DIV
 from ..figures.common import save_figure
 from ..options import out_dir, positive, solver_name
 from .band import band_table, edge_band_figure
+from .costs import estimated_GB, physical_GB
 from .counts import run_edge_counts
-from .data import TABLES, load, shipped_path
+from .data import MAX_D0, TABLES, load, shipped_path
 from .flagged import run_flagged_modes
 from .key import FORMULATIONS, UnitKey, parse_mesh
 from .layer import run_clamp_layer
@@ -33,7 +37,7 @@ from .modes import clamp_modes_figure, read_clamp_modes
 from .onsets import run_class_onsets
 from .p33 import run_p33_unit
 from .scaling import scaling_tables
-from .section import DEFAULT_K, run_edge_section
+from .section import DEFAULT_K, MIN_H0, PLATE_HALF_LENGTH, run_edge_section
 from .spec import read_table
 from .table import TableWriter
 from .tables import breakdown_table, clamp_study_tables
@@ -43,8 +47,9 @@ __all__ = ["add_clamp_zone_command", "cmd_clamp_zone", "MAX_ELEMENTS", "DEFAULT_
            "package_data_dir"]
 
 #: the largest eighth-model mesh (``n1 n2 n3`` elements) a run accepts without
-#: ``--max-elements``: about 42 unknowns and 1.1 GB of peak memory per 1000 elements
+#: ``--max-elements``: about 38 unknowns per element
 MAX_ELEMENTS = 5000
+
 #: where a run writes by default
 DEFAULT_OUT = Path("results") / "clamp-zone"
 #: the most charge steps a ramp of ``--D0-max / --D0-step`` may have
@@ -94,8 +99,9 @@ def _common(p, *, meshes: bool = True, mesh_default=None, grading: float = 1.0,
                    help="write into the shipped tables (a maintainer's step, from a source "
                         "checkout only)")
     p.add_argument("--max-elements", type=int, default=MAX_ELEMENTS,
-                   help="largest mesh accepted, in elements n1 n2 n3 (about 1.1 GB per "
-                        "1000)")
+                   help="largest mesh accepted, in elements n1 n2 n3 (a mesh whose "
+                        "estimated peak memory, about 1.8 GB per 1000 elements, exceeds "
+                        "this machine's is refused whatever this bound)")
 
 
 def add_clamp_zone_command(add) -> None:
@@ -216,11 +222,16 @@ def _meshes(args, texts) -> list[tuple]:
             el = parse_mesh(text)
         except ValueError as exc:
             raise ValueError(f"--mesh: {exc}") from None
-        if math.prod(el) > args.max_elements:
-            raise ValueError(f"--mesh {text} has {math.prod(el)} elements, more than "
-                             f"--max-elements {args.max_elements} (about "
-                             f"{1.1 * math.prod(el) / 1000:.0f} GB); raise --max-elements "
-                             f"to run it")
+        n = math.prod(el)
+        need = estimated_GB(n)
+        if n > args.max_elements:
+            raise ValueError(f"--mesh {text} has {n} elements, more than --max-elements "
+                             f"{args.max_elements} (about {need:.0f} GB); raise "
+                             f"--max-elements to run it")
+        have = physical_GB()
+        if math.isfinite(have) and need > have:
+            raise ValueError(f"--mesh {text} needs about {need:.0f} GB of memory ({n} "
+                             f"elements), more than this machine's {have:.0f} GB")
         out.append(el)
     return list(dict.fromkeys(out))
 
@@ -229,9 +240,26 @@ def _charges(name: str, values) -> list[float]:
     return list(dict.fromkeys(_finite(name, v) for v in values))
 
 
+def _charge(name: str, value) -> float:
+    """A charge: finite, > 0 and at most :data:`MAX_D0`."""
+    value = _finite(name, value)
+    if value > MAX_D0:
+        raise ValueError(f"{name} must be at most {MAX_D0:g} (the study's plates wrinkle or "
+                         f"stop below D0 = 6), got {value:g}")
+    return value
+
+
+def _key_value(name: str, value: float) -> float:
+    """``value``, refused if the tables' key (6 significant digits) would change it."""
+    if float(f"{value:g}") != value:
+        raise ValueError(f"{name} {value!r} has more digits than the tables keep (6 "
+                         f"significant: {value:g}); give {value:g} or another value")
+    return value
+
+
 def _ramp(step: float, top: float) -> None:
     _finite("--D0-step", step)
-    _finite("--D0-max", top)
+    _charge("--D0-max", top)
     if top / step > MAX_STEPS:
         raise ValueError(f"--D0-max / --D0-step must be at most {MAX_STEPS} steps, got "
                          f"{top:g} / {step:g}")
@@ -239,8 +267,8 @@ def _ramp(step: float, top: float) -> None:
 
 def _settings(args) -> dict:
     """The checked options shared by the computing subcommands."""
-    alphas = _charges("--alpha", args.alpha)
-    grading = _finite("--grading", args.grading)
+    alphas = [_key_value("--alpha", a) for a in _charges("--alpha", args.alpha)]
+    grading = _key_value("--grading", _finite("--grading", args.grading))
     if grading > 1e3:
         raise ValueError(f"--grading must be at most 1000, got {grading:g}")
     return {"alphas": alphas, "grading": grading, "solver": solver_name(args.solver)}
@@ -314,24 +342,35 @@ def _command(argv) -> str:
     return "skfem-dielectric " + " ".join(shlex.quote(a) for a in args)
 
 
-def _run(args, name: str, tasks, show, *, incremental: bool = False, files=None) -> int:
+def _run(args, name: str, tasks, show, *, incremental: bool = False, files=None,
+         stale=None) -> int:
     """Run ``tasks`` (``[(label, row_key, callable)]``) not yet in the table ``name``,
     writing each task's rows (with the run's command) as soon as they exist; ``files(row)``
-    writes a row's own files first (a row in the table has them)."""
+    writes a row's own files first (a row in the table has them).  ``stale(row)``: why a
+    row of the table does not hold for this run's settings (``""``: it holds); such a
+    row's task runs again, and its new row replaces it (the old one kept aside)."""
     path = _table_path(args, name)
     command = _command(getattr(args, "argv", None))
     with TableWriter(path, TABLES[name], note=_say) as table:
-        todo = []
+        todo, replace = [], []
         for label, row_key, task in tasks:
-            if row_key is not None and table.done(row_key):
+            have = table.find(row_key) if row_key is not None else []
+            why = next((w for w in map(stale, have) if w), "") if stale and have else ""
+            if have and not why:
                 _say(f"{label}: kept")
-            else:
-                todo.append((label, task))
+                continue
+            if why:
+                _say(f"{label}: its row in {path.name} {why}; computed again (the old row "
+                     f"kept in {path.name}.damaged)")
+                replace.extend(have)
+            todo.append((label, task))
 
         def write(rows):
             for r in rows if files is not None else ():
                 files(r)
-            table.add([{**r, "command": command} for r in rows])
+            keys = {TABLES[name].key_of(_key_cells(r)) for r in rows}
+            old = [r for r in replace if TABLES[name].key_of(r) in keys]
+            table.add([{**r, "command": command} for r in rows], replace=old)
             for r in rows:
                 show(r)
 
@@ -350,19 +389,93 @@ def _run(args, name: str, tasks, show, *, incremental: bool = False, files=None)
     return 0
 
 
+def _key_cells(row: dict) -> dict:
+    """A new row's values as the table writes its cells (numbers to 6 digits)."""
+    out = {}
+    for k, v in row.items():
+        if isinstance(v, str):
+            out[k] = v
+        else:
+            try:
+                out[k] = f"{float(v):.6g}"
+            except (TypeError, ValueError):
+                pass
+    return out
+
+
+_NO_CROSSING = re.compile(r"no physical crossing up to D0 = (?P<top>[0-9.e+-]+)")
+
+
+def _units_stale(D0_step: float, D0_max: float):
+    """Why a ``units`` row does not hold for a run with these charge settings: another
+    ``D0_step`` (the scan, so the crossing found, depends on it), or no crossing found up
+    to a ``D0_max`` below this run's.  A located ``D0_b`` holds for any larger ``D0_max``;
+    a ramp that stopped (its note) stops at the same charge."""
+    def stale(row: dict) -> str:
+        step = float(row["D0_step"] or "nan")
+        if step != float(f"{D0_step:.6g}"):
+            return f"was scanned with --D0-step {step:g}, this run asks {D0_step:g}"
+        m = _NO_CROSSING.search(row.get("note") or "")
+        if not row["D0_b"] and m and float(m["top"]) < D0_max:
+            return (f"found no crossing up to D0 = {float(m['top']):g}, this run asks up to "
+                    f"--D0-max {D0_max:g}")
+        return ""
+    return stale
+
+
+def _p33_stale(D0_step: float, D0_max: float):
+    """Why a ``p33`` row does not hold: another ``D0_step``, or a ``D0_max`` below this
+    run's where the row found no Newton limit (the ramp reached its ``D0_max``)."""
+    def stale(row: dict) -> str:
+        step, top = (float(row[c] or "nan") for c in ("D0_step", "D0_max"))
+        if step != float(f"{D0_step:.6g}"):
+            return f"was computed with --D0-step {step:g}, this run asks {D0_step:g}"
+        if not row["newton_limit"] and top < D0_max:
+            return (f"ramped to D0 = {top:g} without a Newton limit, this run asks up to "
+                    f"--D0-max {D0_max:g}")
+        return ""
+    return stale
+
+
 def _on_cluster(args, todo, write) -> None:
-    """The tasks on the dask cluster of ``--scheduler``; rows written here as they end."""
+    """The tasks on the dask cluster of ``--scheduler``; rows written here as they end.
+    A worker that dies mid-task has its task run again on another (dask's rule); the loss
+    of the scheduler ends the command with an :class:`OSError` (exit code 3, one line)
+    after the rows of the finished tasks are written, and a rerun resumes."""
     client, cluster = dask_executor(args.scheduler, args.jobs)
+    finished = 0
+    # the client logs every reconnection attempt after a loss, a traceback each: the one
+    # line below says it instead
+    quiet = [logging.getLogger(n) for n in ("distributed.client", "distributed.core",
+                                            "distributed.comm", "distributed.batched")]
+    levels = [q.level for q in quiet]
+    for q in quiet:
+        q.setLevel(logging.CRITICAL)
     try:
         from distributed import as_completed
+        from distributed.comm.core import CommClosedError
         futures = {client.submit(task, pure=False): label for label, task in todo}
-        for fut in as_completed(futures):
-            _say(f"{futures[fut]}: done on the cluster")
-            write(fut.result())
+        try:
+            for fut in as_completed(futures):
+                rows = fut.result()
+                _say(f"{futures[fut]}: done on the cluster")
+                write(rows)
+                finished += 1
+        except (CancelledError, CommClosedError, TimeoutError, OSError) as exc:
+            if isinstance(exc, OSError) and exc.filename is not None:
+                raise                   # a file of this process, not the cluster
+            raise OSError(None, f"lost the dask scheduler after {finished} of {len(todo)} "
+                                f"unit(s) ({type(exc).__name__}); their rows are kept, rerun "
+                                f"the same command to resume", str(args.scheduler)) from None
     finally:
-        client.close()
+        try:
+            client.close(timeout=5)
+        except Exception:               # the scheduler is gone: nothing to close
+            pass
         if cluster is not None:
             cluster.close()
+        for q, level in zip(quiet, levels):
+            q.setLevel(level)
 
 
 def _cmd_units(args) -> int:
@@ -391,7 +504,8 @@ def _cmd_units(args) -> int:
              + (f"({r['note']}) " if r.get('note') else "")
              + f"{r.get('half_waves', '')} half-waves, {r['dofs']} DOFs, "
              f"{r['cpu_s']} CPU s, {r['peak_GB']} GB")
-    return _run(args, "units", tasks, show, files=mode)
+    return _run(args, "units", tasks, show, files=mode,
+                stale=_units_stale(args.D0_step, args.D0_max))
 
 
 def _units_source(args):
@@ -403,7 +517,7 @@ def _cmd_onsets(args) -> int:
     meshes = _meshes(args, args.mesh)
     bracket = None
     if args.bracket is not None:
-        lo, hi = (_finite("--bracket", v) for v in args.bracket)
+        lo, hi = (_charge("--bracket", v) for v in args.bracket)
         if not lo < hi:
             raise ValueError(f"--bracket must be LO < HI, got {lo:g} {hi:g}")
         bracket = (lo, hi)
@@ -457,12 +571,12 @@ def _cmd_p33(args) -> int:
             f"{s} {r[f'P33_onset_{s}'] or 'none'}" for s in ("centre_line", "clamp",
                                                              "interior"))
              + f", Newton limit {r['newton_limit'] or 'none'}, {r['cpu_s']} CPU s")
-    return _run(args, "p33", tasks, show)
+    return _run(args, "p33", tasks, show, stale=_p33_stale(args.D0_step, args.D0_max))
 
 
 def _cmd_flagged(args) -> int:
     opts = _settings(args)
-    D0 = _finite("--D0", args.D0)
+    D0 = _charge("--D0", args.D0)
     meshes = _meshes(args, args.mesh)
     tasks = [(f"{k} D0 = {D0:g}", {"alpha": k.alpha, "mesh": k.mesh_text,
                                    "grading": k.grading, "D0": D0},
@@ -482,7 +596,7 @@ def _grad_div(args) -> float:
 
 def _cmd_counts(args) -> int:
     opts = _settings(args)
-    D0 = _charges("--D0", args.D0)
+    D0 = list(dict.fromkeys(_charge("--D0", d) for d in args.D0))
     meshes = _meshes(args, args.mesh)
     grad_div = _grad_div(args)
     path = _table_path(args, "counts")
@@ -504,11 +618,17 @@ def _cmd_counts(args) -> int:
 
 def _cmd_section(args) -> int:
     opts = _settings(args)
-    D0 = _charges("--D0", args.D0)
+    D0 = list(dict.fromkeys(_charge("--D0", d) for d in args.D0))
     (el,) = _meshes(args, [args.mesh])
     grad_div = _grad_div(args)
     length = _finite("--length", args.length)
+    if length > PLATE_HALF_LENGTH:
+        raise ValueError(f"--length must be at most the eighth model's {PLATE_HALF_LENGTH:g} "
+                         f"mm, got {length:g}")
     h0s = _charges("--h0", args.h0)
+    if min(h0s) < MIN_H0:
+        raise ValueError(f"--h0 must be at least {MIN_H0:g} mm (finer edge elements fail in "
+                         f"scikit-fem's facet-basis inverse map), got {min(h0s):g}")
     if max(h0s) >= length:
         raise ValueError(f"--h0 must be below --length {length:g}, got {max(h0s):g}")
     ks = DEFAULT_K if args.k is None else _charges("--k", args.k)
@@ -521,13 +641,23 @@ def _cmd_section(args) -> int:
     return _run(args, "section", tasks, lambda r: None, incremental=True)
 
 
+def _damaged_rows(source) -> None:
+    """One line on stderr per damaged row of the study's tables in ``source`` (default:
+    the shipped ones), which the printed tables leave out."""
+    for name in TABLES:
+        load(name, source, note=lambda msg: print(f"skfem-dielectric clamp-zone: {msg}",
+                                                  file=sys.stderr))
+
+
 def _cmd_tables(args) -> int:
     source = _source(args)
+    _damaged_rows(source)
     sys.stdout.write(breakdown_table(source) if args.breakdown else clamp_study_tables(source))
     return 0
 
 
 def _cmd_scaling(args) -> int:
+    _damaged_rows(None)
     sys.stdout.write(scaling_tables(membrane=not args.no_membrane))
     return 0
 

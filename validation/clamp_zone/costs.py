@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import datetime
 import math
+import os
 import sys
 import time
 
@@ -17,7 +18,12 @@ if sys.platform == "win32":
     import ctypes
     from ctypes import wintypes
 
-__all__ = ["Meter", "peak_GB", "peak_bytes"]
+__all__ = ["Meter", "peak_GB", "peak_bytes", "estimated_GB", "physical_GB",
+           "GB_PER_1000_ELEMENTS"]
+
+#: peak memory of a clamp-zone unit or count per 1000 eighth-model elements, GB: the
+#: largest of the counts table's rows (1.69 on 50x2x36, 1.41-1.56 on n2 = 1), rounded up
+GB_PER_1000_ELEMENTS = 1.8
 
 
 def _rusage_peak() -> int | None:
@@ -89,6 +95,39 @@ def peak_GB() -> float:
     """The process's peak resident memory so far, GB (``1024**3`` bytes, 3 decimals);
     ``nan`` where the system does not tell (:func:`peak_bytes`)."""
     return round(peak_bytes() / 1024**3, 3)
+
+
+def estimated_GB(elements: int) -> float:
+    """The estimated peak memory (GB) of a clamp-zone run on a mesh of ``elements``
+    eighth-model elements: :data:`GB_PER_1000_ELEMENTS` per 1000 and 0.3 GB of imports."""
+    return 0.3 + GB_PER_1000_ELEMENTS * elements / 1000
+
+
+def physical_GB() -> float:
+    """This machine's physical memory, GB; ``nan`` where the system does not tell."""
+    try:
+        return os.sysconf("SC_PHYS_PAGES") * os.sysconf("SC_PAGE_SIZE") / 1024**3
+    except (AttributeError, ValueError, OSError):
+        pass
+    if sys.platform == "win32":
+        class _Status(ctypes.Structure):
+            _fields_ = [("dwLength", wintypes.DWORD), ("dwMemoryLoad", wintypes.DWORD),
+                        ("ullTotalPhys", ctypes.c_ulonglong),
+                        ("ullAvailPhys", ctypes.c_ulonglong),
+                        ("ullTotalPageFile", ctypes.c_ulonglong),
+                        ("ullAvailPageFile", ctypes.c_ulonglong),
+                        ("ullTotalVirtual", ctypes.c_ulonglong),
+                        ("ullAvailVirtual", ctypes.c_ulonglong),
+                        ("ullAvailExtendedVirtual", ctypes.c_ulonglong)]
+
+        status = _Status()
+        status.dwLength = ctypes.sizeof(status)
+        try:
+            if ctypes.WinDLL("kernel32").GlobalMemoryStatusEx(ctypes.byref(status)):
+                return status.ullTotalPhys / 1024**3
+        except (OSError, AttributeError):
+            pass
+    return math.nan
 
 
 class Meter:

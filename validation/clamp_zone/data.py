@@ -9,6 +9,7 @@ finite elements.
 
 from __future__ import annotations
 
+import errno
 import math
 from importlib import resources
 from pathlib import Path
@@ -16,8 +17,12 @@ from pathlib import Path
 from .key import UnitKey
 from .spec import TableSpec, read_table
 
-__all__ = ["TABLES", "load", "shipped_path", "unit_row", "scan_states", "plain_p33_row",
-           "clamp_unit_load",
+#: the largest charge the study accepts (``--D0``, ``--D0-max``, ``--bracket``, a unit's
+#: ``D0_b`` read from a table): its plates wrinkle or stop below D0 = 6
+MAX_D0 = 50.0
+
+__all__ = ["TABLES", "MAX_D0", "load", "table_file", "shipped_path", "unit_row",
+           "scan_states", "plain_p33_row", "clamp_unit_load",
            "tied_classes",
            "MIN_ELEMENTS_PER_HALF_WAVE", "LOCATION_TOL", "CLASS_TIE", "LAYER_WIDTHS",
            "P33_SETS", "CLASS_COLUMNS"]
@@ -155,14 +160,16 @@ def load(name: str, where=None, *, note=None) -> list[dict]:
     """
     if name not in TABLES:
         raise ValueError(f"name must be one of {', '.join(TABLES)}, got {name!r}")
-    spec = TABLES[name]
+    return read_table(table_file(name, where), TABLES[name], note=note)
+
+
+def table_file(name: str, where=None) -> Path:
+    """The file of the table ``name``: ``where`` itself, or the table's file in the folder
+    ``where``, or the shipped table (``where`` is ``None``)."""
     if where is None:
-        path = shipped_path(name)
-    else:
-        path = Path(where)
-        if path.is_dir():
-            path = path / spec.file
-    return read_table(path, spec, note=note)
+        return shipped_path(name)
+    path = Path(where)
+    return path / TABLES[name].file if path.is_dir() else path
 
 
 def scan_states(row: dict) -> list[tuple[float, int, int]]:
@@ -216,10 +223,18 @@ def unit_row(key: UnitKey, where=None) -> dict:
     ------
     ValueError
         No table has the unit: the message names it and the command that computes it.
+    OSError
+        The unit's ``D0_b`` is not empty and not a charge in ``(0, MAX_D0]``: the message
+        names the table (exit code 3 of the CLI: a damaged row).
     """
     for source in ((where, None) if where is not None else (None,)):
         for r in load("units", source):
             if UnitKey.from_row(r) == key:
+                d0b = float(r["D0_b"] or "nan")
+                if r["D0_b"] and not (0 < d0b <= MAX_D0):
+                    raise OSError(errno.EINVAL, f"the row of the clamp-zone unit {key} has "
+                                  f"D0_b = {r['D0_b']}, not a charge in (0, {MAX_D0:g}]; "
+                                  f"compute that unit again", str(table_file("units", source)))
                 return r
     raise ValueError(f"no clamp-zone unit {key} in the units table: run skfem-dielectric "
                      f"clamp-zone units for it first")

@@ -12,11 +12,13 @@ shipped ones.
 
 from __future__ import annotations
 
+import errno
 from pathlib import Path
 
 import numpy as np
 
 from ..figures.common import plt
+from ..store import read_npz
 from .key import UnitKey
 
 __all__ = ["read_clamp_modes", "clamp_modes_figure"]
@@ -50,11 +52,14 @@ def read_clamp_modes(folder) -> list[dict]:
             key = UnitKey.parse(f.stem)
         except ValueError:
             continue
-        with np.load(f) as z:
-            out.append({"key": key, "alpha": key.alpha, "mesh": key.mesh_text,
-                        "grading": key.grading, "formulation": key.formulation,
-                        "D0_b": float(z["D0_b"]), "X1": z["X1"], "X3": z["X3"],
-                        "u2": z["u2"]})
+        z = read_npz(f)
+        missing = [k for k in ("D0_b", "X1", "X3", "u2") if k not in z]
+        if missing:
+            raise OSError(errno.EINVAL, f"is not a clamp-zone mode (no {', '.join(missing)})",
+                          str(f))
+        out.append({"key": key, "alpha": key.alpha, "mesh": key.mesh_text,
+                    "grading": key.grading, "formulation": key.formulation,
+                    "D0_b": float(z["D0_b"]), "X1": z["X1"], "X3": z["X3"], "u2": z["u2"]})
     if not out:
         raise ValueError(f"folder {str(folder)!r} holds no mode (<alpha>_<mesh>_g<grading>_"
                          f"<formulation>.npz)")

@@ -50,7 +50,7 @@ from skfem_dielectric.studies.buckling import locate_buckling
 
 from ..fe.model import BUCKLING_NEWTON
 from .costs import Meter
-from .data import LOCATION_TOL, TABLES, scan_states, unit_row
+from .data import LOCATION_TOL, MAX_D0, TABLES, scan_states, unit_row
 from .key import UnitKey, mesh_text
 from .units import charge_path, unit_problem, unit_ramp
 from .local_theory import energy_centroid, half_waves
@@ -87,6 +87,9 @@ def bracket(row: dict) -> tuple[float, float]:
     if not below or not above:
         raise ValueError(f"the unit alpha = {row.get('alpha')} {row.get('mesh')} has no "
                          f"scanned state on both sides of D0_b = {d0b:g}")
+    if not 0 <= max(below) < min(above) <= MAX_D0:
+        raise ValueError(f"the unit alpha = {row.get('alpha')} {row.get('mesh')} has a "
+                         f"bracket ({max(below):g}, {min(above):g}) outside (0, {MAX_D0:g}]")
     return max(below), min(above)
 
 

@@ -49,7 +49,13 @@ from .data import TABLES
 from .key import mesh_text
 from .units import ramp_states, unit_problem
 
-__all__ = ["COLUMNS", "DEFAULT_K", "run_edge_section"]
+__all__ = ["COLUMNS", "DEFAULT_K", "run_edge_section", "MIN_H0", "PLATE_HALF_LENGTH"]
+
+#: the eighth model's length along ``X1`` (mm): the section cannot be longer
+PLATE_HALF_LENGTH = 50.0
+#: the finest edge element of the section (mm): below it scikit-fem's facet-basis inverse
+#: map (an absolute tolerance) fails at ``X1 = 50``
+MIN_H0 = 0.01
 
 #: from the plate's width (k = 2 pi / 50) to far past the 3D meshes' cut-off
 DEFAULT_K = tuple(float(f"{k:.4g}") for k in np.geomspace(2 * math.pi / 50, 200.0, 25))
@@ -92,6 +98,12 @@ def run_edge_section(alpha: float, elements, D0: float, h0s, ks=DEFAULT_K, *,
         for v in vals:
             if not (math.isfinite(float(v)) and float(v) > 0):
                 raise ValueError(f"{name} must be positive and finite, got {v!r}")
+    if length > PLATE_HALF_LENGTH:
+        raise ValueError(f"length must be at most the eighth model's {PLATE_HALF_LENGTH:g} "
+                         f"mm, got {length:g}")
+    if min(h0s) < MIN_H0:
+        raise ValueError(f"h0 must be at least {MIN_H0:g} mm (finer edge elements fail in "
+                         f"scikit-fem's facet-basis inverse map), got {min(h0s):g}")
     el = tuple(int(n) for n in elements)
     base_row = {"alpha": alpha, "mesh": mesh_text(el), "grading": grading,
                 "grad_div": grad_div, "D0": float(D0), "length": length}
@@ -116,8 +128,15 @@ def run_edge_section(alpha: float, elements, D0: float, h0s, ks=DEFAULT_K, *,
             continue
         t1 = time.process_time()
         g1, g2 = edge_section_grids(50.0, length, 1.0, h0)
-        sb = continue_section_base(g1, g2, pb.material, path, grad_div=pb.grad_div)
-        sec = EdgeSection(g1, g2, pb.material, sb.base, grad_div=pb.grad_div)
+        try:
+            sb = continue_section_base(g1, g2, pb.material, path, grad_div=pb.grad_div)
+            sec = EdgeSection(g1, g2, pb.material, sb.base, grad_div=pb.grad_div)
+        except Exception as exc:        # scikit-fem's inverse map raises a bare Exception
+            if type(exc) is not Exception or "Newton iteration" not in str(exc):
+                raise
+            raise ValueError(f"h0 = {h0:g}: scikit-fem's facet-basis inverse map did not "
+                             f"converge on the section (its tolerance is absolute); use a "
+                             f"larger --h0") from None
         base_cpu = time.process_time() - t1
         F11_sec = float(sb.fields(*mid)["F"][0, 0, 0])
         out = []

@@ -6,8 +6,9 @@ A table is a CSV whose first line declares which of the study's tables it is
 one row per unit (or per state, or per class: :attr:`TableSpec.key`).  A file that does
 not declare the same table, or whose header has other columns, is another table and is
 never rewritten.  A row that cannot be read back (cut short by a kill, another number of
-cells, text in a number column) or that repeats a key is named in a note and left out, so
-its unit is computed again; the file is rewritten atomically (temporary file, ``fsync``,
+cells, text in a number column, an empty key cell) or that repeats a key is named in a
+note (file and line) and left out; the writer keeps it aside in ``<table>.damaged`` before
+the table is rewritten, and its unit is computed again if the command runs it; the file is rewritten atomically (temporary file, ``fsync``,
 ``os.replace``) with each new unit's rows, under a lock that refuses a second writer and
 names the holder.
 """
@@ -15,6 +16,8 @@ names the holder.
 from __future__ import annotations
 
 import csv
+import errno
+import stat
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -73,6 +76,9 @@ class TableSpec:
 
 
 def _bad_cell(spec: TableSpec, row: dict) -> str:
+    for c in spec.key:
+        if row[c].strip() == "":
+            return f"has an empty key cell {c!r}"
     for c in spec.columns:
         t = row[c]
         if c in spec.text or t == "":
@@ -84,7 +90,7 @@ def _bad_cell(spec: TableSpec, row: dict) -> str:
     return ""
 
 
-def read_table(path, spec: TableSpec, *, note=None) -> list[dict]:
+def read_table(path, spec: TableSpec, *, note=None, on_damaged=None) -> list[dict]:
     """The rows of a table, as dicts of the cells' text; ``[]`` if there is no file.
 
     Parameters
@@ -95,19 +101,32 @@ def read_table(path, spec: TableSpec, *, note=None) -> list[dict]:
         The table it must be.
     note : callable, optional
         ``note(message)``: one line for each row left out (cut short, another number of
-        cells, text in a number column, a repeated key), naming the file and the row.
+        cells, text in a number column, an empty key cell, a repeated key), naming the file
+        and the line.
+    on_damaged : callable, optional
+        ``on_damaged(line number, text, why)`` for each row left out, instead of ``note``
+        (the writer keeps them aside: :class:`~validation.clamp_zone.table.TableWriter`).
 
     Raises
     ------
+    OSError
+        ``path`` is a folder, a FIFO or a device (exit code 3 of the CLI).
     ForeignTableError
-        ``path`` is a folder, does not declare ``spec``'s table, or has other columns.
+        ``path`` does not declare ``spec``'s table, or has other columns.
     """
     path = Path(path)
     note = note or (lambda msg: None)
-    if path.exists() and not path.is_file():
-        raise ForeignTableError(f"{path} is a folder, not the clamp-zone {spec.name} table")
-    if not path.exists():
+    if on_damaged is None:
+        def on_damaged(line, text, why):
+            note(f"{path}: line {line} {why}; left out of what is read")
+    try:
+        mode = path.stat().st_mode
+    except FileNotFoundError:
         return []
+    if not stat.S_ISREG(mode):
+        kind = "a folder" if stat.S_ISDIR(mode) else "not a regular file"
+        raise OSError(errno.EINVAL, f"is {kind}, not the clamp-zone {spec.name} table; it "
+                      f"is left as it is (choose another --out or move it)", str(path))
     try:
         text = path.read_text(encoding="utf-8")
     except UnicodeDecodeError:
@@ -126,8 +145,7 @@ def read_table(path, spec: TableSpec, *, note=None) -> list[dict]:
     body = [(i + 1, ln) for i, ln in enumerate(lines[:-1] if not cut else lines)
             if ln and not ln.startswith("#")]
     if cut and body:
-        note(f"{path}: line {body[-1][0]} is incomplete (no line end); left out, its unit "
-             f"is computed again")
+        on_damaged(*body[-1], "is incomplete (no line end)")
         body = body[:-1]
     if not body:
         return []
@@ -151,7 +169,7 @@ def read_table(path, spec: TableSpec, *, note=None) -> list[dict]:
                     why = "repeats the key " + ", ".join(k)
                 seen.add(k)
         if why:
-            note(f"{path}: line {line} {why}; left out, its unit is computed again")
+            on_damaged(line, ln, why)
             continue
         out.append(row)
     return out

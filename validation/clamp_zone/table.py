@@ -13,7 +13,8 @@ from pathlib import Path
 
 import numpy as np
 
-from ..store import command_lock, write_text_atomic
+from ..store import (aside_path, command_lock, csv_line, keep_aside, regular_file,
+                     write_text_atomic)
 from .spec import TableSpec, read_table
 
 __all__ = ["TableWriter"]
@@ -70,6 +71,7 @@ class TableWriter:
         self.path, self.spec, self.note = Path(path), spec, note
         self._lock = None
         self.rows: list[dict] = []
+        self.damaged: list[tuple] = []
 
     def __enter__(self) -> "TableWriter":
         self._lock = command_lock(self.path.parent, self.path.name,
@@ -78,7 +80,9 @@ class TableWriter:
         try:
             for tmp in self.path.parent.glob(f".{self.path.name}.*.tmp"):   # a killed write
                 tmp.unlink()
-            self.rows = read_table(self.path, self.spec, note=self.note)
+            regular_file(self.path, f"the clamp-zone {self.spec.name} table")
+            self.damaged = []
+            self.rows = read_table(self.path, self.spec, on_damaged=self._damaged)
         except BaseException:
             self._lock.__exit__(None, None, None)
             raise
@@ -87,16 +91,36 @@ class TableWriter:
     def __exit__(self, *exc) -> None:
         self._lock.__exit__(*exc)
 
+    def _damaged(self, line: int, text: str, why: str) -> None:
+        """A row :func:`read_table` leaves out: named now, kept aside at the next write."""
+        if self.note is not None:
+            self.note(f"{self.path}: line {line} {why}; left out, kept in "
+                      f"{aside_path(self.path).name}; its unit is computed again if this "
+                      f"command runs it")
+        self.damaged.append((line, text, why))
+
     def done(self, row: dict) -> bool:
         """Whether the table holds a row with the key of ``row``."""
-        k = self.spec.key_of(row)
-        return any(self.spec.key_of(r) == k for r in self.rows)
+        return bool(self.find(row))
 
-    def add(self, rows) -> None:
+    def find(self, row: dict) -> list[dict]:
+        """The rows of the table with the key of ``row``."""
+        k = self.spec.key_of(row)
+        return [r for r in self.rows if self.spec.key_of(r) == k]
+
+    def add(self, rows, *, replace=()) -> None:
         """Append ``rows`` (dicts; floats to 6 digits, ``nan`` as an empty cell) and
-        rewrite the table atomically."""
-        self.rows = self.rows + [{c: _cell(r.get(c, "")) for c in self.spec.columns}
-                                 for r in rows]
+        rewrite the table atomically.  The rows read back as damaged are first kept aside
+        (:func:`validation.store.keep_aside`), once; so are the rows of ``replace`` (rows
+        of this table that the new ones recompute with other settings)."""
+        old = [r for r in self.rows if any(r is x for x in replace)]
+        if self.damaged or old:
+            keep_aside(self.path, self.damaged + [
+                (None, csv_line([r[c] for c in self.spec.columns]).rstrip("\n"),
+                 "computed again with other settings") for r in old])
+            self.damaged = []
+        self.rows = [r for r in self.rows if not any(r is x for x in old)] + [
+            {c: _cell(r.get(c, "")) for c in self.spec.columns} for r in rows]
         buf = io.StringIO()
         w = csv.DictWriter(buf, self.spec.columns, lineterminator="\n")
         w.writeheader()

@@ -8,23 +8,24 @@ interruptions, for every command that writes into ``--out``.
   that keeps only what verifies;
 * :mod:`.rows` -- the files of the studies: :class:`StudyStore` (settings checked, resumed
   unit by unit, each file rewritten atomically, the table last), :func:`read_rows`,
-  :class:`KeyedRows`, and :func:`command_lock`, the lock of a command that writes a
+  and :func:`command_lock`, the lock of a command that writes a
   folder.
 """
 
 from .case_files import (CaseFiles, append_csv_rows, case_manifest, resume_plan, spec_sig,
                          state_path)
-from .rows import (DamagedFileError, KeyedRows, RowFile, StudyStore, TEXT_COLUMNS,
+from .rows import (DamagedFileError, RowFile, StudyStore, TEXT_COLUMNS,
                    command_lock, read_rows)
-from .files import (STATE_VERSION, FolderLock, LockedError, RowDigest, csv_line, dumps,
-                    load_state, save_state, write_csv_atomic, write_npz_atomic,
-                    write_text_atomic)
+from .files import (STATE_VERSION, FolderLock, LockedError, RowDigest, aside_path,
+                    csv_line, dumps, keep_aside, load_state, read_npz, regular_file,
+                    save_state,
+                    write_csv_atomic, write_npz_atomic, write_text_atomic)
 
 __all__ = [
     "LockedError", "FolderLock", "write_text_atomic", "write_csv_atomic", "write_npz_atomic",
-    "csv_line",
+    "csv_line", "regular_file", "aside_path", "keep_aside", "read_npz",
     "RowDigest", "save_state", "load_state", "dumps", "STATE_VERSION",
     "CaseFiles", "append_csv_rows", "case_manifest", "resume_plan", "spec_sig", "state_path",
-    "KeyedRows", "command_lock", "read_rows", "DamagedFileError", "RowFile", "StudyStore",
+    "command_lock", "read_rows", "DamagedFileError", "RowFile", "StudyStore",
     "TEXT_COLUMNS",
 ]

@@ -16,11 +16,14 @@
 from __future__ import annotations
 
 import csv
+import datetime
+import errno
 import hashlib
 import io
 import json
 import os
 import shlex
+import stat
 import sys
 import warnings
 import zipfile
@@ -33,7 +36,7 @@ with warnings.catch_warnings():       # where there is neither fcntl nor Windows
     import filelock
 
 __all__ = ["LockedError", "FolderLock", "write_text_atomic", "write_csv_atomic",
-           "write_npz_atomic", "csv_line",
+           "write_npz_atomic", "csv_line", "regular_file", "aside_path", "keep_aside", "read_npz",
            "RowDigest", "save_state", "load_state", "dumps", "STATE_VERSION"]
 
 #: Layout version of the state files; a state of another layout is not trusted.
@@ -146,6 +149,92 @@ def write_text_atomic(path, text: str) -> Path:
     return path
 
 
+def read_npz(path) -> dict:
+    """The arrays of an ``.npz`` file the package wrote, loaded (no pickles); an
+    :class:`OSError` naming ``path`` (exit code 3 of the CLI) if it is not one.
+
+    Parameters
+    ----------
+    path : path-like
+        The file.
+
+    Returns
+    -------
+    dict
+        ``{name: array}``.
+    """
+    path = regular_file(path, "an .npz file")
+    try:
+        with np.load(path, allow_pickle=False) as z:
+            return {k: np.array(z[k]) for k in z.files}
+    except FileNotFoundError:
+        raise
+    except (OSError, ValueError, KeyError, EOFError, zipfile.BadZipFile) as exc:
+        raise OSError(errno.EINVAL, f"is not an .npz file of arrays ({type(exc).__name__}: "
+                      f"{' '.join(str(exc).split())[:120]})", str(path)) from None
+
+
+def regular_file(path, what: str = "file") -> Path:
+    """``path`` if it is a regular file or does not exist; an :class:`OSError` naming it
+    (exit code 3 of the CLI) if it is a folder, a FIFO, a device or another special file,
+    which no command of the package reads, rewrites or deletes.
+
+    Parameters
+    ----------
+    path : path-like
+        The path a command is about to read, rewrite or delete.
+    what : str
+        What the command expects there, for the message (``"the units table"``).
+    """
+    path = Path(path)
+    try:
+        mode = os.stat(path).st_mode        # a link counts as what it points to
+    except FileNotFoundError:
+        return path
+    if stat.S_ISREG(mode):
+        return path
+    kind = ("a folder" if stat.S_ISDIR(mode) else "a FIFO" if stat.S_ISFIFO(mode)
+            else "a device" if stat.S_ISCHR(mode) or stat.S_ISBLK(mode)
+            else "a socket" if stat.S_ISSOCK(mode) else "not a regular file")
+    raise OSError(errno.EEXIST, f"is {kind}, not {what}; it is left as it is (choose "
+                  f"another --out or move it)", str(path))
+
+
+def aside_path(path) -> Path:
+    """Where :func:`keep_aside` keeps the damaged lines of ``path``: ``<path>.damaged``."""
+    path = Path(path)
+    return path.with_name(path.name + ".damaged")
+
+
+def keep_aside(path, lines) -> Path:
+    """Append the damaged ``lines`` of the file ``path`` to :func:`aside_path` (rewritten
+    atomically), each after a ``#`` line with its line number, why it is damaged and
+    when, before the rows are left out of ``path``: a row a command cannot read is never
+    deleted.
+
+    Parameters
+    ----------
+    path : path-like
+        The file the lines come from.
+    lines : iterable of (int or None, str, str)
+        ``(line number, the line's text, why it is kept aside)``; ``None``: a row that
+        was read, not a line of the file as it is now.
+
+    Returns
+    -------
+    Path
+        The side file.
+    """
+    aside = regular_file(aside_path(path), "the damaged rows of a table")
+    old = aside.read_text(encoding="utf-8", errors="replace") if aside.exists() else ""
+    stamp = datetime.datetime.now().isoformat(timespec="seconds")
+    new = "".join(f"# {Path(path).name}{'' if n is None else f' line {n}'} ({stamp}): "
+                  f"{why}\n{text}\n" for n, text, why in lines)
+    if new:
+        write_text_atomic(aside, old + new)
+    return aside
+
+
 def write_csv_atomic(path, header: list[str], rows) -> Path:
     """Write a CSV (``header`` then ``rows``, ``\\n`` line ends) atomically."""
     buf = io.StringIO()
@@ -157,13 +246,17 @@ def write_csv_atomic(path, header: list[str], rows) -> Path:
 
 def write_npz_atomic(path, **arrays) -> Path:
     """Write ``arrays`` as an ``.npz`` file atomically (temporary file, ``fsync``,
-    ``os.replace``): a killed write leaves no half file."""
+    ``os.replace``): a killed write leaves no half file; an error names ``path``."""
     path = Path(path)
     tmp = _tmp_path(path)
     try:
         fh = open(tmp, "wb")
         np.savez(fh, **arrays)
         _replace(tmp, path, fh)
+    except OSError as exc:
+        if exc.filename is None:          # a full disk names no file: name the one written
+            raise OSError(exc.errno, exc.strerror or str(exc), str(path)) from exc
+        raise
     finally:
         if tmp.exists():
             tmp.unlink()

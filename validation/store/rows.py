@@ -7,7 +7,6 @@
   study leaves the same files as one that was never interrupted;
 * :func:`read_rows` -- a study CSV back as dicts, a damaged row named
   (:class:`DamagedFileError`);
-* :class:`KeyedRows` -- a CSV resumed by the keys of its rows (``wrinkling-fe``);
 * :func:`command_lock` -- the lock of a command that writes a folder.
 """
 
@@ -23,9 +22,10 @@ from pathlib import Path
 
 import numpy as np
 
-from .files import FolderLock, dumps, write_csv_atomic, write_text_atomic
+from .files import (FolderLock, csv_line, dumps, keep_aside, regular_file, write_csv_atomic,
+                    write_text_atomic)
 
-__all__ = ["read_rows", "KeyedRows", "command_lock", "DamagedFileError", "RowFile",
+__all__ = ["read_rows", "command_lock", "DamagedFileError", "RowFile",
            "StudyStore", "TEXT_COLUMNS"]
 
 #: the columns of the study CSVs that hold text; every other cell is a number
@@ -172,7 +172,8 @@ class StudyStore:
         The study's name: its lock ``.state/<name>.lock`` and settings ``.state/<name>.json``.
     settings : dict
         What the results depend on besides their keys (e.g. the charge step); a folder
-        whose saved settings differ is discarded, with a note, and recomputed.
+        whose saved settings differ is discarded, with a note, and recomputed, its rows
+        first kept aside in ``<file>.damaged`` (:func:`~.files.keep_aside`).
     table : RowFile
         One row per unit, written last.
     details : tuple of RowFile
@@ -244,7 +245,16 @@ class StudyStore:
     def _files(self):
         return (self.table,) + self.details
 
+    def _owned(self) -> list[Path]:
+        """The files this study writes in ``out`` (its CSVs, its derived files); each must
+        be a regular file or absent, else the study stops before touching anything."""
+        names = [f.name for f in self._files()] + [d for d in self.derived
+                                                    if Path(d).suffix]
+        return [regular_file(self.out / n, f"a file of the {self.name} study")
+                for n in names]
+
     def _open(self) -> None:
+        self._owned()
         for f in self._files():                     # temporaries of a killed write
             path = self.out / f.name
             for tmp in path.parent.glob(f".{path.name}.*.tmp"):
@@ -269,25 +279,40 @@ class StudyStore:
             why = self._read()
         if why:
             if present:
-                self.note(f"{why}; its results are discarded and recomputed")
+                kept = self._keep_aside_all(why)
+                self.note(f"{why}; its results are discarded and recomputed"
+                          + (f" (their rows kept in {', '.join(kept)})" if kept else ""))
             self._discard()
         write_text_atomic(man, dumps(self.settings))
 
     def _read(self) -> str:
-        """Read the files into memory; why they are discarded as a whole (empty: kept)."""
+        """Read the files into memory; why they are discarded as a whole (empty: kept).
+
+        A finished row left out (cut short, repeated, of a unit whose rows are
+        incomplete) is kept aside (:func:`~.files.keep_aside`) before the file is
+        rewritten; the detail rows of a unit not in the table (a commit stopped between
+        its writes) are not a result and are dropped."""
         self.cells: dict[str, dict[tuple, list]] = {}
         self.order: list[tuple] = []
         repaired, cut_files = False, set()
+        aside: dict[str, list] = {}
+        lines: dict[str, dict[tuple, list[int]]] = {}
         for f in self._files():
             path = self.out / f.name
-            header, rows, cut = _parse(path, _read_text(path))
+            text = _read_text(path)
+            header, rows, cut = _parse(path, text)
             if header is not None and header != list(f.columns):
                 return f"{path} has other columns than {', '.join(f.columns)}"
             if cut:
-                self.note(f"{path}: its last row is incomplete (no line end); dropped")
+                line = text.count("\n") + 1
+                self.note(f"{path}: its last row is incomplete (no line end); kept aside "
+                          f"in {path.name}.damaged")
+                aside.setdefault(f.name, []).append(
+                    (line, text[text.rfind("\n") + 1:], "incomplete (no line end)"))
                 repaired = True
                 cut_files.add(f.name)
             by: dict[tuple, list] = {}
+            at: dict[tuple, list[int]] = {}
             for line, r in rows:
                 if len(r) != len(f.columns):
                     raise DamagedFileError(path, line, f"has {len(r)} cells, the header "
@@ -297,13 +322,24 @@ class StudyStore:
                 r = _cells(f.columns, r)
                 k = f.key_of(r)
                 if f is self.table and k in by:
-                    self.note(f"{path}: row {line} repeats the unit {', '.join(k)}; dropped")
+                    self.note(f"{path}: row {line} repeats the unit {', '.join(k)}; kept "
+                              f"aside in {path.name}.damaged")
+                    aside.setdefault(f.name, []).append(
+                        (line, csv_line(r).rstrip("\n"), "repeats the unit"))
                     repaired = True
                     continue
                 by.setdefault(k, []).append(r)
+                at.setdefault(k, []).append(line)
                 if f is self.table:
                     self.order.append(k)
             self.cells[f.name] = by
+            lines[f.name] = at
+
+        def put_aside(name, k, why):
+            aside.setdefault(name, []).extend(
+                (n, csv_line(r).rstrip("\n"), why)
+                for n, r in zip(lines[name].get(k, []), self.cells[name].get(k, [])))
+
         table, recounted = self.cells[self.table.name], set()
         for name, column in self.counts.items():    # units missing rows of a detail file
             i = self.table.columns.index(column)
@@ -316,6 +352,8 @@ class StudyStore:
                               f"missing or extra ({'; '.join(', '.join(k) for k in short)}); "
                               f"recomputed")
                 for k in short:
+                    put_aside(self.table.name, k, f"its unit has another number of rows "
+                                                  f"in {name} than {column}")
                     del table[k]
                 recounted.update(short)
                 self.order = [k for k in self.order if k in table]
@@ -323,7 +361,9 @@ class StudyStore:
         done = set(self.order)
         for f in self.details:
             extra = [k for k in self.cells[f.name] if k not in done]
-            if extra:
+            if extra:        # an interrupted commit: not a result (the table row is)
+                for k in recounted.intersection(extra):
+                    put_aside(f.name, k, "a row of a unit whose rows are incomplete")
                 rows = {k: self.cells[f.name].pop(k) for k in extra}
                 unfinished = [k for k in extra if k not in recounted]   # others: noted
                 if unfinished and f.name not in cut_files:
@@ -332,16 +372,36 @@ class StudyStore:
                               f"{len(unfinished)} unfinished unit(s) dropped")
                 repaired = True
         if repaired:
+            for name, items in aside.items():   # before the rows leave their file
+                keep_aside(self.out / name, items)
             self._write()
         return ""
 
+    def _keep_aside_all(self, why: str) -> list[str]:
+        """Every row of the study's CSVs, kept aside (:func:`~.files.keep_aside`) before
+        they are discarded for ``why`` (other settings, an unreadable file); the names of
+        the side files written."""
+        kept = []
+        for f in self._files():
+            path = self.out / f.name
+            if not path.exists():
+                continue
+            text = path.read_text(encoding="utf-8", errors="replace")
+            rows = [(i + 1, ln, why) for i, ln in enumerate(text.splitlines()) if i > 0 and ln]
+            if rows:
+                kept.append(keep_aside(path, rows).name)
+        return kept
+
     def _discard(self) -> None:
-        for name in [f.name for f in self._files()] + list(self.derived):
-            p = self.out / name
-            if p.is_dir() and not p.is_symlink():
-                shutil.rmtree(p)
-            elif p.exists() or p.is_symlink():
+        """Remove the study's files (checked regular by :meth:`_owned`) and its derived
+        folders (``.modes``: folders this study makes, named with a leading dot)."""
+        for p in self._owned():
+            if p.exists() or p.is_symlink():
                 p.unlink()
+        for name in self.derived:
+            p = self.out / name
+            if not Path(name).suffix and p.is_dir() and not p.is_symlink():
+                shutil.rmtree(p)
         self.cells = {f.name: {} for f in self._files()}
         self.order = []
 
@@ -384,93 +444,3 @@ class StudyStore:
         """The rows of the table (or of the detail file ``name``) as dicts, in file order."""
         path = self.out / (name or self.table.name)
         return read_rows(path)
-
-
-def _cell(text: str):
-    """A CSV cell back as the row value: ``None`` (empty), a float, or the text."""
-    if text == "":
-        return None
-    try:
-        return float(text)
-    except ValueError:
-        return text
-
-
-class KeyedRows:
-    """Rows of one CSV, kept by key (the first ``nkey`` cells as written), rewritten
-    atomically after every new row.  Rows of an existing file with the same header are
-    reused (a ``nan`` cell of an earlier version as an empty one); a last row cut short
-    (no line end) and rows with another number of cells are dropped, to be recomputed,
-    and a file with other columns is ignored (and replaced), each with a ``note``.
-
-    Parameters
-    ----------
-    path : Path or None
-        The CSV (``None``: rows kept in memory only).
-    columns : list of str
-        Its header.
-    nkey : int
-        The first ``nkey`` cells of a row are its key.
-    fmt : callable
-        ``fmt(value) -> str``, the text of a cell.
-    note : callable, optional
-        ``note(message)``: one line naming the file for each repair (the messages of
-        :class:`StudyStore`).
-
-    Examples
-    --------
-    >>> import tempfile
-    >>> path = Path(tempfile.mkdtemp()) / "rows.csv"
-    >>> _ = path.write_text("kh,D0\\n0.5,1.25\\n2,3.")         # the last row cut short
-    >>> rows = KeyedRows(path, ["kh", "D0"], 1, str, note=print)  # doctest: +ELLIPSIS
-    /.../rows.csv: its last row is incomplete (no line end); dropped
-    >>> rows.get((0.5,), lambda: [0.5, 9.0]), rows.get((2,), lambda: [2, 3.5])
-    ([0.5, 1.25], [2.0, 3.5])
-    """
-
-    def __init__(self, path: Path | None, columns: list[str], nkey: int, fmt, note=None):
-        self.path, self.columns, self.nkey, self.fmt = path, columns, nkey, fmt
-        self.note = note or (lambda msg: None)
-        self.known: dict[tuple, list[str]] = {}
-        if path is not None and path.is_file():
-            self.known = self._read(Path(path))
-        self.rows: list[list[str]] = []
-
-    def _read(self, path: Path) -> dict[tuple, list[str]]:
-        try:
-            header, rows, cut = _parse(path, _read_text(path))
-        except DamagedFileError as exc:
-            self.note(f"{path}: {exc.strerror}; its rows are recomputed")
-            return {}
-        if header is None:
-            return {}
-        if header != self.columns:
-            self.note(f"{path} has other columns than {', '.join(self.columns)}; its rows "
-                      f"are recomputed")
-            return {}
-        if cut:
-            self.note(f"{path}: its last row is incomplete (no line end); dropped")
-        known = {}
-        for line, r in rows:
-            if len(r) != len(self.columns):
-                self.note(f"{path}: row {line - 1} (line {line}) has {len(r)} cells, the "
-                          f"header {len(self.columns)}; dropped")
-                continue
-            known[tuple(r[:self.nkey])] = ["" if c.strip().lower() == "nan" else c
-                                           for c in r]     # no value: an empty cell
-        return known
-
-    def get(self, key: tuple, compute) -> list:
-        """The row of ``key`` (cells formatted as the CSV's): reused, or computed and
-        written."""
-        k = tuple(self.fmt(v) for v in key)
-        row = self.known.get(k)
-        if row is None:
-            row = [self.fmt(v) for v in compute()]
-            self.known[k] = row
-            self.rows.append(row)
-            if self.path is not None:
-                write_csv_atomic(self.path, self.columns, self.rows)
-        else:
-            self.rows.append(row)
-        return [_cell(c) for c in row]

@@ -40,7 +40,7 @@ from skfem_dielectric.studies.buckling import buckling_load
 from ..fe.model import BUCKLING_GRAD_DIV, BUCKLING_NEWTON, BUCKLING_TOL
 from ..figures import save_figure
 from ..options import load_targets
-from ..store import RowFile, StudyStore, write_npz_atomic
+from ..store import RowFile, StudyStore, read_npz, write_npz_atomic
 from ..table import BREAKDOWN_TOL
 
 __all__ = ["COLUMNS", "SCAN_COLUMNS", "TRIAL_COLUMNS", "PLAIN_COLUMNS", "P33_SETS",
@@ -376,7 +376,7 @@ def buckling_figure(rows, scan, modes_dir: Path, path: Path, footer: str = "",
         ax3[1].legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.22), ncol=2)
         f = modes_dir / f"{alpha:g}_{fine}.npz"
         if f.exists():
-            d = np.load(f)
+            d = read_npz(f)
             u2 = d["u2"] / max(np.abs(d["u2"]).max(), 1e-300)
             t = ax3[2].tricontourf(d["X1"], d["X3"], u2, 21, cmap="RdBu_r", vmin=-1, vmax=1)
             fig.colorbar(t, ax=ax3[2], shrink=0.8)

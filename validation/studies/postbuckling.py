@@ -37,7 +37,7 @@ from skfem_dielectric.studies.postbuckling import (critical_mode, midplane_defle
                                            midplane_nodes, post_buckled_branch)
 
 from ..options import load_targets
-from ..store import RowFile, StudyStore, write_npz_atomic
+from ..store import RowFile, StudyStore, read_npz, write_npz_atomic
 from ..fe.model import BUCKLING_GRAD_DIV
 from ..figures import save_figure
 
@@ -331,7 +331,7 @@ def post_buckling_figure(summary, rows, shapes_dir: Path, path: Path,
         big = max(mine, key=lambda r: r["ndofs"])
         npz = shapes_dir / f"{alpha:g}_{big['model']}_{big['mesh']}.npz"
         if npz.exists():
-            z = np.load(npz)
+            z = read_npz(npz)
             X1, X3, u2 = _unfold(z, big["model"])
             lim = max(float(np.abs(u2).max()), 1e-300)
             t = ax3[2].tricontourf(X1, X3, u2, 21, cmap="RdBu_r", vmin=-lim, vmax=lim)
