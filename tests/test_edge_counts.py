@@ -49,3 +49,24 @@ def test_the_second_pressure_space_counts_one_pressure_per_element():
     assert q1[0]["dofs"] - p0[0]["dofs"] == 70 - 24
     assert p0[0]["pressure"] == "P0" and q1[0]["pressure"] == "Q1"
     assert p0[0]["n_negative"] == sum(p0[0][c] for c in CLASS_COLUMNS)
+
+
+def test_the_alpha_1_5_counts_on_the_page_are_the_table_s():
+    """docs/breakdown.md states the alpha = 1.5 counts of three meshes: each sentence
+    ``N1 x N2 x N3 has a, b and c negative modes at D0 = 4, 4.5 and 4.75`` equals the
+    shipped rows (Q1, graded 0.1), and each of those rows is antisymmetric in x2."""
+    import re
+    from pathlib import Path
+
+    page = (Path(__file__).resolve().parents[1] / "docs" / "breakdown.md").read_text()
+    said = re.findall(r"(\d+) x (\d+) x (\d+) has (\d+), (\d+) and (\d+) negative modes at "
+                      r"`D0` = 4, 4\.5 and 4\.75", " ".join(page.split()))
+    assert len(said) == 3, said
+    rows = {(r["mesh"], float(r["D0"])): r for r in load("counts")
+            if r["alpha"] == "1.5" and r["pressure"] == "Q1" and r["grading"] == "0.1"}
+    for n1, n2, n3, *counts in said:
+        mesh = f"{n1}x{n2}x{n3}"
+        for D0, n in zip((4.0, 4.5, 4.75), counts):
+            r = rows[(mesh, D0)]
+            assert int(r["n_negative"]) == int(n), (mesh, D0)
+            assert int(r["n_x2A"]) == int(n), (mesh, D0)
