@@ -26,7 +26,8 @@ from validation.buckling_data import buckling_loads, uniform_buckling_loads  # n
 from validation.figures import plot_breakdown_map, plot_uniaxial_wrinkling  # noqa: E402
 from validation.markers import (AFTER_BREAKDOWN, CONVERGED_BUCKLING, LIMIT_POINT,  # noqa: E402
                                 MESH_BUCKLING, NEWTON_LIMIT, NOT_CONVERGED_NOTE,
-                                P33_BREAKDOWN, PAPER_P33_WORDS, RUN_BUCKLING, RUN_NEWTON,
+                                P33_BREAKDOWN, P33_ONSET_LOCATED, PAPER_P33_WORDS,
+                                RUN_BUCKLING, RUN_NEWTON,
                                 STABLE_STATE, UNSTABLE_STATE, VOCABULARY,
                                 WRINKLING_NOT_REACHED, find_marker)
 from validation.studies.voltage_control import VOLTAGE_COLUMNS, voltage_figure  # noqa: E402
@@ -117,8 +118,8 @@ def test_the_marker_tables_list_the_vocabulary(page):
     (every figure's): one row per marker, with its words and legend name."""
     rows = [u for u in _units((DOCS / page).read_text()) if u.startswith("|")]
     want = (VOCABULARY if page == "gallery.md" else
-            (P33_BREAKDOWN, RUN_BUCKLING, CONVERGED_BUCKLING, MESH_BUCKLING, NEWTON_LIMIT,
-             RUN_NEWTON, WRINKLING_NOT_REACHED))
+            (P33_BREAKDOWN, P33_ONSET_LOCATED, RUN_BUCKLING, CONVERGED_BUCKLING,
+             MESH_BUCKLING, NEWTON_LIMIT, RUN_NEWTON, WRINKLING_NOT_REACHED))
     for m in want:
         assert any(f"`{m.name}`" in r and _look(m).search(r) for r in rows), m.name
 
@@ -173,7 +174,7 @@ def test_the_keplinger_figure_draws_the_vocabulary():
             _same_marker(h, m)
             drawn[m.name] = label
     assert set(drawn) == {P33_BREAKDOWN.name, AFTER_BREAKDOWN.name, RUN_BUCKLING.name,
-                          CONVERGED_BUCKLING.name, NEWTON_LIMIT.name}
+                          CONVERGED_BUCKLING.name, NEWTON_LIMIT.name, P33_ONSET_LOCATED.name}
     # the error bars are at most the file's largest error, and the legend says so
     err = max(e.error for e in buckling_loads() if e.converged)
     assert f"{err:.2g}" in drawn[CONVERGED_BUCKLING.name]
@@ -233,7 +234,7 @@ def test_the_breakdown_map_draws_the_vocabulary():
         drawn.add(m.name)
     assert drawn == {P33_BREAKDOWN.name, RUN_BUCKLING.name, CONVERGED_BUCKLING.name,
                      MESH_BUCKLING.name, NEWTON_LIMIT.name, RUN_NEWTON.name,
-                     WRINKLING_NOT_REACHED.name}
+                     WRINKLING_NOT_REACHED.name, P33_ONSET_LOCATED.name}
     # every weight has its diamond; with the uniform meshes' loads alone alpha = 1.5 has
     # none (three meshes that disagree), and a note in the figure says why
     assert not [t for t in ax.texts if t.get_gid() == "not-converged"]
@@ -365,3 +366,80 @@ def test_one_look_one_meaning_across_every_figures_legend(tmp_path):
     assert {RUN_BUCKLING.name, "beyond its tolerance", "2D cross-section, antisymmetric",
             "3D Maxwell traction"} <= names
     plt.close("all")
+
+
+def _drawn(ax, gid: str) -> np.ndarray:
+    """The ``(x, y)`` points of the axes' lines with ``gid`` (rows)."""
+    pts = [np.asarray(ln.get_xydata(), float) for ln in ax.lines if ln.get_gid() == gid]
+    return np.concatenate(pts) if pts else np.zeros((0, 2))
+
+
+def _reference_order(ax, x_of_alpha):
+    """The reference layer as drawn: per weight the located P33 onset, the converged D0_b
+    and the Newton limit (y of the points whose x is the weight's, by ``x_of_alpha``);
+    returns ``{alpha: (onset, D0_b, newton)}`` for the weights that have all three."""
+    from validation.buckling_data import buckling_loads as loads
+
+    layers = [_drawn(ax, g) for g in ("p33-onset-located", "buckling-converged",
+                                      "newton-limit")]
+    out = {}
+    for e in loads():
+        x = x_of_alpha(e.alpha)
+        ys = []
+        for pts in layers:
+            hit = pts[np.isclose(pts[:, 0], x, rtol=0, atol=1e-6)] if len(pts) else pts
+            ys.append(float(hit[0, 1]) if len(hit) else None)
+        if None not in ys:
+            out[e.alpha] = tuple(ys)
+    return out
+
+
+def test_the_breakdown_map_draws_the_order_of_the_three_meanings():
+    """From the reference layer the map draws (the shipped study, whatever the run): per
+    weight the located P33 onset lies below the converged D0_b, which lies below the
+    Newton limit -- the order "P33 onset, then D0_b, then the Newton limit" a reader must
+    see.  The values drawn are the tables' (within their 6 printed digits)."""
+    from validation.buckling_data import newton_limits, p33_onsets
+
+    fig, ax = plt.subplots()
+    plot_breakdown_map(p33={"coupled": {1.0: 3.0}}, run_buckling={1.0: 2.9146},
+                       run_mesh="10 x 1 x 5", ax=ax)
+    order = _reference_order(ax, lambda a: a)
+    assert set(order) == {0.3, 0.7, 1.0, 1.5}          # every weight with a P33 row
+    for a, (onset, d0b, newton) in order.items():
+        assert onset < d0b < newton, (a, onset, d0b, newton)
+    assert {a: o for a, (o, _, _) in order.items()} == {a: d for a, d, _ in p33_onsets()}
+    assert {a: n for a, (_, _, n) in order.items()} == {
+        a: d for a, d, _ in newton_limits() if a in order}
+    # the run's own P33 step, labelled with its mesh, sits where the coarse grid put it
+    labels = ax.get_legend_handles_labels()[1]
+    assert any(lab.startswith(P33_BREAKDOWN.name) and "this run's mesh (10 x 1 x 5)" in lab
+               for lab in labels)
+    plt.close(fig)
+
+
+def test_the_keplinger_figure_draws_the_order_of_the_three_meanings():
+    """The same order from uni-axial-ideal's reference layer, each point on its weight's
+    homogeneous loading curve (x = lam1 of Eq. (DEuniax) at the point's D0)."""
+    import analytic as an
+    from analytic.units import keplinger_s
+
+    fig, ax = plt.subplots()
+    plot_uniaxial_wrinkling(fe=_fake_keplinger(), ax=ax)
+    layers = [_drawn(ax, g) for g in ("p33-onset-located", "buckling-converged",
+                                      "newton-limit")]
+    m = an.NeoHookean()
+    found = 0
+    for a in (0.3, 0.7, 1.0, 1.5):
+        s = float(keplinger_s(a, g=9.81))
+        ys = []
+        for pts in layers:
+            on = [y for x, y in pts if np.isclose(float(an.uniaxial_lam1(y, s, m)), x,
+                                                  rtol=1e-9)]
+            ys.append(on[0] if on else None)
+        if None in ys:
+            continue
+        found += 1
+        assert ys[0] < ys[1] < ys[2], (a, ys)
+    assert found == 4
+    plt.close(fig)

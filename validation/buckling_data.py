@@ -36,7 +36,7 @@ from .clamp_zone.data import LOCATION_TOL, clamp_unit_load, load, plain_p33_row
 
 __all__ = ["BUCKLING_LOADS_FILE", "CLAMP_UNITS_FILE", "BucklingEntry", "buckling_loads",
            "uniform_buckling_loads", "buckling_provenance", "converged_buckling_load",
-           "newton_limits"]
+           "newton_limits", "p33_onsets"]
 
 #: the data file of the uniform meshes, relative to the ``validation`` package
 BUCKLING_LOADS_FILE = "data/buckling_loads.csv"
@@ -183,6 +183,25 @@ def newton_limits() -> list[tuple[float, float, str]]:
             d, mesh = uniform[a].newton_limit, uniform[a].meshes[-1]
         if math.isfinite(d):
             out.append((a, d, mesh))
+    return out
+
+
+def p33_onsets() -> list[tuple[float, float, str]]:
+    """The located ``P33`` onset of the plain form in the interior, one per weight with a
+    graded ``P33`` row: ``(alpha, D0, mesh)`` of its finest graded mesh
+    (:func:`~validation.clamp_zone.data.plain_p33_row`, the clamp-zone ``p33`` table), in
+    increasing ``alpha``; the reference layer the figures draw beside a run's own ``P33``
+    step (docs/breakdown.md).
+
+    Returns
+    -------
+    list of tuple
+    """
+    out = []
+    for a in sorted({round(float(r["alpha"]), 9) for r in load("p33")}):
+        r = plain_p33_row(a)
+        if r is not None and r["P33_onset_interior"]:
+            out.append((a, float(r["P33_onset_interior"]), f"{r['mesh']} g{r['grading']}"))
     return out
 
 

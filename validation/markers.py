@@ -17,7 +17,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
-__all__ = ["Marker", "P33_BREAKDOWN", "AFTER_BREAKDOWN", "RUN_BUCKLING", "CONVERGED_BUCKLING",
+__all__ = ["Marker", "P33_BREAKDOWN", "P33_ONSET_LOCATED", "AFTER_BREAKDOWN", "RUN_BUCKLING", "CONVERGED_BUCKLING",
            "MESH_BUCKLING", "NEWTON_LIMIT", "RUN_NEWTON", "WRINKLING_NOT_REACHED",
            "STABLE_STATE", "UNSTABLE_STATE", "LIMIT_POINT", "SECTION_SYMMETRIC",
            "SECTION_ANTISYMMETRIC", "BEYOND_TOLERANCE", "VOCABULARY",
@@ -61,6 +61,13 @@ P33_BREAKDOWN = Marker(
     "at least two thicknesses from the clamps, or a step the solver could not reach; "
     "circle, square or triangle: the FE model's shape",
     dict(marker=None, color="red", mfc="none", mew=1.6, zorder=5))
+P33_ONSET_LOCATED = Marker(
+    "P33 onset, located", "red bar",
+    "the reference layer of the P33 criterion: the plain form's first charge with "
+    "P33/mu < -0.01 in the interior, located to 1e-4 on the finest graded mesh of the "
+    "clamp-zone study (validation/data/p33_units.csv), where the run's own P33 breakdown "
+    "is the first step of its coarse grid",
+    dict(marker="_", color="red", ms=16, mew=2.6, zorder=8))
 AFTER_BREAKDOWN = Marker(
     "after the breakdown", "faded dot",
     "a state of a run that goes on past its P33 breakdown (the run analysed for buckling, "
@@ -127,7 +134,7 @@ BEYOND_TOLERANCE = Marker(
     dict(marker="X", color="darkorange", mec="saddlebrown", ms=11, mew=0.8, zorder=10))
 
 #: Every marker, in the order the docs' tables list them.
-VOCABULARY = (P33_BREAKDOWN, AFTER_BREAKDOWN, RUN_BUCKLING, CONVERGED_BUCKLING,
+VOCABULARY = (P33_BREAKDOWN, P33_ONSET_LOCATED, AFTER_BREAKDOWN, RUN_BUCKLING, CONVERGED_BUCKLING,
               MESH_BUCKLING, NEWTON_LIMIT, RUN_NEWTON, WRINKLING_NOT_REACHED, STABLE_STATE,
               UNSTABLE_STATE, LIMIT_POINT, SECTION_SYMMETRIC, SECTION_ANTISYMMETRIC,
               BEYOND_TOLERANCE)

@@ -49,8 +49,9 @@ TOLERANCE_SOURCES = {
     "stable": "the Hessian verdict is exact away from the det H* = 0 locus: no row may "
               "disagree (rows within the lam1_limit tolerance of the limit point excluded)",
     "D0_crit": "validate's FE cross-section with 8 elements per half-wave reaches 1e-3",
-    "D0_b": "the converged buckling load's error bar (validation/data/buckling_loads.csv) "
-            "plus the file's D0_b_error, or this absolute value",
+    "D0_b": "the converged buckling load's error bar (the graded meshes of "
+            "validation/data/clamp_units.csv) plus the file's D0_b_error, or this absolute "
+            "value",
 }
 
 #: The measures that are verdicts (a row agrees with the closed form or not): no tolerance

@@ -19,11 +19,11 @@ import numpy as np
 import analytic as an
 from analytic.units import keplinger_s
 
-from ..buckling_data import buckling_loads, newton_limits
+from ..buckling_data import buckling_loads, newton_limits, p33_onsets
 from ..cases import ALPHAS, analytic_model
 from ..specs import KEPLINGER
 from ..markers import (CONVERGED_BUCKLING, MESH_BUCKLING, NEWTON_LIMIT, NOT_CONVERGED_NOTE,
-                       P33_BREAKDOWN, P33_SHAPES, RUN_BUCKLING, RUN_NEWTON,
+                       P33_BREAKDOWN, P33_ONSET_LOCATED, P33_SHAPES, RUN_BUCKLING, RUN_NEWTON,
                        WRINKLING_NOT_REACHED, legend_style)
 from .common import MODEL_NAME, add_caption
 
@@ -124,7 +124,11 @@ def plot_breakdown_map(p33=None, run_buckling=None, run_newton=None, loads=None,
         the two finest graded ones; a weight without a diamond gets a note
         in the figure, :data:`~validation.markers.NOT_CONVERGED_NOTE`) and the plain form's
         Newton limit (:func:`validation.buckling_data.newton_limits`,
-        :data:`~validation.markers.NEWTON_LIMIT`).
+        :data:`~validation.markers.NEWTON_LIMIT`).  The located ``P33`` onsets of the
+        clamp-zone study (:func:`validation.buckling_data.p33_onsets`,
+        :data:`~validation.markers.P33_ONSET_LOCATED`) are drawn with them: with the
+        converged loads and the Newton limits they are the reference layer, in the order
+        the charge meets them, beside which a run's own values show what its mesh gives.
     alphas : sequence of float, optional
         The weights of the homogeneous wrinkling limits (:func:`homogeneous_wrinkling_D0`):
         a blue line where a path reaches one, else a blue arrow at the top of the axes.
@@ -172,6 +176,13 @@ def plot_breakdown_map(p33=None, run_buckling=None, run_newton=None, loads=None,
                 gid="newton-limit",
                 label=f"{NEWTON_LIMIT.name} ({', '.join(sorted({m for _, _, m in nl}))})",
                 **legend_style(NEWTON_LIMIT))
+    onsets = p33_onsets()
+    if onsets:
+        ax.plot([a for a, _, _ in onsets], [d for _, d, _ in onsets], ls="none",
+                gid="p33-onset-located",
+                label=f"{P33_ONSET_LOCATED.name} (interior, plain form; "
+                      f"{', '.join(sorted({m for _, _, m in onsets}))})",
+                **legend_style(P33_ONSET_LOCATED))
     for v, per in (p33 or {}).items():
         pts = [(float(a), d) for a, d in per.items() if d is not None]
         if pts:
@@ -179,7 +190,9 @@ def plot_breakdown_map(p33=None, run_buckling=None, run_newton=None, loads=None,
             shape["ms"] = 0.6 * shape["ms"]
             ax.plot(*zip(*pts), ls="none", gid=f"p33-{v}",
                     label=f"{P33_BREAKDOWN.name} ($P_{{33}}/\\mu < -0.01$), "
-                          f"{MODEL_NAME.get(v, v)}", **legend_style(P33_BREAKDOWN, shape))
+                          f"{MODEL_NAME.get(v, v)}"
+                          + (f", this run's mesh ({run_mesh})" if run_mesh else ""),
+                    **legend_style(P33_BREAKDOWN, shape))
     pts = [(float(a), d) for a, d in (run_buckling or {}).items() if d is not None]
     if pts:
         ax.plot(*zip(*pts), ls="none", gid="buckling-run",
@@ -206,7 +219,7 @@ def plot_breakdown_map(p33=None, run_buckling=None, run_newton=None, loads=None,
     ax.set_xlabel(r"weight fraction $\alpha$ ($s = 2.99\,\alpha$)")
     ax.set_ylabel(r"$D_0$")
     ax.set_title("What is the breakdown? Keplinger plate (neo-Hookean)", fontsize=10, pad=16)
-    ax.legend(fontsize=7.5, loc="upper left")
+    ax.legend(fontsize=7.5, loc="upper left", bbox_to_anchor=(1.01, 1.0))   # beside: hides no point
     return ax
 
 

@@ -12,11 +12,12 @@ from matplotlib.lines import Line2D
 import analytic as an
 from analytic.units import keplinger_s
 
-from ..buckling_data import buckling_loads, newton_limits
+from ..buckling_data import buckling_loads, newton_limits, p33_onsets
 from ..cases import ALPHAS, analytic_model
 from ..specs import KEPLINGER
 from ..markers import (AFTER_BREAKDOWN, CONVERGED_BUCKLING, NEWTON_LIMIT, NOT_CONVERGED_NOTE,
-                       P33_BREAKDOWN, P33_SHAPES, RUN_BUCKLING, legend_style)
+                       P33_BREAKDOWN, P33_ONSET_LOCATED, P33_SHAPES, RUN_BUCKLING,
+                       legend_style)
 from .common import (MODEL_NAME, VARIANT_MARKER, colors, new_axes, refine_start, uniaxial_curve,
                      variant_legend, wrinkling_zone)
 
@@ -101,6 +102,18 @@ def _measured_loads(ax, alphas, m, D0max):
         out.append(Line2D([], [], ls="none", **st,
                           label=f"{CONVERGED_BUCKLING.name} (error bar "
                                 f"$\\leq {max(err):.2g}$, hidden by the diamond)"))
+    located, p33_meshes = [], set()
+    for a, d, mesh in p33_onsets():
+        if any(np.isclose(a, b) for b in alphas) and d <= D0max:
+            s = float(keplinger_s(a, g=KEPLINGER["g"]))
+            located.append((float(an.uniaxial_lam1(d, s, m)), d))
+            p33_meshes.add(mesh)
+    if located:
+        ax.plot(*zip(*located), ls="none", gid="p33-onset-located",
+                **legend_style(P33_ONSET_LOCATED))
+        out.append(Line2D([], [], ls="none", **legend_style(P33_ONSET_LOCATED),
+                          label=f"{P33_ONSET_LOCATED.name} (interior, plain form; "
+                                f"{', '.join(sorted(p33_meshes))})"))
     meshes = set()
     for a, d, mesh in newton_limits():
         if any(np.isclose(a, b) for b in alphas) and d <= D0max:
