@@ -336,3 +336,33 @@ def test_sigterm_keeps_the_finished_units_and_a_rerun_resumes(tmp_path):
     assert again.returncode == 0, again.stderr
     assert "alpha = 1 6x1x3 grading 0.5: kept" in again.stdout
     assert sorted(r["alpha"] for r in load("units", out)) == ["0.7", "1"]
+
+
+def test_the_modes_figure_titles_the_table_s_load_and_counts_its_half_waves(tmp_path,
+                                                                            capsys):
+    """clamp-modes.png: each panel's title gives the converged D0_b of the table (not the
+    mode's mesh's), and the trace under it counts the half-waves of the units table's row
+    for the mode's mesh; the pages' counts (6, 10, 12, 13) are those rows'."""
+    import matplotlib.pyplot as plt
+
+    from validation.clamp_zone.data import clamp_unit_load, shipped_path
+    from validation.clamp_zone.modes import clamp_modes_figure, clamp_trace, read_clamp_modes
+
+    modes = read_clamp_modes(shipped_path("units").parent / "modes")
+    rows = {UnitKey.from_row(r): r for r in load("units")}
+    counts = {}
+    for m in modes:
+        counts[m["alpha"]] = clamp_trace(m)[3]
+        assert counts[m["alpha"]] == int(rows[m["key"]]["half_waves"]), m["key"]
+    assert counts == {0.05: 6, 0.3: 10, 0.7: 12, 1.0: 13}
+    loads = {a: (g["D0_b"], g["spread"], g["meshes"])
+             for a in counts for g in [clamp_unit_load(a)]}
+    fig = clamp_modes_figure(modes, loads)
+    titles = [ax.get_title() for ax in fig.axes if ax.get_title()]
+    for a, (d0b, _, _) in loads.items():
+        assert any(t.startswith(rf"$\alpha = {a:g}$: $D_{{0b}} = {d0b:.4f}") for t in titles)
+    for a, n in counts.items():
+        assert sum(t.endswith(f": {n} half-waves") for t in titles) >= 1
+    plt.close(fig)
+    page = (ROOT / "docs" / "lecture.md").read_text()
+    assert "6, 10, 12 and 13 for `alpha` = 0.05, 0.3, 0.7 and 1" in " ".join(page.split())

@@ -29,7 +29,8 @@ from ..options import out_dir, positive, solver_name
 from .band import band_table, edge_band_figure
 from .costs import estimated_GB, physical_GB
 from .counts import run_edge_counts
-from .data import MAX_D0, TABLES, load, shipped_path
+from .data import (LOCATION_TOL, MAX_D0, TABLES, clamp_unit_load, load, shipped_path,
+                   table_file)
 from .flagged import run_flagged_modes
 from .key import FORMULATIONS, UnitKey, parse_mesh
 from .layer import run_clamp_layer
@@ -686,8 +687,16 @@ def _cmd_modes(args) -> int:
     folder = (Path(args.source) / "modes" if _source(args) is not None
               else shipped_path("units").parent / "modes")
     modes = read_clamp_modes(folder)
+    loads = {}
+    for a in sorted({round(m["alpha"], 9) for m in modes}):
+        try:
+            g = clamp_unit_load(a, path=table_file("units", _source(args)),
+                                classes_path=table_file("onsets", _source(args)))
+        except ValueError:                  # no converged load: the mode's own D0_b
+            continue
+        loads[a] = (g["D0_b"], max(g["spread"], LOCATION_TOL), g["meshes"])
     Path(args.out).mkdir(parents=True, exist_ok=True)
-    for p in save_figure(clamp_modes_figure(modes), Path(args.out), "clamp-modes"):
+    for p in save_figure(clamp_modes_figure(modes, loads), Path(args.out), "clamp-modes"):
         _say(str(p))
     return 0
 

@@ -21,7 +21,7 @@ from ..figures.common import plt
 from ..store import read_npz
 from .key import UnitKey
 
-__all__ = ["read_clamp_modes", "clamp_modes_figure"]
+__all__ = ["read_clamp_modes", "clamp_modes_figure", "clamp_trace"]
 
 
 def read_clamp_modes(folder) -> list[dict]:
@@ -66,38 +66,91 @@ def read_clamp_modes(folder) -> list[dict]:
     return sorted(out, key=lambda r: (r["alpha"], r["key"].elements, r["formulation"]))
 
 
-def clamp_modes_figure(modes: list[dict]):
-    """One panel per mode: ``u2`` on the top face (``X1`` along, ``X3`` across, mm).
+def clamp_trace(mode: dict) -> tuple[float, np.ndarray, np.ndarray, int]:
+    """The mode's top-face deflection across the whole width at the clamp zone: the row of
+    vertices at the ``X1`` of the largest ``|u2|``.
+
+    Parameters
+    ----------
+    mode : dict
+        As :func:`read_clamp_modes` returns it.
+
+    Returns
+    -------
+    X1 : float
+        The row's ``X1`` (mm).
+    X3, u2 : ndarray
+        The row, sorted by ``X3``; ``u2`` scaled to a largest ``|u2|`` of 1 on the plate.
+    half_waves : int
+        Sign changes of ``u2`` along the row plus one (values below ``1e-6`` of the
+        row's largest skipped as nodes): the ``half_waves`` column of the ``units`` table,
+        which counts the same row of the same deflection.
+    """
+    x1, x3, u2 = (np.asarray(mode[k], float) for k in ("X1", "X3", "u2"))
+    X1 = float(x1[np.argmax(np.abs(u2))])
+    row = np.abs(x1 - X1) < 1e-9 * max(np.abs(x1).max(), 1.0)
+    order = np.argsort(x3[row])
+    X3, u = x3[row][order], u2[row][order] / max(np.abs(u2).max(), 1e-300)
+    nz = u[np.abs(u) > 1e-6 * np.abs(u).max()]
+    return X1, X3, u, int(np.count_nonzero(np.diff(np.sign(nz)))) + 1
+
+
+def clamp_modes_figure(modes: list[dict], loads: dict | None = None):
+    """One panel per mode: ``u2`` on the top face (``X1`` along, ``X3`` across, mm), and
+    below it the trace across the width at the clamp zone (:func:`clamp_trace`) with its
+    half-wave count.
 
     Parameters
     ----------
     modes : list of dict
         As :func:`read_clamp_modes` returns them.
+    loads : dict, optional
+        ``{alpha: (D0_b, error, meshes)}``: the converged load of each weight (the table's,
+        :func:`~validation.clamp_zone.data.clamp_unit_load`), which the panel's title
+        gives beside the mesh the mode was computed on; without it the title gives the
+        mode's own ``D0_b``.
 
     Returns
     -------
     matplotlib Figure
     """
+    loads = loads or {}
     n = len(modes)
     cols = min(n, 3)
     rows = -(-n // cols)
-    fig, axes = plt.subplots(rows, cols, figsize=(max(4.2 * cols, 6.5), 1.9 * rows + 0.8),
-                             layout="constrained", squeeze=False)
-    for ax, m in zip(axes.flat, modes):
+    fig, axes = plt.subplots(2 * rows, cols, figsize=(max(4.4 * cols, 6.5), 3.0 * rows + 0.8),
+                             layout="constrained", squeeze=False,
+                             gridspec_kw={"height_ratios": [2.2, 1.0] * rows})
+    for i, m in enumerate(modes):
+        ax, tr = axes[2 * (i // cols), i % cols], axes[2 * (i // cols) + 1, i % cols]
         u = m["u2"] / max(np.abs(m["u2"]).max(), 1e-300)
         tc = ax.tricontourf(m["X1"], m["X3"], u, levels=np.linspace(-1, 1, 21),
                             cmap="RdBu_r")
+        X1, X3, trace, n_half = clamp_trace(m)
+        ax.axvline(X1, color="k", lw=0.6, ls=":")
         ax.set_aspect("equal")
-        ax.set_title(rf"$\alpha = {m['alpha']:g}$, {m['mesh']} g{m['grading']:g}"
-                     + ("" if m["formulation"] == "mixed" else f" ({m['formulation']})")
-                     + rf": $D_{{0b}} = {m['D0_b']:.4f}$", fontsize=8)
+        form = "" if m["formulation"] == "mixed" else f" ({m['formulation']})"
+        ref = loads.get(round(m["alpha"], 9))
+        head = (rf"$\alpha = {m['alpha']:g}$: $D_{{0b}} = {ref[0]:.4f} \pm {ref[1]:.4f}$"
+                if ref else rf"$\alpha = {m['alpha']:g}$: $D_{{0b}} = {m['D0_b']:.4f}$")
+        ax.set_title(head + f"\nmode on {m['mesh']} g{m['grading']:g}{form}"
+                     + (rf" (its $D_{{0b}}$ {m['D0_b']:.4f})" if ref else ""), fontsize=8)
         ax.tick_params(labelsize=7)
-    for ax in list(axes.flat)[n:]:
-        ax.set_visible(False)
-    for ax in axes[-1]:
-        ax.set_xlabel(r"$X_1$ (mm)", fontsize=8)
-    for ax in axes[:, 0]:
         ax.set_ylabel(r"$X_3$ (mm)", fontsize=8)
-    fig.colorbar(tc, ax=axes, shrink=0.8, label=r"$u_2$ / max $|u_2|$ (top face)")
+        tr.axhline(0, color="0.6", lw=0.5)
+        tr.plot(X3, trace, "-", color="k", lw=0.9, marker=".", ms=2.5, gid="clamp-trace")
+        tr.set_xlim(X3.min(), X3.max())
+        tr.set_ylim(-1.05, 1.05)
+        tr.set_title(f"across the width at $X_1$ = {X1:.1f} mm: {n_half} half-waves",
+                     fontsize=8)
+        tr.set_xlabel(r"$X_3$ (mm)", fontsize=8)
+        tr.set_ylabel(r"$u_2$", fontsize=8)
+        tr.tick_params(labelsize=7)
+    for j in range(n, rows * cols):
+        axes[2 * (j // cols), j % cols].set_visible(False)
+        axes[2 * (j // cols) + 1, j % cols].set_visible(False)
+    for ax in axes[0::2].flat:
+        ax.set_xlabel(r"$X_1$ (mm)", fontsize=8)
+    fig.colorbar(tc, ax=axes[0::2], shrink=0.8, label=r"$u_2$ / max $|u_2|$ (top face)")
     fig.suptitle("Clamp-zone modes at the buckling load (whole plate, top face)", fontsize=10)
     return fig
