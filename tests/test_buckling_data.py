@@ -174,10 +174,14 @@ def test_breakdown_map_draws_each_meaning_where_the_data_put_it():
     (bars,) = [c for c in ax.collections if c.get_gid() == "buckling-converged"]
     half = [abs(s[1, 1] - s[0, 1]) / 2 for s in bars.get_segments()]
     np.testing.assert_allclose(half, [e.error for e in conv], rtol=0, atol=1e-12)   # rounding
-    # each load's mesh values as dots (alpha = 1.5: its two graded meshes)
+    # each load's mesh values as dots (alpha = 1.5: its two graded meshes), a step left
+    # of the weight so that the diamond (the finest mesh's value) does not hide them
+    from validation.figures.breakdown_map import MESH_OFFSET
+
     dots = np.vstack([ln.get_xydata() for ln in _by_gid(ax, "buckling-mesh")])
     e15 = next(e for e in conv if e.alpha == 1.5)
-    assert dots[dots[:, 0] == 1.5][:, 1].tolist() == list(e15.D0_b_mesh)
+    assert dots[np.isclose(dots[:, 0], 1.5 - MESH_OFFSET)][:, 1].tolist() == list(e15.D0_b_mesh)
+    assert MESH_OFFSET >= 0.02                        # more than a diamond's half width
     # a weight without a converged load (the uniform meshes' alpha = 1.5): no diamond,
     # its three mesh values as dots
     fig2, ax2 = plt.subplots()
@@ -185,7 +189,8 @@ def test_breakdown_map_draws_each_meaning_where_the_data_put_it():
     (line2,) = [ln for ln in _by_gid(ax2, "buckling-converged") if ln.get_marker() == "D"]
     assert 1.5 not in line2.get_xdata()
     dots = np.vstack([ln.get_xydata() for ln in _by_gid(ax2, "buckling-mesh")])
-    assert dots[dots[:, 0] == 1.5][:, 1].tolist() == [4.2027, 3.9908, 4.4008]
+    assert dots[np.isclose(dots[:, 0], 1.5 - MESH_OFFSET)][:, 1].tolist() == [
+        4.2027, 3.9908, 4.4008]
     plt.close(fig2)
     # the P33 criterion as given (the None of alpha = 1.5 is not drawn), red open circles
     (p,) = _by_gid(ax, "p33-coupled")

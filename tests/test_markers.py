@@ -443,3 +443,104 @@ def test_the_keplinger_figure_draws_the_order_of_the_three_meanings():
         assert ys[0] < ys[1] < ys[2], (a, ys)
     assert found == 4
     plt.close(fig)
+
+
+# -- the lines: one role one look, by construction ------------------------------------------
+_ROLE_WORDS = (  # a legend label that says a role must be drawn by the role's line
+    (re.compile(r"det\s*\\?mathcal\{H\}|det H\*"), "det-H-locus"),
+    (re.compile(r"^thin-plate limit"), "thin-plate-limit"),
+    (re.compile(r"^thick-plate limit"), "thick-plate-limit"),
+    (re.compile(r"^Stroh.*, symmetric$"), "symmetric-mode"),
+    (re.compile(r"^Stroh.*, antisymmetric$"), "antisymmetric-mode"),
+)
+
+
+def _every_line_figure():
+    """The axes of every figure the package draws with role lines: the seven cases'
+    analytic figures, uni-axial-ideal with FE data, voltage-control, wrinkling-fe, the
+    breakdown map and check's figures."""
+    from validation.cases import CASES
+    from validation.checker import check
+    from validation.check_report import check_figure
+    from validation.figures.case import case_figure
+    from validation.studies.wrinkling import wrinkling_figure
+
+    axes = []
+    for name in CASES:
+        try:
+            axes += case_figure(name).axes
+        except ValueError:                  # a case drawn from FE fields only
+            continue
+    fig, ax = plt.subplots()
+    plot_uniaxial_wrinkling(fe=_fake_keplinger(), ax=ax)
+    axes.append(ax)
+    axes += list(voltage_figure(_voltage_rows()))
+    rows = [["charge", mode, 1.5, kh, 4.0, 4.0, 0.0, "8x2", 0, 0, ""]
+            for mode in ("symmetric", "antisymmetric") for kh in (0.5, 2.0)]
+    axes += list(wrinkling_figure(rows, elastic=[["antisymmetric", 1.0, 0.95, 0.95, 0.0,
+                                                   "8x4", ""]], quick=True))
+    for case in check(DOCS / "examples" / "ex14_external_nh-d-e.csv").cases:
+        axes += check_figure(case).axes
+    return axes
+
+
+def _line_look(line) -> tuple:
+    from matplotlib.colors import to_rgba
+
+    return line.get_linestyle(), to_rgba(line.get_color())
+
+
+def test_one_role_one_line_and_one_line_one_role_in_every_figure():
+    """Every line of a role (det H* = 0, the thin- and thick-plate limits, the symmetric
+    and antisymmetric Stroh curves) is drawn with its role's line in every figure, a label
+    naming a role is never drawn without it, and no two roles share a line."""
+    from matplotlib.colors import to_rgba
+
+    from validation.markers import LINES
+
+    assert len({(r.style["ls"], r.style.get("color")) for r in LINES}) == len(LINES)
+    by_gid = {r.gid: r for r in LINES}
+    seen, bad = {}, []
+    for ax in _every_line_figure():
+        for line in ax.lines:
+            label, gid = str(line.get_label()), line.get_gid()
+            for words, role in _ROLE_WORDS:
+                if words.search(label) and gid != role:
+                    bad.append(f"{ax.get_title()!r}: {label!r} drawn without the {role} line")
+            if gid in by_gid:
+                r = by_gid[gid]
+                ls, color = _line_look(line)
+                want = r.style["ls"]
+                if {"--": "dashed", "-": "solid", ":": "dotted", "-.": "dashdot"}[want] != ls \
+                        and want != ls:
+                    bad.append(f"{ax.get_title()!r}: {gid} drawn {ls}, not {want}")
+                if "color" in r.style and color != to_rgba(r.style["color"]):
+                    bad.append(f"{ax.get_title()!r}: {gid} drawn in {color}")
+                seen.setdefault(gid, set()).add(ls)
+    assert not bad, "\n".join(bad)
+    assert set(seen) == set(by_gid)                     # every role is drawn somewhere
+    plt.close("all")
+
+
+def test_the_explore_page_draws_the_roles_with_the_same_lines():
+    pytest.importorskip("bokeh")
+    from bokeh.document import Document
+    from bokeh.models import GlyphRenderer, Line
+
+    from validation.explore.app import build_page
+    from validation.markers import (ANTISYMMETRIC_MODE, SYMMETRIC_MODE, THICK_PLATE_LIMIT,
+                                    THIN_PLATE_LIMIT, VOLTAGE_LIMIT_LOCUS)
+
+    doc = Document()
+    build_page(doc)
+    want = {"det H* = 0": VOLTAGE_LIMIT_LOCUS, THIN_PLATE_LIMIT.gid: THIN_PLATE_LIMIT,
+            THICK_PLATE_LIMIT.gid: THICK_PLATE_LIMIT, "symmetric": SYMMETRIC_MODE,
+            "antisymmetric": ANTISYMMETRIC_MODE}
+    found = {}
+    for r in doc.select({"type": GlyphRenderer}):
+        if r.name in want and isinstance(r.glyph, Line):
+            found.setdefault(r.name, []).append(r.glyph.line_dash)
+    assert set(found) == set(want)
+    for name, dashes in found.items():
+        expect = Line(line_dash=want[name].dash).line_dash
+        assert all(d == expect for d in dashes), (name, dashes, expect)

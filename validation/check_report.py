@@ -32,7 +32,7 @@ from .figures import (BUCKLING_NAME, LIMIT_NAME, add_caption, plot_equibiaxial_l
                       plot_equibiaxial_wrinkling, plot_uniaxial_loading,
                       plot_uniaxial_wrinkling, tag_panels)
 from .figures.common import colors
-from .markers import BEYOND_TOLERANCE, CONVERGED_BUCKLING
+from .markers import BEYOND_TOLERANCE, CONVERGED_BUCKLING, MODE_LINES, line_style
 from .specs import KEPLINGER
 
 __all__ = ["check_figure", "report_markdown", "report_json", "write_check_report"]
@@ -218,13 +218,12 @@ def _wrinkling_panels(case: CaseCheck):
     palette = dict(zip(lams, colors(len(lams))))
     kh = np.geomspace(max(min(0.3, 0.8 * float(pt["kh"].min())), 1e-2),
                       min(max(8.0, 1.25 * float(pt["kh"].max())), _KH_CAP), 60)
-    styles = {"symmetric": "-", "antisymmetric": "--"}
     for ax, control in zip(axes, controls):
         for lam in lams:
             for mode in sorted(set(pt["mode"])):
                 ax.plot(kh, an.critical_D0(lam, kh, mode=mode, control=control),
-                        styles[mode], color=palette[lam], lw=1.2,
-                        label=f"Stroh, $\\lambda = {lam:g}$, {mode}")
+                        color=palette[lam], lw=1.2, label=f"Stroh, $\\lambda = {lam:g}$, {mode}",
+                        **line_style(MODE_LINES[mode]))
                 rows = ((pt["control"] == control) & np.isclose(pt["lam"], lam, rtol=0,
                                                                  atol=1e-9)
                         & (pt["mode"] == mode))

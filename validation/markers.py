@@ -23,7 +23,8 @@ __all__ = ["Marker", "P33_BREAKDOWN", "P33_ONSET_LOCATED", "AFTER_BREAKDOWN", "R
            "SECTION_ANTISYMMETRIC", "BEYOND_TOLERANCE", "VOCABULARY",
            "P33_SHAPES",
            "PAPER_P33_WORDS", "NOT_CONVERGED_NOTE", "BREAKDOWN_MEANINGS", "legend_style",
-           "find_marker"]
+           "find_marker", "LineRole", "MODE_LINES", "VOLTAGE_LIMIT_LOCUS", "THIN_PLATE_LIMIT",
+           "THICK_PLATE_LIMIT", "SYMMETRIC_MODE", "ANTISYMMETRIC_MODE", "LINES", "line_style"]
 
 
 @dataclass(frozen=True)
@@ -132,6 +133,71 @@ BEYOND_TOLERANCE = Marker(
     "beyond its tolerance", "orange X",
     "check: a row of the checked results beyond its tolerance (drawn above the others)",
     dict(marker="X", color="darkorange", mec="saddlebrown", ms=11, mew=0.8, zorder=10))
+
+@dataclass(frozen=True)
+class LineRole:
+    """One curve as every figure and the explore page draw it: the same role, the same
+    line (a figure gives its line the role's ``gid``, which the tests read back).
+
+    Attributes
+    ----------
+    gid
+        The ``gid`` of a matplotlib line of this role (and the explore page's glyph name).
+    look
+        The line in words.
+    meaning
+        What it is, in one line.
+    style
+        Matplotlib keywords (``ls``, ``color`` where the role fixes it, ``lw``).
+    dash
+        The explore page's (Bokeh) ``line_dash``.
+    """
+
+    gid: str
+    look: str
+    meaning: str
+    style: dict = field(default_factory=dict)
+    dash: str = "solid"
+
+
+VOLTAGE_LIMIT_LOCUS = LineRole(
+    "det-H-locus", "dotted black line",
+    "the voltage-control limit det H* = 0 (Sec. 3.1): the maxima of E0 of the loading "
+    "curves", dict(ls=":", color="k", lw=1.3), "dotted")
+THIN_PLATE_LIMIT = LineRole(
+    "thin-plate-limit", "dashed black line",
+    "the thin-plate wrinkling limit (Eqs. thin-equi-biaxial, thin-uni-axial; kh -> 0)",
+    dict(ls="--", color="k", lw=1.3), "dashed")
+THICK_PLATE_LIMIT = LineRole(
+    "thick-plate-limit", "dashed blue line",
+    "the thick-plate (surface) wrinkling limit (Eqs. thick-equi-biaxial, thick-uni-axial; "
+    "kh -> infinity)", dict(ls="--", color="tab:blue", lw=1.3), "dashed")
+SYMMETRIC_MODE = LineRole(
+    "symmetric-mode", "solid line",
+    "a Stroh curve of wrinkles symmetric about the mid-plane (extensional); the colour is "
+    "the curve's", dict(ls="-"), "solid")
+ANTISYMMETRIC_MODE = LineRole(
+    "antisymmetric-mode", "dash-dotted line",
+    "a Stroh curve of wrinkles antisymmetric about the mid-plane (flexural); the colour is "
+    "the curve's", dict(ls="-."), "dashdot")
+#: Every line role; no two share a look.
+LINES = (VOLTAGE_LIMIT_LOCUS, THIN_PLATE_LIMIT, THICK_PLATE_LIMIT, SYMMETRIC_MODE,
+         ANTISYMMETRIC_MODE)
+#: the Stroh curves' role by mode
+MODE_LINES = {"symmetric": SYMMETRIC_MODE, "antisymmetric": ANTISYMMETRIC_MODE}
+
+
+def line_style(role: LineRole, **extra) -> dict:
+    """The matplotlib keywords of a line of ``role``: its style and ``gid``, updated by
+    ``extra`` (e.g. the curve's colour where the role leaves it open).
+
+    Examples
+    --------
+    >>> line_style(VOLTAGE_LIMIT_LOCUS)["ls"]
+    ':'
+    """
+    return {**role.style, "gid": role.gid, **extra}
+
 
 #: Every marker, in the order the docs' tables list them.
 VOCABULARY = (P33_BREAKDOWN, P33_ONSET_LOCATED, AFTER_BREAKDOWN, RUN_BUCKLING, CONVERGED_BUCKLING,

@@ -127,7 +127,7 @@ def clamp_modes_figure(modes: list[dict], loads: dict | None = None):
         tc = ax.tricontourf(m["X1"], m["X3"], u, levels=np.linspace(-1, 1, 21),
                             cmap="RdBu_r")
         X1, X3, trace, n_half = clamp_trace(m)
-        ax.axvline(X1, color="k", lw=0.6, ls=":")
+        ax.axvline(X1, color="0.35", lw=0.8, ls="-", gid="clamp-trace-row")
         ax.set_aspect("equal")
         form = "" if m["formulation"] == "mixed" else f" ({m['formulation']})"
         ref = loads.get(round(m["alpha"], 9))

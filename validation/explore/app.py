@@ -14,7 +14,8 @@ from pathlib import Path
 import numpy as np
 
 from ..figures.common import MODEL_NAME, VARIANT_MARKER
-from ..markers import P33_BREAKDOWN, RUN_BUCKLING
+from ..markers import (ANTISYMMETRIC_MODE, P33_BREAKDOWN, RUN_BUCKLING, SYMMETRIC_MODE,
+                       THICK_PLATE_LIMIT, THIN_PLATE_LIMIT, VOLTAGE_LIMIT_LOCUS)
 from .curves import (D0_MAX, E0_MAX, KH, LAM1_MAX, LAM_MAX, PAPER, ExploreParameters,
                      dispersion_panel, equibiaxial_panel, uniaxial_panel)
 from .fe_layer import FEResults
@@ -99,8 +100,8 @@ class _Page:
             f.multi_line("xs", "ys", source=source(f"eq_paper_{q}", xs=[], ys=[]),
                          color=_GREY, legend_label="the paper's s values")
             f.line("lam", "y", source=source(f"eq_locus_{q}", lam=[], y=[]), color="black",
-                   line_dash="dashed", legend_label="det H* = 0 (voltage control limit)",
-                   name="det H* = 0")
+                   line_dash=VOLTAGE_LIMIT_LOCUS.dash,
+                   legend_label="det H* = 0 (voltage control limit)", name="det H* = 0")
             r1 = f.line("lam", "stable", source=source(f"eq_{q}", lam=[], stable=[],
                                                        unstable=[]),
                         color="#1f77b4", line_width=3, legend_label="stable", name="s curve")
@@ -120,9 +121,11 @@ class _Page:
         f.multi_line("xs", "ys", source=source("uni_paper", xs=[], ys=[]), color=_GREY,
                      legend_label="the paper's alpha values")
         f.line("x", "y", source=source("uni_thin", x=[], y=[]), color="black",
-               line_dash="dashed", legend_label="thin-plate limit (s = 0)")
+               line_dash=THIN_PLATE_LIMIT.dash, legend_label="thin-plate limit (s = 0)",
+               name=THIN_PLATE_LIMIT.gid)
         f.line("x", "y", source=source("uni_thick", x=[], y=[]), color="#1f77b4",
-               line_dash="dashed", legend_label="thick-plate limit")
+               line_dash=THICK_PLATE_LIMIT.dash, legend_label="thick-plate limit",
+               name=THICK_PLATE_LIMIT.gid)
         r = f.line("x", "y", source=source("uni", x=[], y=[]), color="#2ca02c", line_width=3,
                    legend_label="alpha curve", name="alpha curve")
         fe_glyphs(f, "uni_fe")
@@ -139,15 +142,17 @@ class _Page:
         f = fig("dispersion", "(d) wrinkling of a plate of finite thickness: D0_c vs kh",
                 "kh", "D0_c", x_axis_type="log")
         ra = f.line("kh", "anti", source=source("disp", kh=[], anti=[], sym=[]),
-                    color="#1f77b4", line_width=3, legend_label="antisymmetric (flexural)",
-                    name="antisymmetric")
+                    color="#1f77b4", line_width=3, line_dash=ANTISYMMETRIC_MODE.dash,
+                    legend_label="antisymmetric (flexural)", name="antisymmetric")
         rs = f.line("kh", "sym", source=self.src["disp"], color="#ff7f0e", line_width=3,
-                    line_dash="dashed", legend_label="symmetric (extensional)",
+                    line_dash=SYMMETRIC_MODE.dash, legend_label="symmetric (extensional)",
                     name="symmetric")
         f.line("kh", "thin", source=source("disp_limits", kh=[], thin=[], thick=[]),
-               color="black", line_dash="dotted", legend_label="thin-plate limit (kh -> 0)")
+               color="black", line_dash=THIN_PLATE_LIMIT.dash,
+               legend_label="thin-plate limit (kh -> 0)", name=THIN_PLATE_LIMIT.gid)
         f.line("kh", "thick", source=self.src["disp_limits"], color="#1f77b4",
-               line_dash="dotdash", legend_label="thick-plate limit (kh -> inf)")
+               line_dash=THICK_PLATE_LIMIT.dash, legend_label="thick-plate limit (kh -> inf)",
+               name=THICK_PLATE_LIMIT.gid)
         for mode, marker in (("antisymmetric", "circle"), ("symmetric", "square")):
             if results.folder is None:
                 source(f"disp_fe_{mode}", x=[], y=[])

@@ -31,6 +31,8 @@ __all__ = ["homogeneous_wrinkling_D0", "plot_breakdown_map", "breakdown_map_figu
 
 #: where the map's homogeneous wrinkling search ends (and the map's top)
 MAP_D0_MAX = 8.0
+#: how far left of its weight the map draws the load of each mesh (in alpha)
+MESH_OFFSET = 0.025
 
 
 def homogeneous_wrinkling_D0(alpha: float, model="neo-Hookean", D0_max: float = MAP_D0_MAX,
@@ -153,8 +155,10 @@ def plot_breakdown_map(p33=None, run_buckling=None, run_newton=None, loads=None,
             label = (f"{MESH_BUCKLING.name} (uniform {', '.join(e.meshes)})"
                      if e.source == "uniform" else
                      f"{MESH_BUCKLING.name} (the two finest graded meshes)")
-        ax.plot([e.alpha] * len(e.D0_b_mesh), e.D0_b_mesh, ls="none", gid="buckling-mesh",
-                label=label, **legend_style(MESH_BUCKLING))
+        # a step left of the weight: the finest mesh's value is the diamond's, which would
+        # hide it
+        ax.plot([e.alpha - MESH_OFFSET] * len(e.D0_b_mesh), e.D0_b_mesh, ls="none",
+                gid="buckling-mesh", label=label, **legend_style(MESH_BUCKLING))
     conv = [e for e in loads if e.converged]
     if conv:
         err = max(e.error for e in conv)

@@ -27,7 +27,7 @@ from matplotlib.lines import Line2D
 
 import analytic as an
 
-from ..markers import LIMIT_POINT, P33_BREAKDOWN, P33_SHAPES
+from ..markers import LIMIT_POINT, P33_BREAKDOWN, P33_SHAPES, THICK_PLATE_LIMIT, line_style
 
 __all__ = [
     "PAPER_FIGURE", "MODEL_NAME", "BREAKDOWN_NAME", "BUCKLING_NAME", "NEWTON_NAME", "LIMIT_NAME",
@@ -153,7 +153,7 @@ def wrinkling_zone(ax, lk, thick, ln, thin, D0max):
     zone = wrinkling_zone_outline(lk, thick, ln, thin, D0max)
     if zone is not None:
         ax.fill(*zone, color="0.85", zorder=0, label="wrinkling zone")
-    ax.plot(lk, thick, "--", color="tab:blue", label="thick-plate limit")
+    ax.plot(lk, thick, label="thick-plate limit", **line_style(THICK_PLATE_LIMIT))
 
 
 def finish_loading_axes(ax, fe, quantity, xlabel, xlim, title):

@@ -9,6 +9,7 @@ import numpy as np
 import analytic as an
 
 from ..cases import analytic_model
+from ..markers import VOLTAGE_LIMIT_LOCUS, line_style
 from .common import colors, equibiaxial_curve, finish_loading_axes, loading_fe_dots, new_axes
 
 __all__ = ["plot_equibiaxial_loading"]
@@ -20,7 +21,7 @@ def plot_equibiaxial_loading(model="neo-Hookean", s_values=(0, 1, 2, 3), quantit
     """Equi-biaxial loading curves ``D0(lam)`` or ``E0(lam)`` at fixed ``s``.
 
     Paper Figs. nh-d-e and gent-d-e: Eq. (loading_gent) and ``E0 = lam^-4 D0``,
-    with the dashed voltage-control limit locus ``det H* = 0`` (through the
+    with the dotted voltage-control limit locus ``det H* = 0`` (through the
     maxima of ``E0``; for neo-Hookean ``D0 = sqrt((lam^6 + 5)/3)``) and the
     maxima of ``E0`` from :func:`analytic.max_E0` marked.
 
@@ -53,8 +54,9 @@ def plot_equibiaxial_loading(model="neo-Hookean", s_values=(0, 1, 2, 3), quantit
     if locus:
         lam = np.linspace(1.0, lam_max, 800)
         D0l = np.asarray(an.voltage_limit_D0(lam, m), dtype=float)
-        ax.plot(lam, D0l if quantity == "D0" else D0l / lam**4, "k--", lw=1.2,
-                label=r"$\det\mathcal{H}^* = 0$ (voltage control limit)")
+        ax.plot(lam, D0l if quantity == "D0" else D0l / lam**4,
+                label=r"$\det\mathcal{H}^* = 0$ (voltage control limit)",
+                **line_style(VOLTAGE_LIMIT_LOCUS))
         lm, E0m = (np.atleast_1d(np.asarray(a, dtype=float))
                    for a in an.max_E0(np.asarray(s_values, dtype=float), m, loading="equibiaxial"))
         ok = np.isfinite(lm)

@@ -8,6 +8,7 @@ import numpy as np
 import analytic as an
 
 from ..cases import analytic_model
+from ..markers import THIN_PLATE_LIMIT, line_style
 from .common import (VARIANT_MARKER, colors, equibiaxial_curve, fe_dots, fe_rows, new_axes,
                      refine_start, variant_legend, wrinkling_zone)
 
@@ -39,7 +40,7 @@ def plot_equibiaxial_wrinkling(model="neo-Hookean", s_values=(0, 0.8, 1.5, 2.5, 
         if mask is not None:
             for v in VARIANT_MARKER:
                 fe_dots(ax, fe, fe["lam1_fe"], fe["D0"], mask & (fe["variant"] == v), v, c)
-    ax.plot(ln, thin, ":", color="k", lw=1.5, label="thin-plate limit (= $s = 0$ curve)")
+    ax.plot(ln, thin, label="thin-plate limit (= $s = 0$ curve)", **line_style(THIN_PLATE_LIMIT))
     ax.set_xlim(0.5, 5.0)
     ax.set_ylim(0, D0max)
     ax.set_xlabel(r"$\lambda$")

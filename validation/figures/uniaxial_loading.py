@@ -9,6 +9,7 @@ import numpy as np
 import analytic as an
 
 from ..cases import analytic_model
+from ..markers import VOLTAGE_LIMIT_LOCUS, line_style
 from .common import colors, finish_loading_axes, loading_fe_dots, new_axes, uniaxial_curve
 
 __all__ = ["uniaxial_voltage_locus", "plot_uniaxial_loading"]
@@ -34,7 +35,7 @@ def plot_uniaxial_loading(model="neo-Hookean", s_values=(0, 1, 2, 3, 4), quantit
                           fe=None, ax=None, lam1_max=6.0, locus=True, palette=None):
     """Uni-axial dead-load curves ``D0(lam1)`` or ``E0(lam1)`` (paper Fig. figde, Eq. DEuniax).
 
-    The dashed curve is the ``det H* = 0`` locus of :func:`uniaxial_voltage_locus`;
+    The dotted curve is the ``det H* = 0`` locus of :func:`uniaxial_voltage_locus`;
     FE dots at ``(lam1_fe, D0)`` or ``(lam1_fe, D0/(lam1_fe lam3_fe)^2)``. ``palette``
     (a superset of ``s_values``) fixes the colour of each ``s`` across panels.
 
@@ -52,8 +53,8 @@ def plot_uniaxial_loading(model="neo-Hookean", s_values=(0, 1, 2, 3, 4), quantit
         loading_fe_dots(ax, fe, s=s, model=model, quantity=quantity, color=c)
     if locus:
         l1, D0, E0 = uniaxial_voltage_locus(model)
-        ax.plot(l1, D0 if quantity == "D0" else E0, "k--", lw=1.2,
-                label=r"$\det\mathcal{H}^* = 0$")
+        ax.plot(l1, D0 if quantity == "D0" else E0, label=r"$\det\mathcal{H}^* = 0$",
+                **line_style(VOLTAGE_LIMIT_LOCUS))
     finish_loading_axes(ax, fe, quantity, r"$\lambda_1$", (0.5, lam1_max),
                         f"{model}, uni-axial dead load: ${quantity[0]}_0$ vs $\\lambda_1$")
     return ax

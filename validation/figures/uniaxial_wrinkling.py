@@ -17,7 +17,7 @@ from ..cases import ALPHAS, analytic_model
 from ..specs import KEPLINGER
 from ..markers import (AFTER_BREAKDOWN, CONVERGED_BUCKLING, NEWTON_LIMIT, NOT_CONVERGED_NOTE,
                        P33_BREAKDOWN, P33_ONSET_LOCATED, P33_SHAPES, RUN_BUCKLING,
-                       legend_style)
+                       THIN_PLATE_LIMIT, legend_style, line_style)
 from .common import (MODEL_NAME, VARIANT_MARKER, colors, new_axes, refine_start, uniaxial_curve,
                      variant_legend, wrinkling_zone)
 
@@ -221,7 +221,7 @@ def plot_uniaxial_wrinkling(fe=None, alphas=ALPHAS, ax=None, D0max=7.0):
     ln, thin, _ = uniaxial_curve(0.0, m, 6.0)          # Eq. (thin-uni-axial) = s = 0
     lk, thick = refine_start(lam1, uniaxial_thick_limit_curve)
     wrinkling_zone(ax, lk, thick, ln, thin, D0max)
-    ax.plot(ln, thin, "--", color="k", label="thin-plate limit ($s = 0$)")
+    ax.plot(ln, thin, label="thin-plate limit ($s = 0$)", **line_style(THIN_PLATE_LIMIT))
     broken, faded = set(), set()
     buckled = []
     for a, c in zip(alphas, colors(len(alphas))):

@@ -43,7 +43,8 @@ from skfem_dielectric.studies import SNAP_THROUGH_SETTINGS
 from ..cases import analytic_model
 from ..figures import (MODEL_NAME, PAPER_FIGURE, add_caption, mesh_caption,
                       run_caption, save_figure, tag_panels)
-from ..markers import LIMIT_POINT, STABLE_STATE, UNSTABLE_STATE, legend_style
+from ..markers import (LIMIT_POINT, STABLE_STATE, UNSTABLE_STATE, VOLTAGE_LIMIT_LOCUS,
+                       legend_style, line_style)
 from ..specs import ALPHAS, KEPLINGER
 from ..store import RowFile, StudyStore
 
@@ -309,10 +310,12 @@ def voltage_figure(rows: list[list], ax=None, quick: bool | None = None):
             drawn[i]["limit"] |= bool(lim)
         a.set_title(_panel_title(mine, i == 0), fontsize=10)
     lam = np.linspace(1.0, 6.0, 400)
-    ax[0].plot(an.voltage_limit_D0(lam) / lam ** 4, an.voltage_limit_D0(lam), ":k", lw=1.3,
-               label=r"$\det\mathcal{H}^* = 0$ (voltage control limit, neo-Hookean)")
-    ax[1].plot(an.uniaxial_voltage_limit_E0(lam), an.uniaxial_voltage_limit_D0(lam), ":k",
-               lw=1.3, label=r"$\det\mathcal{H}^* = 0$ (voltage control limit, neo-Hookean)")
+    ax[0].plot(an.voltage_limit_D0(lam) / lam ** 4, an.voltage_limit_D0(lam),
+               label=r"$\det\mathcal{H}^* = 0$ (voltage control limit, neo-Hookean)",
+               **line_style(VOLTAGE_LIMIT_LOCUS))
+    ax[1].plot(an.uniaxial_voltage_limit_E0(lam), an.uniaxial_voltage_limit_D0(lam),
+               label=r"$\det\mathcal{H}^* = 0$ (voltage control limit, neo-Hookean)",
+               **line_style(VOLTAGE_LIMIT_LOCUS))
     name = MODEL_NAME["coupled"]
     for a, d in zip(ax, drawn):
         handles, _ = a.get_legend_handles_labels()

@@ -30,7 +30,8 @@ import analytic as an
 import skfem_dielectric as fe
 
 from ..figures import MODEL_NAME, add_caption, mesh_caption, run_caption, save_figure, tag_panels
-from ..markers import SECTION_ANTISYMMETRIC, SECTION_SYMMETRIC
+from ..markers import (MODE_LINES, SECTION_ANTISYMMETRIC, SECTION_SYMMETRIC, THICK_PLATE_LIMIT,
+                       line_style)
 from ..store import RowFile, StudyStore
 
 __all__ = ["WRINKLING_COLUMNS", "ELASTIC_COLUMNS", "TABLE", "ELASTIC", "wrinkling_grid",
@@ -215,16 +216,16 @@ _SECTION = {"symmetric": SECTION_SYMMETRIC, "antisymmetric": SECTION_ANTISYMMETR
 
 def _elastic_panel(a, rows):
     kh = np.logspace(np.log10(0.3), np.log10(30.0), 40)
-    for mode, ls in (("antisymmetric", "--"), ("symmetric", "-")):
-        a.plot(kh, [stroh_critical_stretch(k, mode) for k in kh], ls, color="k", lw=1.2,
-               label=f"Stroh, {mode}")
+    for mode in ("antisymmetric", "symmetric"):
+        a.plot(kh, [stroh_critical_stretch(k, mode) for k in kh], color="k", lw=1.2,
+               label=f"Stroh, {mode}", **line_style(MODE_LINES[mode]))
         pts = [(r[1], r[2]) for r in rows if r[0] == mode and r[2] is not None]
         if pts:
             x, y = zip(*pts)
             mk = _SECTION[mode]
             a.plot(x, y, ls="none", label=mk.name, **mk.style)
-    a.axhline(an.surface_instability_stretch(), color="0.5", lw=0.8, ls=":",
-              label=r"thick-plate limit $\lambda = 0.666$")
+    a.axhline(an.surface_instability_stretch(),
+              label=r"thick-plate limit $\lambda = 0.666$", **line_style(THICK_PLATE_LIMIT))
     thin = kh[kh < 2.5]
     a.plot(thin, 1 - thin**2 / 18, ":", color="C0", lw=1.0, label=r"Euler: $1 - (kh)^2/18$")
     a.set_xscale("log")
@@ -300,15 +301,14 @@ def wrinkling_figure(rows: list[list], ax=None, elastic: list[list] | None = Non
     kh = np.logspace(np.log10(0.3), np.log10(8.0), 60)
     lams = sorted({r[2] for r in rows})
     colours = dict(zip(lams, plt.cm.viridis(np.linspace(0.1, 0.8, len(lams)))))
-    styles = (("symmetric", "-"), ("antisymmetric", "--"))
     drawn = set()
     for a, control in zip(ax, CONTROLS):
         for lam in lams:
-            for mode, ls in styles:
-                a.plot(kh, an.critical_D0(lam, kh, mode=mode, control=control), ls,
+            for mode in ("symmetric", "antisymmetric"):
+                a.plot(kh, an.critical_D0(lam, kh, mode=mode, control=control),
                        color=colours[lam], lw=1.2,
                        label=f"Stroh, $\\lambda = {lam:g}$, {mode}"
-                       if control == "charge" else None)
+                       if control == "charge" else None, **line_style(MODE_LINES[mode]))
                 pts = [(r[3], r[4]) for r in rows
                        if r[0] == control and r[1] == mode and r[2] == lam and r[4] is not None]
                 if pts:
@@ -325,7 +325,7 @@ def wrinkling_figure(rows: list[list], ax=None, elastic: list[list] | None = Non
         a.set_title(f"{control} control", fontsize=10)
     handles, _ = ax[0].get_legend_handles_labels()
     handles += [Line2D([], [], ls="none", label=_SECTION[mode].name, **_SECTION[mode].style)
-                for mode, _ in styles if mode in drawn]
+                for mode in ("symmetric", "antisymmetric") if mode in drawn]
     ax[0].legend(handles=handles, fontsize=7, loc="upper right")
     tag_panels(ax)
     add_caption(ax[0].figure, wrinkling_caption(rows, elastic, quick))
