@@ -80,11 +80,13 @@ def peak_bytes() -> float:
     """The process's peak resident memory so far, in bytes; ``nan`` where the system
     does not tell.
 
-    Read from ``getrusage`` where :mod:`resource` exists (its ``ru_maxrss`` is in
-    kilobytes on Linux and in bytes on macOS), else from ``VmHWM`` of
-    ``/proc/self/status`` (Linux), else from the peak working set (Windows).
+    Read from ``VmHWM`` of ``/proc/self/status`` on Linux (the peak of this process's
+    own image: ``ru_maxrss`` there keeps the peak of the parent it was forked from, so a
+    unit started by a large process would report that process's), else from
+    ``getrusage`` where :mod:`resource` exists (``ru_maxrss`` in bytes on macOS, in
+    kilobytes on the BSDs), else from the peak working set (Windows).
     """
-    for read in (_rusage_peak, _proc_peak, _windows_peak):
+    for read in (_proc_peak, _rusage_peak, _windows_peak):
         value = read()
         if value is not None:
             return float(value)
