@@ -144,6 +144,11 @@ PINNED: dict[str, tuple[str, float, float, str]] = {
                                  "the incompressible Eq. (loading_gent): its penalty error, "
                                  "about 4 mu/kappa (measured 3.7e-5), is what the example "
                                  "checks with its tolerance 1e-4"),
+    "ex15_lecture_breakdown": ("E0_max", np.sqrt(3.0) / 2 ** (4.0 / 3.0), 1e-10,
+                               "literature: the neo-Hookean s = 0 voltage-control maximum "
+                               "sqrt(3)/2^(4/3), found by a bounded search on the loading "
+                               "curve (flat at the maximum: E0 to second order in the "
+                               "search's 1e-12 in lam)"),
 }
 
 
