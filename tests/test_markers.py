@@ -544,3 +544,28 @@ def test_the_explore_page_draws_the_roles_with_the_same_lines():
     for name, dashes in found.items():
         expect = Line(line_dash=want[name].dash).line_dash
         assert all(d == expect for d in dashes), (name, dashes, expect)
+
+
+def test_the_explore_page_draws_the_reference_layer_in_order():
+    """Panel (c) of the explore page at the paper's alpha = 1: the located P33 onset, the
+    converged D0_b and the Newton limit of the shipped study, on the weight's curve, in
+    the order the figures draw them, with the figures' legend names."""
+    pytest.importorskip("bokeh")
+    from bokeh.document import Document
+    from bokeh.models import GlyphRenderer
+
+    from validation.buckling_data import converged_buckling_load, newton_limits, p33_onsets
+    from validation.explore.app import build_page
+
+    doc = Document()
+    build_page(doc)
+    got = {}
+    for r in doc.select({"type": GlyphRenderer}):
+        if r.name and r.name.startswith("reference-"):
+            ys = list(r.data_source.data["y"])
+            got[r.name.removeprefix("reference-")] = ys[0] if ys else None
+    onset, d0b, newton = got["p33_onset"], got["D0_b"], got["newton_limit"]
+    assert onset < d0b < newton
+    assert onset == dict((a, d) for a, d, _ in p33_onsets())[1.0]
+    assert d0b == converged_buckling_load(1.0).D0_b
+    assert newton == dict((a, d) for a, d, _ in newton_limits())[1.0]

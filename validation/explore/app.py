@@ -14,7 +14,8 @@ from pathlib import Path
 import numpy as np
 
 from ..figures.common import MODEL_NAME, VARIANT_MARKER
-from ..markers import (ANTISYMMETRIC_MODE, P33_BREAKDOWN, RUN_BUCKLING, SYMMETRIC_MODE,
+from ..markers import (ANTISYMMETRIC_MODE, CONVERGED_BUCKLING, NEWTON_LIMIT, P33_BREAKDOWN,
+                       P33_ONSET_LOCATED, RUN_BUCKLING, SYMMETRIC_MODE,
                        THICK_PLATE_LIMIT, THIN_PLATE_LIMIT, VOLTAGE_LIMIT_LOCUS)
 from .curves import (D0_MAX, E0_MAX, KH, LAM1_MAX, LAM_MAX, PAPER, ExploreParameters,
                      dispersion_panel, equibiaxial_panel, uniaxial_panel)
@@ -129,6 +130,13 @@ class _Page:
         r = f.line("x", "y", source=source("uni", x=[], y=[]), color="#2ca02c", line_width=3,
                    legend_label="alpha curve", name="alpha curve")
         fe_glyphs(f, "uni_fe")
+        for key, marker, size, color, name in (
+                ("p33_onset", "dash", 22, "red", P33_ONSET_LOCATED.name),
+                ("D0_b", "diamond", 12, "black", CONVERGED_BUCKLING.name),
+                ("newton_limit", "inverted_triangle", 12, "black", NEWTON_LIMIT.name)):
+            f.scatter("x", "y", source=source(f"uni_ref_{key}", x=[], y=[]), marker=marker,
+                      size=size, color=color, line_width=3 if marker == "dash" else 1,
+                      legend_label=name, name=f"reference-{key}")
         marks = {} if results.folder is None else {"legend_label": P33_BREAKDOWN.name}
         f.scatter("x", "y", source=source("uni_breakdown", x=[], y=[]), marker="circle",
                   size=22, fill_alpha=0.0, line_color="red", line_width=2, **marks)
@@ -326,7 +334,16 @@ class _Page:
         bk = [m.buckling for m in marks.values() if m.buckling is not None]
         self.src["uni_breakdown"].data = dict(x=[b[0] for b in brk], y=[b[1] for b in brk])
         self.src["uni_buckling"].data = dict(x=[b[0] for b in bk], y=[b[1] for b in bk])
+        for key in ("p33_onset", "D0_b", "newton_limit"):
+            pt = d["reference"].get(key)
+            self.src[f"uni_ref_{key}"].data = dict(x=[pt[0]] if pt else [],
+                                                   y=[pt[1]] if pt else [])
         text = f"alpha = {float(self.p.alpha):g}: s = {d['s']:.6f}"
+        if d["reference"]:
+            text += "; the converged study: " + ", ".join(
+                f"{n} {d['reference'][k][1]:.4g}" for k, n in (
+                    ("p33_onset", "P33 onset"), ("D0_b", "D0_b"),
+                    ("newton_limit", "Newton limit")) if k in d["reference"])
         if bk:
             text += f"; {RUN_BUCKLING.name} D0_b = {bk[0][1]:.4f}"
         if brk:

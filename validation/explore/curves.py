@@ -15,6 +15,7 @@ import numpy as np
 import analytic as an
 from analytic.units import keplinger_s
 
+from ..buckling_data import buckling_loads, newton_limits, p33_onsets
 from ..cases import ALPHAS
 from ..figures.common import (equibiaxial_curve, refine_start, uniaxial_curve,
                               wrinkling_zone_outline)
@@ -22,7 +23,7 @@ from ..figures.uniaxial_wrinkling import uniaxial_thick_limit_curve
 from ..specs import GENT_JM, KEPLINGER
 
 __all__ = ["ExploreParameters", "PAPER", "PAPER_S", "LAM_MAX", "LAM1_MAX", "D0_MAX", "E0_MAX",
-           "KH", "equibiaxial_panel", "uniaxial_panel", "dispersion_panel"]
+           "KH", "equibiaxial_panel", "uniaxial_panel", "dispersion_panel", "clamped_reference"]
 
 #: Right end of the stretch axis of the equi-biaxial panels (paper Figs. nh-d-e, gent-d-e).
 LAM_MAX = 5.0
@@ -177,7 +178,9 @@ def uniaxial_panel(p: ExploreParameters) -> dict:
         curve); ``thick_lam1``, ``thick_D0``: the thick-plate limit (Eq. thick-uni-axial on
         the path); ``zone``: the outline ``(xs, ys)`` of the wrinkling zone or ``None``;
         ``paper``: the curves of the paper's weights ``[(alpha, s, lam1, D0), ...]``;
-        ``notes``.
+        ``reference``: the converged study of the clamped plate at this weight (the
+        neo-Hookean plate of the package's data, the same layer as the figures':
+        :func:`clamped_reference`); ``notes``.
 
     Notes
     -----
@@ -196,9 +199,40 @@ def uniaxial_panel(p: ExploreParameters) -> dict:
                      f"lam1 = {_lam1_top(p.model, float(p.Jm)):.4g} ({_name(p)})")
     if not np.isfinite(thick_D0).any():
         notes.append(f"no thick-plate limit below the locking of {_name(p)}")
+    reference = clamped_reference(alpha) if p.model == "neo-Hookean" else {}
     return dict(s=s, lam1=lam1, D0=D0, thin_lam1=thin_lam1, thin_D0=thin_D0,
                 thick_lam1=thick_lam1, thick_D0=thick_D0, zone=zone,
-                paper=_paper_uniaxial(p.model, float(p.Jm)), notes=notes)
+                paper=_paper_uniaxial(p.model, float(p.Jm)), reference=reference,
+                notes=notes)
+
+
+def clamped_reference(alpha: float) -> dict:
+    """The converged study of the clamped Keplinger plate at the weight ``alpha`` (matched
+    to ``1e-9``), each value on the weight's homogeneous neo-Hookean curve: ``{role: (lam1,
+    D0)}`` with the roles ``p33_onset`` (:func:`validation.buckling_data.p33_onsets`),
+    ``D0_b`` (:func:`validation.buckling_data.buckling_loads`, converged only) and
+    ``newton_limit`` (:func:`validation.buckling_data.newton_limits`); a weight the study
+    has not run has none.
+
+    Parameters
+    ----------
+    alpha : float
+
+    Returns
+    -------
+    dict
+    """
+    s = float(keplinger_s(alpha, g=KEPLINGER["g"]))
+    m = an.NeoHookean()
+    found = {}
+    for role, rows in (("p33_onset", [(a, d) for a, d, _ in p33_onsets()]),
+                       ("D0_b", [(e.alpha, e.D0_b) for e in buckling_loads()
+                                 if e.converged]),
+                       ("newton_limit", [(a, d) for a, d, _ in newton_limits()])):
+        for a, d in rows:
+            if abs(a - alpha) <= 1e-9 and np.isfinite(d):
+                found[role] = (float(an.uniaxial_lam1(d, s, m)), float(d))
+    return found
 
 
 def dispersion_panel(p: ExploreParameters) -> dict:
