@@ -83,7 +83,7 @@ def _measured_loads(ax, alphas, m, D0max):
     returns their legend entries, with a note for each weight whose load is not converged
     (no diamond)."""
     out = []
-    conv, newton, missing = [], [], []
+    conv, missing = [], []
     for e in buckling_loads():
         if not any(np.isclose(e.alpha, a) for a in alphas):
             continue
@@ -102,28 +102,19 @@ def _measured_loads(ax, alphas, m, D0max):
         out.append(Line2D([], [], ls="none", **st,
                           label=f"{CONVERGED_BUCKLING.name} (error bar "
                                 f"$\\leq {max(err):.2g}$, hidden by the diamond)"))
-    located, p33_meshes = [], set()
-    for a, d, mesh in p33_onsets():
-        if any(np.isclose(a, b) for b in alphas) and d <= D0max:
-            s = float(keplinger_s(a, g=KEPLINGER["g"]))
-            located.append((float(an.uniaxial_lam1(d, s, m)), d))
-            p33_meshes.add(mesh)
-    if located:
-        ax.plot(*zip(*located), ls="none", gid="p33-onset-located",
-                **legend_style(P33_ONSET_LOCATED))
-        out.append(Line2D([], [], ls="none", **legend_style(P33_ONSET_LOCATED),
-                          label=f"{P33_ONSET_LOCATED.name} (interior, plain form; "
-                                f"{', '.join(sorted(p33_meshes))})"))
-    meshes = set()
-    for a, d, mesh in newton_limits():
-        if any(np.isclose(a, b) for b in alphas) and d <= D0max:
-            s = float(keplinger_s(a, g=KEPLINGER["g"]))
-            newton.append((float(an.uniaxial_lam1(d, s, m)), d))
-            meshes.add(mesh)
-    if newton:
-        ax.plot(*zip(*newton), ls="none", gid="newton-limit", **legend_style(NEWTON_LIMIT))
-        out.append(Line2D([], [], ls="none", **legend_style(NEWTON_LIMIT),
-                          label=f"{NEWTON_LIMIT.name} ({', '.join(sorted(meshes))})"))
+    for rows, marker, gid, what in ((p33_onsets(), P33_ONSET_LOCATED, "p33-onset-located",
+                                     "interior, plain form; "),
+                                    (newton_limits(), NEWTON_LIMIT, "newton-limit", "")):
+        pts, meshes = [], set()
+        for a, d, mesh in rows:          # each weight's value on its homogeneous curve
+            if any(np.isclose(a, b) for b in alphas) and d <= D0max:
+                s = float(keplinger_s(a, g=KEPLINGER["g"]))
+                pts.append((float(an.uniaxial_lam1(d, s, m)), d))
+                meshes.add(mesh)
+        if pts:
+            ax.plot(*zip(*pts), ls="none", gid=gid, **legend_style(marker))
+            out.append(Line2D([], [], ls="none", **legend_style(marker),
+                              label=f"{marker.name} ({what}{', '.join(sorted(meshes))})"))
     if missing and conv:
         out.append(Line2D([], [], ls="none", label=rf"$\alpha = {', '.join(missing)}$: "
                                                     f"{NOT_CONVERGED_NOTE}"))
