@@ -293,7 +293,7 @@ def test_the_shipped_modes_are_those_of_the_shipped_units(tmp_path, capsys):
 
     modes = read_clamp_modes(shipped_path("units").parent / "modes")
     rows = {UnitKey.from_row(r): r for r in load("units")}
-    assert {m["alpha"] for m in modes} == {0.05, 0.3, 0.7, 1.0}
+    assert {m["alpha"] for m in modes} == {0.05, 0.3, 0.7, 1.0, 1.5}
     for m in modes:
         assert abs(m["D0_b"] - float(rows[m["key"]]["D0_b"])) <= 2 * LOCATION_TOL, m["key"]
         assert m["u2"].shape == m["X1"].shape and np.abs(m["u2"]).max() > 0
@@ -354,7 +354,7 @@ def test_the_modes_figure_titles_the_table_s_load_and_counts_its_half_waves(tmp_
     for m in modes:
         counts[m["alpha"]] = clamp_trace(m)[3]
         assert counts[m["alpha"]] == int(rows[m["key"]]["half_waves"]), m["key"]
-    assert counts == {0.05: 6, 0.3: 10, 0.7: 12, 1.0: 13}
+    assert counts == {0.05: 6, 0.3: 10, 0.7: 12, 1.0: 13, 1.5: 15}
     loads = {a: (g["D0_b"], g["spread"], g["meshes"])
              for a in counts for g in [clamp_unit_load(a)]}
     fig = clamp_modes_figure(modes, loads)
@@ -365,4 +365,5 @@ def test_the_modes_figure_titles_the_table_s_load_and_counts_its_half_waves(tmp_
         assert sum(t.endswith(f": {n} half-waves") for t in titles) >= 1
     plt.close(fig)
     page = (ROOT / "docs" / "lecture.md").read_text()
-    assert "6, 10, 12 and 13 for `alpha` = 0.05, 0.3, 0.7 and 1" in " ".join(page.split())
+    assert ("6, 10, 12, 13 and 15 for `alpha` = 0.05, 0.3, 0.7, 1 and 1.5"
+            in " ".join(page.split()))
