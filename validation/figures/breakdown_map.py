@@ -194,8 +194,7 @@ def plot_breakdown_map(p33=None, run_buckling=None, run_newton=None, loads=None,
             shape["ms"] = 0.6 * shape["ms"]
             ax.plot(*zip(*pts), ls="none", gid=f"p33-{v}",
                     label=f"{P33_BREAKDOWN.name} ($P_{{33}}/\\mu < -0.01$), "
-                          f"{MODEL_NAME.get(v, v)}"
-                          + (f", this run's mesh ({run_mesh})" if run_mesh else ""),
+                          f"{MODEL_NAME.get(v, v)}, this run (its meshes: the caption)",
                     **legend_style(P33_BREAKDOWN, shape))
     pts = [(float(a), d) for a, d in (run_buckling or {}).items() if d is not None]
     if pts:
