@@ -512,3 +512,27 @@ def test_round_trip_of_the_quick_voltage_and_wrinkling_cases(tmp_path):
     result = validation.check(tmp_path)
     assert result.passed, result.table()
     assert [c.name for c in result] == ["voltage-control", "wrinkling-fe"]
+
+
+def test_a_checked_buckling_load_beyond_tolerance_shows_under_its_mark(tmp_path):
+    """A D0_b far from the converged 3.3699 (2.9, the coarse mesh's): the figure draws the
+    checked value (green plus) on top and the orange X of `beyond its tolerance` larger
+    behind it, so that the legend's green plus is visible at its point."""
+    import analytic as an
+    from analytic.units import keplinger_s
+    from validation.check_report import check_figure
+    from validation.checker import check as run_check
+
+    s = float(keplinger_s(1.0, g=9.81))
+    path = tmp_path / "r.csv"
+    path.write_text("case,alpha,D0,lam1,D0_b\n"
+                    f"uni-axial-ideal,1,1.0,{float(an.uniaxial_lam1(1.0, s)):.12g},2.9\n")
+    result = run_check(path)
+    assert not result.passed
+    fig = check_figure(result.cases[0])
+    lines = {ln.get_gid(): ln for ax in fig.axes for ln in ax.lines
+             if ln.get_gid() in ("beyond-tolerance", "checked-buckling")}
+    plus, cross = lines["checked-buckling"], lines["beyond-tolerance"]
+    assert (plus.get_xydata() == cross.get_xydata()).all()
+    assert plus.get_zorder() > cross.get_zorder()
+    assert cross.get_markersize() > plus.get_markersize()

@@ -65,3 +65,29 @@ def test_the_demos_write_the_figures_the_page_names(tmp_path, monkeypatch):
     assert len(set(named)) >= 6
     for png in set(named):
         assert (tmp_path / png).stat().st_size > 10_000, png
+
+
+#: where the pages quote the quick run's own buckling load of alpha = 1 on 10 x 1 x 5
+QUICK_D0_B_QUOTES = {
+    "check.md": "`D0_b = {}` is that of the coarse 10 x 1 x 5 eighth model",
+    "cli.md": "`--quick` gives the quick `validate` run's value ({})",
+    "gallery.md": "the located `D0_b = {}` on its 10 x 1 x 5 mesh",
+    "validation.md": "as the study does: {} on the quick 10 x 1 x 5 mesh",
+}
+
+
+@pytest.mark.slow
+def test_the_pages_quote_the_quick_run_s_buckling_load(tmp_path):
+    """The quick run's D0_b of alpha = 1 (validate --quick --case uni-axial-ideal, 10 x 1
+    x 5) as the pages quote it, to the 4 decimals of its location tolerance 1e-4."""
+    import csv
+
+    assert main(["validate", "--quick", "--case", "uni-axial-ideal", "--out",
+                 str(tmp_path), "--no-progress"]) == 0
+    with open(tmp_path / "uni-axial-ideal.csv", newline="") as fh:
+        rows = list(csv.DictReader(ln for ln in fh if not ln.startswith("#")))
+    (d0b,) = {float(r["D0_b"]) for r in rows if r.get("D0_b")}
+    docs = PAGE.parent
+    for page, quote in QUICK_D0_B_QUOTES.items():
+        text = " ".join((docs / page).read_text().split())
+        assert quote.format(f"{d0b:.4f}") in text, (page, d0b)

@@ -163,8 +163,10 @@ def _clamped_panel(case: CaseCheck):
         for a, D0b, ok in buck:
             s = float(keplinger_s(a, g=KEPLINGER["g"]))
             x = float(an.uniaxial_lam1(D0b, s, m))
-            ax.plot(x, D0b, **(_BAD if not ok else dict(marker="P", ms=10, color="C2",
-                                                         mec="k", ls="none", zorder=8)))
+            if not ok:      # the orange X larger, behind: the checked value shows through
+                ax.plot(x, D0b, gid="beyond-tolerance", **{**_BAD, "ms": 18, "zorder": 8})
+            ax.plot(x, D0b, marker="P", ms=10, color="C2", mec="k", ls="none", zorder=9,
+                    gid="checked-buckling")
         handles.append(Line2D([], [], ls="none", marker="P", ms=10, color="C2", mec="k",
                               label=f"checked {BUCKLING_NAME} $D_{{0b}}$ (on the "
                                     f"homogeneous curve)"))
