@@ -327,6 +327,16 @@ def test_the_study_figure_passes_through_zero_at_D0_b_and_names_the_forms(tmp_pa
               if (ln.get_gid() or "").startswith("onset-")}
     assert onsets == {"P33 onset (interior), grad-div stabilised form: 0.645": 0.645,
                       "P33 onset (interior), plain form: 2.520": 2.52}
+    # the converged study beside the run's coarse mesh: D0_b on the zero line, the located
+    # P33 onset on the criterion's line, in that order (the shipped tables' values)
+    from validation.buckling_data import converged_buckling_load, p33_onsets
+
+    (diamond,) = [ln for ln in eig.lines if ln.get_gid() == "buckling-converged"]
+    (bar,) = [ln for ln in p33.lines if ln.get_gid() == "p33-onset-located"]
+    d0b = converged_buckling_load(1.0).D0_b
+    onset = dict((a, d) for a, d, _ in p33_onsets())[1.0]
+    assert diamond.get_xydata().tolist() == [[d0b, 0.0]]
+    assert bar.get_xydata().tolist() == [[onset, -0.01]] and onset < d0b
     assert (tmp_path / "buckling.png").exists()
     plt.close("all")
 

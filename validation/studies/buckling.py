@@ -41,6 +41,8 @@ from ..fe.model import BUCKLING_GRAD_DIV, BUCKLING_NEWTON, BUCKLING_TOL
 from ..figures import save_figure
 from ..options import load_targets
 from ..store import RowFile, StudyStore, read_npz, write_npz_atomic
+from ..buckling_data import buckling_loads, p33_onsets
+from ..markers import CONVERGED_BUCKLING, P33_ONSET_LOCATED, legend_style
 from ..table import BREAKDOWN_TOL
 
 __all__ = ["COLUMNS", "SCAN_COLUMNS", "TRIAL_COLUMNS", "PLAIN_COLUMNS", "P33_SETS",
@@ -328,6 +330,11 @@ def buckling_figure(rows, scan, modes_dir: Path, path: Path, footer: str = "",
       onset of both forms: the grad-div one and the paper's plain form's
       (:data:`PLAIN_FORM`, ``plain``: rows of ``buckling-plain.csv``).
     * The critical mode's deflection map.
+
+    Beside each weight's own meshes the reference of the converged study (when it has the
+    weight): the converged ``D0_b`` on the zero line of the eigenvalue panel and the
+    located ``P33`` onset on the criterion's line of the ``P33`` panel
+    (:mod:`validation.buckling_data`, the markers of :mod:`validation.markers`).
     """
     alphas = sorted({r["alpha"] for r in rows})
     fig, axes = plt.subplots(len(alphas), 3, figsize=(14, 3.4 * len(alphas)), squeeze=False,
@@ -355,6 +362,12 @@ def buckling_figure(rows, scan, modes_dir: Path, path: Path, footer: str = "",
             if np.isfinite(b):
                 ax3[0].axvline(b, ls=":", lw=0.8, color=c)
         ax3[0].axhline(0, color="k", lw=0.6)
+        ref = next((e for e in buckling_loads() if e.converged
+                    and np.isclose(e.alpha, alpha)), None)
+        if ref is not None:      # the reference: where the resolving meshes cross
+            ax3[0].plot([ref.D0_b], [0.0], ls="none", gid="buckling-converged",
+                        label=f"{CONVERGED_BUCKLING.name}: {ref.D0_b:.4f}",
+                        **legend_style(CONVERGED_BUCKLING))
         ax3[0].set(xlabel="D0", ylabel="lowest physical eigenvalue",
                    title=f"alpha = {alpha:g}: {GRAD_DIV_FORM} (dotted: D0_b)")
         ax3[0].legend(fontsize=7)
@@ -363,6 +376,11 @@ def buckling_figure(rows, scan, modes_dir: Path, path: Path, footer: str = "",
         for k in P33_SETS:
             ax3[1].plot([s["D0"] for s in sc], [s[f"P33_{k}"] for s in sc], ".-", label=k)
         ax3[1].axhline(-BREAKDOWN_TOL, color="k", lw=0.6, ls="--")
+        located = next((d for a, d, _ in p33_onsets() if np.isclose(a, alpha)), None)
+        if located is not None:  # the reference: the onset on the resolving graded mesh
+            ax3[1].plot([located], [-BREAKDOWN_TOL], ls="none", gid="p33-onset-located",
+                        label=f"{P33_ONSET_LOCATED.name}: {located:.4f}",
+                        **legend_style(P33_ONSET_LOCATED))
         r = next(r for r in mine if r["mesh"] == fine)
         pl = next((p for p in plain if p["alpha"] == alpha and p["mesh"] == fine), None)
         for form, onset_D0, ls in ((GRAD_DIV_FORM, r["P33_onset_interior"], "-"),
