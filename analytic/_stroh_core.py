@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ._checks import as_array, broadcast, check_choice, check_finite, check_positive
+from ._checks import broadcast, check_choice, check_finite, check_positive
 from .models import as_model
 
 __all__ = ["coefficients", "coefficients_fast", "exponents_from_coefficients", "moduli", "stroh_N"]

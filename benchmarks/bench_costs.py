@@ -62,6 +62,21 @@ COMMANDS = {
     "bench": ("skfem-dielectric bench", "tmp", ""),
     "buckling": ("skfem-dielectric buckling --quick --out results", "tmp", ""),
     "post-buckling": ("skfem-dielectric post-buckling --quick --out results", "tmp", ""),
+    # the demos of docs/lecture.md, whose CPU column is these rows' (tests/test_lecture.py)
+    "lecture-curves": ("skfem-dielectric curves --out results/lecture/curves", "tmp",
+                       "lecture demo 1"),
+    "lecture-nh-d-e": ("skfem-dielectric validate --quick --case nh-d-e --out results/lecture",
+                       "tmp", "lecture demo 2"),
+    "lecture-voltage": ("skfem-dielectric validate --quick --case voltage-control --out "
+                        "results/lecture", "tmp", "lecture demo 3"),
+    "lecture-wrinkling": ("skfem-dielectric wrinkling-fe --quick --out results/lecture/wrinkling",
+                          "tmp", "lecture demo 4"),
+    "lecture-uniaxial": ("skfem-dielectric validate --quick --case uni-axial-ideal --out "
+                         "results/lecture", "tmp", "lecture demo 5"),
+    "lecture-modes": ("skfem-dielectric clamp-zone modes --out results/lecture", "tmp",
+                      "lecture demo 6"),
+    "lecture-tables": ("skfem-dielectric clamp-zone tables --breakdown", "tmp",
+                       "lecture demo 6"),
 }
 SMOKE = ("list", "simulate-help")
 HEADER = ("| command | CPU s | wall s | load average (before -> after) | peak memory | "

@@ -5,7 +5,6 @@ the figures that draw the loads."""
 
 from __future__ import annotations
 
-import re
 from pathlib import Path
 
 import numpy as np
@@ -161,7 +160,7 @@ def test_breakdown_map_draws_each_meaning_where_the_data_put_it():
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    from validation.figures import homogeneous_wrinkling_D0, plot_breakdown_map
+    from validation.figures import plot_breakdown_map
 
     fig, ax = plt.subplots()
     p33 = {"coupled": {0.05: 0.5, 1.0: 3.0, 1.5: None}}

@@ -8,7 +8,6 @@ import numpy as np
 import pytest
 import scipy.sparse as sp
 
-import skfem_dielectric as fe
 from skfem_dielectric.problem import Layout, Problem
 from skfem_dielectric.solvers.continuation import ContinuationSettings, continuation
 from skfem_dielectric.solvers.newton import NewtonSettings

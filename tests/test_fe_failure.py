@@ -10,7 +10,7 @@ from scipy.optimize import brentq
 
 from skfem_dielectric import RampSettings
 from skfem_dielectric.gallery.drivers import equibiaxial_problem, keplinger_problem, run_ramp
-from skfem_dielectric.models.plate.failure import StepLimitCounter, plate_failure_cause
+from skfem_dielectric.models.plate.failure import StepLimitCounter
 
 
 def test_step_limit_counter_counts_the_shortened_steps():

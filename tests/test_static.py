@@ -45,3 +45,22 @@ def test_the_check_sees_an_undefined_name(tmp_path):
     rep = _Collect()
     api.checkPath(str(bad), rep)
     assert len(rep.found) == 1 and "BUCKLING_NAME" in rep.found[0]
+
+
+def test_ruff_finds_nothing():
+    """``ruff check`` with the rules of pyproject.toml (pyflakes': unused imports and
+    variables, undefined names, f-strings without placeholders) over the packages, the
+    tests, the benchmarks and the examples: no finding."""
+    import shutil
+    import subprocess
+    import sys
+
+    ruff = shutil.which("ruff") or str(Path(sys.executable).parent / "ruff")
+    if not Path(ruff).exists():
+        import pytest
+
+        pytest.skip("ruff is not installed (the test extra installs it)")
+    out = subprocess.run([ruff, "check", "--no-cache", "analytic", "skfem_dielectric",
+                          "validation", "tests", "benchmarks", "docs/examples"],
+                         cwd=ROOT, capture_output=True, text=True)
+    assert out.returncode == 0, out.stdout + out.stderr

@@ -37,7 +37,7 @@ lam = {name: np.array([st["lam1"] for st in r.steps if st["phase"] == "charge"])
        for name, r in runs.items()}
 lam_maxwell_final = float(lam["Maxwell, electrostatic field"][-1])   # (s, D0) = (1.5, 6)
 gap = max(float(np.max(np.abs(lam[name] - lam["fully coupled"]))) for name in lam)
-print(f"lam at D0 = 6: " + ", ".join(f"{k}: {v[-1]:.12f}" for k, v in lam.items()))
+print("lam at D0 = 6: " + ", ".join(f"{k}: {v[-1]:.12f}" for k, v in lam.items()))
 print(f"largest |lam_maxwell - lam_coupled| over the ramp: {gap:.1e}")
 
 if __name__ == "__main__":

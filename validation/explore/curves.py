@@ -186,7 +186,7 @@ def uniaxial_panel(p: ExploreParameters) -> dict:
     -----
     Paper Fig. uni-axial-ideal (Sec. 5).
     """
-    m = p.analytic_model()
+    p.analytic_model()                  # its parameters checked (a ValueError naming them)
     alpha = _finite("alpha", p.alpha)
     if alpha <= 0:
         raise ValueError(f"alpha must be > 0, got {alpha:g}")
@@ -319,7 +319,7 @@ def _paper_equibiaxial(model: str, Jm: float):
 
 @functools.lru_cache(maxsize=16)
 def _paper_uniaxial(model: str, Jm: float):
-    m = _model(model, Jm)
+    _model(model, Jm)                   # its parameters checked
     out = []
     for a in ALPHAS:
         s = float(keplinger_s(a, g=KEPLINGER["g"]))

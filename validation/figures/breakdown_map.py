@@ -11,8 +11,6 @@ the whole plate at ``D0_b``.  docs/breakdown.md reads the figure.
 
 from __future__ import annotations
 
-import math
-
 import matplotlib.pyplot as plt
 import numpy as np
 
