@@ -91,3 +91,22 @@ def test_the_pages_quote_the_quick_run_s_buckling_load(tmp_path):
     for page, quote in QUICK_D0_B_QUOTES.items():
         text = " ".join((docs / page).read_text().split())
         assert quote.format(f"{d0b:.4f}") in text, (page, d0b)
+
+
+def test_the_demo_costs_are_the_cost_table_s():
+    """The CPU column of the demo table is docs/costs.md's rows of the same commands
+    (benchmarks/bench_costs.py measures them: keys lecture-*), to their printed digit."""
+    costs = {}
+    for line in (PAGE.parent / "costs.md").read_text().splitlines():
+        m = re.match(r"\| `(skfem-dielectric [^`]+)` \([^)]*lecture demo \d\) \| ([0-9.]+) \|",
+                     line)
+        if m:
+            costs[m[1]] = m[2]
+    assert len(costs) == 7, costs
+    rows = [ln for ln in _text().splitlines()
+            if re.match(r"\| \d \| ", ln) and "`skfem-dielectric" in ln]
+    assert len(rows) == 6
+    for ln in rows:
+        cells = [c.strip() for c in ln.strip("|").split("|")]
+        commands = re.findall(r"`(skfem-dielectric [^`]+)`", cells[2])
+        assert cells[3] == " and ".join(costs[c] for c in commands), ln
