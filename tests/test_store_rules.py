@@ -154,9 +154,9 @@ def test_a_damaged_row_of_a_unit_not_run_is_kept_aside_not_deleted(fake_units, t
     code, stdout, _ = _zone(["units", "--alpha", "1", "--mesh", "4x1x2", "--out", str(out)],
                             capsys)
     assert code == 0
-    assert (f"{table}: line {n} has 'one' in the number column 'D0_step'; left out, kept "
-            f"in clamp_units.csv.damaged; its unit is computed again if this command runs "
-            f"it") in stdout
+    assert (f"{table}: line {n} has 'one' in the number column 'D0_step'; left out, moved "
+            f"to clamp_units.csv.damaged when the table is next written; its unit is "
+            f"computed again if this command runs it") in stdout
     assert [r["alpha"] for r in load("units", out)] == ["1"]
     aside = (out / "clamp_units.csv.damaged").read_text().splitlines()
     assert aside[0].startswith(f"# clamp_units.csv line {n} (") and aside[1] == damaged_line

@@ -94,9 +94,9 @@ class TableWriter:
     def _damaged(self, line: int, text: str, why: str) -> None:
         """A row :func:`read_table` leaves out: named now, kept aside at the next write."""
         if self.note is not None:
-            self.note(f"{self.path}: line {line} {why}; left out, kept in "
-                      f"{aside_path(self.path).name}; its unit is computed again if this "
-                      f"command runs it")
+            self.note(f"{self.path}: line {line} {why}; left out, moved to "
+                      f"{aside_path(self.path).name} when the table is next written; its "
+                      f"unit is computed again if this command runs it")
         self.damaged.append((line, text, why))
 
     def done(self, row: dict) -> bool:
