@@ -45,14 +45,19 @@ def test_the_gap_between_the_criterion_and_the_buckling_load_is_the_datas():
 def test_check_md_quotes_the_converged_load_as_check_prints_it():
     """docs/check.md's converged alpha = 1 load with its error bar is the one of
     validation.buckling_data (as ``check`` prints it: 4 decimals, the error as %g), and the
-    quick run's load is the coarse 10 x 1 x 5 mesh's of the uniform data file."""
+    quick run's load it quotes (the run's own, tests/test_lecture.py) is the coarse
+    10 x 1 x 5 mesh's of the uniform data file within two location tolerances (each value
+    is located to 1e-4)."""
+    import re
+
     e = converged_buckling_load(1.0)
     (u,) = [u for u in uniform_buckling_loads() if u.alpha == 1.0]
     assert u.meshes[0] == "10x1x5"
-    quick = u.D0_b_mesh[0]
     text = " ".join((DOCS / "check.md").read_text().split())
     assert f"`{e.D0_b:.4f} ± {e.error:g}` of the graded meshes" in text
-    assert f"`D0_b = {quick:.4f}` is that of the coarse 10 x 1 x 5 eighth model" in text
+    m = re.search(r"`D0_b = ([0-9.]+)` is that of the coarse 10 x 1 x 5 eighth model", text)
+    quick = float(m[1])
+    assert abs(quick - u.D0_b_mesh[0]) <= 2e-4
     pct = 100 * (e.D0_b - quick) / e.D0_b
     assert f"{pct:.1f} % below the converged" in text
 
