@@ -26,6 +26,7 @@ from ..cluster import check_scheduler, dask_executor
 from ..fe.model import BUCKLING_GRAD_DIV
 from ..figures.common import save_figure
 from ..options import out_dir, positive, solver_name
+from ..store import aside_path
 from .band import band_table, edge_band_figure
 from .costs import estimated_GB, physical_GB
 from .counts import run_edge_counts
@@ -38,7 +39,7 @@ from .modes import clamp_modes_figure, read_clamp_modes
 from .onsets import run_class_onsets
 from .p33 import run_p33_unit
 from .scaling import scaling_tables
-from .section import DEFAULT_K, MIN_H0, PLATE_HALF_LENGTH, run_edge_section
+from .section import DEFAULT_K, check_section_size, run_edge_section
 from .spec import read_table
 from .table import TableWriter
 from .tables import breakdown_table, clamp_study_tables
@@ -241,6 +242,11 @@ def _charges(name: str, values) -> list[float]:
     return list(dict.fromkeys(_finite(name, v) for v in values))
 
 
+def _charge_list(name: str, values) -> list[float]:
+    """Charges (:func:`_charge`), each once, in the order given."""
+    return list(dict.fromkeys(_charge(name, v) for v in values))
+
+
 def _charge(name: str, value) -> float:
     """A charge: finite, > 0 and at most :data:`MAX_D0`."""
     value = _finite(name, value)
@@ -362,16 +368,14 @@ def _run(args, name: str, tasks, show, *, incremental: bool = False, files=None,
                 continue
             if why:
                 _say(f"{label}: its row in {path.name} {why}; computed again (the old row "
-                     f"kept in {path.name}.damaged)")
+                     f"kept in {aside_path(path).name})")
                 replace.extend(have)
             todo.append((label, task))
 
         def write(rows):
             for r in rows if files is not None else ():
                 files(r)
-            keys = {TABLES[name].key_of(_key_cells(r)) for r in rows}
-            old = [r for r in replace if TABLES[name].key_of(r) in keys]
-            table.add([{**r, "command": command} for r in rows], replace=old)
+            table.add([{**r, "command": command} for r in rows], replace=replace)
             for r in rows:
                 show(r)
 
@@ -388,20 +392,6 @@ def _run(args, name: str, tasks, show, *, incremental: bool = False, files=None,
                     write(task(progress=progress))
     _say(f"wrote {path}")
     return 0
-
-
-def _key_cells(row: dict) -> dict:
-    """A new row's values as the table writes its cells (numbers to 6 digits)."""
-    out = {}
-    for k, v in row.items():
-        if isinstance(v, str):
-            out[k] = v
-        else:
-            try:
-                out[k] = f"{float(v):.6g}"
-            except (TypeError, ValueError):
-                pass
-    return out
 
 
 _NO_CROSSING = re.compile(r"no physical crossing up to D0 = (?P<top>[0-9.e+-]+)")
@@ -597,7 +587,7 @@ def _grad_div(args) -> float:
 
 def _cmd_counts(args) -> int:
     opts = _settings(args)
-    D0 = list(dict.fromkeys(_charge("--D0", d) for d in args.D0))
+    D0 = _charge_list("--D0", args.D0)
     meshes = _meshes(args, args.mesh)
     grad_div = _grad_div(args)
     path = _table_path(args, "counts")
@@ -619,17 +609,12 @@ def _cmd_counts(args) -> int:
 
 def _cmd_section(args) -> int:
     opts = _settings(args)
-    D0 = list(dict.fromkeys(_charge("--D0", d) for d in args.D0))
+    D0 = _charge_list("--D0", args.D0)
     (el,) = _meshes(args, [args.mesh])
     grad_div = _grad_div(args)
     length = _finite("--length", args.length)
-    if length > PLATE_HALF_LENGTH:
-        raise ValueError(f"--length must be at most the eighth model's {PLATE_HALF_LENGTH:g} "
-                         f"mm, got {length:g}")
     h0s = _charges("--h0", args.h0)
-    if min(h0s) < MIN_H0:
-        raise ValueError(f"--h0 must be at least {MIN_H0:g} mm (finer edge elements fail in "
-                         f"scikit-fem's facet-basis inverse map), got {min(h0s):g}")
+    check_section_size(length, h0s, names=("--length", "--h0"))
     if max(h0s) >= length:
         raise ValueError(f"--h0 must be below --length {length:g}, got {max(h0s):g}")
     ks = DEFAULT_K if args.k is None else _charges("--k", args.k)

@@ -29,6 +29,8 @@ import analytic as an
 from skfem_dielectric.models.plate.modes import element_energies, top_deflection
 from skfem_dielectric.models.plate.post import evaluate_fields
 
+from .modes import row_half_waves
+
 __all__ = ["LocalState", "local_state", "energy_centroid", "half_waves",
            "DirectionCriteria", "LocalCriteria", "local_criteria", "KH_GRID",
            "first_firing"]
@@ -175,14 +177,10 @@ def half_waves(problem, w_full: np.ndarray, increments: dict, X1: float) -> int:
     Returns
     -------
     int
-        Sign changes of ``u2`` along ``X3`` plus one (values below ``1e-6`` of the row's
-        largest are skipped as nodes of the wave).
+        :func:`~validation.clamp_zone.modes.row_half_waves` of the mode's top face: sign
+        changes of ``u2`` along ``X3`` plus one.
     """
-    x1, x3, u2 = top_deflection(problem, w_full, increments)
-    row = np.abs(x1 - x1[np.argmin(np.abs(x1 - X1))]) < 1e-9 * problem.plate.L1
-    u = u2[row][np.argsort(x3[row])]
-    u = u[np.abs(u) > 1e-6 * np.abs(u).max()]
-    return int(np.count_nonzero(np.diff(np.sign(u)))) + 1
+    return row_half_waves(*top_deflection(problem, w_full, increments), X1)[3]
 
 
 @dataclass(frozen=True)

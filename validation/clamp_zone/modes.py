@@ -21,7 +21,7 @@ from ..figures.common import plt
 from ..store import read_npz
 from .key import UnitKey
 
-__all__ = ["read_clamp_modes", "clamp_modes_figure", "clamp_trace"]
+__all__ = ["read_clamp_modes", "clamp_modes_figure", "clamp_trace", "row_half_waves"]
 
 
 def read_clamp_modes(folder) -> list[dict]:
@@ -66,6 +66,36 @@ def read_clamp_modes(folder) -> list[dict]:
     return sorted(out, key=lambda r: (r["alpha"], r["key"].elements, r["formulation"]))
 
 
+def row_half_waves(x1, x3, u2, X1: float) -> tuple[float, np.ndarray, np.ndarray, int]:
+    """The row of top-face vertices nearest ``X1`` and its half-waves across the width.
+
+    Parameters
+    ----------
+    x1, x3, u2 : ndarray
+        The top face's vertices and deflection over the whole plate (as
+        :func:`~skfem_dielectric.models.plate.modes.top_deflection` gives them).
+    X1 : float
+        Reference ``X1``; the row of vertices nearest it is used.
+
+    Returns
+    -------
+    X1 : float
+        The row's ``X1``.
+    X3, u2 : ndarray
+        The row, sorted by ``X3``.
+    half_waves : int
+        Sign changes of ``u2`` along the row plus one (values below ``1e-6`` of the row's
+        largest are skipped as nodes of the wave).
+    """
+    x1, x3, u2 = (np.asarray(a, float) for a in (x1, x3, u2))
+    X1 = float(x1[np.argmin(np.abs(x1 - X1))])
+    row = np.abs(x1 - X1) < 1e-9 * np.ptp(x1)
+    order = np.argsort(x3[row])
+    X3, u = x3[row][order], u2[row][order]
+    nz = u[np.abs(u) > 1e-6 * np.abs(u).max()]
+    return X1, X3, u, int(np.count_nonzero(np.diff(np.sign(nz)))) + 1
+
+
 def clamp_trace(mode: dict) -> tuple[float, np.ndarray, np.ndarray, int]:
     """The mode's top-face deflection across the whole width at the clamp zone: the row of
     vertices at the ``X1`` of the largest ``|u2|``.
@@ -82,17 +112,12 @@ def clamp_trace(mode: dict) -> tuple[float, np.ndarray, np.ndarray, int]:
     X3, u2 : ndarray
         The row, sorted by ``X3``; ``u2`` scaled to a largest ``|u2|`` of 1 on the plate.
     half_waves : int
-        Sign changes of ``u2`` along the row plus one (values below ``1e-6`` of the
-        row's largest skipped as nodes): the ``half_waves`` column of the ``units`` table,
-        which counts the same row of the same deflection.
+        :func:`row_half_waves` of that row: the count of the ``half_waves`` column of the
+        ``units`` table.
     """
-    x1, x3, u2 = (np.asarray(mode[k], float) for k in ("X1", "X3", "u2"))
-    X1 = float(x1[np.argmax(np.abs(u2))])
-    row = np.abs(x1 - X1) < 1e-9 * max(np.abs(x1).max(), 1.0)
-    order = np.argsort(x3[row])
-    X3, u = x3[row][order], u2[row][order] / max(np.abs(u2).max(), 1e-300)
-    nz = u[np.abs(u) > 1e-6 * np.abs(u).max()]
-    return X1, X3, u, int(np.count_nonzero(np.diff(np.sign(nz)))) + 1
+    x1, u2 = np.asarray(mode["X1"], float), np.asarray(mode["u2"], float)
+    X1, X3, u, n = row_half_waves(x1, mode["X3"], u2, x1[np.argmax(np.abs(u2))])
+    return X1, X3, u / max(np.abs(u2).max(), 1e-300), n
 
 
 def clamp_modes_figure(modes: list[dict], loads: dict | None = None):

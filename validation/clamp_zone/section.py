@@ -49,7 +49,8 @@ from .data import TABLES
 from .key import mesh_text
 from .units import ramp_states, unit_problem
 
-__all__ = ["COLUMNS", "DEFAULT_K", "run_edge_section", "MIN_H0", "PLATE_HALF_LENGTH"]
+__all__ = ["COLUMNS", "DEFAULT_K", "run_edge_section", "check_section_size", "MIN_H0",
+           "PLATE_HALF_LENGTH"]
 
 #: the eighth model's length along ``X1`` (mm): the section cannot be longer
 PLATE_HALF_LENGTH = 50.0
@@ -62,6 +63,18 @@ DEFAULT_K = tuple(float(f"{k:.4g}") for k in np.geomspace(2 * math.pi / 50, 200.
 #: the columns of a row, in order (the ``section`` table)
 COLUMNS = TABLES["section"].columns
 _key = TABLES["section"].key_of
+
+
+def check_section_size(length: float, h0s, *, names=("length", "h0")) -> None:
+    """``ValueError`` naming ``names`` unless the section fits the eighth model
+    (``length`` at most :data:`PLATE_HALF_LENGTH`) and its edge elements are at least
+    :data:`MIN_H0` (``h0s``); the command line passes its option names."""
+    if length > PLATE_HALF_LENGTH:
+        raise ValueError(f"{names[0]} must be at most the eighth model's "
+                         f"{PLATE_HALF_LENGTH:g} mm, got {length:g}")
+    if min(h0s) < MIN_H0:
+        raise ValueError(f"{names[1]} must be at least {MIN_H0:g} mm (finer edge elements "
+                         f"fail in scikit-fem's facet-basis inverse map), got {min(h0s):g}")
 
 
 def run_edge_section(alpha: float, elements, D0: float, h0s, ks=DEFAULT_K, *,
@@ -98,12 +111,7 @@ def run_edge_section(alpha: float, elements, D0: float, h0s, ks=DEFAULT_K, *,
         for v in vals:
             if not (math.isfinite(float(v)) and float(v) > 0):
                 raise ValueError(f"{name} must be positive and finite, got {v!r}")
-    if length > PLATE_HALF_LENGTH:
-        raise ValueError(f"length must be at most the eighth model's {PLATE_HALF_LENGTH:g} "
-                         f"mm, got {length:g}")
-    if min(h0s) < MIN_H0:
-        raise ValueError(f"h0 must be at least {MIN_H0:g} mm (finer edge elements fail in "
-                         f"scikit-fem's facet-basis inverse map), got {min(h0s):g}")
+    check_section_size(length, h0s)
     el = tuple(int(n) for n in elements)
     base_row = {"alpha": alpha, "mesh": mesh_text(el), "grading": grading,
                 "grad_div": grad_div, "D0": float(D0), "length": length}

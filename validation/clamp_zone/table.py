@@ -112,15 +112,18 @@ class TableWriter:
         """Append ``rows`` (dicts; floats to 6 digits, ``nan`` as an empty cell) and
         rewrite the table atomically.  The rows read back as damaged are first kept aside
         (:func:`validation.store.keep_aside`), once; so are the rows of ``replace`` (rows
-        of this table that the new ones recompute with other settings)."""
-        old = [r for r in self.rows if any(r is x for x in replace)]
+        of this table computed with other settings) that have the key of a new row: the
+        new row replaces them."""
+        new = [{c: _cell(r.get(c, "")) for c in self.spec.columns} for r in rows]
+        keys = {self.spec.key_of(r) for r in new} if replace else set()
+        old = [r for r in self.rows if any(r is x for x in replace)
+               and self.spec.key_of(r) in keys]
         if self.damaged or old:
             keep_aside(self.path, self.damaged + [
                 (None, csv_line([r[c] for c in self.spec.columns]).rstrip("\n"),
                  "computed again with other settings") for r in old])
             self.damaged = []
-        self.rows = [r for r in self.rows if not any(r is x for x in old)] + [
-            {c: _cell(r.get(c, "")) for c in self.spec.columns} for r in rows]
+        self.rows = [r for r in self.rows if not any(r is x for x in old)] + new
         buf = io.StringIO()
         w = csv.DictWriter(buf, self.spec.columns, lineterminator="\n")
         w.writeheader()

@@ -22,8 +22,8 @@ from pathlib import Path
 
 import numpy as np
 
-from .files import (FolderLock, csv_line, dumps, keep_aside, regular_file, write_csv_atomic,
-                    write_text_atomic)
+from .files import (FolderLock, aside_path, csv_line, dumps, keep_aside, regular_file,
+                    write_csv_atomic, write_text_atomic)
 
 __all__ = ["read_rows", "command_lock", "DamagedFileError", "RowFile",
            "StudyStore", "TEXT_COLUMNS"]
@@ -306,7 +306,7 @@ class StudyStore:
             if cut:
                 line = text.count("\n") + 1
                 self.note(f"{path}: its last row is incomplete (no line end); kept aside "
-                          f"in {path.name}.damaged")
+                          f"in {aside_path(path).name}")
                 aside.setdefault(f.name, []).append(
                     (line, text[text.rfind("\n") + 1:], "incomplete (no line end)"))
                 repaired = True
@@ -323,7 +323,7 @@ class StudyStore:
                 k = f.key_of(r)
                 if f is self.table and k in by:
                     self.note(f"{path}: row {line} repeats the unit {', '.join(k)}; kept "
-                              f"aside in {path.name}.damaged")
+                              f"aside in {aside_path(path).name}")
                     aside.setdefault(f.name, []).append(
                         (line, csv_line(r).rstrip("\n"), "repeats the unit"))
                     repaired = True
