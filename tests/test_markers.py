@@ -453,13 +453,15 @@ _ROLE_WORDS = (  # a legend label that says a role must be drawn by the role's l
     (re.compile(r"^thick-plate limit"), "thick-plate-limit"),
     (re.compile(r"^Stroh.*, symmetric$"), "symmetric-mode"),
     (re.compile(r"^Stroh.*, antisymmetric$"), "antisymmetric-mode"),
+    (re.compile(r"^Newton limit over its meshes"), "newton-band"),
 )
 
 
-def _every_line_figure():
+def _every_line_figure(tmp_path):
     """The axes of every figure the package draws with role lines: the seven cases'
     analytic figures, uni-axial-ideal with FE data, voltage-control, wrinkling-fe, the
-    breakdown map and check's figures."""
+    breakdown map, check's figures (a loading case and the clamped plate), buckling.png
+    and post-buckling.png."""
     from validation.cases import CASES
     from validation.checker import check
     from validation.check_report import check_figure
@@ -482,7 +484,59 @@ def _every_line_figure():
                                                    "8x4", ""]], quick=True))
     for case in check(DOCS / "examples" / "ex14_external_nh-d-e.csv").cases:
         axes += check_figure(case).axes
+    axes += check_figure(_clamped_check(tmp_path).cases[0]).axes
+    fig, ax = plt.subplots()
+    plot_breakdown_map(p33={"coupled": {1.0: 3.0}}, run_buckling={1.0: 2.9146},
+                       run_newton={0.3: 5.5}, run_mesh="10 x 1 x 5", ax=ax)
+    axes.append(ax)
+    axes += _study_figure_axes(tmp_path)
     return axes
+
+
+def _clamped_check(tmp_path):
+    """A check of clamped-plate rows: one state on the homogeneous curve and one D0_b
+    beyond its tolerance."""
+    from validation.checker import check
+
+    s = float(keplinger_s(1.0, g=9.81))
+    path = tmp_path / "clamped.csv"
+    path.write_text("case,alpha,D0,lam1,D0_b\n"
+                    f"uni-axial-ideal,1,1.0,{float(an.uniaxial_lam1(1.0, s)):.12g},2.9\n")
+    return check(path)
+
+
+def _study_figure_axes(tmp_path):
+    """The axes of buckling.png and post-buckling.png drawn from a few rows."""
+    import validation.studies.buckling as bk
+    import validation.studies.postbuckling as pb
+
+    nan = float("nan")
+    row = {c: nan for c in bk.COLUMNS} | {"alpha": 1.0, "mesh": "10x1x5", "D0_b": 2.9147,
+                                          "class": "x1 S", "P33_onset_interior": 0.645}
+    scan = [{c: nan for c in bk.SCAN_COLUMNS} | {"alpha": 1.0, "mesh": "10x1x5", "D0": d,
+                                                 "physical": v, **{f"P33_{k}": -0.02 * d
+                                                                   for k in bk.P33_SETS}}
+            for d, v in ((2.0, nan), (2.5, 0.05), (3.0, -0.02))]
+    plain = [{c: nan for c in bk.PLAIN_COLUMNS} | {"alpha": 1.0, "mesh": "10x1x5",
+                                                   "P33_onset_interior": 2.52}]
+    summary = [{"alpha": 1.0, "model": m, "mesh": "10x1x5", "ndofs": n, "D0_b": 2.9}
+               for m, n in (("3D", 900), ("membrane", 100))]
+    rows = [{"alpha": 1.0, "mesh": "10x1x5", "model": m, "branch": b, "D0": d,
+             "deflection": 0.1 * d, "lam1": 1.5 + 0.1 * d, "lam1_homogeneous": 1.5}
+            for m in ("3D", "membrane") for b in ("buckled", "fundamental") for d in (3, 3.5)]
+    figs = []
+    for mod, draw in ((bk, lambda: bk.buckling_figure([row], scan, tmp_path,
+                                                       tmp_path / "buckling.png",
+                                                       plain=plain)),
+                      (pb, lambda: pb.post_buckling_figure(summary, rows, tmp_path,
+                                                           tmp_path / "post-buckling.png"))):
+        real = mod.save_figure
+        mod.save_figure = lambda fig, *a, **k: figs.append(fig)
+        try:
+            draw()
+        finally:
+            mod.save_figure = real
+    return [ax for f in figs for ax in f.axes]
 
 
 def _line_look(line) -> tuple:
@@ -491,20 +545,30 @@ def _line_look(line) -> tuple:
     return line.get_linestyle(), to_rgba(line.get_color())
 
 
-def test_one_role_one_line_and_one_line_one_role_in_every_figure():
-    """Every line of a role (det H* = 0, the thin- and thick-plate limits, the symmetric
-    and antisymmetric Stroh curves) is drawn with its role's line in every figure, a label
-    naming a role is never drawn without it, and no two roles share a line."""
+def test_one_role_one_line_and_one_line_one_role_in_every_figure(tmp_path):
+    """Every line of a role (det H* = 0, the thin- and thick-plate limits, the Newton band,
+    the symmetric and antisymmetric Stroh curves) is drawn with its role's line in every
+    figure, a label naming a role is never drawn without it, no two roles share a line,
+    and no other line has a role's look (a dashed blue curve would read as the
+    thick-plate limit; a dash-dotted one as an antisymmetric mode)."""
     from matplotlib.colors import to_rgba
 
     from validation.markers import LINES
 
     assert len({(r.style["ls"], r.style.get("color")) for r in LINES}) == len(LINES)
     by_gid = {r.gid: r for r in LINES}
+    fixed = {(r.style["ls"], to_rgba(r.style["color"])): r.gid for r in LINES
+             if "color" in r.style and r.style.get("lw", 1) < 3}
     seen, bad = {}, []
-    for ax in _every_line_figure():
+    for ax in _every_line_figure(tmp_path):
         for line in ax.lines:
             label, gid = str(line.get_label()), line.get_gid()
+            if gid not in by_gid:
+                look = _line_look(line)
+                if look in fixed:
+                    bad.append(f"{ax.get_title()!r}: {label!r} has the look of {fixed[look]}")
+                if look[0] == "-.":
+                    bad.append(f"{ax.get_title()!r}: {label!r} is dash-dotted, not a mode")
             for words, role in _ROLE_WORDS:
                 if words.search(label) and gid != role:
                     bad.append(f"{ax.get_title()!r}: {label!r} drawn without the {role} line")
@@ -570,3 +634,72 @@ def test_the_explore_page_draws_the_reference_layer_in_order():
     assert onset == dict((a, d) for a, d, _ in p33_onsets())[1.0]
     assert d0b == converged_buckling_load(1.0).D0_b
     assert newton == dict((a, d) for a, d, _ in newton_limits())[1.0]
+
+
+def test_the_newton_band_spans_every_mesh_with_a_limit():
+    """The band of the breakdown map and of uni-axial-ideal runs, per weight, from the
+    lowest to the highest Newton limit of the shipped rows that have one (read here from
+    the CSV files themselves: the graded P33 rows and the finest uniform mesh), and the
+    pages that list the markers describe it with its look and legend name."""
+    import csv
+
+    from validation.markers import NEWTON_BAND, NEWTON_BAND_LABEL
+
+    data = Path(__file__).resolve().parents[1] / "validation" / "data"
+    per: dict = {}
+    with open(data / "p33_units.csv") as fh:
+        for r in csv.DictReader(ln for ln in fh if not ln.startswith("#")):
+            if r["newton_limit"]:
+                per.setdefault(float(r["alpha"]), []).append(float(r["newton_limit"]))
+    with open(data / "buckling_loads.csv") as fh:
+        for r in csv.DictReader(ln for ln in fh if not ln.startswith("#")):
+            col = [k for k in r if k.startswith("newton_limit_")][0]
+            if r[col]:
+                per.setdefault(float(r["alpha"]), []).append(float(r[col]))
+    want = sorted((a, min(v), max(v)) for a, v in per.items() if max(v) > min(v))
+    assert want == [(0.3, 2.5, 5.125)]                 # the one weight with two meshes
+    fig, ax = plt.subplots()
+    plot_breakdown_map(p33={"coupled": {1.0: 3.0}}, ax=ax)
+    got = sorted((float(x[0]), float(min(y)), float(max(y))) for x, y in
+                 ((ln.get_xdata(), ln.get_ydata()) for ln in ax.lines
+                  if ln.get_gid() == NEWTON_BAND.gid))
+    assert got == want
+    fig, ax = plt.subplots()
+    plot_uniaxial_wrinkling(fe=_fake_keplinger(), ax=ax)
+    (band,) = [ln for ln in ax.lines if ln.get_gid() == NEWTON_BAND.gid]
+    s = float(keplinger_s(0.3, g=9.81))
+    y = band.get_ydata()
+    assert (y.min(), y.max()) == (2.5, 5.125)
+    np.testing.assert_allclose(band.get_xdata(), an.uniaxial_lam1(y, s, an.NeoHookean()),
+                               rtol=1e-12)                      # on the weight's curve
+    assert NEWTON_BAND_LABEL in [t.get_text() for t in ax.get_legend().get_texts()]
+    name = NEWTON_BAND_LABEL.split(" (")[0]
+    for page in ("breakdown.md", "gallery.md"):
+        rows = [u for u in _units((DOCS / page).read_text()) if u.startswith("|")]
+        assert any(f"`{name}`" in r and NEWTON_BAND.look in r for r in rows), page
+    plt.close("all")
+
+
+def test_check_draws_the_reference_layer_of_validate(tmp_path):
+    """check's figure of clamped-plate rows draws the converged study as uni-axial-ideal
+    does (the same points, drawn by the same function), and from its drawn layer the
+    order P33 onset < D0_b < Newton limit holds for the checked weight."""
+    from validation.check_report import check_figure
+
+    (ax,) = check_figure(_clamped_check(tmp_path).cases[0]).axes
+    fig, ref = plt.subplots()
+    plot_uniaxial_wrinkling(fe=_fake_keplinger(), alphas=(1.0,), ax=ref, D0max=7.0)
+    for gid in ("p33-onset-located", "buckling-converged", "newton-limit"):
+        np.testing.assert_array_equal(_drawn(ax, gid), _drawn(ref, gid))
+        assert len(_drawn(ax, gid)), gid
+    s = float(keplinger_s(1.0, g=9.81))
+    (diamond,) = [ln.get_xydata() for ln in ax.lines
+                  if ln.get_gid() == "buckling-converged" and ln.get_marker() == "D"]
+    onset, newton = (float(_drawn(ax, g)[0, 1]) for g in
+                     ("p33-onset-located", "newton-limit"))
+    d0b = float(diamond[0, 1])
+    assert onset < d0b < newton
+    assert d0b == buckling_loads()[[e.alpha for e in buckling_loads()].index(1.0)].D0_b
+    assert float(diamond[0, 0]) == pytest.approx(
+        float(an.uniaxial_lam1(d0b, s, an.NeoHookean())), rel=1e-12)
+    plt.close("all")

@@ -131,3 +131,20 @@ def test_cost_pattern_catches_the_figures_it_should():
         assert _COST.search(prose), prose
     for prose in ("100 x 50 x 1 mm", "150 g", "1e-12", "fourteen examples", "D0 = 5.1"):
         assert not _COST.search(prose), prose
+
+
+def test_the_test_count_of_costs_md_is_this_suites(request):
+    """docs/costs.md's test count (written by ``benchmarks/bench_costs.py`` from
+    ``pytest --collect-only``) is the number of tests this run of the whole default suite
+    runs; a run of part of the suite, or of another selection, cannot say."""
+    cfg = request.config
+    testpaths = [str(p) for p in cfg.getini("testpaths")]
+    whole = (list(cfg.args) in ([], testpaths, [str(ROOT / p) for p in testpaths])
+             and not cfg.getoption("keyword") and cfg.getoption("markexpr") == "not slow")
+    if not whole:
+        pytest.skip("not the whole default suite")
+    m = re.search(r"`python -m pytest` runs (\d+) tests", (ROOT / "docs" / "costs.md")
+                  .read_text())
+    assert m, "no test count on docs/costs.md"
+    assert int(m.group(1)) == len(request.session.items), (
+        "rerun python benchmarks/bench_costs.py --only list (it counts the tests again)")

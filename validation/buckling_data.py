@@ -36,7 +36,7 @@ from .clamp_zone.data import LOCATION_TOL, clamp_unit_load, load, plain_p33_row
 
 __all__ = ["BUCKLING_LOADS_FILE", "CLAMP_UNITS_FILE", "BucklingEntry", "buckling_loads",
            "uniform_buckling_loads", "buckling_provenance", "converged_buckling_load",
-           "newton_limits", "p33_onsets"]
+           "newton_limits", "newton_limit_bands", "p33_onsets"]
 
 #: the data file of the uniform meshes, relative to the ``validation`` package
 BUCKLING_LOADS_FILE = "data/buckling_loads.csv"
@@ -184,6 +184,35 @@ def newton_limits() -> list[tuple[float, float, str]]:
         if math.isfinite(d):
             out.append((a, d, mesh))
     return out
+
+
+def newton_limit_bands() -> list[tuple[float, float, float, tuple[str, ...]]]:
+    """The plain form's Newton limit of each weight over every mesh that has one: the graded
+    ``P33`` rows of the clamp-zone ``p33`` table and the finest uniform mesh of
+    :data:`BUCKLING_LOADS_FILE`.  A solver limit moves with the mesh; the band is how far.
+
+    Returns
+    -------
+    list of tuple
+        ``(alpha, lowest, highest, meshes)`` in increasing ``alpha``, one per weight with a
+        limit on at least one mesh (``lowest == highest`` where only one mesh has one).
+
+    Examples
+    --------
+    >>> [(a, lo, hi) for a, lo, hi, _ in newton_limit_bands()][:2]
+    [(0.05, 3.91, 3.91), (0.3, 2.5, 5.125)]
+    """
+    per: dict[float, list[tuple[float, str]]] = {}
+    for r in load("p33"):
+        d = _float(r["newton_limit"])
+        if math.isfinite(d):
+            per.setdefault(round(float(r["alpha"]), 9), []).append(
+                (d, f"{r['mesh']} g{r['grading']}"))
+    for e in uniform_buckling_loads():
+        if math.isfinite(e.newton_limit):
+            per.setdefault(round(e.alpha, 9), []).append((e.newton_limit, e.meshes[-1]))
+    return [(a, min(d for d, _ in v), max(d for d, _ in v), tuple(m for _, m in sorted(v)))
+            for a, v in sorted(per.items())]
 
 
 def p33_onsets() -> list[tuple[float, float, str]]:

@@ -25,14 +25,14 @@ from matplotlib.ticker import NullFormatter, ScalarFormatter
 import analytic as an
 from analytic.units import keplinger_s
 
-from .buckling_data import buckling_loads
 from .cases import analytic_model
 from .checker import TOLERANCE_SOURCES, CaseCheck, CheckResult
 from .figures import (BUCKLING_NAME, LIMIT_NAME, add_caption, plot_equibiaxial_loading,
                       plot_equibiaxial_wrinkling, plot_uniaxial_loading,
                       plot_uniaxial_wrinkling, tag_panels)
 from .figures.common import colors
-from .markers import BEYOND_TOLERANCE, CONVERGED_BUCKLING, MODE_LINES, line_style
+from .figures.uniaxial_wrinkling import reference_layer
+from .markers import BEYOND_TOLERANCE, MODE_LINES, line_style
 from .specs import KEPLINGER
 
 __all__ = ["check_figure", "report_markdown", "report_json", "write_check_report"]
@@ -149,17 +149,8 @@ def _clamped_panel(case: CaseCheck):
         if "alpha" in pt:
             rows = np.isclose(pt["alpha"], a, rtol=0, atol=1e-9)
             _dots(ax, pt["lam1"][rows], pt["D0"][rows], pt["ok"][rows], c)
+    handles += reference_layer(ax, alphas, D0max)       # the converged study, as validate's
     if buck:
-        drawn = False
-        for e in buckling_loads():
-            if e.converged and any(np.isclose(e.alpha, a) for a in alphas):
-                s = float(keplinger_s(e.alpha, g=KEPLINGER["g"]))
-                ax.errorbar(float(an.uniaxial_lam1(e.D0_b, s, m)), e.D0_b, yerr=e.error,
-                            fmt="D", color="k", ms=6, capsize=3, zorder=7)
-                drawn = True
-        if drawn:
-            handles.append(Line2D([], [], ls="none", color="k", marker="D", ms=6,
-                                  label=f"{CONVERGED_BUCKLING.name} (error bar)"))
         for a, D0b, ok in buck:
             s = float(keplinger_s(a, g=KEPLINGER["g"]))
             x = float(an.uniaxial_lam1(D0b, s, m))
@@ -252,7 +243,8 @@ def check_figure(case: CaseCheck):
 
     The curves are those of the paper's figure of the case (Eq. loading_gent and
     Eq. DEuniax with the ``det H* = 0`` locus, the wrinkling limits, the Keplinger plate's
-    curves with the converged buckling loads; the dispersion relation for
+    curves with the converged study's reference layer of
+    :func:`validation.figures.uniaxial_wrinkling.reference_layer`; the dispersion relation for
     ``wrinkling-fe``), drawn by :mod:`validation.figures` at the file's own ``s`` (or
     ``alpha``) values; an orange X marks a row beyond its tolerance.  The caption line
     names the files and the verdict.

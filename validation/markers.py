@@ -24,7 +24,7 @@ __all__ = ["Marker", "P33_BREAKDOWN", "P33_ONSET_LOCATED", "AFTER_BREAKDOWN", "R
            "P33_SHAPES",
            "PAPER_P33_WORDS", "NOT_CONVERGED_NOTE", "BREAKDOWN_MEANINGS", "legend_style",
            "find_marker", "LineRole", "MODE_LINES", "VOLTAGE_LIMIT_LOCUS", "THIN_PLATE_LIMIT",
-           "THICK_PLATE_LIMIT", "SYMMETRIC_MODE", "ANTISYMMETRIC_MODE", "LINES", "line_style"]
+           "THICK_PLATE_LIMIT", "NEWTON_BAND", "NEWTON_BAND_LABEL", "SYMMETRIC_MODE", "ANTISYMMETRIC_MODE", "LINES", "line_style"]
 
 
 @dataclass(frozen=True)
@@ -172,6 +172,14 @@ THICK_PLATE_LIMIT = LineRole(
     "thick-plate-limit", "dashed blue line",
     "the thick-plate (surface) wrinkling limit (Eqs. thick-equi-biaxial, thick-uni-axial; "
     "kh -> infinity)", dict(ls="--", color="tab:blue", lw=1.3), "dashed")
+NEWTON_BAND = LineRole(
+    "newton-band", "thick tan line",
+    "the plain form's Newton limits of one weight over every mesh that has one (graded and "
+    "uniform): a solver limit that moves with the mesh, from its lowest to its highest "
+    "value (the black triangle is the breakdown table's mesh)",
+    dict(ls="-", color="tan", lw=6, solid_capstyle="butt", zorder=1), "solid")
+#: the legend entry of :data:`NEWTON_BAND`
+NEWTON_BAND_LABEL = "Newton limit over its meshes (a solver limit that moves with the mesh)"
 SYMMETRIC_MODE = LineRole(
     "symmetric-mode", "solid line",
     "a Stroh curve of wrinkles symmetric about the mid-plane (extensional); the colour is "
@@ -181,8 +189,8 @@ ANTISYMMETRIC_MODE = LineRole(
     "a Stroh curve of wrinkles antisymmetric about the mid-plane (flexural); the colour is "
     "the curve's", dict(ls="-."), "dashdot")
 #: Every line role; no two share a look.
-LINES = (VOLTAGE_LIMIT_LOCUS, THIN_PLATE_LIMIT, THICK_PLATE_LIMIT, SYMMETRIC_MODE,
-         ANTISYMMETRIC_MODE)
+LINES = (VOLTAGE_LIMIT_LOCUS, THIN_PLATE_LIMIT, THICK_PLATE_LIMIT, NEWTON_BAND,
+         SYMMETRIC_MODE, ANTISYMMETRIC_MODE)
 #: the Stroh curves' role by mode
 MODE_LINES = {"symmetric": SYMMETRIC_MODE, "antisymmetric": ANTISYMMETRIC_MODE}
 

@@ -17,12 +17,13 @@ import numpy as np
 import analytic as an
 from analytic.units import keplinger_s
 
-from ..buckling_data import buckling_loads, newton_limits, p33_onsets
+from ..buckling_data import buckling_loads, newton_limit_bands, newton_limits, p33_onsets
 from ..cases import ALPHAS, analytic_model
 from ..specs import KEPLINGER
-from ..markers import (CONVERGED_BUCKLING, MESH_BUCKLING, NEWTON_LIMIT, NOT_CONVERGED_NOTE,
+from ..markers import (CONVERGED_BUCKLING, MESH_BUCKLING, NEWTON_BAND, NEWTON_BAND_LABEL,
+                       NEWTON_LIMIT, NOT_CONVERGED_NOTE,
                        P33_BREAKDOWN, P33_ONSET_LOCATED, P33_SHAPES, RUN_BUCKLING, RUN_NEWTON,
-                       WRINKLING_NOT_REACHED, legend_style)
+                       WRINKLING_NOT_REACHED, legend_style, line_style)
 from .common import MODEL_NAME, add_caption
 
 __all__ = ["homogeneous_wrinkling_D0", "plot_breakdown_map", "breakdown_map_figure"]
@@ -172,6 +173,10 @@ def plot_breakdown_map(p33=None, run_buckling=None, run_newton=None, loads=None,
                         (e.alpha, max(e.D0_b_mesh)), xytext=(-6, 10),
                         textcoords="offset points", ha="right", fontsize=7, color="0.3",
                         gid="not-converged")
+    bands = [(a, lo, hi, m) for a, lo, hi, m in newton_limit_bands() if hi > lo]
+    for i, (a, lo, hi, _) in enumerate(bands):
+        ax.plot([a, a], [lo, hi], **line_style(NEWTON_BAND),
+                label=None if i else NEWTON_BAND_LABEL)
     nl = newton_limits()
     if nl:
         ax.plot([a for a, _, _ in nl], [d for _, d, _ in nl], ls="none",

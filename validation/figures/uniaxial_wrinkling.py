@@ -12,16 +12,18 @@ from matplotlib.lines import Line2D
 import analytic as an
 from analytic.units import keplinger_s
 
-from ..buckling_data import buckling_loads, newton_limits, p33_onsets
+from ..buckling_data import buckling_loads, newton_limit_bands, newton_limits, p33_onsets
 from ..cases import ALPHAS, analytic_model
 from ..specs import KEPLINGER
-from ..markers import (AFTER_BREAKDOWN, CONVERGED_BUCKLING, NEWTON_LIMIT, NOT_CONVERGED_NOTE,
+from ..markers import (AFTER_BREAKDOWN, CONVERGED_BUCKLING, NEWTON_BAND, NEWTON_BAND_LABEL,
+                       NEWTON_LIMIT, NOT_CONVERGED_NOTE,
                        P33_BREAKDOWN, P33_ONSET_LOCATED, P33_SHAPES, RUN_BUCKLING,
                        THIN_PLATE_LIMIT, legend_style, line_style)
 from .common import (MODEL_NAME, VARIANT_MARKER, colors, new_axes, refine_start, uniaxial_curve,
                      variant_legend, wrinkling_zone)
 
-__all__ = ["uniaxial_thick_limit_curve", "RunMarks", "keplinger_run_marks", "plot_uniaxial_wrinkling"]
+__all__ = ["uniaxial_thick_limit_curve", "RunMarks", "keplinger_run_marks", "plot_uniaxial_wrinkling",
+           "reference_layer"]
 
 
 def uniaxial_thick_limit_curve(lam1, model="neo-Hookean", direction="parallel"):
@@ -75,6 +77,30 @@ def uniaxial_thick_limit_curve(lam1, model="neo-Hookean", direction="parallel"):
     return np.where(ok, D0, np.nan)
 
 
+def reference_layer(ax, alphas, D0max: float, model: str = "neo-Hookean") -> list:
+    """Draw the converged clamped-plate study on ``ax``: per weight of ``alphas`` its
+    located ``P33`` onset, converged ``D0_b`` and Newton limit (with the band over its
+    meshes), each on the weight's homogeneous loading curve; see below.
+
+    Parameters
+    ----------
+    ax : matplotlib Axes
+        Axes of ``lam1`` against ``D0``.
+    alphas : sequence of float
+        The weights to draw (the study's other weights are left out).
+    D0max : float
+        The top of the axes; values above it are not drawn.
+    model : str
+        The analytic model of the homogeneous curves.
+
+    Returns
+    -------
+    list of Line2D
+        The legend entries of what was drawn.
+    """
+    return _measured_loads(ax, alphas, analytic_model(model), D0max)
+
+
 def _measured_loads(ax, alphas, m, D0max):
     """The converged buckling loads of :mod:`validation.buckling_data`
     (:data:`~validation.markers.CONVERGED_BUCKLING`, error bars hidden by the diamonds, as
@@ -115,6 +141,13 @@ def _measured_loads(ax, alphas, m, D0max):
             ax.plot(*zip(*pts), ls="none", gid=gid, **legend_style(marker))
             out.append(Line2D([], [], ls="none", **legend_style(marker),
                               label=f"{marker.name} ({what}{', '.join(sorted(meshes))})"))
+    for i, (a, lo, hi, _) in enumerate(newton_limit_bands()):
+        if hi > lo and any(np.isclose(a, b) for b in alphas) and lo <= D0max:
+            s = float(keplinger_s(a, g=KEPLINGER["g"]))
+            d = np.linspace(lo, min(hi, D0max), 40)
+            ax.plot(an.uniaxial_lam1(d, s, m), d, **line_style(NEWTON_BAND))
+            if not any(h.get_label() == NEWTON_BAND_LABEL for h in out):
+                out.append(Line2D([], [], **line_style(NEWTON_BAND), label=NEWTON_BAND_LABEL))
     if missing and conv:
         out.append(Line2D([], [], ls="none", label=rf"$\alpha = {', '.join(missing)}$: "
                                                     f"{NOT_CONVERGED_NOTE}"))

@@ -375,7 +375,7 @@ def buckling_figure(rows, scan, modes_dir: Path, path: Path, footer: str = "",
         sc = [s for s in scan if s["alpha"] == alpha and s["mesh"] == fine]
         for k in P33_SETS:
             ax3[1].plot([s["D0"] for s in sc], [s[f"P33_{k}"] for s in sc], ".-", label=k)
-        ax3[1].axhline(-BREAKDOWN_TOL, color="k", lw=0.6, ls="--")
+        ax3[1].axhline(-BREAKDOWN_TOL, color="red", lw=0.6, gid="p33-criterion")
         located = next((d for a, d, _ in p33_onsets() if np.isclose(a, alpha)), None)
         if located is not None:  # the reference: the onset on the resolving graded mesh
             ax3[1].plot([located], [-BREAKDOWN_TOL], ls="none", gid="p33-onset-located",

@@ -319,7 +319,7 @@ def post_buckling_figure(summary, rows, shapes_dir: Path, path: Path,
             ax3[1].plot([q["D0"] for q in b], [q["lam1"] - q["lam1_homogeneous"] for q in b],
                         "o-", ms=3, color=line.get_color(), label=f"buckled {name}")
             ax3[1].plot([q["D0"] for q in f], [q["lam1"] - q["lam1_homogeneous"] for q in f],
-                        "s--", ms=3, mfc="none", lw=0.8, color=line.get_color(),
+                        "s-", ms=3, mfc="none", lw=0.6, color=line.get_color(),
                         label=f"fundamental {name}")
         ax3[0].set(xlabel="D0", ylabel="mid-plane deflection max |u2| (mm)",
                    title=f"alpha = {alpha:g}: buckled branch (dotted: D0_b)")
