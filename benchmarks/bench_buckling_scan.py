@@ -45,7 +45,8 @@ from skfem_dielectric.models.plate.scan import PlateScan
 from skfem_dielectric.models.plate.symmetry_classes import symmetry_classes
 from skfem_dielectric.studies.buckling import buckling_load
 from validation.cases import CASES
-from validation.fe.model import BUCKLING_NEWTON, BUCKLING_TOL
+from validation.fe.model import BUCKLING_NEWTON
+from validation.specs import LOCATION_TOL
 from validation.fe.runner import grad_div_states
 from validation.clamp_zone.units import UNIT_SETTINGS
 
@@ -150,7 +151,7 @@ def main(argv=None) -> None:
             t, f0, b0 = time.process_time(), factorisation_count(), back_substitution_count()
             with warnings.catch_warnings():
                 warnings.simplefilter("ignore", RuntimeWarning)
-                bl = buckling_load(problem, states, tol=BUCKLING_TOL, scan=how,
+                bl = buckling_load(problem, states, tol=LOCATION_TOL, scan=how,
                                    linear_solver="superlu", settings=BUCKLING_NEWTON)
             counts = [row["n_negative"] for row in bl.scan]
             print(f"  buckling_load scan={how}: D0_b {bl.D0_b:.6f}  counts {counts}  "

@@ -63,10 +63,9 @@ LAYERS = (
 #: the layers of ``validation``, bottom up, in the same sense as :data:`LAYERS`; the groups
 #: below ``fe`` import no finite elements
 VALIDATION_LAYERS = (
-    ("clamp_zone.key", "clamp_zone.spec"),  # the clamp-zone study's unit key and tables,
-    ("clamp_zone.data",),            # read without FE (the measured loads rest on them)
-    ("clash", "progress", "specs", "records",   # package guard, progress; run data, records;
-     "buckling_data", "markers"),    # the measured buckling loads; the markers' vocabulary
+    ("clash", "progress", "specs", "records",   # package guard, progress; run data and the
+     "markers"),                     # location tolerance, records; the markers' vocabulary
+    ("data",),                       # the measured tables and their readers, no FE
     ("cases",),                      # the validation cases, one per paper figure
     ("table", "checker"),            # the tidy CSV of a case; scores of another code's CSVs
     ("store",),                      # lock, atomic files, checksums, resume
@@ -83,7 +82,7 @@ VALIDATION_LAYERS = (
 #: the modules of subpackages that are groups of their own
 _SUBGROUPS = {g for groups in VALIDATION_LAYERS for g in groups if "." in g}
 #: the groups of ``validation`` that import no finite elements
-VALIDATION_NO_FE = tuple(g for groups in VALIDATION_LAYERS[:6] for g in groups)
+VALIDATION_NO_FE = tuple(g for groups in VALIDATION_LAYERS[:5] for g in groups)
 
 
 def _modules(package: str) -> dict[str, Path]:
@@ -250,7 +249,7 @@ def test_imports_at_module_level_except_optional_dependencies():
 
 def _group(module: str) -> str | None:
     """Layer group of a module of a package: its top-level module or subpackage, or a
-    module of a subpackage that a layer names itself (``"clamp_zone.data"``)."""
+    module of a subpackage that a layer names itself (``"pkg.module"``; none now)."""
     parts = module.split(".")
     if len(parts) > 2 and ".".join(parts[1:3]) in _SUBGROUPS:
         return ".".join(parts[1:3])

@@ -244,13 +244,13 @@ def test_cli_rejects_bad_options(tmp_path, capsys):
 @pytest.mark.slow
 def test_validate_and_buckling_quick_report_the_same_D0_b(tmp_path):
     # one definition of D0_b: the quick validate run's alpha = 1 plate (its report.md and
-    # summary.json) and `buckling --quick` locate the same crossing, each to BUCKLING_TOL
+    # summary.json) and `buckling --quick` locate the same crossing, each to LOCATION_TOL
     # (the final bracket's width): their states differ only within the Newton tolerance,
     # so the two located values differ by at most two brackets
     import json
 
     from validation.cases import CASES, Case
-    from validation.fe.model import BUCKLING_TOL
+    from validation.specs import LOCATION_TOL
     from validation.report import write_report, write_summary
     from validation.results import folder_results
     from validation.store import read_rows
@@ -264,7 +264,7 @@ def test_validate_and_buckling_quick_report_the_same_D0_b(tmp_path):
     assert main(["buckling", "--quick", "--solver", "superlu", "--out",
                  str(tmp_path / "b")]) == 0
     study = float(read_rows(tmp_path / "b" / "buckling.csv")[0]["D0_b"])
-    assert abs(D0_b - study) <= 2 * BUCKLING_TOL, (D0_b, study)
+    assert abs(D0_b - study) <= 2 * LOCATION_TOL, (D0_b, study)
     # ... and summary.json and report.md state the located value
     every = folder_results(tmp_path / "v", [res])
     write_summary(every, tmp_path / "v", quick=True)
@@ -329,7 +329,7 @@ def test_the_study_figure_passes_through_zero_at_D0_b_and_names_the_forms(tmp_pa
                       "P33 onset (interior), plain form: 2.520": 2.52}
     # the converged study beside the run's coarse mesh: D0_b on the zero line, the located
     # P33 onset on the criterion's line, in that order (the shipped tables' values)
-    from validation.buckling_data import converged_buckling_load, p33_onsets
+    from validation.data.loads import converged_buckling_load, p33_onsets
 
     (diamond,) = [ln for ln in eig.lines if ln.get_gid() == "buckling-converged"]
     (bar,) = [ln for ln in p33.lines if ln.get_gid() == "p33-onset-located"]
@@ -350,17 +350,18 @@ def test_event_scan_matches_the_full_scan_on_the_quick_alpha_1_run():
     class's (the plate bends), and the event scan computes no mode at a state where no
     count changed."""
     from validation.cases import CASES
-    from validation.fe.model import BUCKLING_NEWTON, BUCKLING_TOL
+    from validation.fe.model import BUCKLING_NEWTON
+    from validation.specs import LOCATION_TOL
     from validation.fe.runner import grad_div_states
 
     pb, states = grad_div_states(next(r for r in CASES["uni-axial-ideal"].runs(True)
                                       if r.buckling))
-    kw = dict(tol=BUCKLING_TOL, linear_solver="superlu", settings=BUCKLING_NEWTON)
+    kw = dict(tol=LOCATION_TOL, linear_solver="superlu", settings=BUCKLING_NEWTON)
     ev = buckling_load(pb, states, **kw)
     full = buckling_load(pb, states, scan="full", **kw)
     assert ev.found and full.found
     assert [r["n_negative"] for r in ev.scan] == [r["n_negative"] for r in full.scan]
-    assert abs(ev.D0_b - full.D0_b) <= BUCKLING_TOL
+    assert abs(ev.D0_b - full.D0_b) <= LOCATION_TOL
     assert ev.label.symmetry == full.label.symmetry == "x1 S, x2 A, x3 S"
     for r in ev.scan[1:]:
         if not r["changed"]:

@@ -10,11 +10,10 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from validation.buckling_data import (buckling_loads, buckling_provenance,
-                                      converged_buckling_load, newton_limits,
-                                      uniform_buckling_loads)
-import validation.buckling_data as bd
-from validation.clamp_zone.data import clamp_unit_load, load
+from validation.data.loads import (buckling_loads, buckling_provenance, converged_buckling_load, newton_limits, uniform_buckling_loads)
+import validation.data.loads as bd
+from validation.data.clamp_zone import clamp_unit_load
+from validation.data.registry import load
 from validation.studies.buckling import richardson
 
 ROOT = Path(__file__).resolve().parents[1]

@@ -24,7 +24,7 @@ import pytest
 
 import validation
 import validation.checker.rules
-from validation.buckling_data import converged_buckling_load, uniform_buckling_loads
+from validation.data.loads import converged_buckling_load, uniform_buckling_loads
 from validation.cases import get_case
 from validation.checker import (CHECK_CASES, TOLERANCES, CheckInputError, parse_tolerances,
                                 read_csv_rows)
@@ -236,7 +236,7 @@ def test_every_case_of_validate_can_be_checked():
 
 # --------------------------------------------------------------------------- other measures
 def test_buckling_load_against_the_converged_value(tmp_path):
-    # the loads of validation.buckling_data, read here as the reference (their own tests
+    # the loads of validation.data.loads, read here as the reference (their own tests
     # check them against the rows): alpha = 1 graded (30x1x36 / 40x1x36: 3.3698 / 3.3700,
     # uniform 10x1x5: 2.9147); 0.3 graded 1.4712 +- 0.0005; 2: no entry
     e1, e3 = converged_buckling_load(1.0), converged_buckling_load(0.3)

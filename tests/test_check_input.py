@@ -17,7 +17,7 @@ import pytest
 
 import validation
 import validation.check_report as check_report
-from validation.buckling_data import converged_buckling_load
+from validation.data.loads import converged_buckling_load
 from validation.checker import (MAX_FILE_BYTES, MAX_TOTAL_BYTES, parse_tolerances)
 from validation.cli import EXIT_CODES, main
 

@@ -10,7 +10,7 @@ import pytest
 import skfem_dielectric as fe
 from validation.fe.model import BUCKLING_GRAD_DIV
 from validation.cli import main
-from validation.clamp_zone.data import TABLES, load
+from validation.data.registry import TABLES, load
 from validation.clamp_zone.layer import COLUMNS, LAYER_WIDTHS, run_clamp_layer, volume_ratios
 
 

@@ -16,8 +16,8 @@ import pytest
 
 import validation.clamp_zone.cli as zone_cli
 from validation.cli import main
-from validation.clamp_zone.data import TABLES, load
-from validation.clamp_zone.key import UnitKey
+from validation.data.registry import TABLES, load
+from validation.data.key import UnitKey
 
 ROOT = Path(__file__).resolve().parents[1]
 #: the smallest unit: alpha = 1 on 6 x 1 x 3 graded 0.5, charge steps of 1 (about 3 CPU s)
@@ -75,7 +75,7 @@ def test_a_second_writer_is_refused_naming_the_holder(tmp_path, capsys):
     holder = subprocess.Popen(
         [sys.executable, "-c", textwrap.dedent(f"""
             import sys, time
-            from validation.clamp_zone.data import TABLES
+            from validation.data.registry import TABLES
             from validation.clamp_zone.table import TableWriter
             with TableWriter({str(out / 'clamp_units.csv')!r}, TABLES["units"]):
                 print("held", flush=True)
@@ -288,7 +288,8 @@ def test_the_shipped_modes_are_those_of_the_shipped_units(tmp_path, capsys):
     """Each shipped mode file (computed again by ``clamp-zone units`` on the smallest
     resolving meshes) has the D0_b of its unit's shipped row within twice the location
     tolerance, and ``clamp-zone modes`` draws them without a run (one panel each)."""
-    from validation.clamp_zone.data import LOCATION_TOL, shipped_path
+    from validation.data.registry import shipped_path
+    from validation.specs import LOCATION_TOL
     from validation.clamp_zone.modes import read_clamp_modes
 
     modes = read_clamp_modes(shipped_path("units").parent / "modes")
@@ -345,7 +346,8 @@ def test_the_modes_figure_titles_the_table_s_load_and_counts_its_half_waves(tmp_
     for the mode's mesh; the pages' counts (6, 10, 12, 13) are those rows'."""
     import matplotlib.pyplot as plt
 
-    from validation.clamp_zone.data import clamp_unit_load, shipped_path
+    from validation.data.clamp_zone import clamp_unit_load
+    from validation.data.registry import shipped_path
     from validation.clamp_zone.modes import clamp_modes_figure, clamp_trace, read_clamp_modes
 
     modes = read_clamp_modes(shipped_path("units").parent / "modes")

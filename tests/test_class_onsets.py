@@ -8,7 +8,8 @@ from pathlib import Path
 import pytest
 
 from validation.cli import main
-from validation.clamp_zone.data import LOCATION_TOL as BUCKLING_TOL, load
+from validation.data.registry import load
+from validation.specs import LOCATION_TOL
 from validation.clamp_zone.onsets import COLUMNS, bracket, run_class_onsets
 
 
@@ -35,7 +36,7 @@ def test_the_class_of_a_unit_reproduces_its_D0_b_along_another_path(tmp_path):
     ref = _unit("1", "10x1x24", "0.1")
     rows = run_class_onsets(1.0, (10, 1, 24), grading=0.1, classes=[ref["class"]])
     assert len(rows) == 1 and rows[0]["class"] == ref["class"]
-    assert abs(rows[0]["D0_c"] - float(ref["D0_b"])) <= 2 * BUCKLING_TOL
+    assert abs(rows[0]["D0_c"] - float(ref["D0_b"])) <= 2 * LOCATION_TOL
     assert rows[0]["half_waves"] == int(ref["half_waves"])
     assert rows[0]["dofs"] == int(ref["dofs"])
     assert (rows[0]["lo"], rows[0]["hi"]) == bracket(ref)
@@ -56,7 +57,7 @@ def test_the_mirror_classes_about_the_centre_cross_together():
                 == (r["alpha"], r["mesh"], r["grading"], r["formulation"]) and q["D0_c"]]
         for q in twin:
             pairs += 1
-            assert abs(float(q["D0_c"]) - float(r["D0_c"])) <= 2 * BUCKLING_TOL, (r, q)
+            assert abs(float(q["D0_c"]) - float(r["D0_c"])) <= 2 * LOCATION_TOL, (r, q)
             assert q["half_waves"] == r["half_waves"]
     assert pairs >= 1
 
@@ -80,7 +81,7 @@ def test_a_given_bracket_needs_no_unit_and_says_so():
     ref = _unit("1", "10x1x24", "0.1")
     rows = run_class_onsets(1.0, (10, 1, 24), grading=0.1, classes=[ref["class"]],
                             given=(2.90625, 2.9375), units=Path("/nonexistent.csv"))
-    assert abs(rows[0]["D0_c"] - float(ref["D0_b"])) <= 2 * BUCKLING_TOL
+    assert abs(rows[0]["D0_c"] - float(ref["D0_b"])) <= 2 * LOCATION_TOL
     assert "bracket given" in rows[0]["note"]
     with pytest.raises(ValueError, match="bracket must be 0 < lo < hi, got 3, 2"):
         run_class_onsets(1.0, (4, 1, 2), given=(3.0, 2.0))

@@ -18,8 +18,8 @@ pytest.importorskip("distributed", reason="the 'cluster' extra is not installed"
 
 from distributed import Client  # noqa: E402
 
-from validation.clamp_zone.data import load  # noqa: E402
-from validation.clamp_zone.key import UnitKey  # noqa: E402
+from validation.data.registry import load  # noqa: E402
+from validation.data.key import UnitKey  # noqa: E402
 
 pytestmark = [pytest.mark.slow,
               pytest.mark.skipif(not hasattr(signal, "SIGKILL"), reason="needs SIGKILL")]

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from validation.buckling_data import converged_buckling_load, uniform_buckling_loads
+from validation.data.loads import converged_buckling_load, uniform_buckling_loads
 from validation.cli import main
 from validation.clamp_zone.tables import breakdown_numbers, breakdown_table
 
@@ -44,7 +44,7 @@ def test_the_gap_between_the_criterion_and_the_buckling_load_is_the_datas():
 
 def test_check_md_quotes_the_converged_load_as_check_prints_it():
     """docs/check.md's converged alpha = 1 load with its error bar is the one of
-    validation.buckling_data (as ``check`` prints it: 4 decimals, the error as %g), and the
+    validation.data.loads (as ``check`` prints it: 4 decimals, the error as %g), and the
     quick run's load it quotes (the run's own, tests/test_lecture.py) is the coarse
     10 x 1 x 5 mesh's of the uniform data file within two location tolerances (each value
     is located to 1e-4)."""
@@ -73,7 +73,8 @@ def test_clamp_zone_md_numbers_are_the_units_rows():
     state of 12 x 1 x 12 ... 36, the negative counts at 4.78125 for alpha = 1.5, the
     converged alpha = 1 load; and the clamp element of n1 = 40 graded 0.1 is 0.32 mm."""
     import skfem_dielectric as fe
-    from validation.clamp_zone.data import clamp_unit_load, load, scan_states
+    from validation.data.clamp_zone import clamp_unit_load, scan_states
+    from validation.data.registry import load
 
     units = {(r["alpha"], r["mesh"], r["grading"], r["formulation"]): r for r in load("units")}
     text = _page("clamp-zone.md")
@@ -115,10 +116,10 @@ def test_the_three_meanings_are_said_in_the_same_words_everywhere():
 
 def test_report_map_and_breakdown_md_give_the_same_order_for_every_weight():
     """For every weight of the breakdown table: the map's diamond and Newton triangle
-    (validation.buckling_data, what breakdown_map draws) are the table's D0_b and Newton
+    (validation.data.loads, what breakdown_map draws) are the table's D0_b and Newton
     limit, report.md's row has the same numbers, and the order is P33 onset < D0_b <
     Newton limit in all three."""
-    from validation.buckling_data import buckling_loads, newton_limits
+    from validation.data.loads import buckling_loads, newton_limits
     from validation.report import meaning_lines
 
     loads = {e.alpha: e for e in buckling_loads()}

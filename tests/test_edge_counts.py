@@ -7,8 +7,9 @@ from __future__ import annotations
 import pytest
 
 from validation.clamp_zone.counts import CLASS_COLUMNS, COLUMNS, run_edge_counts
-from validation.clamp_zone.data import load, scan_states, unit_row
-from validation.clamp_zone.key import UnitKey
+from validation.data.clamp_zone import scan_states, unit_row
+from validation.data.registry import load
+from validation.data.key import UnitKey
 
 
 @pytest.mark.slow

@@ -251,7 +251,7 @@ def test_the_docs_show_the_committed_band_table():
     from pathlib import Path
 
     from validation.clamp_zone.band import band_onsets, band_table
-    from validation.clamp_zone.data import load
+    from validation.data.registry import load
 
     rows = load("section")
     assert all(len(by_h) == 3 for by_h in band_onsets(rows).values())

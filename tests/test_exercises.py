@@ -61,7 +61,7 @@ def test_exercise_3_the_cross_section_meets_stroh():
 def test_exercise_2_the_onset_moves_towards_the_study_s(tmp_path):
     """The page's two commands: the coarse onset 10 % low, the graded one within 1 % of
     the study's 2.2974 (the breakdown table), each as the page states it."""
-    from validation.clamp_zone.data import load
+    from validation.data.registry import load
     from validation.clamp_zone.tables import breakdown_numbers
 
     for mesh, grading in (("6x1x3", "0.5"), ("20x1x12", "0.1")):

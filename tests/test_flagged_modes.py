@@ -8,7 +8,7 @@ import skfem_dielectric as fe
 from skfem_dielectric.models.plate.scan import PlateScan
 from validation.fe.model import BUCKLING_GRAD_DIV
 from validation.cli import main
-from validation.clamp_zone.data import load
+from validation.data.registry import load
 from validation.clamp_zone.flagged import COLUMNS, run_flagged_modes
 
 

@@ -9,7 +9,7 @@ from pathlib import Path
 
 import pytest
 
-from validation.buckling_data import buckling_loads
+from validation.data.loads import buckling_loads
 from validation.cli import build_parser, main
 from validation.clamp_zone.tables import breakdown_numbers, breakdown_table
 

@@ -22,7 +22,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 
 import analytic as an  # noqa: E402
 from analytic.units import keplinger_s  # noqa: E402
-from validation.buckling_data import buckling_loads, uniform_buckling_loads  # noqa: E402
+from validation.data.loads import buckling_loads, uniform_buckling_loads  # noqa: E402
 from validation.figures import plot_breakdown_map, plot_uniaxial_wrinkling  # noqa: E402
 from validation.markers import (AFTER_BREAKDOWN, CONVERGED_BUCKLING, LIMIT_POINT,  # noqa: E402
                                 MESH_BUCKLING, NEWTON_LIMIT, NOT_CONVERGED_NOTE,
@@ -343,7 +343,7 @@ def test_one_look_one_meaning_across_every_figures_legend(tmp_path):
             if a.get_legend() is not None:
                 legends += [(f"check {case.name}", *lh) for lh in _legend(a)]
     from validation.clamp_zone.band import edge_band_figure
-    from validation.clamp_zone.data import load
+    from validation.data.registry import load
     from validation.figures import case_figure
 
     figs = {name: case_figure(name) for name in ("nh-d-e", "gent-d-e", "gent-equi-biaxial",
@@ -378,7 +378,7 @@ def _reference_order(ax, x_of_alpha):
     """The reference layer as drawn: per weight the located P33 onset, the converged D0_b
     and the Newton limit (y of the points whose x is the weight's, by ``x_of_alpha``);
     returns ``{alpha: (onset, D0_b, newton)}`` for the weights that have all three."""
-    from validation.buckling_data import buckling_loads as loads
+    from validation.data.loads import buckling_loads as loads
 
     layers = [_drawn(ax, g) for g in ("p33-onset-located", "buckling-converged",
                                       "newton-limit")]
@@ -399,7 +399,7 @@ def test_the_breakdown_map_draws_the_order_of_the_three_meanings():
     weight the located P33 onset lies below the converged D0_b, which lies below the
     Newton limit -- the order "P33 onset, then D0_b, then the Newton limit" a reader must
     see.  The values drawn are the tables' (within their 6 printed digits)."""
-    from validation.buckling_data import newton_limits, p33_onsets
+    from validation.data.loads import newton_limits, p33_onsets
 
     fig, ax = plt.subplots()
     plot_breakdown_map(p33={"coupled": {1.0: 3.0}}, run_buckling={1.0: 2.9146},
@@ -619,7 +619,7 @@ def test_the_explore_page_draws_the_reference_layer_in_order():
     from bokeh.document import Document
     from bokeh.models import GlyphRenderer
 
-    from validation.buckling_data import converged_buckling_load, newton_limits, p33_onsets
+    from validation.data.loads import converged_buckling_load, newton_limits, p33_onsets
     from validation.explore.app import build_page
 
     doc = Document()

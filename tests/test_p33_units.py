@@ -10,7 +10,8 @@ import numpy as np
 import skfem_dielectric as fe
 from validation.studies.buckling import p33_measures
 from validation.cli import main
-from validation.clamp_zone.data import LOCATION_TOL as ONSET_TOL, load
+from validation.data.registry import load
+from validation.specs import LOCATION_TOL as ONSET_TOL
 from validation.clamp_zone.p33 import COLUMNS, SETS, run_p33_unit
 from validation.clamp_zone.units import UNIT_SETTINGS
 from validation.table import BREAKDOWN_TOL

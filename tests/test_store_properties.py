@@ -18,7 +18,7 @@ from hypothesis import HealthCheck, settings, strategies as st  # noqa: E402
 from hypothesis.stateful import (RuleBasedStateMachine, initialize, invariant,  # noqa: E402
                                  rule)
 
-from validation.clamp_zone.spec import TableSpec, read_table  # noqa: E402
+from validation.data.spec import TableSpec, read_table  # noqa: E402
 from validation.clamp_zone.table import TableWriter  # noqa: E402
 from validation.store import RowFile, StudyStore, read_rows  # noqa: E402
 

@@ -99,7 +99,7 @@ def test_a_repeated_unit_row_is_kept_aside(tmp_path):
 
 # -- the clamp-zone tables ----------------------------------------------------------------
 import validation.clamp_zone.cli as zone_cli  # noqa: E402
-from validation.clamp_zone.data import TABLES, load  # noqa: E402
+from validation.data.registry import TABLES, load  # noqa: E402
 
 
 def _unit_row(alpha, mesh, *, D0_step=0.5, D0_b=3.25, note=""):
@@ -216,7 +216,7 @@ def test_a_p33_row_ramped_to_a_smaller_charge_is_recomputed(tmp_path, capsys, mo
 def test_a_reading_command_names_each_damaged_row(tmp_path, capsys):
     """clamp-zone tables --from DIR and the shipped scaling: a damaged row is named on
     stderr with its file and line (the printed tables leave it out)."""
-    from validation.clamp_zone.data import shipped_path
+    from validation.data.registry import shipped_path
 
     src = tmp_path / "tables"
     src.mkdir()

@@ -13,7 +13,7 @@ from skfem_dielectric.gallery.loads import keplinger_s
 from validation.fe import (buckling_problem, build_problem, pardiso_installed, run_fe,
                            stability_columns, whole_plate_verdict)
 from skfem_dielectric.models.plate.modes import lowest_physical
-from validation.fe.model import BUCKLING_TOL
+from validation.specs import LOCATION_TOL
 from validation.records import StepRecord
 from validation.sweep import run_case
 from validation.table import is_breakdown, read_table
@@ -219,14 +219,14 @@ def test_stable_column_never_true_on_a_buckled_state(tmp_path, monkeypatch):
     # the Newton tolerance (1e-9 relative)
     assert all(np.linalg.norm(st["x"] - st["x_stab"]) > 1e-6 * np.linalg.norm(st["x"])
                for _, st in seen)
-    # the buckling load is located (to BUCKLING_TOL) on the row of the first state past it,
+    # the buckling load is located (to LOCATION_TOL) on the row of the first state past it,
     # inside the bracket 2.5 .. 3 of the two states; no other row holds one
     located = t["D0_b"]
     assert np.isnan(located[:2]).all() and 2.5 < located[2] < 3.0, located
     # a linear interpolation of the two rows' eigenvalues would put it at 2.68: the
     # eigenvalue is far from linear there, the located value is not that
     e25, e3 = full[0].eigenvalue, full[1].eigenvalue
-    assert abs(located[2] - (2.5 + 0.5 * e25 / (e25 - e3))) > 10 * BUCKLING_TOL
+    assert abs(located[2] - (2.5 + 0.5 * e25 / (e25 - e3))) > 10 * LOCATION_TOL
     # interrupted after the state before the crossing and resumed: both ramps continue
     # from the saved vectors and D0_b is located from the saved grad-div state, so the
     # file is the uninterrupted run's, byte for byte

@@ -14,6 +14,10 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+#: the tolerance in ``D0`` to which every located load (``D0_b``, ``D0_c``, a ``P33``
+#: onset) is found: the least error of a graded load, whatever its meshes' spread
+LOCATION_TOL = 1e-4
+
 __all__ = ["KEPLINGER", "ALPHAS", "GENT_JM", "MODELS", "VARIANTS", "GEOMETRIES", "RunSpec",
            "Case"]
 

@@ -447,7 +447,7 @@ def make_breakdown_map(result: CaseResult, out, *, quick: bool = False) -> list[
 
     The run's ``P33`` breakdowns and buckling loads per weight come from ``result`` (the
     uni-axial-ideal case's summary), its Newton failures from its CSV, the converged
-    buckling loads from :mod:`validation.buckling_data`.  The map is drawn without the
+    buckling loads from :mod:`validation.data.loads`.  The map is drawn without the
     mode panels (docs/breakdown.md says how to draw them).
     """
     out = Path(out)

@@ -4,7 +4,7 @@ A solver written elsewhere (FEniCS, COMSOL, Abaqus, a script) writes its results
 results contract of ``skfem-dielectric validate`` (docs/theory.md, "The results contract";
 the columns each case needs: docs/check.md) and :func:`check` scores every case it finds
 against the closed forms of :mod:`analytic` and the measured buckling loads of
-:mod:`validation.buckling_data`:
+:mod:`validation.data.loads`:
 
 * the loading curves of the homogeneous plates, equi-biaxial (Eq. loading_gent) and
   uni-axial (Eq. DEuniax), neo-Hookean and Gent: the relative error of ``lam1`` at the

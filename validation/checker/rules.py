@@ -11,7 +11,7 @@ import numpy as np
 import analytic as an
 from analytic.units import keplinger_s
 
-from ..buckling_data import BUCKLING_LOADS_FILE, buckling_loads, uniform_buckling_loads
+from ..data.loads import BUCKLING_LOADS_FILE, buckling_loads, uniform_buckling_loads
 from ..cases import analytic_model
 from ..specs import KEPLINGER
 from .contract import CHECK_CASES, CheckInputError
@@ -204,7 +204,7 @@ def _alpha_of(r, header) -> float:
 
 def _buckling_measure(case, tables, tol):
     """``D0_b`` per weight against the converged load of
-    :func:`validation.buckling_data.buckling_loads` (Sec. 6; docs/validation.md: the graded
+    :func:`validation.data.loads.buckling_loads` (Sec. 6; docs/validation.md: the graded
     meshes' load where they agree, else the uniform meshes' extrapolation)."""
     entries, uniform = buckling_loads(), uniform_buckling_loads()
     found = {}      # (alpha, run, variant, D0_b, own error) -> (row, D0_b, own error, alpha)

@@ -3,13 +3,13 @@ buckles, unit by unit (one weight fraction on one graded mesh), and what the mes
 pressure space and the clamp edge say about it.
 
 One command runs it, ``skfem-dielectric clamp-zone SUBCOMMAND`` (:mod:`validation.clamp_zone.cli`); its
-tables are listed in :data:`validation.clamp_zone.data.TABLES` and read by :func:`validation.clamp_zone.data.load`; docs/clamp-zone.md
+tables are listed in :data:`validation.data.registry.TABLES` and read by :func:`validation.data.registry.load`; docs/clamp-zone.md
 says what a unit is and how to run one on a laptop or a dask cluster.
 
-* :mod:`validation.clamp_zone.key` -- :class:`~validation.clamp_zone.key.UnitKey`, what names a unit;
-* :mod:`validation.clamp_zone.spec`, :mod:`validation.clamp_zone.table` -- a table's columns and
+* :mod:`validation.data.key` -- :class:`~validation.data.key.UnitKey`, what names a unit;
+* :mod:`validation.data.spec`, :mod:`validation.clamp_zone.table` -- a table's columns and
   reading it back; writing it under its lock;
-* :mod:`validation.clamp_zone.data` -- the tables by name, :func:`~validation.clamp_zone.data.load`, the convergence rule of a load;
+* :mod:`validation.data.registry` -- the tables by name, :func:`~validation.data.registry.load`, the convergence rule of a load;
 * :mod:`validation.clamp_zone.units`, :mod:`validation.clamp_zone.onsets`, :mod:`validation.clamp_zone.p33`, :mod:`validation.clamp_zone.layer`, :mod:`validation.clamp_zone.flagged`,
   :mod:`validation.clamp_zone.counts`, :mod:`validation.clamp_zone.section` -- one runner per analysis;
 * :mod:`validation.clamp_zone.local_theory`, :mod:`validation.clamp_zone.scaling` -- the closed forms at a point of the plate and the

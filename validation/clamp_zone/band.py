@@ -9,7 +9,7 @@ whose lower edge stays put as ``h0`` is halved; a band that recedes towards the 
 inverted elements (``J_min <= 0``) is no state of the plate: its line is drawn grey and
 dotted, and its counts decide nothing.  The shaded band is the reach of the 3D mesh
 across the width: the wavenumbers it holds with at least
-:data:`~validation.clamp_zone.data.MIN_ELEMENTS_PER_HALF_WAVE` elements per half-wave.
+:data:`~validation.data.registry.MIN_ELEMENTS_PER_HALF_WAVE` elements per half-wave.
 
 ``skfem-dielectric clamp-zone band`` draws it (``--table``: :func:`band_table`).
 """
@@ -20,7 +20,7 @@ import numpy as np
 
 from ..figures.common import plt
 from ..specs import KEPLINGER
-from .data import MIN_ELEMENTS_PER_HALF_WAVE
+from ..data.registry import MIN_ELEMENTS_PER_HALF_WAVE
 
 __all__ = ["band_onsets", "band_table", "mesh_reach", "edge_band_figure"]
 
@@ -32,7 +32,7 @@ def _state(r: dict) -> tuple:
 
 def mesh_reach(mesh: str) -> float:
     """The largest ``k`` (1/mm) a 3D eighth-model mesh ``n1xn2xn3`` holds with
-    :data:`~validation.clamp_zone.data.MIN_ELEMENTS_PER_HALF_WAVE` elements per half-wave
+    :data:`~validation.data.registry.MIN_ELEMENTS_PER_HALF_WAVE` elements per half-wave
     across the half-width (``n3`` elements over ``W / 2``): ``pi / (m h3)``."""
     h3 = 1e3 * KEPLINGER["width"] / 2 / int(mesh.split("x")[2])
     return float(np.pi / (MIN_ELEMENTS_PER_HALF_WAVE * h3))
@@ -61,7 +61,7 @@ def band_onsets(rows: list[dict]) -> dict:
     Parameters
     ----------
     rows : list of dict
-        Rows of the ``section`` table (:func:`~validation.clamp_zone.data.load`).
+        Rows of the ``section`` table (:func:`~validation.data.registry.load`).
 
     Returns
     -------
@@ -91,7 +91,7 @@ def band_table(rows: list[dict]) -> str:
     Parameters
     ----------
     rows : list of dict
-        Rows of the ``section`` table (:func:`~validation.clamp_zone.data.load`).
+        Rows of the ``section`` table (:func:`~validation.data.registry.load`).
 
     Returns
     -------
@@ -119,7 +119,7 @@ def edge_band_figure(rows: list[dict]):
     Parameters
     ----------
     rows : list of dict
-        Rows of the ``section`` table (:func:`~validation.clamp_zone.data.load`).
+        Rows of the ``section`` table (:func:`~validation.data.registry.load`).
 
     Returns
     -------

@@ -30,17 +30,18 @@ from ..store import aside_path
 from .band import band_table, edge_band_figure
 from .costs import estimated_GB, physical_GB
 from .counts import run_edge_counts
-from .data import (LOCATION_TOL, MAX_D0, TABLES, clamp_unit_load, load, shipped_path,
-                   table_file)
+from ..data.clamp_zone import clamp_unit_load
+from ..data.registry import MAX_D0, TABLES, load, shipped_path, table_file
+from ..specs import LOCATION_TOL
 from .flagged import run_flagged_modes
-from .key import FORMULATIONS, UnitKey, parse_mesh
+from ..data.key import FORMULATIONS, UnitKey, parse_mesh
 from .layer import run_clamp_layer
 from .modes import clamp_modes_figure, read_clamp_modes
 from .onsets import run_class_onsets
 from .p33 import run_p33_unit
 from .scaling import scaling_tables
 from .section import DEFAULT_K, check_section_size, run_edge_section
-from .spec import read_table
+from ..data.spec import read_table
 from .table import TableWriter
 from .tables import breakdown_table, clamp_study_tables
 from .units import run_unit, write_mode

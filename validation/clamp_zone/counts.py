@@ -39,8 +39,8 @@ from skfem_dielectric.models.plate.scan import PlateScan
 
 from ..fe.model import BUCKLING_GRAD_DIV
 from .costs import Meter
-from .data import CLASS_COLUMNS, TABLES
-from .key import mesh_text
+from ..data.registry import CLASS_COLUMNS, TABLES
+from ..data.key import mesh_text
 from .units import charge_path, unit_problem, unit_ramp
 
 __all__ = ["COLUMNS", "CLASS_COLUMNS", "run_edge_counts"]

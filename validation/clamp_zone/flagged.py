@@ -26,8 +26,8 @@ import numpy as np
 
 from skfem_dielectric.models.plate.scan import PlateScan
 
-from .data import TABLES
-from .key import mesh_text
+from ..data.registry import TABLES
+from ..data.key import mesh_text
 from .units import ramp_to_charge, unit_problem
 from .local_theory import energy_centroid
 

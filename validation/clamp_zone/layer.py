@@ -28,8 +28,9 @@ from __future__ import annotations
 import numpy as np
 
 from .costs import Meter
-from .data import LAYER_WIDTHS, TABLES, unit_row
-from .key import UnitKey, mesh_text
+from ..data.clamp_zone import unit_row
+from ..data.registry import LAYER_WIDTHS, TABLES
+from ..data.key import UnitKey, mesh_text
 from .units import clamp_centre_J, ramp_to_charge, unit_problem
 
 __all__ = ["COLUMNS", "LAYER_WIDTHS", "volume_ratios", "run_clamp_layer"]
@@ -92,7 +93,7 @@ def run_clamp_layer(alpha: float, elements, *, grading: float = 1.0,
         Linear solver of the ramp.
     D0
         The charge; ``None``: the unit's ``D0_b`` in the ``units`` table ``units`` (a file or
-        folder) or else the shipped one (:func:`~validation.clamp_zone.data.unit_row`).
+        folder) or else the shipped one (:func:`~validation.data.clamp_zone.unit_row`).
 
     Raises
     ------

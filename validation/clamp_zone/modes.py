@@ -1,6 +1,6 @@
 """The clamp-zone study's modes at ``D0_b``: the top face's deflection over the whole plate.
 
-:func:`validation.clamp_zone.units.run_unit` writes one ``.npz`` per unit (named by :attr:`~validation.clamp_zone.key.UnitKey.stem`) (``X1``,
+:func:`validation.clamp_zone.units.run_unit` writes one ``.npz`` per unit (named by :attr:`~validation.data.key.UnitKey.stem`) (``X1``,
 ``X3`` in mm, ``u2`` the mode's deflection, ``D0_b``; each panel scales it to a largest
 ``|u2|`` of one);
 :func:`clamp_modes_figure` draws a folder of them, one panel per unit (blue and red: the
@@ -19,7 +19,7 @@ import numpy as np
 
 from ..figures.common import plt
 from ..store import read_npz
-from .key import UnitKey
+from ..data.key import UnitKey
 
 __all__ = ["read_clamp_modes", "clamp_modes_figure", "clamp_trace", "row_half_waves"]
 
@@ -131,7 +131,7 @@ def clamp_modes_figure(modes: list[dict], loads: dict | None = None):
         As :func:`read_clamp_modes` returns them.
     loads : dict, optional
         ``{alpha: (D0_b, error, meshes)}``: the converged load of each weight (the table's,
-        :func:`~validation.clamp_zone.data.clamp_unit_load`), which the panel's title
+        :func:`~validation.data.clamp_zone.clamp_unit_load`), which the panel's title
         gives beside the mesh the mode was computed on; without it the title gives the
         mode's own ``D0_b``.
 

@@ -50,8 +50,10 @@ from skfem_dielectric.studies.buckling import locate_buckling
 
 from ..fe.model import BUCKLING_NEWTON
 from .costs import Meter
-from .data import LOCATION_TOL, MAX_D0, TABLES, scan_states, unit_row
-from .key import UnitKey, mesh_text
+from ..data.clamp_zone import scan_states, unit_row
+from ..data.registry import MAX_D0, TABLES
+from ..specs import LOCATION_TOL
+from ..data.key import UnitKey, mesh_text
 from .units import charge_path, unit_problem, unit_ramp
 from .local_theory import energy_centroid, half_waves
 
@@ -112,7 +114,7 @@ def run_class_onsets(alpha: float, elements, *, grading: float = 1.0,
         Names of classes not to locate (already located).
     units
         A ``units`` table (file or folder) to look for the unit in before the shipped
-        one (:func:`~validation.clamp_zone.data.unit_row`).
+        one (:func:`~validation.data.clamp_zone.unit_row`).
     progress
         Optional ``progress(text)``.
     on_row

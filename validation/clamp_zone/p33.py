@@ -41,8 +41,9 @@ from ..fe.model import BUCKLING_NEWTON
 from ..studies.buckling import p33_measures
 from ..table import BREAKDOWN_TOL
 from .costs import Meter
-from .data import LOCATION_TOL, P33_SETS as SETS, TABLES
-from .key import mesh_text
+from ..data.registry import P33_SETS as SETS, TABLES
+from ..specs import LOCATION_TOL
+from ..data.key import mesh_text
 from .units import charge_path, unit_ramp
 
 __all__ = ["COLUMNS", "SETS", "run_p33_unit"]

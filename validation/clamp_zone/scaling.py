@@ -10,7 +10,7 @@ wrinkles over the sheet's length (Cerda & Mahadevan, Phys. Rev. Lett. 90, 074302
 
 ``t`` the thickness, ``L`` the length, ``gamma`` the tensile strain -- not from the local
 homogeneous state (whose only length is the thickness: ``lambda_w ∝ t``).  For each weight
-with a converged clamp-zone load (:func:`validation.clamp_zone.data.clamp_unit_load`) this
+with a converged clamp-zone load (:func:`validation.data.clamp_zone.clamp_unit_load`) this
 module compares the measured wavelength -- the reference width over the half-wave pairs
 of the mode, ``2 W / n`` -- with both, on the homogeneous uni-axial state at ``D0_b``
 (Eq. (DEuniax): ``t = H lam2``, ``L = L0 lam1``, ``gamma = lam1 - 1``).  The data are
@@ -34,7 +34,7 @@ import analytic as an
 import skfem_dielectric as fe
 from analytic.units import keplinger_s
 
-from .data import clamp_unit_load
+from ..data.clamp_zone import clamp_unit_load
 from ..specs import KEPLINGER
 
 __all__ = ["wrinkle_scaling", "compressive_zone", "scaling_tables"]

@@ -45,8 +45,8 @@ from skfem_dielectric.models.edge_section import (EdgeSection, edge_section_grid
 
 from ..fe.model import BUCKLING_GRAD_DIV
 from .costs import peak_GB
-from .data import TABLES
-from .key import mesh_text
+from ..data.registry import TABLES
+from ..data.key import mesh_text
 from .units import ramp_states, unit_problem
 
 __all__ = ["COLUMNS", "DEFAULT_K", "run_edge_section", "check_section_size", "MIN_H0",

@@ -1,7 +1,7 @@
 """Writing a table of the clamp-zone study under its lock (:class:`TableWriter`): a second
 writer is refused and named, damaged rows are left out and recomputed, every write is
 atomic (temporary file, ``fsync``, ``os.replace``).  What a table holds and how it is read
-back: :mod:`validation.clamp_zone.spec`.
+back: :mod:`validation.data.spec`.
 """
 
 from __future__ import annotations
@@ -15,7 +15,7 @@ import numpy as np
 
 from ..store import (aside_path, command_lock, csv_line, keep_aside, regular_file,
                      write_text_atomic)
-from .spec import TableSpec, read_table
+from ..data.spec import TableSpec, read_table
 
 __all__ = ["TableWriter"]
 

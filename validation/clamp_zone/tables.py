@@ -6,8 +6,10 @@ from __future__ import annotations
 import math
 from pathlib import Path
 
-from .data import LOCATION_TOL, TABLES, clamp_unit_load, plain_p33_row
-from .data import load as load_table
+from ..data.clamp_zone import clamp_unit_load, plain_p33_row
+from ..data.registry import TABLES
+from ..specs import LOCATION_TOL
+from ..data.registry import load as load_table
 
 __all__ = ["clamp_study_tables", "breakdown_numbers", "breakdown_table"]
 
@@ -106,7 +108,7 @@ def clamp_study_tables(where=None) -> str:
 def breakdown_numbers(where=None) -> list[dict]:
     """The three meanings of "breakdown" per weight, each located and with its mesh: the
     plain form's ``P33`` onsets on the finest graded mesh of the ``p33`` table, the
-    converged buckling load of :func:`~validation.clamp_zone.data.clamp_unit_load` and the
+    converged buckling load of :func:`~validation.data.clamp_zone.clamp_unit_load` and the
     plain form's Newton limit on that ``P33`` mesh.
 
     Parameters

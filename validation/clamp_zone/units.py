@@ -25,9 +25,9 @@ unit's row holds what the mesh says about the mode there:
   crossing between two states that the location could not follow).
 
 The mode at ``D0_b`` (the top face's deflection over the whole plate) goes to
-``--out``'s ``modes`` folder (one ``.npz`` per unit, :attr:`~validation.clamp_zone.key.UnitKey.stem`);
+``--out``'s ``modes`` folder (one ``.npz`` per unit, :attr:`~validation.data.key.UnitKey.stem`);
 ``skfem-dielectric clamp-zone modes`` draws them.  The rows go to the ``units`` table
-(:data:`~validation.clamp_zone.data.TABLES`); ``skfem-dielectric clamp-zone units`` runs the units not yet
+(:data:`~validation.data.registry.TABLES`); ``skfem-dielectric clamp-zone units`` runs the units not yet
 there (docs/clamp-zone.md).
 """
 
@@ -48,8 +48,9 @@ from skfem_dielectric.studies.buckling import locate_buckling
 from ..fe.model import BUCKLING_GRAD_DIV, BUCKLING_NEWTON
 from ..store import write_npz_atomic
 from .costs import Meter
-from .data import LOCATION_TOL, TABLES
-from .key import UnitKey, mesh_text
+from ..data.registry import TABLES
+from ..specs import LOCATION_TOL
+from ..data.key import UnitKey, mesh_text
 from .local_theory import energy_centroid, half_waves, local_state
 
 __all__ = ["COLUMNS", "UNIT_SETTINGS", "run_unit", "write_mode", "unit_problem",
@@ -178,7 +179,7 @@ def run_unit(alpha: float, elements, *, grading: float = 1.0, D0_step: float = 0
     progress
         Optional ``progress(text)`` called once per scanned state.
     modes_dir
-        Where to write the mode at ``D0_b`` (``<stem>.npz``, :attr:`~validation.clamp_zone.key.UnitKey.stem`:
+        Where to write the mode at ``D0_b`` (``<stem>.npz``, :attr:`~validation.data.key.UnitKey.stem`:
         the top face's deflection over the whole plate, ``X1``, ``X3``, ``u2``, as
         :func:`~skfem_dielectric.models.plate.modes.top_deflection`); ``None``: not written.
 
@@ -280,7 +281,7 @@ def run_unit(alpha: float, elements, *, grading: float = 1.0, D0_step: float = 0
 
 def write_mode(folder, key: UnitKey, mode: dict) -> Path:
     """Write a unit's mode at ``D0_b`` (the ``mode`` of :func:`run_unit`'s row) atomically
-    to ``folder/<stem>.npz`` (:attr:`~validation.clamp_zone.key.UnitKey.stem`); returns the
+    to ``folder/<stem>.npz`` (:attr:`~validation.data.key.UnitKey.stem`); returns the
     path."""
     path = Path(folder) / f"{key.stem}.npz"
     path.parent.mkdir(parents=True, exist_ok=True)

@@ -15,7 +15,7 @@ import numpy as np
 import analytic as an
 from analytic.units import keplinger_s
 
-from ..buckling_data import buckling_loads, newton_limits, p33_onsets
+from ..data.loads import buckling_loads, newton_limits, p33_onsets
 from ..cases import ALPHAS
 from ..figures.common import (equibiaxial_curve, refine_start, uniaxial_curve,
                               wrinkling_zone_outline)
@@ -209,9 +209,9 @@ def uniaxial_panel(p: ExploreParameters) -> dict:
 def clamped_reference(alpha: float) -> dict:
     """The converged study of the clamped Keplinger plate at the weight ``alpha`` (matched
     to ``1e-9``), each value on the weight's homogeneous neo-Hookean curve: ``{role: (lam1,
-    D0)}`` with the roles ``p33_onset`` (:func:`validation.buckling_data.p33_onsets`),
-    ``D0_b`` (:func:`validation.buckling_data.buckling_loads`, converged only) and
-    ``newton_limit`` (:func:`validation.buckling_data.newton_limits`); a weight the study
+    D0)}`` with the roles ``p33_onset`` (:func:`validation.data.loads.p33_onsets`),
+    ``D0_b`` (:func:`validation.data.loads.buckling_loads`, converged only) and
+    ``newton_limit`` (:func:`validation.data.loads.newton_limits`); a weight the study
     has not run has none.
 
     Parameters

@@ -25,10 +25,9 @@ from skfem_dielectric.gallery.defaults import (EQUIBIAXIAL_PRELOAD_STEPS, EQUIBI
                                                KEPLINGER_RTOL, KEPLINGER_SIZE)
 from skfem_dielectric.gallery.loads import keplinger_s
 
-from ..clamp_zone.data import LOCATION_TOL
 from ..specs import GENT_JM, KEPLINGER, RunSpec
 
-__all__ = ["BUCKLING_GRAD_DIV", "BUCKLING_TOL", "BUCKLING_NEWTON", "with_dead_load",
+__all__ = ["BUCKLING_GRAD_DIV", "BUCKLING_NEWTON", "with_dead_load",
            "is_membrane", "build_problem", "buckling_problem", "ramp_targets", "ramp_settings",
            "pardiso_installed"]
 
@@ -58,12 +57,8 @@ ACCELERATION = KEPLINGER_ACCELERATION
 #: Hessian of the energy whose equilibrium it is (docs/stability.md, "Which state each
 #: column is of")
 BUCKLING_GRAD_DIV = 10.0
-#: the buckling load ``D0_b`` is located to this tolerance in ``D0``
-#: (:func:`skfem_dielectric.studies.buckling.buckling_load`), by the harness, the study
-#: ``buckling`` and the clamp-zone study alike (one number:
-#: :data:`validation.clamp_zone.data.LOCATION_TOL`)
-BUCKLING_TOL = LOCATION_TOL
-#: Newton settings of the trial states of that location
+#: Newton settings of the trial states of the location of ``D0_b`` (to
+#: :data:`validation.specs.LOCATION_TOL`)
 BUCKLING_NEWTON = fe.RampSettings(rtol=1e-9, max_cutbacks=6, max_iter=25)
 
 

@@ -35,7 +35,8 @@ from skfem_dielectric.studies.buckling import locate_buckling
 from ..progress import report_step
 from ..records import RunOutcome
 from .columns import plate_buckling_columns, step_record, stability_monitor
-from .model import (BUCKLING_NEWTON, BUCKLING_TOL, buckling_problem, build_problem,
+from ..specs import LOCATION_TOL
+from .model import (BUCKLING_NEWTON, buckling_problem, build_problem,
                     ramp_settings, ramp_targets, with_dead_load)
 
 __all__ = ["run_fe"]
@@ -55,13 +56,13 @@ def _located_D0_b(problem, prev, cur, mode, counts, linear_solver) -> float:
     (``(x, load)`` pairs) where the scan found the physical ``mode`` (``counts``: the scan's
     state at ``prev``), or ``nan`` when there is no ``prev``: the study ``buckling``'s
     location (:func:`skfem_dielectric.studies.buckling.locate_buckling`, to
-    :data:`~validation.fe.model.BUCKLING_TOL`, trial states solved from ``prev`` with
+    :data:`~validation.specs.LOCATION_TOL`, trial states solved from ``prev`` with
     :data:`~validation.fe.model.BUCKLING_NEWTON`)."""
     if prev is None or mode is None:
         return float("nan")
     method = "pardiso" if linear_solver == "pardiso" else "auto"
     bl = locate_buckling(problem, prev, cur, mode, counts=counts, method=method,
-                         tol=BUCKLING_TOL, linear_solver=linear_solver,
+                         tol=LOCATION_TOL, linear_solver=linear_solver,
                          settings=BUCKLING_NEWTON)
     return float(bl.D0_b)
 

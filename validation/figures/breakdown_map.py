@@ -2,7 +2,7 @@
 
 One panel with the weight fraction ``alpha`` across and ``D0`` up: the paper's ``P33``
 criterion (Sec. 6, the red crosses of its Fig. 5), the converged loss of stability
-``D0_b`` of the whole plate (:mod:`validation.buckling_data`, with its error bar and the
+``D0_b`` of the whole plate (:mod:`validation.data.loads`, with its error bar and the
 value of each mesh), the charge where the Newton ramp stops, and the paper's homogeneous
 wrinkling limits on each weight's loading path (Eqs. thin-uni-axial, thick-uni-axial).
 Beside it, optionally, the critical mode of each weight: the top face's deflection over
@@ -17,7 +17,7 @@ import numpy as np
 import analytic as an
 from analytic.units import keplinger_s
 
-from ..buckling_data import buckling_loads, newton_limit_bands, newton_limits, p33_onsets
+from ..data.loads import buckling_loads, newton_limit_bands, newton_limits, p33_onsets
 from ..cases import ALPHAS, analytic_model
 from ..specs import KEPLINGER
 from ..markers import (CONVERGED_BUCKLING, MESH_BUCKLING, NEWTON_BAND, NEWTON_BAND_LABEL,
@@ -118,15 +118,15 @@ def plot_breakdown_map(p33=None, run_buckling=None, run_newton=None, loads=None,
         ``{alpha: D0}``: the first target a run's Newton solver could not reach
         (:data:`~validation.markers.RUN_NEWTON`).
     loads : sequence of BucklingEntry, optional
-        The measured buckling loads (default :func:`validation.buckling_data.buckling_loads`):
+        The measured buckling loads (default :func:`validation.data.loads.buckling_loads`):
         the converged ``D0_b`` with its error bar (:data:`~validation.markers.CONVERGED_BUCKLING`;
         the legend says that the bars hide behind the diamonds), the value of each mesh of
         the entry (:data:`~validation.markers.MESH_BUCKLING`: the three uniform meshes, or
         the two finest graded ones; a weight without a diamond gets a note
         in the figure, :data:`~validation.markers.NOT_CONVERGED_NOTE`) and the plain form's
-        Newton limit (:func:`validation.buckling_data.newton_limits`,
+        Newton limit (:func:`validation.data.loads.newton_limits`,
         :data:`~validation.markers.NEWTON_LIMIT`).  The located ``P33`` onsets of the
-        clamp-zone study (:func:`validation.buckling_data.p33_onsets`,
+        clamp-zone study (:func:`validation.data.loads.p33_onsets`,
         :data:`~validation.markers.P33_ONSET_LOCATED`) are drawn with them: with the
         converged loads and the Newton limits they are the reference layer, in the order
         the charge meets them, beside which a run's own values show what its mesh gives.

@@ -12,7 +12,7 @@ from matplotlib.lines import Line2D
 import analytic as an
 from analytic.units import keplinger_s
 
-from ..buckling_data import buckling_loads, newton_limit_bands, newton_limits, p33_onsets
+from ..data.loads import buckling_loads, newton_limit_bands, newton_limits, p33_onsets
 from ..cases import ALPHAS, analytic_model
 from ..specs import KEPLINGER
 from ..markers import (AFTER_BREAKDOWN, CONVERGED_BUCKLING, NEWTON_BAND, NEWTON_BAND_LABEL,
@@ -102,7 +102,7 @@ def reference_layer(ax, alphas, D0max: float, model: str = "neo-Hookean") -> lis
 
 
 def _measured_loads(ax, alphas, m, D0max):
-    """The converged buckling loads of :mod:`validation.buckling_data`
+    """The converged buckling loads of :mod:`validation.data.loads`
     (:data:`~validation.markers.CONVERGED_BUCKLING`, error bars hidden by the diamonds, as
     the legend says) and the plain form's Newton limits
     (:data:`~validation.markers.NEWTON_LIMIT`), on each weight's homogeneous loading curve;
@@ -228,7 +228,7 @@ def plot_uniaxial_wrinkling(fe=None, alphas=ALPHAS, ax=None, D0max=7.0):
     :data:`~validation.markers.RUN_BUCKLING` (red cross, on top of every other marker) of
     the runs analysed with the whole plate's spectrum (column ``D0_b``).  With FE data,
     also the converged buckling load ``D0_b`` of each weight
-    (:func:`validation.buckling_data.buckling_loads`,
+    (:func:`validation.data.loads.buckling_loads`,
     :data:`~validation.markers.CONVERGED_BUCKLING`; a legend line names the weights
     without one) and the plain form's Newton limit
     (:data:`~validation.markers.NEWTON_LIMIT`), both on the weight's homogeneous curve

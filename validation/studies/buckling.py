@@ -37,11 +37,12 @@ from skfem_dielectric.models.plate.modes import top_deflection
 from skfem_dielectric.solvers import illinois
 from skfem_dielectric.studies.buckling import buckling_load
 
-from ..fe.model import BUCKLING_GRAD_DIV, BUCKLING_NEWTON, BUCKLING_TOL
+from ..fe.model import BUCKLING_GRAD_DIV, BUCKLING_NEWTON
+from ..specs import LOCATION_TOL
 from ..figures import save_figure
 from ..options import load_targets
 from ..store import RowFile, StudyStore, read_npz, write_npz_atomic
-from ..buckling_data import buckling_loads, p33_onsets
+from ..data.loads import buckling_loads, p33_onsets
 from ..markers import CONVERGED_BUCKLING, P33_ONSET_LOCATED, legend_style
 from ..table import BREAKDOWN_TOL
 
@@ -129,7 +130,7 @@ def run_one(alpha: float, elements, *, D0_step: float, D0_max: float,
     mesh = _mesh_name(elements)
     method = "pardiso" if solver == "pardiso" else "auto"
     bl = buckling_load(pb, [(st.x, st.load) for st in states], method=method,
-                       tol=BUCKLING_TOL, **newton)
+                       tol=LOCATION_TOL, **newton)
     scan = []
     for st, row in zip(states, bl.scan):
         m = p33_measures(pb, st.x, st.load, st.quantities)
@@ -280,7 +281,7 @@ def richardson(h, values) -> tuple[float, float, float]:
     -----
     Used for the converged buckling loads (docs/validation.md, "The study"; the meshes
     10 x 1 x 5, 14 x 1 x 7, 20 x 1 x 10 have ratios 1.4 and 1.43;
-    ``validation/data/buckling_loads.csv``, :mod:`validation.buckling_data`).
+    ``validation/data/buckling_loads.csv``, :mod:`validation.data.loads`).
     """
     h, v = np.asarray(h, float), np.asarray(values, float)
     if h.shape != v.shape:
@@ -334,7 +335,7 @@ def buckling_figure(rows, scan, modes_dir: Path, path: Path, footer: str = "",
     Beside each weight's own meshes the reference of the converged study (when it has the
     weight): the converged ``D0_b`` on the zero line of the eigenvalue panel and the
     located ``P33`` onset on the criterion's line of the ``P33`` panel
-    (:mod:`validation.buckling_data`, the markers of :mod:`validation.markers`).
+    (:mod:`validation.data.loads`, the markers of :mod:`validation.markers`).
     """
     alphas = sorted({r["alpha"] for r in rows})
     fig, axes = plt.subplots(len(alphas), 3, figsize=(14, 3.4 * len(alphas)), squeeze=False,

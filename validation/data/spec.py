@@ -40,7 +40,7 @@ class TableSpec:
     ----------
     name
         The table's name (``"units"``), declared in its first line and used by
-        :func:`validation.clamp_zone.data.load`.
+        :func:`validation.data.registry.load`.
     file
         Its file name, in ``--out`` and among the shipped data (``"clamp_units.csv"``).
     columns

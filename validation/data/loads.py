@@ -7,7 +7,7 @@ plate:
   clamp (:mod:`validation.clamp_zone`, one weight on one mesh per row, with the
   mode's half-wave count, ``J`` at the clamp and the command of each row).  A weight's
   load is the finest mesh's where the two finest hold the mode (at least
-  :data:`~validation.clamp_zone.data.MIN_ELEMENTS_PER_HALF_WAVE` elements per half-wave across the width), count the
+  :data:`~validation.data.registry.MIN_ELEMENTS_PER_HALF_WAVE` elements per half-wave across the width), count the
   same half-waves and agree (:func:`clamp_unit_load`);
 * ``validation/data/buckling_loads.csv``: three uniform meshes per weight
   (:mod:`validation.studies.buckling`), their Richardson extrapolation with an error
@@ -32,7 +32,9 @@ import math
 from dataclasses import dataclass
 from importlib import resources
 
-from .clamp_zone.data import LOCATION_TOL, clamp_unit_load, load, plain_p33_row
+from ..specs import LOCATION_TOL
+from .clamp_zone import clamp_unit_load, plain_p33_row
+from .registry import load
 
 __all__ = ["BUCKLING_LOADS_FILE", "CLAMP_UNITS_FILE", "BucklingEntry", "buckling_loads",
            "uniform_buckling_loads", "buckling_provenance", "converged_buckling_load",
@@ -123,7 +125,7 @@ def uniform_buckling_loads() -> tuple[BucklingEntry, ...]:
 
 def _plain_newton_limit(alpha: float) -> tuple[float, str]:
     """The plain form's Newton limit of ``alpha`` on its finest graded mesh and that mesh
-    (:func:`~validation.clamp_zone.data.plain_p33_row`); ``nan`` where the ramp reached
+    (:func:`~validation.data.clamp_zone.plain_p33_row`); ``nan`` where the ramp reached
     every target or was not run."""
     r = plain_p33_row(alpha)
     if r is None:
@@ -218,7 +220,7 @@ def newton_limit_bands() -> list[tuple[float, float, float, tuple[str, ...]]]:
 def p33_onsets() -> list[tuple[float, float, str]]:
     """The located ``P33`` onset of the plain form in the interior, one per weight with a
     graded ``P33`` row: ``(alpha, D0, mesh)`` of its finest graded mesh
-    (:func:`~validation.clamp_zone.data.plain_p33_row`, the clamp-zone ``p33`` table), in
+    (:func:`~validation.data.clamp_zone.plain_p33_row`, the clamp-zone ``p33`` table), in
     increasing ``alpha``; the reference layer the figures draw beside a run's own ``P33``
     step (docs/breakdown.md).
 
