@@ -36,8 +36,12 @@ def test_large_charge_jumps_reach_the_closed_form_or_fail(s, D0):
         assert res.reason
 
 
-def test_plain_ramp_finds_the_inverted_state_and_plate_admissible_names_it():
+def test_an_unguarded_ramp_finds_the_inverted_state_and_plate_admissible_names_it(
+        monkeypatch):
+    """The same plate with its guards taken away (a model without ``newton_guards``)
+    reaches the inverted state F11 = F33 = -lam; the guarded Newton refuses it."""
     prob = sd.gallery.equibiaxial_problem(model="Gent")
+    monkeypatch.setattr(prob, "newton_guards", lambda: {})
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", RuntimeWarning)
         res = ramp(prob, preload_then_charge(1.0, [2, 4, 500], 4),
@@ -53,6 +57,33 @@ def test_plain_ramp_finds_the_inverted_state_and_plate_admissible_names_it():
                 scale=prob.residual_scale(st.load),
                 admissible=lambda xx: plate_admissible(prob, xx, st.load))
     assert not nr.converged and "inverted" in nr.reason
+
+
+def test_ramp_asks_the_problem_for_its_guards_and_cuts_a_step_into_inversion():
+    """``ramp`` called with no guards uses the plate's own: on the jump that inverts the
+    unguarded plate, the step limit cuts Newton steps that would turn an element inside
+    out (``max_step < 1``), every kept state is admissible, and a reached target is the
+    closed form's stretch (1e-8)."""
+    prob = sd.gallery.equibiaxial_problem(model="Gent")
+    limited = []
+    own = prob.max_step
+
+    def counted(x, dx, load):
+        a = own(x, dx, load)
+        limited.append(a < 1.0)
+        return a
+
+    prob.max_step = counted                      # the guard the problem hands to ramp
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", RuntimeWarning)
+        res = ramp(prob, preload_then_charge(1.0, [2, 4, 500], 4),
+                   settings=RampSettings(atol=0.0, rtol=1e-11))
+    assert any(limited) and len(limited) > 10
+    for st in res.steps:
+        assert plate_admissible(prob, st.x, st.load) == ""
+        if st.target_reached:
+            lam = analytic.equibiaxial_lam(st.load[1], s=st.load[0], model=GENT)
+            assert abs(st["lam1"] - lam) <= 1e-8 * lam
 
 
 def test_max_step_stops_before_det_F_reaches_zero():
@@ -83,16 +114,13 @@ def test_segment_det_limit_simple_double_and_touching_roots():
 
 def test_the_newton_guards_are_part_of_the_problem_contract():
     """A Problem has no guards by default; the plate's are its own methods, and the
-    gallery's newton_guards and plate_admissible answer what the problem answers (the
-    inverted state: test_plain_ramp_finds_the_inverted_state_and_plate_admissible_names_it)."""
-    from skfem_dielectric.gallery import newton_guards
-
+    gallery's plate_admissible answers what the problem answers."""
     pb = sd.gallery.equibiaxial_problem(model="Gent")
-    guards = newton_guards(pb)
-    assert guards == pb.newton_guards()
+    guards = pb.newton_guards()
     assert guards["step_limit"] == pb.max_step and guards["admissible"] == pb.admissible
     x = pb.initial_state()
     load = np.array([1.0, 0.0])
     assert pb.admissible(x, load) == "" == plate_admissible(pb, x, load)
     cs = sd.CrossSection(sd.section_mesh(4.0, 1.0, 2, 1), sd.NeoHookeanDielectric())
-    assert cs.newton_guards() == {} == newton_guards(cs)
+    assert cs.newton_guards() == {}
+    assert not hasattr(sd.gallery, "newton_guards")

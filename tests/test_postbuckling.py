@@ -8,7 +8,6 @@ import numpy as np
 import pytest
 
 import skfem_dielectric as fe
-from skfem_dielectric.gallery.drivers import newton_guards
 from skfem_dielectric.models.plate.symmetry_classes import class_stability
 from skfem_dielectric.solvers.critical import critical_load
 from skfem_dielectric.studies.postbuckling import (critical_mode, midplane_deflection,
@@ -37,7 +36,7 @@ def lightly_loaded():
     pb, a, b = res.problem, res.steps[-2], res.steps[-1]
     crit = critical_load(pb, a.x, a.load, b.load,
                          lambda x, ld: critical_mode(pb, x, ld).eigenvalue,
-                         tol=1e-5, **NEWTON, **newton_guards(pb))
+                         tol=1e-5, **NEWTON)
     return pb, a, b, float(crit.load[1])
 
 
@@ -68,8 +67,7 @@ def test_critical_load_is_the_eighth_models_class_crossing(lightly_loaded):
                              only=["x1 S, x2 A, x3 S"])
         return float(cs.results[0].eigenvalues.min())
 
-    crit = critical_load(pe, ea.x, ea.load, eb.load, eig, tol=1e-5, **NEWTON,
-                         **newton_guards(pe))
+    crit = critical_load(pe, ea.x, ea.load, eb.load, eig, tol=1e-5, **NEWTON)
     assert abs(float(crit.load[1]) - d_crit) < 2e-5
 
 

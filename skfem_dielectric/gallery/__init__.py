@@ -8,7 +8,7 @@ default values of the plates, named once (:mod:`~skfem_dielectric.gallery.defaul
 """
 
 from .drivers import (EQUIBIAXIAL_SETTINGS, KEPLINGER_SETTINGS, MAXWELL_KEPLINGER_SETTINGS,
-                      plate_admissible, newton_guards, equibiaxial_problem,
+                      plate_admissible, equibiaxial_problem,
                       keplinger_problem, run_ramp, equibiaxial_plate, keplinger_plate,
                       maxwell_equibiaxial, maxwell_keplinger, membrane_ramp,
                       membrane_keplinger, cross_section_ramp)
@@ -20,7 +20,7 @@ from .plates import PlateOptions
 
 __all__ = [
     "EQUIBIAXIAL_SETTINGS", "KEPLINGER_SETTINGS", "MAXWELL_KEPLINGER_SETTINGS",
-    "plate_admissible", "newton_guards", "equibiaxial_problem", "keplinger_problem",
+    "plate_admissible", "equibiaxial_problem", "keplinger_problem",
     "run_ramp", "equibiaxial_plate", "keplinger_plate", "maxwell_equibiaxial",
     "maxwell_keplinger", "membrane_ramp", "membrane_keplinger", "cross_section_ramp",
     "keplinger_s", "charge_targets", "preload_then_charge", "remaining_targets",

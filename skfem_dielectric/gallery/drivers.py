@@ -47,7 +47,7 @@ from .loads import charge_targets, keplinger_s, preload_then_charge, remaining_t
 from .plates import PlateOptions
 
 __all__ = ["EQUIBIAXIAL_SETTINGS", "KEPLINGER_SETTINGS", "MAXWELL_KEPLINGER_SETTINGS",
-           "plate_admissible", "newton_guards", "equibiaxial_problem", "keplinger_problem",
+           "plate_admissible", "equibiaxial_problem", "keplinger_problem",
            "run_ramp", "equibiaxial_plate", "keplinger_plate", "maxwell_equibiaxial",
            "maxwell_keplinger", "membrane_ramp", "membrane_keplinger", "cross_section_ramp"]
 
@@ -85,14 +85,6 @@ def _triple(name: str, value, check) -> tuple:
     if len(items) != 3:
         raise ValueError(f"{name} must be a triple (x1, x2, x3), got {value!r}")
     return tuple(check(f"{name}[{i}]", v) for i, v in enumerate(items))
-
-
-def newton_guards(problem: Problem) -> dict:
-    """The model's own Newton guards (:meth:`~skfem_dielectric.problem.Problem.newton_guards`:
-    for a plate ``det F > 0`` along every Newton step and no converged inverted state;
-    ``{}`` for a model without them).  Pass them to
-    :func:`~skfem_dielectric.solvers.ramp.ramp` (:func:`run_ramp` does)."""
-    return problem.newton_guards()
 
 
 def run_ramp(problem: Problem, targets: Sequence[Any], *,
@@ -144,11 +136,10 @@ def run_ramp(problem: Problem, targets: Sequence[Any], *,
         if x0 is None:
             raise ValueError("start given without x0")
     extra = dict(extra or {})
-    for key, value in newton_guards(problem).items():
-        ramp_options.setdefault(key, value)
     counter = None
-    if isinstance(problem, PlateProblem) and ramp_options.get("step_limit") is not None:
-        counter = ramp_options["step_limit"] = StepLimitCounter(ramp_options["step_limit"])
+    limit = ramp_options.get("step_limit") or problem.newton_guards().get("step_limit")
+    if isinstance(problem, PlateProblem) and limit is not None:
+        counter = ramp_options["step_limit"] = StepLimitCounter(limit)
 
     def hook(step: StepResult):
         step.quantities.update(extra)

@@ -536,6 +536,7 @@ def continuation(problem: Problem, load0: Any = None, direction: Any = None, *,
     linear_solver
         Solver for the (non-symmetric) bordered system.
     step_limit, admissible
+        Default: the problem's own (:meth:`~skfem_dielectric.problem.Problem.newton_guards`).
         ``step_limit(x, dx, load)`` and ``admissible(x, load)`` of the admissible states, as
         in :func:`~skfem_dielectric.solvers.ramp.ramp`.
 
@@ -579,6 +580,9 @@ def continuation(problem: Problem, load0: Any = None, direction: Any = None, *,
     target_iterations = settings.target_iterations
     for name, f in (("stop", stop), ("step_limit", step_limit), ("admissible", admissible)):
         check_callable(name, f)
+    guards = problem.newton_guards()
+    step_limit = guards.get("step_limit") if step_limit is None else step_limit
+    admissible = guards.get("admissible") if admissible is None else admissible
     if not (isinstance(count, bool) or callable(count)):
         raise ValueError(f"count must be True, False or a callable count(x, load), got "
                          f"{count!r}")

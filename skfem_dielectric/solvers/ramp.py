@@ -24,9 +24,10 @@ with ``target_reached=False``.
 Admissible states: ``step_limit(x, dx, load) -> alpha_max`` caps every Newton step (e.g.
 :meth:`~skfem_dielectric.models.plate.problem.PlateProblem.max_step`, ``det F > 0`` along the step)
 and ``admissible(x, load) -> reason`` rejects a converged state (a rejected sub-step is cut back
-like a failed one).  The ramp does not look for them on the problem: the drivers of
-:mod:`skfem_dielectric.gallery.drivers` pass them for the 3D plate
-(:func:`~skfem_dielectric.gallery.drivers.plate_admissible`); a direct caller passes them itself.
+like a failed one).  They are part of the model: the ramp asks the problem for them
+(:meth:`~skfem_dielectric.problem.Problem.newton_guards`; for the 3D plate ``det F > 0``
+along every step and no converged inverted state); a caller's own ``step_limit`` or
+``admissible`` replaces the model's.
 """
 
 from __future__ import annotations
@@ -641,7 +642,8 @@ def ramp(problem: Problem, loads: Sequence[Any], *, x0: np.ndarray | None = None
     step_limit, admissible
         Optional ``step_limit(x, dx, load) -> alpha_max`` and ``admissible(x, load) ->
         reason`` of the admissible states (see the module docstring and :func:`newton`);
-        a sub-step that converges to a state ``admissible`` rejects is cut back.
+        a sub-step that converges to a state ``admissible`` rejects is cut back.  Default:
+        the problem's own (:meth:`~skfem_dielectric.problem.Problem.newton_guards`).
     state_analysis
         Optional ``state_analysis(problem, x, load, K, solver) -> dict``, called for every kept
         step with the tangent ``K`` of the converged state, which ``solver`` has just
@@ -670,6 +672,9 @@ def ramp(problem: Problem, loads: Sequence[Any], *, x0: np.ndarray | None = None
                          f"skfem_dielectric.problem), got {type(problem).__name__}")
     check_callbacks({"on_step": on_step, "stop": stop, "step_limit": step_limit,
                      "admissible": admissible, "state_analysis": state_analysis})
+    guards = problem.newton_guards()
+    step_limit = guards.get("step_limit") if step_limit is None else step_limit
+    admissible = guards.get("admissible") if admissible is None else admissible
     check_settings("settings", settings, RampSettings)
     t_start = time.perf_counter()
     solver = get_linear_solver(linear_solver, symmetric=problem.symmetric)

@@ -24,7 +24,6 @@ from typing import Any, Sequence
 import numpy as np
 
 from ..checks import check_count, check_nonnegative_int, check_positive
-from ..gallery.drivers import newton_guards
 from ..models.plate.modes import (ModeLabel, classify_mode, corner_radius, lowest_physical,
                                   physical_modes)
 from ..linalg.inertia import inertia_factors, reusable_factors
@@ -175,8 +174,8 @@ def buckling_load(result: RampResult | PlateProblem,
         mode classified -- the same load at many times the cost, for checking.
     **ramp_options
         Newton settings of the trial states (``linear_solver``, ``max_cutbacks``,
-        ``rtol``, ...); the plate's ``det F > 0`` guards are added
-        (:func:`~skfem_dielectric.gallery.drivers.newton_guards`).
+        ``rtol``, ...); the ramp adds the plate's own ``det F > 0`` guards
+        (:meth:`~skfem_dielectric.problem.Problem.newton_guards`).
 
     Returns
     -------
@@ -363,8 +362,6 @@ def locate_buckling(problem: PlateProblem, a: tuple[np.ndarray, Any],
         The indicator does not change sign between ``a`` and ``b``, or a trial state
         cannot be solved.
     """
-    for key, value in newton_guards(problem).items():
-        ramp_options.setdefault(key, value)
     n_u = problem.n_u
     r = corner_radius(problem) if radius is None else check_positive("radius", radius)
     k0 = max(6, 2 * check_count("extra", extra) + 2)
@@ -415,8 +412,6 @@ def _locate(problem, a, b, phys_b, opts, scan, tol, maxiter, ramp_options) -> Bu
     negative physical eigenvalue at the located load, its crossing is located between
     ``a`` and that load, until no class is negative there (each class once).
     """
-    for key, value in newton_guards(problem).items():
-        ramp_options.setdefault(key, value)
     n_u = problem.n_u
     spec = dict(extra=opts["extra"], grad_div=opts["grad_div"], method=opts["method"])
     r = corner_radius(problem) if opts["radius"] is None else opts["radius"]

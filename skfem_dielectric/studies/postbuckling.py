@@ -33,7 +33,7 @@ from typing import Any, Sequence
 import numpy as np
 
 from ..checks import check_count, check_positive, check_vector
-from ..gallery.drivers import newton_guards, run_ramp
+from ..gallery.drivers import run_ramp
 from ..models.plate.modes import ModeLabel, lowest_physical
 from ..models.plate.problem import PlateProblem
 from ..models.plate.symmetry_classes import class_stability, symmetry_classes
@@ -165,8 +165,6 @@ BRANCH_SETTINGS = RampSettings(atol=0.0, rtol=1e-9, max_iter=40, max_cutbacks=8)
 def _newton_options(problem, ramp_options: dict, settings: RampSettings) -> dict:
     opts = dict(linear_solver="auto", settings=settings)
     opts.update(ramp_options)
-    for key, value in newton_guards(problem).items():
-        opts.setdefault(key, value)
     return opts
 
 

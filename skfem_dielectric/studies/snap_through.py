@@ -30,7 +30,6 @@ import numpy as np
 
 from ..checks import check_choice, check_finite, check_positive
 from ..fem.mesh import plate_mesh
-from ..gallery.drivers import newton_guards
 from ..materials import make_material
 from ..models.plate.problem import PlateProblem
 from ..solvers.continuation import (ContinuationPoint, ContinuationResult, ContinuationSettings,
@@ -172,8 +171,7 @@ def voltage_snap_through(s: float, *, loading: str = "equibiaxial",
     check_settings("settings", settings, ContinuationSettings)
     pb = homogeneous_plate(loading, "voltage", model=model, Jm=Jm, coupling=coupling)
     full = coupling == "full"
-    guards = newton_guards(pb)
-    pre = ramp(pb, [np.array([s, 0.0])], **guards)
+    pre = ramp(pb, [np.array([s, 0.0])])
     lam0 = pre.steps[-1]["lam1"] if pre.steps else 1.0
 
     def stop(p):
@@ -184,7 +182,7 @@ def voltage_snap_through(s: float, *, loading: str = "equibiaxial",
     path = continuation(pb, np.array([s, 0.0]), np.array([0.0, 1.0]),
                         x0=pre.x if pre.steps else None, t_max=E0_max, stop=stop,
                         settings=settings, count=_counter(pb, grad_div) if full else False,
-                        linear_solver=linear_solver, **guards)
+                        linear_solver=linear_solver)
     n_c: list[int | None] = []
     D0, res = [], []
     cpb = homogeneous_plate(loading, "charge", model=model, Jm=Jm) if charge and full else None

@@ -92,7 +92,7 @@ def _stabilised_states(spec, targets, state, linear_solver) -> dict:
         warnings.simplefilter("ignore", RuntimeWarning)       # its rows show the failure
         fe.ramp(problem, targets, x0=x0, start=start, back=_saved_back(state, "stab_"),
                 factors=_saved_back(state, "stab_", "factors"), on_step=cb,
-                **ramp_settings(spec, linear_solver), **fe.gallery.newton_guards(problem))
+                **ramp_settings(spec, linear_solver))
     return {"problem": problem, "x": states, "back": backs, "factors": factors}
 
 
@@ -208,8 +208,7 @@ def run_fe(spec, start, state, on_step, linear_solver="superlu"):
                       back=_saved_back(state), factors=_saved_back(state, name="factors"),
                       on_step=cb,
                       stop=lambda step: track.pop("stop", False),   # at the breakdown
-                      state_analysis=monitor, **ramp_settings(spec, linear_solver),
-                      **fe.gallery.newton_guards(problem))
+                      state_analysis=monitor, **ramp_settings(spec, linear_solver))
     if res.stopped_at is not None:
         return RunOutcome(True)
     failed = None if res.failed_at is None else float(np.asarray(res.failed_at).ravel()[-1])

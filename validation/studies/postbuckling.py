@@ -30,7 +30,6 @@ import numpy as np
 
 import analytic as an
 import skfem_dielectric as fe
-from skfem_dielectric.gallery.drivers import newton_guards
 from skfem_dielectric.models.plate.symmetry_classes import class_stability
 from skfem_dielectric.solvers.critical import critical_load
 from skfem_dielectric.studies.postbuckling import (critical_mode, midplane_deflection,
@@ -118,7 +117,7 @@ def _locate(pb, states, method, newton):
             crit = critical_load(pb, a.x, a.load, st.load,
                                  lambda x, ld: critical_mode(pb, x, ld,
                                                              method=method).eigenvalue,
-                                 tol=1e-4, **newton, **newton_guards(pb))
+                                 tol=1e-4, **newton)
             return float(crit.load[1]), i, eig
     return float("nan"), None, eig
 

@@ -114,8 +114,7 @@ def _keplinger_path(r: dict, quick: bool) -> tuple:
     path = fe.continuation(pb, np.array([r["s"], 0.0]), np.array([0.0, 1.0]),
                            x0=pre.x if pre.steps else None, count=count,
                            stop=lambda p: p.tangent_t < 0 or p["lam1"] > 2 * lam0,
-                           settings=fe.ContinuationSettings(ds=0.05, max_steps=60),
-                           **fe.gallery.newton_guards(pb))
+                           settings=fe.ContinuationSettings(ds=0.05, max_steps=60))
     return path, [None] * len(path.points), [np.sign(p.t) * p["D0_centre"]
                                              for p in path.points]
 
