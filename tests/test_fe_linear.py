@@ -138,7 +138,7 @@ def test_pardiso_overwrites_the_upper_triangle_in_place():
     np.testing.assert_allclose(x2, x1 / 2.5, rtol=1e-12)
 
 
-@pytest.mark.parametrize("ordering", ["minimum-degree", "metis", "parallel-metis"])
+@pytest.mark.parametrize("ordering", ["auto", "minimum-degree", "metis", "parallel-metis"])
 def test_pardiso_orderings_give_the_same_solution_and_inertia(ordering):
     K, b = saddle(60, 15, 6), np.linspace(-1.0, 1.0, 75)
     s = PardisoSolver(ordering=ordering)
@@ -147,6 +147,25 @@ def test_pardiso_orderings_give_the_same_solution_and_inertia(ordering):
     assert s.inertia == (60, 15, 0)
     with pytest.raises(ValueError, match="ordering"):
         PardisoSolver(ordering="amd")
+
+
+def test_pardiso_auto_orders_by_the_size_of_the_system(monkeypatch):
+    """``ordering="auto"`` analyses a system below METIS_MIN_UNKNOWNS by minimum degree and
+    one at or above it by METIS (iparm(2) as PARDISO received it: 0 and 2), and the solve
+    and inertia are those of either ordering."""
+    import skfem_dielectric.linalg.linear as lin
+
+    K, b = saddle(60, 15, 6), np.linspace(-1.0, 1.0, 75)
+    s = PardisoSolver()
+    assert s.ordering == "auto"
+    s.solve(K, b)
+    assert s.chosen_ordering == "minimum-degree" and s._ps.iparm[1] == 0
+    monkeypatch.setattr(lin, "METIS_MIN_UNKNOWNS", 75)
+    t = PardisoSolver()
+    x = t.solve(K, b)
+    assert t.chosen_ordering == "metis" and t._ps.iparm[1] == 2
+    np.testing.assert_allclose(x, spla.spsolve(K.tocsc(), b), rtol=1e-9, atol=1e-12)
+    assert t.inertia == (60, 15, 0)
 
 
 def test_pardiso_refines_with_the_matrix_passed():

@@ -122,3 +122,34 @@ def test_homogeneous_equibiaxial_plate_never_buckles_under_charge(model, s):
     # wavenumber (thin- and thick-plate limits of the Stroh analysis)
     assert np.all(D0 < an.thin_limit_D0(np.array(lam), mdl))
     assert np.all(D0 < an.thick_limit_D0(np.array(lam), mdl))
+
+
+def test_the_class_tangent_is_the_galerkin_product():
+    """``class_tangent`` (a submatrix where the prolongation selects) equals the products
+    ``P^T K P`` of the union tangent, entry by entry and with the same stored diagonal,
+    for every class of a charged eighth plate."""
+    import importlib
+
+    import scipy.sparse as sp
+
+    import skfem_dielectric as fe
+
+    sc = importlib.import_module("skfem_dielectric.models.plate.symmetry_classes")
+    pb = fe.gallery.keplinger_problem(elements=(3, 1, 2), symmetry="eighth", grading=0.5,
+                                      options=fe.PlateOptions(grad_div=10.0))
+    x = pb.initial_state()
+    load = np.array([1.0, 0.5])
+    classes, K = sc.union_tangent(pb, x, load, 10.0)
+    selected = 0
+    for c in classes:
+        got = sc.class_tangent(c, K)
+        want = sc._with_diagonal((c.P.T @ K @ c.P).tocoo())
+        selected += sc._selection(c.P) is not None
+        assert got.shape == want.shape
+        assert abs(got - want).max() <= 1e-14 * abs(want).max()
+        n = got.shape[0]
+        rows = np.repeat(np.arange(n), np.diff(sp.csr_matrix(got).indptr))
+        assert np.count_nonzero(got.indices == rows) == n       # every diagonal stored
+    # seven classes select; the symmetric one ties unknowns (a column of P with 15 ones,
+    # the electrode's potential), and takes the products
+    assert selected == len(classes) - 1 == 7

@@ -117,6 +117,10 @@ def new_pypardiso_solver(mtype: int = 11):
 
 
 _ORDERINGS = {"minimum-degree": 0, "metis": 2, "parallel-metis": 3}   # PARDISO iparm(2)
+#: with ``ordering="auto"``, systems of at least this many unknowns are ordered by nested
+#: dissection (METIS), smaller ones by minimum degree: the crossover of the factors' fill
+#: on the clamp-zone plates (docs/performance.md, "The ordering of the factors")
+METIS_MIN_UNKNOWNS = 100_000
 
 
 class PardisoSolver(LinearSolver):
@@ -141,11 +145,14 @@ class PardisoSolver(LinearSolver):
     refine_tol
         Relative residual below which no refinement step is taken (default ``1e-13``).
     ordering
-        Fill-reducing ordering (``iparm(2)``): ``"minimum-degree"`` (default; on the
-        40 x 1 x 20 Keplinger plate, nearly a 2-D problem, 13.2 M entries in the factors
-        against 15.5 M for METIS; their memory: docs/performance.md), ``"metis"`` (nested
-        dissection)
-        or ``"parallel-metis"``.
+        Fill-reducing ordering (``iparm(2)``): ``"auto"`` (default: ``"metis"`` for a
+        system of at least :data:`METIS_MIN_UNKNOWNS` unknowns, else
+        ``"minimum-degree"``; the one used is :attr:`chosen_ordering`),
+        ``"minimum-degree"`` (on the 40 x 1 x 20 Keplinger plate, nearly a 2-D problem,
+        13.2 M entries in the factors against 15.5 M for METIS), ``"metis"`` (nested
+        dissection: half the entries of minimum degree on the 359,283 unknowns of the
+        70 x 4 x 36 clamp-zone plate) or ``"parallel-metis"``; the fill per ordering:
+        docs/performance.md.
 
     Notes
     -----
@@ -171,14 +178,15 @@ class PardisoSolver(LinearSolver):
     _pivoting = {10: 8, 21: 0}       # pivot perturbation 1e-8, 1x1 diagonal pivots
     _fallback = {21: 1}              # after a perturbed pivot: Bunch-Kaufman pivoting
 
-    def __init__(self, refine: int = 2, ordering: str = "minimum-degree",
+    def __init__(self, refine: int = 2, ordering: str = "auto",
                  refine_tol: float = 1e-13):
-        if ordering not in _ORDERINGS:
-            raise ValueError(f"ordering must be one of {tuple(_ORDERINGS)}, got {ordering!r}")
+        if ordering not in (*_ORDERINGS, "auto"):
+            raise ValueError(f"ordering must be one of {('auto', *_ORDERINGS)}, "
+                             f"got {ordering!r}")
         self._ps = new_pypardiso_solver(mtype=self._mtype)   # library located once
         p = self._ps
         p.set_iparm(1, 1)    # use the iparm values below
-        p.set_iparm(2, _ORDERINGS[ordering])
+        p.set_iparm(2, _ORDERINGS.get(ordering, 0))
         p.set_iparm(8, 0)    # no refinement inside PARDISO (see ``refine``)
         p.set_iparm(11, 1)   # (symmetric) scaling
         p.set_iparm(13, 1)   # (symmetric) weighted matching (recommended for saddle points)
@@ -195,6 +203,8 @@ class PardisoSolver(LinearSolver):
         self.refine = int(refine)
         self.refine_tol = float(refine_tol)
         self.ordering = ordering
+        #: the ordering of the last analysis (``ordering``, or what ``"auto"`` chose)
+        self.chosen_ordering: str | None = None
         self._robust: PardisoSolver | None = None   # Bunch-Kaufman, for perturbed pivots
         self._active: PardisoSolver | None = None   # it holds the last factors
         self._last = None
@@ -295,6 +305,8 @@ class PardisoSolver(LinearSolver):
         if not same:
             if self._pattern is not None:
                 self._call(-1, U, b)  # release the old factorisation
+            self.chosen_ordering = self._ordering_for(U.shape[0])
+            self._ps.set_iparm(2, _ORDERINGS[self.chosen_ordering])
             self._call(11, U, b)
             # a read-only pattern (that of a ScatterMap, or the solver's own selection) is
             # recognised by its memory; otherwise keep a copy to compare with
@@ -320,6 +332,12 @@ class PardisoSolver(LinearSolver):
         x = self._call(33, U, b)
         self._last = U
         return np.ascontiguousarray(self._refined(K, b, x))
+
+    def _ordering_for(self, n: int) -> str:
+        """The ordering of an analysis of ``n`` unknowns."""
+        if self.ordering != "auto":
+            return self.ordering
+        return "metis" if n >= METIS_MIN_UNKNOWNS else "minimum-degree"
 
     def perturbed_pivots(self) -> int:
         """Pivots the last factorisation perturbed (PARDISO ``iparm(14)``; that of the

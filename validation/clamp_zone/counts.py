@@ -7,7 +7,9 @@ same plate (eighth model, neo-Hookean, ``g = 9.81``, graded along ``x1``) to eac
 ``--D0`` in one ramp (targets in steps of 0.5 below them) and counts the negative
 eigenvalues of every symmetry class there
 (:meth:`~skfem_dielectric.models.plate.scan.PlateScan.count`: Sylvester's law of inertia,
-one factorisation per class).  A count does not tell a physical mode from a clamp-corner or
+one factorisation per class).  The count holds one factorisation at a time: the ramp's
+kept factors are freed before a state is counted (the next step factorises again), and
+each class's before the next class's.  A count does not tell a physical mode from a clamp-corner or
 a mesh-scale one: it says how many negative modes the discrete plate has at that charge,
 which is what the refinement of the clamp edge is judged by (a count that falls to the
 corner quartet, 4, as the edge is refined, or one that does not).
@@ -35,6 +37,7 @@ import time
 
 import numpy as np
 
+import skfem_dielectric as fe
 from skfem_dielectric.models.plate.scan import PlateScan
 
 from ..fe.model import BUCKLING_GRAD_DIV
@@ -106,6 +109,8 @@ def run_edge_counts(alpha: float, elements, D0, *, grading: float = 1.0,
         if not any(abs(d - w) < 1e-12 for w in wanted):
             return
         t1 = time.process_time()
+        if callable(getattr(ramp_solver, "discard", None)):
+            ramp_solver.discard()     # the ramp's factors: not held beside the counts'
         counts = scan.count(st.x, load)
         row = {"alpha": alpha, "mesh": mesh_text(el), "grading": grading,
                "formulation": formulation, "grad_div": grad_div, "pressure": pressure,
@@ -127,7 +132,8 @@ def run_edge_counts(alpha: float, elements, D0, *, grading: float = 1.0,
     top = max(wanted)
     targets = sorted({*np.round(np.arange(0.5, top, 0.5), 10).tolist(),
                       *[d for d in D0 if d <= top]})
-    res = unit_ramp(pb, charge_path(s, targets), on_step=on_step, solver=solver)
+    ramp_solver = fe.get_linear_solver(solver)
+    res = unit_ramp(pb, charge_path(s, targets), on_step=on_step, solver=ramp_solver)
     if not res.converged:
         raise ValueError(f"the ramp of alpha = {alpha:g} {mesh_text(el)} stopped at "
                          f"D0 = {np.asarray(res.failed_at)[-1]:g}")

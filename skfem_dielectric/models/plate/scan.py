@@ -226,7 +226,8 @@ class PlateScan:
         One factorisation per class and no eigenpair: for a state known to have no
         physical negative mode (an earlier scan of the same path said so), where
         :meth:`analyse` from scratch would compute every negative mode to classify it.
-        The physical counts are set to zero.
+        The physical counts are set to zero.  Each class's factors are freed before the
+        next class is factorised: the count holds one factorisation at a time.
 
         Parameters
         ----------
@@ -241,7 +242,10 @@ class PlateScan:
         classes, K = union_tangent(self.problem, x, load, self.grad_div)
         counts = {}
         for c in classes:
-            inertia, _ = inertia_factors(class_tangent(c, K), self.method, c.orders)
+            inertia, factors = inertia_factors(class_tangent(c, K), self.method, c.orders)
+            if factors is not None and callable(getattr(factors, "discard", None)):
+                factors.discard()        # not held while the next class is factorised
+            del factors
             counts[c.name] = int(inertia[1] - c.layout.n_multipliers)
         self.counts = counts
         self.physical = {c.name: 0 for c in self.classes}

@@ -274,8 +274,33 @@ def union_tangent(problem: PlateProblem, x: np.ndarray, load: Any,
 
 def class_tangent(c: SymmetryClass, K: sp.csr_matrix) -> sp.csr_matrix:
     """The tangent of class ``c``, ``P_c^T K P_c`` of the union-space tangent ``K``, with
-    every diagonal entry stored."""
-    return _with_diagonal((c.P.T @ K @ c.P).tocoo())
+    every diagonal entry stored.
+
+    Where ``P_c`` selects (one union unknown per class unknown, each union unknown at most
+    once: every class of the plates but the symmetric one, which ties the electrode's
+    unknowns) this is the submatrix ``K[s][:, s]``, taken without the products'
+    intermediate matrices; otherwise the products.
+    """
+    sel = _selection(c.P)
+    if sel is None:
+        return _with_diagonal((c.P.T @ K @ c.P).tocoo())
+    Kc = sp.csr_matrix(K)[sel][:, sel]
+    n = Kc.shape[0]
+    rows = np.repeat(np.arange(n), np.diff(Kc.indptr))
+    if np.count_nonzero(Kc.indices == rows) == n:      # every diagonal entry stored
+        Kc.sort_indices()
+        return Kc
+    return _with_diagonal(Kc.tocoo())
+
+
+def _selection(P: sp.csr_matrix) -> np.ndarray | None:
+    """The union unknown of each class unknown where the prolongation ``P`` (of ones)
+    only selects: one entry per column and per row; else ``None``."""
+    Pc = sp.csc_matrix(P)
+    if (np.any(np.diff(Pc.indptr) != 1) or np.any(Pc.data != 1.0)
+            or np.unique(Pc.indices).size != Pc.indices.size):
+        return None
+    return Pc.indices.copy()
 
 
 def _with_diagonal(K: sp.coo_matrix) -> sp.csr_matrix:
