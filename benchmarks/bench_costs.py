@@ -62,7 +62,7 @@ COMMANDS = {
     "bench": ("skfem-dielectric bench", "tmp", ""),
     "buckling": ("skfem-dielectric buckling --quick --out results", "tmp", ""),
     "post-buckling": ("skfem-dielectric post-buckling --quick --out results", "tmp", ""),
-    # the demos of docs/lecture.md, whose CPU column is these rows' (tests/test_lecture.py)
+    # the demos of docs/lecture.md, whose CPU column is these rows' (tests/docs/test_lecture.py)
     "lecture-curves": ("skfem-dielectric curves --out results/lecture/curves", "tmp",
                        "lecture demo 1"),
     "lecture-nh-d-e": ("skfem-dielectric validate --quick --case nh-d-e --out results/lecture",

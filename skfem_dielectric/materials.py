@@ -415,7 +415,7 @@ def ideal_dielectric_response(material, F: np.ndarray, G: np.ndarray,
     -----
     Eq. (modelE) with ``I5 = E_L.(C^-1 E_L)``, multiplied by ``J`` (see the module
     docstring); the stresses are verified against finite differences of ``psi`` and the
-    tangent against finite differences of the stresses in ``tests/test_fe_materials.py``.
+    tangent against finite differences of the stresses in ``tests/fe/test_fe_materials.py``.
     """
     F = np.asarray(F, dtype=float)
     if not (math.isfinite(float(grad_div)) and grad_div >= 0):

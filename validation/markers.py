@@ -4,7 +4,7 @@ Every figure that draws one of these quantities (paper Fig. 5 ``uni-axial-ideal`
 breakdown map, the ``voltage-control`` figure) takes its marker, colour and legend name
 from here, and the pages docs/breakdown.md, docs/gallery.md, docs/validation.md and
 docs/cli.md describe each marker with the same words (:attr:`Marker.look`) next to the same
-legend name (:attr:`Marker.name`; tests/test_markers.py checks both).
+legend name (:attr:`Marker.name`; tests/validation/test_markers.py checks both).
 
 The paper's own marker of its ``P33`` criterion is a red cross (its Fig. 5); our figures
 draw that criterion as :data:`P33_BREAKDOWN` (a red open marker of the FE model's shape)
@@ -215,7 +215,7 @@ VOCABULARY = (P33_BREAKDOWN, P33_ONSET_LOCATED, AFTER_BREAKDOWN, RUN_BUCKLING, C
 
 #: The three meanings of "breakdown", in the order the charge meets them, each in one
 #: sentence that report.md, the README and docs/breakdown.md say in these words
-#: (tests/test_docs_data.py): ``(name, sentence)``.
+#: (tests/docs/test_docs_data.py): ``(name, sentence)``.
 BREAKDOWN_MEANINGS = (
     ("the P33 criterion", "the first charge at which P33/mu falls below -0.01 on the centre "
      "line at least two thicknesses from the clamps, where the paper's COMSOL runs stopped: "

@@ -90,7 +90,7 @@ with open(CSV, "w", newline="") as fh:
 
 result = validation.check(CSV, tol={"lam1": TOL})
 strict = validation.check(CSV)                   # the default tolerance of a homogeneous state
-lam_s3_D06 = states[3.0, 6.0][0]                # pinned by tests/test_examples.py
+lam_s3_D06 = states[3.0, 6.0][0]                # pinned by tests/docs/test_examples.py
 print(f"own penalty error estimate {penalty_error:.2e}; check with lam1 <= {TOL:g}:")
 print(result.table())
 print(f"with the default tolerance: {'pass' if strict.passed else 'fail'} "

@@ -4,7 +4,7 @@
 batched arrays, worker threads and precomputed scatter positions; this module writes it
 as scikit-fem ``BilinearForm`` / ``LinearForm`` integrands over the material's strain
 energy ``W(I1)`` (``material.energy_derivatives``) and nothing else, so that the fast
-assembly can be checked against it (``tests/test_fe_reference_form.py``: tangent and
+assembly can be checked against it (``tests/fe/test_fe_reference_form.py``: tangent and
 residual to 1e-12 on small meshes).
 
 Energy per reference volume (the paper's Eq. (modelE) times ``J``, with the

@@ -17,7 +17,7 @@ import pytest
 import analytic as an
 from validation.explore import ExploreParameters, dispersion_panel, equibiaxial_panel, free_port
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 CHROMIUM = shutil.which("chromium") or shutil.which("chromium-browser")
 
 

@@ -7,7 +7,7 @@ from pathlib import Path
 
 import pytest
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 
 
 def _readme_commands() -> list[str]:
@@ -95,7 +95,7 @@ def readme_commands() -> list[str]:
 
 def costs_table() -> dict[str, list[str]]:
     """The rows of docs/costs.md of the README's commands: command -> the other cells (the
-    rows of the lecture's demos, "(lecture demo N)", are tests/test_lecture.py's)."""
+    rows of the lecture's demos, "(lecture demo N)", are tests/docs/test_lecture.py's)."""
     rows = {}
     for ln in ROOT.joinpath("docs", "costs.md").read_text().splitlines():
         if ln.startswith("| `") and "(lecture demo " not in ln:

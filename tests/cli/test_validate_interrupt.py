@@ -22,7 +22,7 @@ import pytest
 
 psutil = pytest.importorskip("psutil")
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 CASES = ("nh-d-e", "gent-d-e", "figde")
 N_TARGETS = 8
 

@@ -16,7 +16,7 @@ from validation.data.clamp_zone import clamp_unit_load
 from validation.data.registry import load
 from validation.studies.buckling import richardson
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 H = 1.0 / np.array([10.0, 14.0, 20.0])          # the study's meshes: ratios 1.4 and 1.43
 
 

@@ -124,7 +124,7 @@ def test_sigterm_on_a_local_cluster_stops_and_resumes(tmp_path):
     temporary file; the rerun resumes (the locks released) to the serial run's bytes."""
     pytest.importorskip("distributed", reason=NO_DASK)
     psutil = pytest.importorskip("psutil")
-    root = Path(__file__).resolve().parents[1]
+    root = Path(__file__).resolve().parents[2]
     args = ["validate", "--quick", "--case", "uni-axial-ideal", "--no-progress",
             "--solver", "superlu"]
     assert main(args + ["--out", str(tmp_path / "serial")]) == 0

@@ -25,12 +25,12 @@ from pathlib import Path
 
 import pytest
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 SCRIPTS = sorted((ROOT / "benchmarks").glob("*.py"))
 #: a hang guard, not a speed check (a smoke run costs a few CPU seconds)
 HANG_TIMEOUT = 600.0
 #: optional extras a smoke run needs: the test skips where they are missing
-NEEDS = {"explore_redraw.py": "bokeh"}
+NEEDS = {"explore_redraw.py": "bokeh", "bench_factor_fill.py": "pypardiso"}
 
 #: the Keplinger plate's load per weight fraction, ``s / alpha = m g / (mu A)`` with
 #: ``m = 150 g``, ``g = 9.81 m/s^2``, ``mu = 9833.07 Pa``, ``A = 50 mm^2`` (the paper's data)
@@ -191,6 +191,17 @@ def check_fe_memory(out: str) -> None:
     assert int(steps) == 2
 
 
+def check_factor_fill(out: str) -> None:
+    # the 4 x 1 x 2 eighth plate, both orderings: its unknowns by formula, the factors at
+    # least as many entries as the upper triangle has (the fill only adds), the kept memory
+    # at least the factors' doubles
+    rows = re.findall(r"^4x1x2,(minimum-degree|metis),(\d+),(\d+),[^,]+,([^,]+),", out, re.M)
+    assert [r[0] for r in rows] == ["minimum-degree", "metis"]
+    for _, dofs, entries, kept in rows:
+        assert int(dofs) == plate_unknowns((4, 1, 2), "eighth")
+        assert int(entries) >= int(dofs) and float(kept) >= 8 * int(entries) / 1024**3
+
+
 def check_fe_ramp(out: str) -> None:
     # as bench_fe_memory.py, and one entry per load step in the per-step iterations
     dofs, steps = _one(r"elements \[2, 1, 1\], (\d+) unknowns, (\d+) load steps", out)
@@ -215,7 +226,7 @@ def check_stability_cost(out: str) -> None:
 
 def check_costs(out: str) -> None:
     # the table printed by the smoke run has one row per command the README shows (parsed
-    # from README.md by tests/test_readme.py); the two commands --smoke measures have
+    # from README.md by tests/docs/test_readme.py); the two commands --smoke measures have
     # numbers, exit code 0 and this machine's core count, and only they were run
     from test_readme import readme_commands
 
@@ -287,6 +298,7 @@ CHECKS = {
     "bench_check_input.py": check_check_input,
     "bench_clamp_wrinkle.py": check_clamp_wrinkle,
     "bench_costs.py": check_costs,
+    "bench_factor_fill.py": check_factor_fill,
     "bench_fe_alpha_scan.py": check_fe_alpha_scan,
     "bench_fe_corner_failure.py": check_fe_corner_failure,
     "bench_fe_isochoric.py": check_fe_isochoric,
@@ -318,7 +330,7 @@ def test_smoke(script: Path):
     check = CHECKS.get(script.name)
     if check is None:
         pytest.fail(f"benchmarks/{script.name} ran with --smoke but its output is compared "
-                    f"with nothing: add its check to CHECKS in tests/test_benchmarks.py\n"
+                    f"with nothing: add its check to CHECKS in tests/docs/test_benchmarks.py\n"
                     f"{proc.stdout[-2000:]}")
     check(proc.stdout)
 

@@ -1,5 +1,5 @@
 """docs/exercises.md: each exercise's answer, as the page states it, is what the code of
-the page gives (the page's python blocks also run in tests/test_docs_snippets.py)."""
+the page gives (the page's python blocks also run in tests/docs/test_docs_snippets.py)."""
 
 from __future__ import annotations
 
@@ -13,7 +13,7 @@ import pytest
 
 import analytic as an
 
-PAGE = " ".join((Path(__file__).resolve().parents[1] / "docs" / "exercises.md")
+PAGE = " ".join((Path(__file__).resolve().parents[2] / "docs" / "exercises.md")
                 .read_text().split())
 
 

@@ -59,7 +59,7 @@ def test_the_alpha_1_5_counts_on_the_page_are_the_table_s():
     import re
     from pathlib import Path
 
-    page = (Path(__file__).resolve().parents[1] / "docs" / "breakdown.md").read_text()
+    page = (Path(__file__).resolve().parents[2] / "docs" / "breakdown.md").read_text()
     said = re.findall(r"(\d+) x (\d+) x (\d+) has (\d+), (\d+) and (\d+) negative modes at "
                       r"`D0` = 4, 4\.5 and 4\.75", " ".join(page.split()))
     assert len(said) == 3, said

@@ -1,6 +1,6 @@
 """Run every gallery script ``docs/examples/ex*.py`` top to bottom and pin one number.
 
-Like scikit-fem's tests/test_examples.py: the examples are documentation, so they must
+Like scikit-fem's tests/docs/test_examples.py: the examples are documentation, so they must
 run; plotting sits under ``if __name__ == "__main__":`` and is executed too (Agg
 backend, in a temporary working directory so that nothing lands in the repository).
 """
@@ -15,7 +15,7 @@ import numpy as np
 import pytest
 from scipy.optimize import brentq
 
-EXAMPLES = sorted((Path(__file__).resolve().parents[1] / "docs" / "examples").glob("ex*.py"))
+EXAMPLES = sorted((Path(__file__).resolve().parents[2] / "docs" / "examples").glob("ex*.py"))
 
 
 def _uniaxial_lam1(D0: float, s: float) -> float:

@@ -27,7 +27,7 @@ import validation.studies.postbuckling as pb
 from validation.cli import main
 from validation.store import DamagedFileError, LockedError, RowFile, StudyStore, read_rows
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 
 
 def fake_buckling(calls):

@@ -11,7 +11,7 @@ Rules (checked here):
   ``bin`` first on ``PATH``;
 * a block right after ``<!-- not run: <reason> -->`` is skipped (the reason is required);
 * indented code blocks are not allowed (except the README's two set-up commands, which
-  ``.ci/run`` runs and ``tests/test_readme.py`` checks).
+  ``.ci/run`` runs and ``tests/docs/test_readme.py`` checks).
 """
 
 from __future__ import annotations
@@ -27,7 +27,7 @@ import pytest
 
 matplotlib.use("Agg")
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 PAGES = [ROOT / "README.md"] + sorted((ROOT / "docs").glob("*.md"))
 #: a hang guard for a bash block, not a speed check (speed is measured in benchmarks/)
 HANG_TIMEOUT = 1800.0

@@ -1,7 +1,7 @@
 """The Sphinx site builds with ``-W`` (warnings are errors).
 
 The default test parses every page, docstring and gallery script without running the
-examples (``SKFEM_DOCS_NO_GALLERY=1``; ``tests/test_examples.py`` runs them); the slow
+examples (``SKFEM_DOCS_NO_GALLERY=1``; ``tests/docs/test_examples.py`` runs them); the slow
 test is the documented command, examples included. Both build a copy of ``docs/`` in a
 temporary folder, so nothing is generated inside the repository.
 """
@@ -23,7 +23,7 @@ import pytest
 pytest.importorskip("sphinx")
 pytest.importorskip("sphinx_gallery")
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 _GENERATED_PATTERNS = shutil.ignore_patterns("_build", "auto_examples", "generated", "*.png",
                                              "sg_execution_times.rst", "__pycache__")
 #: images committed with the docs (the others are written by the examples)

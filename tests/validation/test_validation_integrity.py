@@ -2,7 +2,7 @@
 
 Every test compares bytes: after a refused second writer, or a rerun on a corrupted
 folder, the CSVs must equal those of one uninterrupted run. The FE solver is the
-closed-form :class:`FakeRunner` of tests/test_validation.py (its answer depends on the
+closed-form :class:`FakeRunner` of tests/validation/test_validation.py (its answer depends on the
 carried state, so a lost or wrong state changes the files), except in
 :func:`test_real_fe_state_of_the_wrong_size`.
 """

@@ -31,7 +31,7 @@ from validation.checker import (CHECK_CASES, TOLERANCES, CheckInputError, parse_
 from validation.cli import EXIT_CODES, main
 from validation.studies.extra_cases import EXTRA_CASES
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 EXAMPLE = ROOT / "docs" / "examples" / "ex14_check_external_code.py"
 EXAMPLE_CSV = ROOT / "docs" / "examples" / "ex14_external_nh-d-e.csv"
 

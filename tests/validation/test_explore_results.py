@@ -23,7 +23,7 @@ from validation import cases as vc
 from validation.cli import main
 from validation.explore import free_port
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 
 
 @pytest.fixture(scope="module")

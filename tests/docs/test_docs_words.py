@@ -6,7 +6,7 @@ from pathlib import Path
 
 import pytest
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 _GENERATED = ("_build", "auto_examples", "generated")
 FILES = [ROOT / "README.md"] + sorted(
     p for p in (ROOT / "docs").rglob("*")

@@ -9,7 +9,7 @@ from pathlib import Path
 from pyflakes import api, messages
 from pyflakes.reporter import Reporter
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 FATAL = (messages.UndefinedName, messages.UndefinedExport, messages.UndefinedLocal)
 
 
@@ -49,8 +49,8 @@ def test_the_check_sees_an_undefined_name(tmp_path):
 
 def test_ruff_finds_nothing():
     """``ruff check`` with the rules of pyproject.toml (pyflakes': unused imports and
-    variables, undefined names, f-strings without placeholders) over the packages, the
-    tests, the benchmarks and the examples: no finding."""
+    variables, undefined names, f-strings without placeholders; the import rules E401 and
+    E402) over the packages, the tests, the benchmarks and the examples: no finding."""
     import shutil
     import subprocess
     import sys
@@ -64,3 +64,24 @@ def test_ruff_finds_nothing():
                           "validation", "tests", "benchmarks", "docs/examples"],
                          cwd=ROOT, capture_output=True, text=True)
     assert out.returncode == 0, out.stdout + out.stderr
+
+
+def test_ruff_applies_the_import_rules(tmp_path):
+    """The project's ruff rules flag an import after code (E402), two modules in one
+    import (E401) and an unused import (F401) in a file that has each once."""
+    import shutil
+    import subprocess
+    import sys
+
+    import pytest
+
+    ruff = shutil.which("ruff") or str(Path(sys.executable).parent / "ruff")
+    if not Path(ruff).exists():
+        pytest.skip("ruff is not installed (the test extra installs it)")
+    bad = tmp_path / "bad.py"
+    bad.write_text("import os, sys\nprint(os.sep, sys.argv)\nimport json\n")
+    out = subprocess.run([ruff, "check", "--no-cache", "--config",
+                          str(ROOT / "pyproject.toml"), "--output-format", "concise",
+                          str(bad)], capture_output=True, text=True)
+    codes = sorted(ln.split()[1] for ln in out.stdout.splitlines() if "bad.py:" in ln)
+    assert codes == ["E401", "E402", "F401"], out.stdout

@@ -13,7 +13,7 @@ from validation.data.loads import buckling_loads
 from validation.cli import build_parser, main
 from validation.clamp_zone.tables import breakdown_numbers, breakdown_table
 
-PAGE = Path(__file__).resolve().parents[1] / "docs" / "lecture.md"
+PAGE = Path(__file__).resolve().parents[2] / "docs" / "lecture.md"
 
 
 def _text() -> str:

@@ -19,7 +19,7 @@ from validation.cli import main
 from validation.data.registry import TABLES, load
 from validation.data.key import UnitKey
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 #: the smallest unit: alpha = 1 on 6 x 1 x 3 graded 0.5, charge steps of 1 (about 3 CPU s)
 SMALL = ["--alpha", "1", "--mesh", "6x1x3", "--grading", "0.5", "--D0-step", "1",
          "--solver", "superlu"]

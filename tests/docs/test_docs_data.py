@@ -9,7 +9,7 @@ from validation.data.loads import converged_buckling_load, uniform_buckling_load
 from validation.cli import main
 from validation.clamp_zone.tables import breakdown_numbers, breakdown_table
 
-DOCS = Path(__file__).resolve().parents[1] / "docs"
+DOCS = Path(__file__).resolve().parents[2] / "docs"
 
 
 def _block(page: str, name: str) -> str:
@@ -45,7 +45,7 @@ def test_the_gap_between_the_criterion_and_the_buckling_load_is_the_datas():
 def test_check_md_quotes_the_converged_load_as_check_prints_it():
     """docs/check.md's converged alpha = 1 load with its error bar is the one of
     validation.data.loads (as ``check`` prints it: 4 decimals, the error as %g), and the
-    quick run's load it quotes (the run's own, tests/test_lecture.py) is the coarse
+    quick run's load it quotes (the run's own, tests/docs/test_lecture.py) is the coarse
     10 x 1 x 5 mesh's of the uniform data file within two location tolerances (each value
     is located to 1e-4)."""
     import re

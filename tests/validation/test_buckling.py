@@ -79,7 +79,7 @@ def test_buckling_load_is_the_full_plates_eigenvalue_crossing(end_compression):
     ref = fe.critical_load(full, xa, np.array([-0.02, 1.0]), np.array([-0.4, 1.0]), lowest,
                            tol=1e-5)
     # both crossings are located to 1e-5 in s, and the classes' eigenvalues equal the full
-    # mesh's to 1e-8 (tests/test_symmetry_classes.py): agreement to twice the tolerance
+    # mesh's to 1e-8 (tests/fe/test_symmetry_classes.py): agreement to twice the tolerance
     assert abs(out.load[0] - ref.load[0]) <= 2e-5
     assert out.load[1] == 1.0 and out.D0_b == 1.0
 

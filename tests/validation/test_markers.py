@@ -32,7 +32,7 @@ from validation.markers import (AFTER_BREAKDOWN, CONVERGED_BUCKLING, LIMIT_POINT
                                 WRINKLING_NOT_REACHED, find_marker)
 from validation.studies.voltage_control import VOLTAGE_COLUMNS, voltage_figure  # noqa: E402
 
-DOCS = Path(__file__).resolve().parents[1] / "docs"
+DOCS = Path(__file__).resolve().parents[2] / "docs"
 PAGES = ("breakdown.md", "gallery.md", "validation.md", "clamp-zone.md", "cli.md",
          "explore.md")
 
@@ -645,7 +645,7 @@ def test_the_newton_band_spans_every_mesh_with_a_limit():
 
     from validation.markers import NEWTON_BAND, NEWTON_BAND_LABEL
 
-    data = Path(__file__).resolve().parents[1] / "validation" / "data"
+    data = Path(__file__).resolve().parents[2] / "validation" / "data"
     per: dict = {}
     with open(data / "p33_units.csv") as fh:
         for r in csv.DictReader(ln for ln in fh if not ln.startswith("#")):

@@ -42,7 +42,7 @@ from pathlib import Path
 
 import pytest
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 PACKAGES = ("analytic", "skfem_dielectric", "validation")
 # optional dependencies (extras): imported inside the functions that need them
 OPTIONAL = ("pypardiso", "mkl", "dask", "distributed", "bokeh", "tornado")

@@ -255,5 +255,5 @@ def test_the_docs_show_the_committed_band_table():
 
     rows = load("section")
     assert all(len(by_h) == 3 for by_h in band_onsets(rows).values())
-    docs = (Path(__file__).resolve().parents[1] / "docs" / "clamp-zone.md").read_text()
+    docs = (Path(__file__).resolve().parents[2] / "docs" / "clamp-zone.md").read_text()
     assert band_table(rows) in docs

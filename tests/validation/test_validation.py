@@ -2,7 +2,7 @@
 
 The FE solver is replaced here by :class:`FakeRunner`, a closed-form "solver" with a
 known, state-dependent error, so the harness's bookkeeping can be checked exactly and
-fast; the real FE runs are in tests/test_cli.py and tests/test_validation_fe.py.
+fast; the real FE runs are in tests/cli/test_cli.py and tests/validation/test_validation_fe.py.
 """
 
 from __future__ import annotations
@@ -286,7 +286,7 @@ def test_validate_writes_only_into_out(tmp_path, monkeypatch):
 
 def test_library_never_prints_or_shows():
     # static check: only the CLI prints; nothing calls plt.show()
-    root = Path(__file__).resolve().parents[1] / "validation"
+    root = Path(__file__).resolve().parents[2] / "validation"
     for path in root.glob("*.py"):
         src = path.read_text()
         assert ".show(" not in src, path
