@@ -39,9 +39,8 @@ from concurrent.futures import ThreadPoolExecutor
 import numpy as np
 from skfem import Basis, ElementHex0, ElementHex1, ElementHex2
 
-from ..fem.assembly import (BlockScatter, DofReduction, OrderedSum, ScatterMap,
-                            assembly_threads, drop_spare_slots, single_threaded_blas,
-                            trim_heap)
+from ..fem.assembly import BlockScatter, DofReduction, OrderedSum, ScatterMap, drop_spare_slots
+from ..fem.runtime import assembly_threads, single_threaded_blas, trim_heap
 from ..materials import MIXED_FORMULATIONS, dielectric_response
 
 __all__ = ["MixedUPPhiForm", "PRESSURE_ELEMENTS", "RESIDUAL_BATCH"]

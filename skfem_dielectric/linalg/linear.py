@@ -35,7 +35,7 @@ import os
 import numpy as np
 import scipy.sparse as sp
 
-from ..fem.assembly import trim_heap
+from ..fem.runtime import trim_heap
 from .solver_base import LinearSolver, SuperLUSolver, count_factorisation, whole_matrix
 from .symmetric import SymmetricUpper, same_memory, same_pattern
 
@@ -216,7 +216,7 @@ class PardisoSolver(LinearSolver):
         """One PARDISO call with the zero-based int32 ``indptr``/``indices`` of ``A`` as
         they are (pypardiso would make one-based copies on every call: docs/performance.md);
         the heap is trimmed after a factorisation or a
-        solve (:func:`~skfem_dielectric.fem.assembly.trim_heap`: their work arrays)."""
+        solve (:func:`~skfem_dielectric.fem.runtime.trim_heap`: their work arrays)."""
         ps = self._ps
         ps.set_phase(phase)
         if not self._direct:

@@ -4,8 +4,8 @@ import numpy as np
 import pytest
 import scipy.sparse as sp
 
-from skfem_dielectric.fem.assembly import (DofReduction, ScatterMap, blas_threads,
-                                       single_threaded_blas)
+from skfem_dielectric.fem.assembly import DofReduction, ScatterMap
+from skfem_dielectric.fem.runtime import blas_threads, single_threaded_blas
 
 
 def _connectivity(rng, nel=3000, m=20, n_full=4000):
@@ -91,7 +91,7 @@ def test_blas_thread_limit_reaches_scipys_openblas_and_restores_it():
     # the counts before restored after; the command line leaves no variable behind
     import os
 
-    from skfem_dielectric.fem.assembly import _every_openblas, blas_thread_limit
+    from skfem_dielectric.fem.runtime import _every_openblas, blas_thread_limit
     from validation.cli import main
 
     libs = _every_openblas()
@@ -143,7 +143,7 @@ def test_ordered_sum_adds_the_chunks_in_order_whatever_the_threads():
 
 
 def test_trim_heap_is_harmless():
-    from skfem_dielectric.fem.assembly import trim_heap
+    from skfem_dielectric.fem.runtime import trim_heap
 
     a = np.ones(1 << 22)
     del a
@@ -151,7 +151,7 @@ def test_trim_heap_is_harmless():
     assert trim_heap() in (True, False)        # found once, callable again
     # a small system's temporaries are not trimmed (the next allocations would fault the
     # memory in again): nothing is handed back below the threshold
-    from skfem_dielectric.fem.assembly import TRIM_MIN_UNKNOWNS
+    from skfem_dielectric.fem.runtime import TRIM_MIN_UNKNOWNS
     assert trim_heap(TRIM_MIN_UNKNOWNS - 1) is False
 
 
@@ -244,7 +244,7 @@ def test_symmetric_upper_products_and_whole_matrix():
 
 
 def test_setup_cache_keeps_the_newest_entries():
-    from skfem_dielectric.fem.assembly import SetupCache
+    from skfem_dielectric.fem.runtime import SetupCache
 
     c = SetupCache(2)
     for k in "abc":

@@ -17,7 +17,7 @@ import numpy as np
 import scipy.sparse as sp
 from skfem.io.meshio import to_meshio
 
-from ...fem.assembly import SetupCache
+from ...fem.runtime import SetupCache
 from ...forms.maxwell_traction import maxwell_nominal_stress
 from ...kinematics import inv3
 from ...materials import ideal_dielectric_response

@@ -56,7 +56,8 @@ from skfem import ElementHex1, ElementHex2, FacetBasis, LinearForm, asm
 
 from ...checks import (check_choice, check_count, check_instance, check_material,
                        check_nonnegative, check_positive)
-from ...fem.assembly import DofReduction, SetupCache
+from ...fem.assembly import DofReduction
+from ...fem.runtime import SetupCache
 from ...fem.mesh import PlateMesh
 from ...forms.maxwell_traction import MaxwellBoundary
 from ...forms.mixed_upphi import PRESSURE_ELEMENTS, MixedUPPhiForm

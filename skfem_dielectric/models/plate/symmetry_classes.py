@@ -25,7 +25,8 @@ import numpy as np
 import scipy.sparse as sp
 
 from ...checks import check_count
-from ...fem.assembly import DofReduction, assembly_threads
+from ...fem.assembly import DofReduction
+from ...fem.runtime import assembly_threads
 from ...linalg.linear import pardiso_available
 from ...problem import Layout
 from ...stability.analysis import StabilityResult, tangent_stability
