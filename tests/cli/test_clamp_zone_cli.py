@@ -369,3 +369,28 @@ def test_the_modes_figure_titles_the_table_s_load_and_counts_its_half_waves(tmp_
     page = (ROOT / "docs" / "lecture.md").read_text()
     assert ("6, 10, 12, 13 and 15 for `alpha` = 0.05, 0.3, 0.7, 1 and 1.5"
             in " ".join(page.split()))
+
+
+def test_counts_paused_by_budget_exit_4_and_a_rerun_finishes_them(tmp_path, capsys):
+    """``counts --budget`` pauses the ramp after its first target past the budget: one
+    line naming the charge and the state kept, exit code 4 (docs/cli.md); the same
+    command run again continues until the table has the rows of one uninterrupted run."""
+    argv = ["clamp-zone", "counts", "--alpha", "1", "--mesh", "4x1x6", "--grading", "0.1",
+            "--D0", "1", "1.5", "--solver", "superlu"]
+    assert main([*argv, "--out", str(tmp_path / "whole")]) == 0
+    whole = load("counts", tmp_path / "whole")
+    codes = []
+    while not codes or codes[-1] == 4:
+        codes.append(main([*argv, "--budget", "0.001", "--out", str(tmp_path / "paused")]))
+        err = capsys.readouterr().err
+        if codes[-1] == 4:
+            (line,) = err.strip().splitlines()
+            assert "paused at s = " in line and "counts" in line and "rerun" in line
+        assert len(codes) < 20
+    assert codes[-1] == 0 and codes.count(4) == len(codes) - 1 >= 2
+    got = load("counts", tmp_path / "paused")
+    cells = [c for c in TABLES["counts"].columns if c not in
+             ("cpu_s", "count_cpu_s", "peak_GB", "factorisations", "date", "command")]
+    assert [{c: r[c] for c in cells} for r in got] == [{c: r[c] for c in cells}
+                                                       for r in whole]
+    assert not list((tmp_path / "paused" / ".state" / "counts").glob("*.npz"))

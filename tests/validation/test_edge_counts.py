@@ -71,3 +71,42 @@ def test_the_alpha_1_5_counts_on_the_page_are_the_table_s():
             r = rows[(mesh, D0)]
             assert int(r["n_negative"]) == int(n), (mesh, D0)
             assert int(r["n_x2A"]) == int(n), (mesh, D0)
+
+
+def test_a_paused_ramp_resumes_to_the_same_counts(tmp_path):
+    """A budget of a millisecond pauses the counts ramp after its first reached target,
+    its state kept in the checkpoint; each call continues from there, and the counts of
+    the paused-and-resumed ramp equal those of one uninterrupted ramp, state by state
+    (the resumed ramp restarts on the same state, secant point and factors)."""
+    from validation.clamp_zone.counts import CountsPaused
+
+    plate = dict(grading=0.1)
+    whole = run_edge_counts(1.0, (4, 1, 6), [1.0, 1.5], **plate)
+    ck = tmp_path / "ck.npz"
+    rows, pauses = [], 0
+
+    def keep(r):                              # the caller's table: the rows as they come
+        rows.append(r)
+
+    while True:
+        try:
+            run_edge_counts(1.0, (4, 1, 6), [1.0, 1.5], skip={r["D0"] for r in rows},
+                            checkpoint=ck, budget=1e-3, on_row=keep, **plate)
+            break
+        except CountsPaused as exc:
+            pauses += 1
+            assert ck.is_file() and exc.checkpoint == ck
+            assert pauses < 40
+    # the pre-load's targets (KEPLINGER_PRELOAD_STEPS = 3) and the charge targets 0.5, 1
+    # and 1.5: one pause per target but the last
+    assert pauses == 3 + 3 - 1
+    assert not ck.exists()                     # a finished unit keeps no state
+    assert [r["D0"] for r in rows] == [r["D0"] for r in whole] == [1.0, 1.5]
+    for a, b in zip(rows, whole):
+        assert {c: a[c] for c in CLASS_COLUMNS} == {c: b[c] for c in CLASS_COLUMNS}
+        assert a["n_negative"] == b["n_negative"] and a["dofs"] == b["dofs"]
+
+
+def test_a_budget_must_be_positive():
+    with pytest.raises(ValueError, match="budget must be positive and finite, got 0"):
+        run_edge_counts(1.0, (2, 1, 2), [1.0], budget=0)

@@ -29,7 +29,7 @@ from ..options import out_dir, positive, solver_name
 from ..store import aside_path
 from .band import band_table, edge_band_figure
 from .costs import estimated_GB, physical_GB
-from .counts import run_edge_counts
+from .counts import CountsPaused, run_edge_counts
 from ..data.clamp_zone import clamp_unit_load
 from ..data.registry import MAX_D0, TABLES, load, shipped_path, table_file
 from ..specs import LOCATION_TOL
@@ -52,6 +52,8 @@ __all__ = ["add_clamp_zone_command", "cmd_clamp_zone", "MAX_ELEMENTS", "DEFAULT_
 #: the largest eighth-model mesh (``n1 n2 n3`` elements) a run accepts without
 #: ``--max-elements``: about 38 unknowns per element
 MAX_ELEMENTS = 5000
+#: exit code of ``counts`` paused by ``--budget`` (rerun the same command to continue)
+EXIT_PAUSED = 4
 
 #: where a run writes by default
 DEFAULT_OUT = Path("results") / "clamp-zone"
@@ -173,6 +175,10 @@ def add_clamp_zone_command(add) -> None:
     c.add_argument("--grad-div", dest="grad_div", type=float, default=None,
                    help="grad-div weight (units of mu; default that of the units)")
     c.add_argument("--pressure", choices=["Q1", "P0"], default="Q1", help="pressure space")
+    c.add_argument("--budget", type=float, default=None, metavar="SECONDS",
+                   help="pause each unit's ramp after the first target past SECONDS (wall) "
+                        "and exit with code 4; its state is kept under OUT/.state/counts/ "
+                        "and a rerun of the same command continues it")
 
     s = new("section", "the clamp edge in section against waves along the clamp "
                        "(table section)")
@@ -317,13 +323,14 @@ def _flagged_task(key: UnitKey, *, D0, solver, progress=None):
         return run_flagged_modes(key.alpha, key.mesh, D0, grading=key.grading, solver=solver)
 
 
-def _counts_task(key: UnitKey, *, D0, grad_div, pressure, solver, skip, progress=None,
-                 emit=None):
+def _counts_task(key: UnitKey, *, D0, grad_div, pressure, solver, skip, checkpoint=None,
+                 budget=None, progress=None, emit=None):
     with blas_thread_limit(1):
         return run_edge_counts(key.alpha, key.mesh, D0, grading=key.grading,
                                formulation=key.formulation, grad_div=grad_div,
                                pressure=pressure, solver=solver, skip=skip, progress=progress,
-                               on_row=None if emit is None else (lambda r: emit([r])))
+                               on_row=None if emit is None else (lambda r: emit([r])),
+                               checkpoint=checkpoint, budget=budget)
 
 
 def _section_task(key: UnitKey, *, D0, h0s, ks, grad_div, length, solver, done,
@@ -593,6 +600,11 @@ def _cmd_counts(args) -> int:
     grad_div = _grad_div(args)
     path = _table_path(args, "counts")
     have = read_table(path, TABLES["counts"])
+    budget = args.budget
+    if budget is not None and not (math.isfinite(budget) and budget > 0):
+        raise ValueError(f"--budget must be positive and finite, got {budget!r}")
+    states = Path(args.out) / ".state" / "counts"
+    states.mkdir(parents=True, exist_ok=True)
     tasks = []
     for a in opts["alphas"]:
         for el in meshes:
@@ -602,10 +614,16 @@ def _cmd_counts(args) -> int:
             if set(D0) <= done:
                 _say(f"{key}: kept")
                 continue
+            state = states / f"{key.stem}_gd{grad_div:g}_{args.pressure}.npz"
             tasks.append((str(key), None, functools.partial(
                 _counts_task, key, D0=D0, grad_div=grad_div, pressure=args.pressure,
-                solver=opts["solver"], skip=done)))
-    return _run(args, "counts", tasks, lambda r: None, incremental=True)
+                solver=opts["solver"], skip=done, checkpoint=state, budget=budget)))
+    try:
+        return _run(args, "counts", tasks, lambda r: None, incremental=True)
+    except CountsPaused as exc:
+        print(f"skfem-dielectric clamp-zone counts: {exc}; rerun the same command to "
+              f"continue", file=sys.stderr)
+        return EXIT_PAUSED
 
 
 def _cmd_section(args) -> int:

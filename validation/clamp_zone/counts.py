@@ -28,12 +28,19 @@ A row per charge:
 
 The rows go to the ``counts`` table as each state is counted
 (``skfem-dielectric clamp-zone counts``); a state already there is skipped.
+
+A ramp of a large mesh takes hours: with ``checkpoint`` its last reached target is kept in
+an ``.npz`` (the state, the secant predictor's second point and where the kept factors
+were made, written atomically after every target), a later call resumes the ramp from
+there bit for bit, and ``budget`` (seconds) pauses it after the first target past that
+time (:class:`CountsPaused`), so that a study of any size runs in units of bounded length.
 """
 
 from __future__ import annotations
 
 import math
 import time
+from pathlib import Path
 
 import numpy as np
 
@@ -41,12 +48,49 @@ import skfem_dielectric as fe
 from skfem_dielectric.models.plate.scan import PlateScan
 
 from ..fe.model import BUCKLING_GRAD_DIV
+from ..store.files import read_npz, write_npz_atomic
 from .costs import Meter
 from ..data.registry import CLASS_COLUMNS, TABLES
 from ..data.key import mesh_text
 from .units import charge_path, unit_problem, unit_ramp
 
-__all__ = ["COLUMNS", "CLASS_COLUMNS", "run_edge_counts"]
+__all__ = ["COLUMNS", "CLASS_COLUMNS", "CountsPaused", "run_edge_counts"]
+
+
+class CountsPaused(Exception):
+    """A counts ramp paused by its time budget after a reached target, its state kept in
+    the checkpoint: calling again with the same checkpoint continues it."""
+
+    def __init__(self, load, seconds: float, checkpoint):
+        self.load, self.seconds, self.checkpoint = load, seconds, checkpoint
+        super().__init__(f"paused at s = {load[0]:g}, D0 = {load[1]:g} after "
+                         f"{seconds:.0f} s (the budget); the ramp's state is kept in "
+                         f"{checkpoint}")
+
+
+def _save_checkpoint(path, tag: str, step) -> None:
+    """The ramp's state after a reached target (``step``) into ``path``, atomically."""
+    empty = np.zeros(0)
+    back, factors = step.back, step.factors
+    write_npz_atomic(path, tag=np.array(tag), x=step.x, load=np.asarray(step.load, float),
+                     back_x=empty if back is None else back[0],
+                     back_load=empty if back is None else np.asarray(back[1], float),
+                     factors_x=empty if factors is None else factors[0],
+                     factors_load=empty if factors is None else np.asarray(factors[1], float))
+
+
+def _load_checkpoint(path, tag: str):
+    """``(x, load, back, factors)`` of a checkpoint written for ``tag``, else ``None`` (no
+    file, or one of another load path: the ramp starts from the beginning and its first
+    target's state replaces it)."""
+    if path is None or not Path(path).is_file():
+        return None
+    z = read_npz(path)
+    if str(z["tag"]) != tag:
+        return None
+    back = None if z["back_x"].size == 0 else (z["back_x"], z["back_load"])
+    factors = None if z["factors_x"].size == 0 else (z["factors_x"], z["factors_load"])
+    return z["x"], z["load"], back, factors
 
 #: the columns of a row, in order (the ``counts`` table)
 COLUMNS = TABLES["counts"].columns
@@ -60,7 +104,7 @@ def _column(name: str) -> str:
 def run_edge_counts(alpha: float, elements, D0, *, grading: float = 1.0,
                     formulation: str = "mixed", grad_div: float = BUCKLING_GRAD_DIV,
                     pressure: str = "Q1", solver: str = "auto", skip=(), progress=None,
-                    on_row=None) -> list[dict]:
+                    on_row=None, checkpoint=None, budget: float | None = None) -> list[dict]:
     """Count the negative modes of every class at each charge of ``D0``.
 
     Parameters
@@ -77,6 +121,13 @@ def run_edge_counts(alpha: float, elements, D0, *, grading: float = 1.0,
         Optional ``progress(text)``.
     on_row
         Optional ``on_row(row)`` called as each state is counted (the caller writes it).
+    checkpoint
+        Optional ``.npz`` path: the ramp's state after every reached target is kept there,
+        and a call that finds it (written for the same plate and charges) resumes from it;
+        removed when the last charge is counted.
+    budget
+        Optional seconds (wall): the ramp pauses after the first reached target past them
+        and :class:`CountsPaused` is raised (with ``checkpoint`` the next call continues).
 
     Returns
     -------
@@ -86,14 +137,20 @@ def run_edge_counts(alpha: float, elements, D0, *, grading: float = 1.0,
     Raises
     ------
     ValueError
-        A charge not positive and finite, or the ramp stopping before the last charge
-        (the rows of the charges before it are returned through ``on_row`` first).
+        A charge not positive and finite, a budget not positive, or the ramp stopping
+        before the last charge (the rows of the charges before it are returned through
+        ``on_row`` first).
+    CountsPaused
+        The budget ran out before the last charge (its rows were given to ``on_row``).
     """
     meter = Meter()
     D0 = sorted({float(d) for d in D0})
     for d in D0:
         if not (math.isfinite(d) and d > 0):
             raise ValueError(f"D0 must be positive and finite, got {d!r}")
+    if budget is not None and not (math.isfinite(budget) and budget > 0):
+        raise ValueError(f"budget must be positive and finite, got {budget!r}")
+    t0 = time.perf_counter()
     el = tuple(int(n) for n in elements)
     pb, s = unit_problem(alpha, el, grading=grading, formulation=formulation,
                          grad_div=grad_div, pressure=pressure)
@@ -132,9 +189,29 @@ def run_edge_counts(alpha: float, elements, D0, *, grading: float = 1.0,
     top = max(wanted)
     targets = sorted({*np.round(np.arange(0.5, top, 0.5), 10).tolist(),
                       *[d for d in D0 if d <= top]})
+    path = charge_path(s, targets)
+    tag = (f"{alpha!r} {mesh_text(el)} {grading!r} {formulation} {grad_div!r} {pressure} "
+           f"{' '.join(repr(float(v)) for ld in path for v in np.atleast_1d(ld))}")
+    start = _load_checkpoint(checkpoint, tag)
+    if start is not None and progress is not None:
+        progress(f"resumed at D0 = {float(start[1][1]):g} from {checkpoint}")
     ramp_solver = fe.get_linear_solver(solver)
-    res = unit_ramp(pb, charge_path(s, targets), on_step=on_step, solver=ramp_solver)
+
+    def keep(st):
+        on_step(st)
+        if checkpoint is not None and st.target_reached:
+            _save_checkpoint(checkpoint, tag, st)
+
+    def pause(st):
+        return budget is not None and time.perf_counter() - t0 > budget
+
+    res = unit_ramp(pb, path, on_step=keep, solver=ramp_solver, start=start, stop=pause)
     if not res.converged:
         raise ValueError(f"the ramp of alpha = {alpha:g} {mesh_text(el)} stopped at "
                          f"D0 = {np.asarray(res.failed_at)[-1]:g}")
+    if res.stopped_at is not None and not np.allclose(res.stopped_at, path[-1]):
+        raise CountsPaused(np.asarray(res.stopped_at, float), time.perf_counter() - t0,
+                           checkpoint)
+    if checkpoint is not None and Path(checkpoint).is_file():
+        Path(checkpoint).unlink()             # the unit is complete: its state is not needed
     return rows
