@@ -19,9 +19,11 @@ where the plate is symmetric in ``X3`` (``F_13 = F_31 = F_23 = F_32 = 0``,
   (``N . D_L = -sigma`` on the top face, ``+sigma`` on the bottom one).
 
 Equilibrium is the stationarity of ``int psi dA + sigma (int_top phi - int_bottom phi)``
-in ``(u1, u2, phi, p)``, reached by Newton's method with backtracking from the 3D solution
-(:func:`solve_section_base`) or, where that is too far from the section's equilibrium at
-the edge, by continuation along the 3D ramp's states (:func:`continue_section_base`).  The
+in ``(u1, u2, phi, p)`` (:class:`SectionBaseProblem`), reached by the package's Newton
+with the plate's ``J > 0`` guards from the 3D solution
+(:func:`~skfem_dielectric.studies.section_base.solve_section_base`) or, where that is too
+far from the section's equilibrium at the edge, by continuation along the 3D ramp's states
+(:func:`~skfem_dielectric.studies.section_base.continue_section_base`).  The
 terms ``d P_i3 / d X3`` of the 3D equilibrium are left out (the plate's state varies along
 ``X3`` on the scale of its width), so away from the edge the section's state equals the 3D
 one to within that and the 3D discretisation error.
@@ -35,12 +37,13 @@ from typing import Callable
 
 import numpy as np
 import scipy.sparse as sp
-import scipy.sparse.linalg as spla
 from skfem import Basis, ElementQuad1, ElementQuad2, FacetBasis, LinearForm, MeshQuad
 
+from ..kinematics import segment_det_limit
 from ..materials import ideal_dielectric_response
+from ..problem import Layout, Problem
 
-__all__ = ["SectionBase", "solve_section_base", "continue_section_base", "pointwise_tangent"]
+__all__ = ["SectionBase", "SectionBaseProblem", "pointwise_tangent"]
 
 #: in-plane entries of ``F`` (row-major ``3 i + J``), of ``Grad phi``, and ``p`` in the
 #: 13 unknowns ``(F, Grad phi, p)`` of the pointwise tangent
@@ -78,7 +81,8 @@ def _affine_inverse(mp, cells, X1, X2) -> np.ndarray:
 
 @dataclass
 class SectionBase:
-    """A solved base state of a section (:func:`solve_section_base`).
+    """A solved base state of a section
+    (:func:`~skfem_dielectric.studies.section_base.solve_section_base`).
 
     Attributes
     ----------
@@ -153,10 +157,15 @@ def pointwise_tangent(r, npt: int) -> np.ndarray:
     return T
 
 
-def solve_section_base(g1, g2, material, fields: Callable, D0: float, *,
-                       guess: Callable | None = None, grad_div: float = 0.0,
-                       tol: float = 1e-10, max_iter: int = 40) -> SectionBase:
-    """Solve the section's base state (module docstring) from the 3D state ``fields``.
+class SectionBaseProblem(Problem):
+    """The section's base-state equations at one 3D state (module docstring), as a
+    :class:`~skfem_dielectric.problem.Problem`: the reduced unknowns are ``(u1, u2, phi,
+    p)`` off the clamp and the cut, whose values (and ``F_33``) are the 3D state's.
+
+    Its Newton guards are the plate's: ``J = det F > 0`` at every quadrature point along
+    each step (:func:`~skfem_dielectric.kinematics.segment_det_limit`) and no converged
+    state with ``J <= 0`` (:meth:`newton_guards`).  Solved by
+    :func:`~skfem_dielectric.studies.section_base.solve_section_base`.
 
     Parameters
     ----------
@@ -173,211 +182,163 @@ def solve_section_base(g1, g2, material, fields: Callable, D0: float, *,
         The charge per reference area in units of ``sqrt(mu eps)``.
     guess
         ``guess(X1, X2) -> dict`` with ``u``, ``phi``, ``p``: the first guess inside the
-        section (default ``fields``); the solution on a coarser section
-        (:meth:`SectionBase.fields`) is a better one where the edge is fine, since the 3D
-        state is far from the section's equilibrium at the edge, where the 3D mesh cannot
-        follow the singular field.
+        section (default ``fields``).
     grad_div
         The plate's grad-div weight, in units of ``mu``.
-    tol, max_iter
-        Newton stops when the residual norm is below ``tol`` times its scale (the largest
-        of the first residual, the charge's load vector and ``mu`` times the section's
-        area), or at the round-off floor below ``100 tol``; at most ``max_iter`` steps.
-
-    Returns
-    -------
-    SectionBase
-
-    Raises
-    ------
-    ValueError
-        Newton does not converge within ``max_iter`` steps.
     """
-    mesh = MeshQuad.init_tensor(np.asarray(g1, float), np.asarray(g2, float))
-    b2 = Basis(mesh, ElementQuad2(), intorder=4)
-    b1 = Basis(mesh, ElementQuad1(), intorder=4)
-    n2, n1 = b2.N, b1.N
-    ndofs = 3 * n2 + n1
-    Xq = b2.mapping.F(b2.X)
-    ne, nq = Xq.shape[1:]
-    npt = ne * nq
-    q3d = fields(Xq[0].ravel(), Xq[1].ravel())
-    lam3_q = q3d["F"][2, 2].copy()
 
-    def lam3(X1, X2):
-        return fields(X1, X2)["F"][2, 2]
+    def __init__(self, g1, g2, material, fields: Callable, D0: float, *,
+                 guess: Callable | None = None, grad_div: float = 0.0):
+        mesh = MeshQuad.init_tensor(np.asarray(g1, float), np.asarray(g2, float))
+        b2 = Basis(mesh, ElementQuad2(), intorder=4)
+        b1 = Basis(mesh, ElementQuad1(), intorder=4)
+        n2, n1 = b2.N, b1.N
+        ndofs = 3 * n2 + n1
+        Xq = b2.mapping.F(b2.X)
+        ne, nq = Xq.shape[1:]
+        npt = ne * nq
+        q3d = fields(Xq[0].ravel(), Xq[1].ravel())
+        lam3_q = q3d["F"][2, 2].copy()
 
-    # first guess and the cut's values: the 3D state at the dof locations
-    xd = b2.doflocs
-    d3 = fields(xd[0], xd[1])
-    g2d = d3 if guess is None else guess(xd[0], xd[1])
-    x = np.concatenate([g2d["u"][0], g2d["u"][1], g2d["phi"],
-                        (fields if guess is None else guess)(*b1.doflocs)["p"]])
-    clamp = np.flatnonzero(np.isclose(xd[0], g1[-1]))
-    cut = np.flatnonzero(np.isclose(xd[0], g1[0]))
-    fixed = np.concatenate([clamp, n2 + clamp, cut, n2 + cut, 2 * n2 + cut])
-    for f, v in enumerate((d3["u"][0], d3["u"][1], d3["phi"])):   # boundary data: 3D's
-        x[f * n2 + cut] = v[cut]
-        if f < 2:
-            x[f * n2 + clamp] = v[clamp]
-    free = np.setdiff1d(np.arange(ndofs), fixed)
+        def lam3(X1, X2):
+            return fields(X1, X2)["F"][2, 2]
 
-    # the charge on the faces: sigma (int_top phi - int_bottom phi)
-    sigma = float(D0) * math.sqrt(material.mu * material.eps)
-    face = np.zeros(ndofs)
-    for where, sign in ((lambda X: np.isclose(X[1], g2[-1]), 1.0),
-                        (lambda X: np.isclose(X[1], g2[0]), -1.0)):
-        fb = FacetBasis(mesh, ElementQuad2(), facets=mesh.facets_satisfying(where), intorder=4)
-        face[2 * n2:3 * n2] += sign * sigma * LinearForm(lambda v, w: v).assemble(fb)
+        # first guess and the cut's values: the 3D state at the dof locations
+        xd = b2.doflocs
+        d3 = fields(xd[0], xd[1])
+        g2d = d3 if guess is None else guess(xd[0], xd[1])
+        x = np.concatenate([g2d["u"][0], g2d["u"][1], g2d["phi"],
+                            (fields if guess is None else guess)(*b1.doflocs)["p"]])
+        clamp = np.flatnonzero(np.isclose(xd[0], g1[-1]))
+        cut = np.flatnonzero(np.isclose(xd[0], g1[0]))
+        fixed = np.concatenate([clamp, n2 + clamp, cut, n2 + cut, 2 * n2 + cut])
+        for f, v in enumerate((d3["u"][0], d3["u"][1], d3["phi"])):   # boundary data: 3D's
+            x[f * n2 + cut] = v[cut]
+            if f < 2:
+                x[f * n2 + clamp] = v[clamp]
+        free = np.setdiff1d(np.arange(ndofs), fixed)
 
-    dN = np.moveaxis(np.stack([np.asarray(f[0].grad) for f in b2.basis], axis=-1), 0, 2)
-    M = np.stack([np.asarray(f[0]) for f in b1.basis], axis=-1)                   # (e,q,4)
-    B = np.zeros((ne, nq, 7, 31))             # rows: _IN_PLANE; columns: u1, u2, phi, p
-    for a in range(2):
+        # the charge on the faces: sigma (int_top phi - int_bottom phi)
+        sigma = float(D0) * math.sqrt(material.mu * material.eps)
+        face = np.zeros(ndofs)
+        for where, sign in ((lambda X: np.isclose(X[1], g2[-1]), 1.0),
+                            (lambda X: np.isclose(X[1], g2[0]), -1.0)):
+            fb = FacetBasis(mesh, ElementQuad2(), facets=mesh.facets_satisfying(where), intorder=4)
+            face[2 * n2:3 * n2] += sign * sigma * LinearForm(lambda v, w: v).assemble(fb)
+
+        dN = np.moveaxis(np.stack([np.asarray(f[0].grad) for f in b2.basis], axis=-1), 0, 2)
+        M = np.stack([np.asarray(f[0]) for f in b1.basis], axis=-1)                   # (e,q,4)
+        B = np.zeros((ne, nq, 7, 31))             # rows: _IN_PLANE; columns: u1, u2, phi, p
+        for a in range(2):
+            for K in range(2):
+                B[:, :, 2 * a + K, 9 * a:9 * a + 9] = dN[:, :, K]
         for K in range(2):
-            B[:, :, 2 * a + K, 9 * a:9 * a + 9] = dN[:, :, K]
-    for K in range(2):
-        B[:, :, 4 + K, 18:27] = dN[:, :, K]
-    B[:, :, 6, 27:31] = M
-    edofs = np.concatenate([b2.element_dofs + f * n2 for f in range(3)]
-                           + [b1.element_dofs + 3 * n2]).T                    # (e, 31)
-    rows = np.repeat(edofs, 31, axis=1).ravel()
-    cols = np.tile(edofs, (1, 31)).ravel()
-    w = np.asarray(b2.dx).reshape(npt)
-    idx = np.array(_IN_PLANE)
+            B[:, :, 4 + K, 18:27] = dN[:, :, K]
+        B[:, :, 6, 27:31] = M
+        edofs = np.concatenate([b2.element_dofs + f * n2 for f in range(3)]
+                               + [b1.element_dofs + 3 * n2]).T                    # (e, 31)
+        rows = np.repeat(edofs, 31, axis=1).ravel()
+        cols = np.tile(edofs, (1, 31)).ravel()
+        w = np.asarray(b2.dx).reshape(npt)
+        idx = np.array(_IN_PLANE)
 
-    def evaluate(x):
-        e = x[edofs]                                                           # (e, 31)
-        q = np.einsum("eqij,ej->eqi", B, e).reshape(npt, 7)
-        F = np.zeros((3, 3, npt))
-        F[0, 0], F[0, 1], F[1, 0], F[1, 1] = 1 + q[:, 0], q[:, 1], q[:, 2], 1 + q[:, 3]
-        F[2, 2] = lam3_q
+        self.mesh, self.b2, self.b1, self.material = mesh, b2, b1, material
+        self.n2, self.ndofs_full, self.npt, self.ne, self.nq = n2, ndofs, npt, ne, nq
+        self.lam3, self.lam3_q, self.x0, self.fixed, self.free = lam3, lam3_q, x, fixed, free
+        self.face, self.B, self.edofs, self.rows, self.cols = face, B, edofs, rows, cols
+        self.w, self.idx, self.grad_div = w, idx, float(grad_div)
+        area = (g1[-1] - g1[0]) * (g2[-1] - g2[0])
+        R0 = self.evaluate(x, tangent=False)[0][free]
+        #: the residual's scale: the first residual, the charge's load, mu times the section
+        self.scale = max(float(np.linalg.norm(R0)), float(np.linalg.norm(face)),
+                         material.mu * area)
+
+    @property
+    def layout(self) -> Layout:
+        return Layout.single(self.free.size)
+
+    def initial_state(self) -> np.ndarray:
+        """The first guess (``guess``, else the 3D state) at the reduced unknowns."""
+        return self.x0[self.free].copy()
+
+    def full(self, y: np.ndarray) -> np.ndarray:
+        """All unknowns of the reduced ``y`` (the boundary data of the 3D state)."""
+        out = self.x0.copy()
+        out[self.free] = y
+        return out
+
+    def deformation(self, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """``F`` (``(npt, 3, 3)``) and the seven in-plane gradients at the quadrature
+        points of all unknowns ``x``."""
+        npt = self.npt
+        q = np.einsum("eqij,ej->eqi", self.B, x[self.edofs]).reshape(npt, 7)
+        F = np.zeros((npt, 3, 3))
+        F[:, 0, 0], F[:, 0, 1], F[:, 1, 0], F[:, 1, 1] = 1 + q[:, 0], q[:, 1], q[:, 2], 1 + q[:, 3]
+        F[:, 2, 2] = self.lam3_q
+        return F, q
+
+    def evaluate(self, x: np.ndarray, tangent: bool = True):
+        """Residual and (with ``tangent``) tangent of all unknowns ``x``."""
+        npt, ne, nq, mat = self.npt, self.ne, self.nq, self.material
+        F, q = self.deformation(x)
         G = np.vstack([q[:, 4], q[:, 5], np.zeros(npt)])
-        r = ideal_dielectric_response(material, F, G, q[:, 6],
-                                      grad_div=grad_div * material.mu)
+        r = ideal_dielectric_response(mat, np.moveaxis(F, 0, 2), G, q[:, 6],
+                                      grad_div=self.grad_div * mat.mu)
         s = np.zeros((npt, 13))
         s[:, :9] = r.P.reshape(9, npt).T
         s[:, 9:12] = r.D_L.T
         s[:, 12] = r.dpsi_dp
-        s = (s[:, idx] * w[:, None]).reshape(ne, nq, 7)
-        R = np.bincount(edofs.ravel(), np.einsum("eqia,eqi->ea", B, s).ravel(),
-                        minlength=ndofs) + face
-        T = (pointwise_tangent(r, npt)[:, idx][:, :, idx] * w[:, None, None]).reshape(ne, nq, 7, 7)
-        Ke = np.einsum("eqia,eqij,eqjb->eab", B, T, B, optimize=True)
-        K = sp.coo_matrix((Ke.ravel(), (rows, cols)), shape=(ndofs, ndofs)).tocsr()
+        s = (s[:, self.idx] * self.w[:, None]).reshape(ne, nq, 7)
+        R = np.bincount(self.edofs.ravel(), np.einsum("eqia,eqi->ea", self.B, s).ravel(),
+                        minlength=self.ndofs_full) + self.face
+        if not tangent:
+            return R, None
+        idx = self.idx
+        T = (pointwise_tangent(r, npt)[:, idx][:, :, idx]
+             * self.w[:, None, None]).reshape(ne, nq, 7, 7)
+        Ke = np.einsum("eqia,eqij,eqjb->eab", self.B, T, self.B, optimize=True)
+        K = sp.coo_matrix((Ke.ravel(), (self.rows, self.cols)),
+                          shape=(self.ndofs_full, self.ndofs_full)).tocsr()
         return R, K
 
-    R, K = evaluate(x)
-    # the residual's scale: the first residual, the charge's load, mu times the section
-    area = (g1[-1] - g1[0]) * (g2[-1] - g2[0])
-    r0 = max(float(np.linalg.norm(R[free])), float(np.linalg.norm(face)), material.mu * area)
-    rel = float(np.linalg.norm(R[free])) / r0
-    if rel < tol:
-        return SectionBase(b2, b1, lam3, x, 0, rel)
-    for it in range(1, max_iter + 1):
-        dx = spla.spsolve(K[free][:, free].tocsc(), -R[free])
-        step = 1.0                          # backtracking on the residual norm
-        for _ in range(12):
-            trial = x.copy()
-            trial[free] += step * dx
-            Rt, Kt = evaluate(trial)
-            rt = float(np.linalg.norm(Rt[free])) / r0
-            if math.isfinite(rt) and rt < rel * (1 - 1e-4 * step):
-                break
-            step *= 0.5
-        else:                               # no decrease along the Newton direction:
-            if rel < 1e2 * tol:             # the round-off floor
-                return SectionBase(b2, b1, lam3, x, it, rel)
-            break
-        x, R, K, rel = trial, Rt, Kt, rt
-        if rel < tol:
-            return SectionBase(b2, b1, lam3, x, it, rel)
-    raise ValueError(f"the section's base state did not converge in max_iter = {max_iter} "
-                     f"Newton steps (relative residual {rel:.2e})")
+    def assemble(self, x: np.ndarray, load=None) -> tuple[sp.csr_matrix, np.ndarray]:
+        R, K = self.evaluate(self.full(x))
+        return K[self.free][:, self.free], R[self.free]
+
+    def residual(self, x: np.ndarray, load=None) -> np.ndarray:
+        return self.evaluate(self.full(x), tangent=False)[0][self.free]
+
+    def residual_scale(self, load=None) -> float:
+        return self.scale
+
+    def jacobian(self, x: np.ndarray) -> np.ndarray:
+        """``J = det F`` at the quadrature points of the reduced state ``x``."""
+        return np.linalg.det(self.deformation(self.full(x))[0])
+
+    def max_step(self, x: np.ndarray, dx: np.ndarray, load=None) -> float:
+        """The largest fraction of the step ``dx`` from ``x`` with ``J > 0`` at every
+        quadrature point along it (:func:`~skfem_dielectric.kinematics.segment_det_limit`)."""
+        d = np.zeros(self.ndofs_full)
+        d[self.free] = dx
+        dF = self.deformation(d)[0]
+        dF[:, 0, 0] -= 1.0                        # the increment of F: no identity, F33 fixed
+        dF[:, 1, 1] -= 1.0
+        dF[:, 2, 2] = 0.0
+        return segment_det_limit(self.deformation(self.full(x))[0], dF)
+
+    def admissible(self, x: np.ndarray, load=None) -> str:
+        """Why the reduced state ``x`` is inverted (``J <= 0`` at a quadrature point), or
+        ``""``."""
+        J = self.jacobian(x)
+        return "" if J.min() > 0 else (f"inverted section state: J = {J.min():.4g} at a "
+                                       f"quadrature point (must be > 0)")
+
+    def newton_guards(self) -> dict:
+        """``step_limit``: :meth:`max_step`; ``admissible``: :meth:`admissible`."""
+        return {"step_limit": self.max_step, "admissible": self.admissible}
+
+    def base(self, x: np.ndarray, iterations: int, residual: float) -> SectionBase:
+        """The :class:`SectionBase` of the reduced state ``x``."""
+        return SectionBase(self.b2, self.b1, self.lam3, self.full(x), iterations, residual)
 
 
-def _blend(fa: Callable, fb: Callable, t: float) -> Callable:
-    """The fields ``(1 - t) fa + t fb`` (``u``, ``phi``, ``p``, ``F``)."""
-    def fields(X1, X2):
-        a, b = fa(X1, X2), fb(X1, X2)
-        return {name: (1.0 - t) * a[name] + t * b[name] for name in ("u", "phi", "p", "F")}
-    return fields
-
-
-def _shifted(sb: SectionBase, old: Callable, new: Callable) -> Callable:
-    """The guess ``sb + (new - old)``: the section's solution moved by the change of the
-    3D state, so that the boundary data move with it."""
-    def guess(X1, X2):
-        f, a, b = sb.fields(X1, X2), old(X1, X2), new(X1, X2)
-        return {"u": f["u"] + (b["u"][:2] - a["u"][:2]),
-                "phi": f["phi"] + (b["phi"] - a["phi"]),
-                "p": f["p"] + (b["p"] - a["p"])}
-    return guess
-
-
-def continue_section_base(g1, g2, material, path, *, grad_div: float = 0.0,
-                          tol: float = 1e-10, max_iter: int = 40, max_halvings: int = 6,
-                          progress: Callable | None = None) -> SectionBase:
-    """Solve the section's base state along a path of 3D states, by continuation in the
-    charge.
-
-    The first state is solved from its own 3D fields (:func:`solve_section_base`); each
-    next one from the last solution moved by the change of the 3D state, ``guess = x + (f_new
-    - f_old)`` (so the clamp's and the cut's data move with it).  Between two states of the
-    path the 3D fields and ``D0`` are interpolated linearly, and a step that does not
-    converge is halved, at most ``max_halvings`` times.
-
-    Parameters
-    ----------
-    g1, g2, material, grad_div, tol, max_iter
-        As for :func:`solve_section_base`.
-    path
-        ``[(D0, fields), ...]`` in the order to follow (e.g. the 3D ramp's converged
-        states, :func:`~skfem_dielectric.models.edge_section.plate_fields` of each); the
-        result is the last one's base state.
-    max_halvings
-        The smallest step is ``2 ** -max_halvings`` of an interval of the path.
-    progress
-        Optional ``progress(text)`` after each state of the path.
-
-    Returns
-    -------
-    SectionBase
-        The base state at the path's last state; its ``iterations`` are the Newton steps
-        of the whole path.
-
-    Raises
-    ------
-    ValueError
-        An empty path, or a step of the smallest size that does not converge (the message
-        names the charge).
-    """
-    path = list(path)
-    if not path:
-        raise ValueError("path must hold at least one (D0, fields) state, got none")
-    D0, f0 = path[0]
-    sb = solve_section_base(g1, g2, material, f0, D0, grad_div=grad_div, tol=tol,
-                            max_iter=max_iter)
-    total = sb.iterations
-    for (Da, fa), (Db, fb) in zip(path[:-1], path[1:]):
-        t, dt = 0.0, 1.0
-        while t < 1.0:
-            t1 = min(1.0, t + dt)
-            old, new = _blend(fa, fb, t), _blend(fa, fb, t1)
-            try:
-                sb = solve_section_base(g1, g2, material, new, (1 - t1) * Da + t1 * Db,
-                                        guess=_shifted(sb, old, new), grad_div=grad_div,
-                                        tol=tol, max_iter=max_iter)
-            except ValueError:
-                if dt <= 2.0 ** -max_halvings:
-                    raise ValueError(f"the section's base state did not converge at D0 = "
-                                     f"{(1 - t1) * Da + t1 * Db:.6g} with the smallest step "
-                                     f"(max_halvings = {max_halvings})") from None
-                dt /= 2
-                continue
-            total += sb.iterations
-            t = t1
-        if progress is not None:
-            progress(f"D0 = {Db:g}: {total} Newton steps so far")
-    sb.iterations = total
-    return sb

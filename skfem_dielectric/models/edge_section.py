@@ -169,7 +169,7 @@ def plate_fields(problem, xf: np.ndarray, X3: float = 0.0) -> Callable:
 def plate_base(problem, xf: np.ndarray, X3: float = 0.0) -> BaseState:
     """The base state ``(F, Grad phi, p)`` of :func:`plate_fields`: the 3D solution
     itself, which resolves the clamp edge no better than the 3D mesh does (the section's
-    own base state: :func:`~skfem_dielectric.models.edge_base.solve_section_base`).
+    own base state: :func:`~skfem_dielectric.studies.section_base.solve_section_base`).
 
     Raises
     ------

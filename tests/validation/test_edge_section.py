@@ -173,7 +173,7 @@ def test_the_section_base_keeps_a_homogeneous_state_and_newton_returns_to_it():
     """The homogeneous state (charge on both faces, its own boundary data) is an
     equilibrium of the section's equations: no Newton step is taken; from a guess 1e-2
     away Newton returns to it within 1e-8 in at most 6 steps (a wrong tangent would not)."""
-    from skfem_dielectric.models.edge_base import solve_section_base
+    from skfem_dielectric.studies.section_base import solve_section_base
     lam1, lam3, D0 = 1.4, 1.2, 1.0
     fields = _homogeneous_fields(lam1, lam3, D0)
     g1, g2 = edge_section_grids(h0=0.05)
@@ -200,7 +200,7 @@ def test_continuation_reaches_the_homogeneous_end_state():
     fields carry the charge 0.5, not its D0 = 0, so its section state is not homogeneous
     and no guess on the way is exact) the continued base state ends on the last one:
     F11, F22 and Grad phi within 1e-8; a path of one state is the direct solve."""
-    from skfem_dielectric.models.edge_base import continue_section_base
+    from skfem_dielectric.studies.section_base import continue_section_base
     lam3 = 1.2
     path = [(D0, _homogeneous_fields(lam1, lam3, Df))
             for lam1, D0, Df in ((1.1, 0.0, 0.5), (1.3, 1.0, 1.0), (1.5, 2.0, 2.0))]
@@ -257,3 +257,39 @@ def test_the_docs_show_the_committed_band_table():
     assert all(len(by_h) == 3 for by_h in band_onsets(rows).values())
     docs = (Path(__file__).resolve().parents[2] / "docs" / "clamp-zone.md").read_text()
     assert band_table(rows) in docs
+
+
+def test_the_section_base_guards_every_step_against_inversion():
+    """The section's Newton guard is the plate's: the largest step fraction that keeps
+    ``J = det F > 0`` at every quadrature point (``max_step``) is where a brute-force scan
+    of ``min J`` along the step (1e-4 apart) first reaches zero, within the scan's step;
+    a state past it is named inadmissible, and a first guess that is inverted is refused
+    with one line before any Newton step."""
+    from skfem_dielectric.models.edge_base import SectionBaseProblem
+    from skfem_dielectric.studies.section_base import solve_section_base
+
+    lam1, lam3, D0 = 1.4, 1.2, 1.0
+    fields = _homogeneous_fields(lam1, lam3, D0)
+    g1, g2 = edge_section_grids(h0=0.1)
+    pb = SectionBaseProblem(g1, g2, MAT, fields, D0, grad_div=10.0)
+    y = pb.initial_state()
+    X = pb.b2.doflocs
+    d = np.zeros(pb.ndofs_full)
+    d[: pb.n2] = -3.0 * lam1 * (X[0] - 50.0)          # u1: F11 -> lam1 (1 - 3 a) inside
+    dy = d[pb.free]
+    a = pb.max_step(y, dy)
+    assert 0.0 < a < 1.0 / 3.0 + 1e-9
+    grid = np.arange(0.0, 0.5, 1e-4)
+    first = grid[np.argmax([pb.jacobian(y + g * dy).min() <= 0 for g in grid])]
+    assert first - 1e-4 <= a <= first
+    assert pb.admissible(y + 0.999 * a * dy) == ""
+    assert "inverted section state" in pb.admissible(y + 1.01 * first * dy)
+    assert pb.newton_guards() == {"step_limit": pb.max_step, "admissible": pb.admissible}
+
+    def inverted(a_, b_):
+        f = fields(a_, b_)
+        f["u"] = f["u"] * np.array([[-2.0], [1.0], [0.0]])   # F11 < 0 inside
+        return f
+
+    with pytest.raises(ValueError, match="first guess is not admissible: inverted"):
+        solve_section_base(g1, g2, MAT, fields, D0, guess=inverted, grad_div=10.0)

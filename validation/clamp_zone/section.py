@@ -6,7 +6,7 @@ section ``[50 - length, 50] x [-H/2, H/2]`` at the plate's centre plane then sol
 base state with elements of side ``h0`` at the two clamp edges, graded away from them
 (the 3D state on the cut and on the clamp, ``F_33`` from it), by continuation along the 3D
 ramp's converged states ``D0 = 0, 0.5, 1, ...``
-(:func:`~skfem_dielectric.models.edge_base.continue_section_base`), and counts the negative eigenvalues of its energy
+(:func:`~skfem_dielectric.studies.section_base.continue_section_base`), and counts the negative eigenvalues of its energy
 against ``cos kX3`` / ``sin kX3`` waves for each ``k`` of ``--k``
 (:class:`~skfem_dielectric.models.edge_section.EdgeSection`).  A physical edge instability
 is a band of ``k`` with negative modes whose edges converge as ``h0`` is halved; an
@@ -39,7 +39,7 @@ import time
 import numpy as np
 
 from skfem_dielectric.fem import blas_thread_limit
-from skfem_dielectric.models.edge_base import continue_section_base
+from skfem_dielectric.studies.section_base import continue_section_base
 from skfem_dielectric.models.edge_section import (EdgeSection, edge_section_grids,
                                                   plate_fields)
 
