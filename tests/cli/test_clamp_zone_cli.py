@@ -394,3 +394,26 @@ def test_counts_paused_by_budget_exit_4_and_a_rerun_finishes_them(tmp_path, caps
     assert [{c: r[c] for c in cells} for r in got] == [{c: r[c] for c in cells}
                                                        for r in whole]
     assert not list((tmp_path / "paused" / ".state" / "counts").glob("*.npz"))
+
+
+def test_each_mode_file_carries_its_unit_s_key(tmp_path):
+    """Every shipped mode holds its unit's key (the array ``key``, equal to its file's
+    stem, written by ``write_mode``); a mode file renamed to another unit's name is refused
+    in one line naming it (exit code 3 of the command)."""
+    import shutil
+
+    from validation.clamp_zone.modes import read_clamp_modes
+    from validation.data.registry import shipped_path
+    from validation.store.files import read_npz
+
+    folder = shipped_path("units").parent / "modes"
+    files = sorted(folder.glob("*.npz"))
+    assert len(files) == 5
+    for f in files:
+        assert str(read_npz(f)["key"]) == f.stem
+    (tmp_path / "modes").mkdir()
+    shutil.copy(files[0], tmp_path / "modes" / f"{files[1].stem}.npz")
+    with pytest.raises(OSError, match=f"holds the mode of the unit {files[0].stem}"):
+        read_clamp_modes(tmp_path / "modes")
+    assert _exit(["clamp-zone", "modes", "--from", str(tmp_path),
+                  "--out", str(tmp_path / "fig")]) == 3

@@ -42,6 +42,9 @@ def read_clamp_modes(folder) -> list[dict]:
     ------
     ValueError
         ``folder`` is not a folder, or holds no mode.
+    OSError
+        A mode file without the mode's arrays, or one whose ``key`` is another unit's
+        (a renamed file).
     """
     folder = Path(folder)
     if not folder.is_dir():
@@ -57,6 +60,9 @@ def read_clamp_modes(folder) -> list[dict]:
         if missing:
             raise OSError(errno.EINVAL, f"is not a clamp-zone mode (no {', '.join(missing)})",
                           str(f))
+        if "key" in z and str(z["key"]) != f.stem:
+            raise OSError(errno.EINVAL, f"holds the mode of the unit {str(z['key'])}, not "
+                                        f"that of its name", str(f))
         out.append({"key": key, "alpha": key.alpha, "mesh": key.mesh_text,
                     "grading": key.grading, "formulation": key.formulation,
                     "D0_b": float(z["D0_b"]), "X1": z["X1"], "X3": z["X3"], "u2": z["u2"]})

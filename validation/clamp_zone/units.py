@@ -281,9 +281,10 @@ def run_unit(alpha: float, elements, *, grading: float = 1.0, D0_step: float = 0
 
 def write_mode(folder, key: UnitKey, mode: dict) -> Path:
     """Write a unit's mode at ``D0_b`` (the ``mode`` of :func:`run_unit`'s row) atomically
-    to ``folder/<stem>.npz`` (:attr:`~validation.data.key.UnitKey.stem`); returns the
+    to ``folder/<stem>.npz`` (:attr:`~validation.data.key.UnitKey.stem`), with the unit's
+    key in it (the array ``key``: the stem), so that a renamed file is caught; returns the
     path."""
     path = Path(folder) / f"{key.stem}.npz"
     path.parent.mkdir(parents=True, exist_ok=True)
-    write_npz_atomic(path, **mode)
+    write_npz_atomic(path, key=np.array(key.stem), **mode)
     return path
