@@ -25,8 +25,9 @@ Usage::
 ``--against OLD`` runs the same ramp with the packages of the source tree ``OLD`` (e.g.
 ``git archive 13becd9 | tar -x -C OLD``) and of this tree in alternation (``--repeat``
 times each, default 3), each in its own subprocess, and prints the counts, the medians of
-wall and CPU time, the ratio of the medians and the largest difference of every per-step
-column (``lam1``, ``lam3``, ``min_P33``, ...).  ``--one-core`` runs every ramp on one core
+wall and CPU time, the peak memory, the factors' entries and memory (PARDISO's
+``iparm(18)``, ``iparm(16) + iparm(17)``) and ordering, the ratio of the medians and the
+largest difference of every per-step column (``lam1``, ``lam3``, ``min_P33``, ...).  ``--one-core`` runs every ramp on one core
 (``taskset -c 0``); set ``OMP_NUM_THREADS=MKL_NUM_THREADS=OPENBLAS_NUM_THREADS=1`` for one
 thread of the linear solver as well.
 
@@ -60,6 +61,9 @@ def run(a) -> dict:
 
     load0 = os.getloadavg()
     solver = get_linear_solver(a.solver)
+    ps = getattr(solver, "_ps", None)             # PARDISO: report the factors' entries
+    if ps is not None:
+        ps.set_iparm(18, -1)
     t0, c0 = time.perf_counter(), time.process_time()
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
@@ -103,6 +107,11 @@ def run(a) -> dict:
         "columns": {name: [float(st.quantities[name]) for st in res.steps]
                     for name in COLUMNS if steps and name in res.steps[0].quantities},
         "threads": len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else None,
+        # PARDISO's own report of its last factorisation: entries of the factors
+        # (iparm(18)) and its permanent + factorisation memory (iparm(16) + iparm(17))
+        "factor_entries": int(ps.iparm[17]) if ps is not None else None,
+        "factor_MB": (int(ps.iparm[15]) + int(ps.iparm[16])) / 1024 if ps is not None else None,
+        "ordering": getattr(solver, "chosen_ordering", None) or getattr(solver, "ordering", None),
     }
 
 
@@ -176,15 +185,20 @@ def against(a) -> None:
                   f"load {r['load_average'][0][0]:.2f} -> {r['load_average'][1][0]:.2f}",
                   flush=True)
     print(f"{'':>10} {'unknowns':>9} {'steps':>5} {'iter.':>5} {'fact.':>5} "
-          f"{'wall s':>7} {'CPU s':>7} {'peak MB':>7}")
+          f"{'wall s':>7} {'CPU s':>7} {'peak MB':>7} {'factor entries':>14} "
+          f"{'factors MB':>10} ordering")
     med = {}
     for name, rs in runs.items():
         r = rs[0]
         med[name] = (float(np.median([x["wall_s"] for x in rs])),
                      float(np.median([x["cpu_s"] for x in rs])))
+        fill = r.get("factor_entries")
+        fmb = r.get("factor_MB")
         print(f"{name:>10} {r['dofs']:>9} {r['steps']:>5} {r['iterations']:>5} "
               f"{r['factorisations']:>5} {med[name][0]:>7.1f} {med[name][1]:>7.1f} "
-              f"{max(x['peak_rss_MB'] for x in rs):>7.0f}")
+              f"{max(x['peak_rss_MB'] for x in rs):>7.0f} "
+              f"{'-' if fill is None else fill:>14} "
+              f"{'-' if fmb is None else format(fmb, '.0f'):>10} {r.get('ordering') or '-'}")
     print(f"time ratio (this tree / reference, medians): wall "
           f"{med['this tree'][0] / med['reference'][0]:.3f}, CPU "
           f"{med['this tree'][1] / med['reference'][1]:.3f}")
