@@ -176,7 +176,7 @@ def test_a_mesh_too_large_is_refused_before_anything_is_allocated(tmp_path, caps
     with pytest.raises(Exception):
         main(["clamp-zone", "units", "--alpha", "1", "--mesh", "60x2x50",
               "--max-elements", "6000", "--out", str(out)])
-    assert calls and calls[0][1] == (60, 2, 50)
+    assert calls and calls[0][0].mesh == (60, 2, 50)           # the unit's key
 
 
 BAD = {

@@ -7,6 +7,8 @@ from types import SimpleNamespace
 import numpy as np
 import pytest
 
+from validation.data.key import UnitKey
+
 import skfem_dielectric as fe
 from validation.fe.model import BUCKLING_GRAD_DIV
 from validation.cli import main
@@ -38,7 +40,7 @@ def test_the_smallest_committed_unit_is_reproduced_and_the_volume_is_kept(tmp_pa
     within 1e-4 of the committed row; the whole model's volume ratio is 1 to 1e-6 (the
     constant is a pressure test function of the mixed form); a rerun keeps the row."""
     ref = next(r for r in load("layer") if r["alpha"] == "1" and r["mesh"] == "10x1x24")
-    row = run_clamp_layer(1.0, (10, 1, 24), grading=0.1)
+    row = run_clamp_layer(UnitKey(1.0, (10, 1, 24), 0.1))
     assert row["D0"] == float(ref["D0"])
     for k in COLUMNS:
         if k.startswith(("J_", "V_")):

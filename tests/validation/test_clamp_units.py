@@ -9,6 +9,8 @@ import warnings
 import numpy as np
 import pytest
 
+from validation.data.key import UnitKey
+
 import skfem_dielectric as fe
 from skfem_dielectric.studies.buckling import buckling_load
 from validation.fe.model import BUCKLING_GRAD_DIV, BUCKLING_NEWTON
@@ -25,7 +27,7 @@ def test_a_unit_locates_the_buckling_studys_load_and_writes_its_row(tmp_path):
     location: both to 1e-4); the row holds every column, J at the clamp layer is that of
     a compressible-looking discrete layer (the coarse mesh cannot hold it: J < 0.8), the
     half-waves are counted across the whole width, and a rerun keeps the row."""
-    row = run_unit(1.0, (6, 1, 3), grading=0.5, D0_step=1.0, modes_dir=tmp_path / "modes")
+    row = run_unit(UnitKey(1.0, (6, 1, 3), 0.5), D0_step=1.0, modes_dir=tmp_path / "modes")
     # the mode at D0_b: the top face of the whole plate at the element vertices (both
     # halves of each plane of symmetry: 2 n1 + 1 by 2 n3 + 1 points)
     with np.load(tmp_path / "modes" / "1_6x1x3_g0.5_mixed.npz") as z:
@@ -84,7 +86,7 @@ def test_the_smallest_committed_unit_is_reproduced():
     J at the clamp layer (4 digits) as its row in validation/data/clamp_units.csv."""
     ref = next(r for r in load("units") if r["alpha"] == "1" and r["mesh"] == "12x1x6"
                and r["grading"] == "0.25" and r["formulation"] == "mixed")
-    row = run_unit(1.0, (12, 1, 6), grading=0.25)
+    row = run_unit(UnitKey(1.0, (12, 1, 6), 0.25))
     assert abs(row["D0_b"] - float(ref["D0_b"])) <= 2 * LOCATION_TOL
     assert row["class"] == ref["class"]
     assert row["half_waves"] == int(ref["half_waves"])

@@ -7,6 +7,8 @@ from pathlib import Path
 
 import pytest
 
+from validation.data.key import UnitKey
+
 from validation.cli import main
 from validation.data.registry import load
 from validation.specs import LOCATION_TOL
@@ -34,7 +36,7 @@ def test_the_class_of_a_unit_reproduces_its_D0_b_along_another_path(tmp_path):
     that class's indicator alone lands within twice the location tolerance of the row's
     D0_b (the unit located it from its full scan); the row holds every column."""
     ref = _unit("1", "10x1x24", "0.1")
-    rows = run_class_onsets(1.0, (10, 1, 24), grading=0.1, classes=[ref["class"]])
+    rows = run_class_onsets(UnitKey(1.0, (10, 1, 24), 0.1), classes=[ref["class"]])
     assert len(rows) == 1 and rows[0]["class"] == ref["class"]
     assert abs(rows[0]["D0_c"] - float(ref["D0_b"])) <= 2 * LOCATION_TOL
     assert rows[0]["half_waves"] == int(ref["half_waves"])
@@ -79,9 +81,9 @@ def test_a_given_bracket_needs_no_unit_and_says_so():
     that nothing on this mesh was scanned below lo; a bracket that is not 0 < lo < hi is a
     ValueError naming it."""
     ref = _unit("1", "10x1x24", "0.1")
-    rows = run_class_onsets(1.0, (10, 1, 24), grading=0.1, classes=[ref["class"]],
+    rows = run_class_onsets(UnitKey(1.0, (10, 1, 24), 0.1), classes=[ref["class"]],
                             given=(2.90625, 2.9375), units=Path("/nonexistent.csv"))
     assert abs(rows[0]["D0_c"] - float(ref["D0_b"])) <= 2 * LOCATION_TOL
     assert "bracket given" in rows[0]["note"]
     with pytest.raises(ValueError, match="bracket must be 0 < lo < hi, got 3, 2"):
-        run_class_onsets(1.0, (4, 1, 2), given=(3.0, 2.0))
+        run_class_onsets(UnitKey(1.0, (4, 1, 2), 1.0), given=(3.0, 2.0))

@@ -10,6 +10,7 @@ from validation.fe.model import BUCKLING_GRAD_DIV
 from validation.cli import main
 from validation.data.registry import load
 from validation.clamp_zone.flagged import COLUMNS, run_flagged_modes
+from validation.data.key import UnitKey
 
 
 def test_every_negative_mode_is_a_row_and_the_clamps_mirror_each_other():
@@ -18,7 +19,7 @@ def test_every_negative_mode_is_a_row_and_the_clamps_mirror_each_other():
     computed), each row's layer the element layer of its centroid's X1, and the modes at
     the clamps come in mirror pairs about the plate's centre (classes x1 S and x1 A, the
     clamps 100 mm apart): equal eigenvalues to 1e-6 of the largest."""
-    rows = run_flagged_modes(1.0, (10, 1, 24), 2.75, grading=0.1)
+    rows = run_flagged_modes(UnitKey(1.0, (10, 1, 24), 0.1), 2.75)
     res = fe.keplinger_plate(1.0, D0=list(np.arange(0.5, 2.75, 0.5)) + [2.75],
                              elements=(10, 1, 24), grading=0.1,
                              options=fe.PlateOptions(grad_div=BUCKLING_GRAD_DIV),

@@ -118,7 +118,8 @@ def fake_units(monkeypatch):
     calls listed."""
     calls = []
 
-    def run_unit(alpha, el, *, D0_step, D0_max, **kw):
+    def run_unit(key, *, D0_step, D0_max, **kw):
+        alpha, el = key.alpha, key.mesh
         calls.append((alpha, tuple(el), D0_step, D0_max))
         mesh = "x".join(map(str, el))
         if D0_max < 3 * alpha:
@@ -194,7 +195,8 @@ def test_a_rerun_with_other_charge_settings_recomputes_what_they_change(fake_uni
 def test_a_p33_row_ramped_to_a_smaller_charge_is_recomputed(tmp_path, capsys, monkeypatch):
     calls = []
 
-    def run_p33_unit(alpha, el, *, grading, D0_step, D0_max, **kw):
+    def run_p33_unit(key, *, D0_step, D0_max, **kw):
+        alpha, el, grading = key.alpha, key.mesh, key.grading
         calls.append((D0_step, D0_max))
         row = {c: "" for c in TABLES["p33"].columns if c != "command"}
         row.update(alpha=alpha, mesh="x".join(map(str, el)), grading=grading, dofs=10,

@@ -12,6 +12,7 @@ dask.distributed cluster; the rows are written by this process as units finish.
 from __future__ import annotations
 
 import functools
+import inspect
 import logging
 import math
 import re
@@ -289,55 +290,21 @@ def _settings(args) -> dict:
 
 
 # -- the tasks: one unit of work each, run here or on a dask worker ------------------------
-def _units_task(key: UnitKey, *, D0_step, D0_max, solver, progress=None):
+def _task(runner, key: UnitKey, *args, one_row: bool = False, stream: str | None = None,
+          progress=None, emit=None, **options):
+    """Run ``runner(key, *args, **options)`` (a runner of the study, which takes the unit's
+    :class:`~validation.data.key.UnitKey`) with one BLAS thread: the task of one unit,
+    here or on a dask worker (a ``functools.partial`` of it is picklable).  Returns its
+    rows (``one_row``: the runner returns one row); ``progress`` goes to a runner that
+    reports it, and ``emit(rows)`` to one that writes rows as it goes (``stream``: its
+    ``on_row`` or ``on_rows``)."""
+    if progress is not None and "progress" in inspect.signature(runner).parameters:
+        options["progress"] = progress
+    if stream is not None and emit is not None:
+        options[stream] = (lambda r: emit([r])) if stream == "on_row" else emit
     with blas_thread_limit(1):
-        return [run_unit(key.alpha, key.mesh, grading=key.grading, D0_step=D0_step,
-                         D0_max=D0_max, formulation=key.formulation, solver=solver,
-                         progress=progress)]
-
-
-def _onsets_task(key: UnitKey, *, solver, classes, skip, units, bracket, progress=None,
-                 emit=None):
-    with blas_thread_limit(1):
-        return run_class_onsets(key.alpha, key.mesh, grading=key.grading,
-                                formulation=key.formulation, solver=solver, classes=classes,
-                                skip=skip, units=units, given=bracket, progress=progress,
-                                on_row=None if emit is None else (lambda r: emit([r])))
-
-
-def _layer_task(key: UnitKey, *, solver, units, progress=None):
-    with blas_thread_limit(1):
-        return [run_clamp_layer(key.alpha, key.mesh, grading=key.grading,
-                                formulation=key.formulation, solver=solver, units=units)]
-
-
-def _p33_task(key: UnitKey, *, D0_step, D0_max, solver, progress=None):
-
-    with blas_thread_limit(1):
-        return [run_p33_unit(key.alpha, key.mesh, grading=key.grading, D0_step=D0_step,
-                             D0_max=D0_max, solver=solver, progress=progress)]
-
-
-def _flagged_task(key: UnitKey, *, D0, solver, progress=None):
-    with blas_thread_limit(1):
-        return run_flagged_modes(key.alpha, key.mesh, D0, grading=key.grading, solver=solver)
-
-
-def _counts_task(key: UnitKey, *, D0, grad_div, pressure, solver, skip, checkpoint=None,
-                 budget=None, progress=None, emit=None):
-    with blas_thread_limit(1):
-        return run_edge_counts(key.alpha, key.mesh, D0, grading=key.grading,
-                               formulation=key.formulation, grad_div=grad_div,
-                               pressure=pressure, solver=solver, skip=skip, progress=progress,
-                               on_row=None if emit is None else (lambda r: emit([r])),
-                               checkpoint=checkpoint, budget=budget)
-
-
-def _section_task(key: UnitKey, *, D0, h0s, ks, grad_div, length, solver, done,
-                  progress=None, emit=None):
-    return run_edge_section(key.alpha, key.mesh, D0, h0s, ks, grading=key.grading,
-                            grad_div=grad_div, length=length, solver=solver, done=done,
-                            on_rows=emit, progress=progress)
+        out = runner(key, *args, **options)
+    return [out] if one_row else out
 
 
 # -- running the tasks ------------------------------------------------------------------
@@ -491,8 +458,9 @@ def _cmd_units(args) -> int:
         for el in meshes:
             key = UnitKey(a, el, opts["grading"], args.formulation)
             tasks.append((str(key), dict(zip(TABLES["units"].key, key.cells)),
-                          functools.partial(_units_task, key, D0_step=args.D0_step,
-                                            D0_max=args.D0_max, solver=opts["solver"])))
+                          functools.partial(_task, run_unit, key, one_row=True,
+                                            D0_step=args.D0_step, D0_max=args.D0_max,
+                                            solver=opts["solver"])))
 
     def mode(r):           # before the row: a unit in the table has its mode
         if "mode" in r:
@@ -531,8 +499,9 @@ def _cmd_onsets(args) -> int:
                 _say(f"{key}: kept")
                 continue
             tasks.append((str(key), None, functools.partial(
-                _onsets_task, key, solver=opts["solver"], classes=args.classes, skip=done,
-                units=_units_source(args), bracket=bracket)))
+                _task, run_class_onsets, key, stream="on_row", solver=opts["solver"],
+                classes=args.classes, skip=done,
+                units=_units_source(args), given=bracket)))
     return _run(args, "onsets", tasks, lambda r: None, incremental=True)
 
 
@@ -543,8 +512,8 @@ def _cmd_layer(args) -> int:
         raise ValueError("--mesh: the clamp layer needs n1 >= 2 (two element layers at the "
                          "clamp)")
     tasks = [(str(k), dict(zip(TABLES["layer"].key, k.cells)),
-              functools.partial(_layer_task, k, solver=opts["solver"],
-                                units=_units_source(args)))
+              functools.partial(_task, run_clamp_layer, k, one_row=True,
+                                solver=opts["solver"], units=_units_source(args)))
              for k in (UnitKey(a, el, opts["grading"], args.formulation)
                        for a in opts["alphas"] for el in meshes)]
 
@@ -560,8 +529,8 @@ def _cmd_p33(args) -> int:
     _ramp(args.D0_step, args.D0_max)
     meshes = _meshes(args, args.mesh)
     tasks = [(str(k), {"alpha": k.alpha, "mesh": k.mesh_text, "grading": k.grading},
-              functools.partial(_p33_task, k, D0_step=args.D0_step, D0_max=args.D0_max,
-                                solver=opts["solver"]))
+              functools.partial(_task, run_p33_unit, k, one_row=True, D0_step=args.D0_step,
+                                D0_max=args.D0_max, solver=opts["solver"]))
              for k in (UnitKey(a, el, opts["grading"]) for a in opts["alphas"]
                        for el in meshes)]
 
@@ -579,7 +548,7 @@ def _cmd_flagged(args) -> int:
     meshes = _meshes(args, args.mesh)
     tasks = [(f"{k} D0 = {D0:g}", {"alpha": k.alpha, "mesh": k.mesh_text,
                                    "grading": k.grading, "D0": D0},
-              functools.partial(_flagged_task, k, D0=D0, solver=opts["solver"]))
+              functools.partial(_task, run_flagged_modes, k, D0, solver=opts["solver"]))
              for k in (UnitKey(a, el, opts["grading"]) for a in opts["alphas"]
                        for el in meshes)]
 
@@ -616,8 +585,9 @@ def _cmd_counts(args) -> int:
                 continue
             state = states / f"{key.stem}_gd{grad_div:g}_{args.pressure}.npz"
             tasks.append((str(key), None, functools.partial(
-                _counts_task, key, D0=D0, grad_div=grad_div, pressure=args.pressure,
-                solver=opts["solver"], skip=done, checkpoint=state, budget=budget)))
+                _task, run_edge_counts, key, D0, stream="on_row", grad_div=grad_div,
+                pressure=args.pressure, solver=opts["solver"], skip=done, checkpoint=state,
+                budget=budget)))
     try:
         return _run(args, "counts", tasks, lambda r: None, incremental=True)
     except CountsPaused as exc:
@@ -640,8 +610,9 @@ def _cmd_section(args) -> int:
     path = _table_path(args, "section")
     done = {TABLES["section"].key_of(r) for r in read_table(path, TABLES["section"])}
     tasks = [(f"{UnitKey(a, el, opts['grading'])} D0 = {d:g}", None, functools.partial(
-        _section_task, UnitKey(a, el, opts["grading"]), D0=d, h0s=h0s, ks=ks,
-        grad_div=grad_div, length=length, solver=opts["solver"], done=done))
+        _task, run_edge_section, UnitKey(a, el, opts["grading"]), d, h0s, ks,
+        stream="on_rows", grad_div=grad_div, length=length, solver=opts["solver"],
+        done=done))
         for a in opts["alphas"] for d in D0]
     return _run(args, "section", tasks, lambda r: None, incremental=True)
 

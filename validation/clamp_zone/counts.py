@@ -51,7 +51,7 @@ from ..fe.model import BUCKLING_GRAD_DIV
 from ..store.files import read_npz, write_npz_atomic
 from .costs import Meter
 from ..data.registry import CLASS_COLUMNS, TABLES
-from ..data.key import mesh_text
+from ..data.key import UnitKey, mesh_text
 from .units import charge_path, unit_problem, unit_ramp
 
 __all__ = ["COLUMNS", "CLASS_COLUMNS", "CountsPaused", "run_edge_counts"]
@@ -101,16 +101,19 @@ def _column(name: str) -> str:
     return "".join(part.strip()[-1] for part in name.split(","))
 
 
-def run_edge_counts(alpha: float, elements, D0, *, grading: float = 1.0,
-                    formulation: str = "mixed", grad_div: float = BUCKLING_GRAD_DIV,
+def run_edge_counts(key: UnitKey, D0, *, grad_div: float = BUCKLING_GRAD_DIV,
                     pressure: str = "Q1", solver: str = "auto", skip=(), progress=None,
                     on_row=None, checkpoint=None, budget: float | None = None) -> list[dict]:
     """Count the negative modes of every class at each charge of ``D0``.
 
     Parameters
     ----------
-    alpha, elements, grading, formulation, grad_div, pressure
-        The plate (:func:`~validation.clamp_zone.units.unit_problem`).
+    key : UnitKey
+        The unit (:class:`~validation.data.key.UnitKey`): weight fraction, eighth-model
+        mesh, grading along ``x1`` and formulation.
+    grad_div, pressure
+        The plate's grad-div weight and pressure space
+        (:func:`~validation.clamp_zone.units.unit_problem`).
     D0
         The charges (positive); counted in increasing order along one ramp.
     solver
@@ -144,6 +147,7 @@ def run_edge_counts(alpha: float, elements, D0, *, grading: float = 1.0,
         The budget ran out before the last charge (its rows were given to ``on_row``).
     """
     meter = Meter()
+    alpha, elements, grading, formulation = key.alpha, key.mesh, key.grading, key.formulation
     D0 = sorted({float(d) for d in D0})
     for d in D0:
         if not (math.isfinite(d) and d > 0):

@@ -27,7 +27,7 @@ import numpy as np
 from skfem_dielectric.models.plate.scan import PlateScan
 
 from ..data.registry import TABLES
-from ..data.key import mesh_text
+from ..data.key import UnitKey, mesh_text
 from .units import ramp_to_charge, unit_problem
 from .local_theory import energy_centroid
 
@@ -37,14 +37,15 @@ __all__ = ["COLUMNS", "run_flagged_modes"]
 COLUMNS = TABLES["flagged"].columns
 
 
-def run_flagged_modes(alpha: float, elements, D0: float, *, grading: float = 1.0,
-                      solver: str = "auto") -> list[dict]:
+def run_flagged_modes(key: UnitKey, D0: float, *, solver: str = "auto") -> list[dict]:
     """The rows of one state: every negative mode of the whole plate at ``D0``.
 
     Parameters
     ----------
-    alpha, elements, grading
-        The plate of a clamp-zone unit (eighth model, mixed form, grad-div 10).
+    key : UnitKey
+        The unit (:class:`~validation.data.key.UnitKey`): weight fraction, eighth-model
+        mesh, grading along ``x1`` and formulation (eighth model, mixed form,
+        grad-div 10; the formulation is not used).
     D0
         The charge of the state (reached in steps of 0.5).
     solver
@@ -61,7 +62,7 @@ def run_flagged_modes(alpha: float, elements, D0: float, *, grading: float = 1.0
     ValueError
         The ramp stops before ``D0``.
     """
-    el = tuple(int(n) for n in elements)
+    alpha, grading, el = key.alpha, key.grading, key.mesh
     pb, s = unit_problem(alpha, el, grading=grading)
     x, load = ramp_to_charge(pb, s, D0, solver=solver,
                              name=f"alpha = {alpha:g} {mesh_text(el)}")

@@ -80,15 +80,15 @@ def volume_ratios(problem, x: np.ndarray, load) -> dict:
     return out
 
 
-def run_clamp_layer(alpha: float, elements, *, grading: float = 1.0,
-                    formulation: str = "mixed", solver: str = "auto", D0: float | None = None,
+def run_clamp_layer(key: UnitKey, *, solver: str = "auto", D0: float | None = None,
                     units=None) -> dict:
     """One unit: the charge ramp (steps of 0.5) to ``D0`` and the row of :data:`COLUMNS`.
 
     Parameters
     ----------
-    alpha, elements, grading, formulation
-        The plate of a clamp-zone unit (eighth model, grad-div 10).
+    key : UnitKey
+        The unit (:class:`~validation.data.key.UnitKey`): weight fraction, eighth-model
+        mesh, grading along ``x1`` and formulation (eighth model, grad-div 10).
     solver
         Linear solver of the ramp.
     D0
@@ -101,9 +101,10 @@ def run_clamp_layer(alpha: float, elements, *, grading: float = 1.0,
         ``D0`` is ``None`` and the unit has no located ``D0_b``; the ramp stops first.
     """
     meter = Meter()
+    alpha, elements, grading, formulation = key.alpha, key.mesh, key.grading, key.formulation
     el = tuple(int(n) for n in elements)
     if D0 is None:
-        unit = unit_row(UnitKey(alpha, el, grading, formulation), units)
+        unit = unit_row(key, units)
         if not unit["D0_b"]:
             raise ValueError(f"the clamp-zone unit alpha = {alpha:g} {mesh_text(el)} has no "
                              f"located D0_b")

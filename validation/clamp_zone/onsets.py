@@ -95,16 +95,16 @@ def bracket(row: dict) -> tuple[float, float]:
     return max(below), min(above)
 
 
-def run_class_onsets(alpha: float, elements, *, grading: float = 1.0,
-                     formulation: str = "mixed", solver: str = "auto", classes=None,
+def run_class_onsets(key: UnitKey, *, solver: str = "auto", classes=None,
                      skip=(), units=None, progress=None,
                      on_row=None, given=None) -> list[dict]:
     """One unit of the study: a row of :data:`COLUMNS` per located class.
 
     Parameters
     ----------
-    alpha, elements, grading, formulation
-        The clamp-zone unit (its row must be in ``units``).
+    key : UnitKey
+        The unit (:class:`~validation.data.key.UnitKey`): weight fraction, eighth-model
+        mesh, grading along ``x1`` and formulation (its row must be in ``units``).
     solver
         Linear solver of the ramp and the trial states.
     classes
@@ -136,10 +136,11 @@ def run_class_onsets(alpha: float, elements, *, grading: float = 1.0,
         ``classes`` without a physical negative mode at ``hi``.
     """
     meter = Meter()
+    alpha, elements, grading, formulation = key.alpha, key.mesh, key.grading, key.formulation
     say = progress or (lambda text: None)
     el = tuple(int(n) for n in elements)
     if given is None:
-        unit = unit_row(UnitKey(alpha, el, grading, formulation), units)
+        unit = unit_row(key, units)
         lo, hi = bracket(unit)
         at_lo = {d: (n, p) for d, n, p in scan_states(unit)}
         if at_lo.get(lo, (0, 1))[1] != 0:

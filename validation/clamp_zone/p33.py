@@ -42,7 +42,7 @@ from ..table import BREAKDOWN_TOL
 from .costs import Meter
 from ..data.registry import P33_SETS as SETS, TABLES
 from ..specs import LOCATION_TOL
-from ..data.key import mesh_text
+from ..data.key import UnitKey, mesh_text
 from .units import charge_path, unit_ramp
 
 __all__ = ["COLUMNS", "SETS", "run_p33_unit"]
@@ -51,18 +51,16 @@ __all__ = ["COLUMNS", "SETS", "run_p33_unit"]
 COLUMNS = TABLES["p33"].columns
 
 
-def run_p33_unit(alpha: float, elements, *, grading: float = 1.0, D0_step: float = 0.25,
-                 D0_max: float = 6.0, solver: str = "auto", progress=None) -> dict:
+def run_p33_unit(key: UnitKey, *, D0_step: float = 0.25, D0_max: float = 6.0,
+                 solver: str = "auto", progress=None) -> dict:
     """One unit: the row of :data:`COLUMNS` (module docstring).
 
     Parameters
     ----------
-    alpha
-        Weight fraction (``> 0``).
-    elements
-        ``(n1, n2, n3)`` of the eighth model.
-    grading
-        Last / first element length along ``x1`` (``< 1``: finer at the clamp).
+    key : UnitKey
+        The unit (:class:`~validation.data.key.UnitKey`): weight fraction, eighth-model
+        mesh, grading along ``x1`` and formulation (the formulation is not used: the
+        plain form's ``P33`` onsets).
     D0_step, D0_max
         The charge targets ``D0_step, 2 D0_step, ..., D0_max`` of the bracketing ramp.
     solver
@@ -77,6 +75,7 @@ def run_p33_unit(alpha: float, elements, *, grading: float = 1.0, D0_step: float
         converged state (``note`` says up to where).
     """
     meter = Meter()
+    alpha, elements, grading = key.alpha, key.mesh, key.grading
     el = tuple(int(n) for n in elements)
     pb = fe.gallery.keplinger_problem(elements=el, symmetry="eighth", grading=grading,
                                       options=fe.PlateOptions())

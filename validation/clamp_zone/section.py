@@ -46,7 +46,7 @@ from skfem_dielectric.models.edge_section import (EdgeSection, edge_section_grid
 from ..fe.model import BUCKLING_GRAD_DIV
 from .costs import peak_GB
 from ..data.registry import TABLES
-from ..data.key import mesh_text
+from ..data.key import UnitKey, mesh_text
 from .units import ramp_states, unit_problem
 
 __all__ = ["COLUMNS", "DEFAULT_K", "run_edge_section", "check_section_size", "MIN_H0",
@@ -77,16 +77,19 @@ def check_section_size(length: float, h0s, *, names=("length", "h0")) -> None:
                          f"fail in scikit-fem's facet-basis inverse map), got {min(h0s):g}")
 
 
-def run_edge_section(alpha: float, elements, D0: float, h0s, ks=DEFAULT_K, *,
-                     grading: float = 1.0, grad_div: float = BUCKLING_GRAD_DIV,
+def run_edge_section(key: UnitKey, D0: float, h0s, ks=DEFAULT_K, *,
+                     grad_div: float = BUCKLING_GRAD_DIV,
                      length: float = 5.0, solver: str = "auto", done=frozenset(),
                      on_rows=None, progress=None) -> list[dict]:
     """The rows of :data:`COLUMNS` for one 3D state and every ``h0`` x ``k``.
 
     Parameters
     ----------
-    alpha, elements, grading, grad_div
-        The plate (:func:`~validation.clamp_zone.units.unit_problem`).
+    key : UnitKey
+        The unit (:class:`~validation.data.key.UnitKey`): weight fraction, eighth-model
+        mesh, grading along ``x1`` and formulation (the formulation is not used).
+    grad_div
+        The plate's grad-div weight (:func:`~validation.clamp_zone.units.unit_problem`).
     D0
         The charge of the state (positive).
     h0s, ks
@@ -107,6 +110,7 @@ def run_edge_section(alpha: float, elements, D0: float, h0s, ks=DEFAULT_K, *,
         A non-positive ``D0``, ``h0``, ``k`` or ``length``; the ramp stopping before
         ``D0``; the section's base state not converging.
     """
+    alpha, elements, grading = key.alpha, key.mesh, key.grading
     for name, vals in (("D0", [D0]), ("h0", h0s), ("k", ks), ("length", [length])):
         for v in vals:
             if not (math.isfinite(float(v)) and float(v) > 0):

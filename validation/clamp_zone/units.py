@@ -154,26 +154,21 @@ def clamp_centre_J(pb, x, load) -> tuple[float, float]:
     return float(min(Js)), float(max(Js))
 
 
-def run_unit(alpha: float, elements, *, grading: float = 1.0, D0_step: float = 0.5,
-             D0_max: float = 6.0, formulation: str = "mixed", solver: str = "auto",
-             progress=None, modes_dir: Path | None = None) -> dict:
+def run_unit(key: UnitKey, *, D0_step: float = 0.5, D0_max: float = 6.0,
+             solver: str = "auto", progress=None, modes_dir: Path | None = None) -> dict:
     """One unit of the study: the row of :data:`COLUMNS` (module docstring).
 
     Parameters
     ----------
-    alpha
-        Weight fraction (``> 0``).
-    elements
-        ``(n1, n2, n3)`` of the eighth model.
-    grading
-        Last / first element length along ``x1`` (``< 1``: finer at the clamp).
+    key : UnitKey
+        The unit: weight fraction, eighth-model mesh ``(n1, n2, n3)``, grading along
+        ``x1`` (last / first element length, ``< 1``: finer at the clamp) and formulation
+        (:class:`~validation.data.key.UnitKey`).
     D0_step, D0_max
         The charge targets ``D0_step, 2 D0_step, ..., D0_max``; the ramp stops at the
         first scanned state with a negative physical mode.  Where several physical modes
         crossed in one step, or the location cannot follow the crossing, that step is
         scanned again in four (at most twice: steps down to ``D0_step / 16``).
-    formulation
-        How ``J = 1`` is imposed (:class:`~skfem_dielectric.gallery.plates.PlateOptions`).
     solver
         Linear solver of the ramps and trial states.
     progress
@@ -191,7 +186,7 @@ def run_unit(alpha: float, elements, *, grading: float = 1.0, D0_step: float = 0
         holds the mode's arrays (``X1``, ``X3``, ``u2``, ``D0_b``) for :func:`write_mode`.
     """
     meter = Meter()
-    el = tuple(int(n) for n in elements)
+    alpha, el, grading, formulation = key.alpha, key.mesh, key.grading, key.formulation
     pb, s = unit_problem(alpha, el, grading=grading, formulation=formulation)
     track = {"prev": None, "before": None, "row": None, "cur": None, "states": 0,
              "counts": []}
@@ -270,7 +265,7 @@ def run_unit(alpha: float, elements, *, grading: float = 1.0, D0_step: float = 0
         X1, X3, u2 = top_deflection(pb, lab.mode, lab.increments)
         row["mode"] = {"X1": X1, "X3": X3, "u2": u2, "D0_b": float(bl.D0_b)}
         if modes_dir is not None:
-            write_mode(modes_dir, UnitKey(alpha, el, grading, formulation), row["mode"])
+            write_mode(modes_dir, key, row["mode"])
     else:
         row.update(D0_b=math.nan, n_flagged_b=(track["row"].n_negative - track["row"].n_physical
                                                 if track["row"] is not None else ""),
