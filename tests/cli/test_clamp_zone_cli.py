@@ -417,3 +417,35 @@ def test_each_mode_file_carries_its_unit_s_key(tmp_path):
         read_clamp_modes(tmp_path / "modes")
     assert _exit(["clamp-zone", "modes", "--from", str(tmp_path),
                   "--out", str(tmp_path / "fig")]) == 3
+
+
+def test_an_inverted_section_row_is_computed_again_and_kept_aside(tmp_path, capsys):
+    """A ``section`` row whose base state was inverted (``J_min <= 0``, accepted by an
+    earlier solver without the ``J > 0`` guard) is computed again by a run of its state:
+    the new row replaces it, the old one goes to the side file with the reason, and an
+    inverted row of a state the run does not compute is left as it is."""
+    from validation.data.spec import read_table
+
+    argv = ["clamp-zone", "section", "--alpha", "1", "--mesh", "4x1x2", "--grading", "0.5",
+            "--D0", "1", "--h0", "0.1", "--k", "1", "--solver", "superlu", "--out",
+            str(tmp_path)]
+    assert main(argv) == 0
+    path = tmp_path / TABLES["section"].file
+    (good,) = read_table(path, TABLES["section"])
+    assert float(good["J_min"]) > 0
+    other = {**good, "D0": "2", "J_min": "-0.3"}
+    bad = {**good, "J_min": "-0.47", "n_negative": "-2"}
+    cols = TABLES["section"].columns
+    text = path.read_text().splitlines()
+    body = [",".join(str(r[c]) for c in cols) for r in (bad, other)]
+    path.write_text("\n".join(text[:-1] + body) + "\n")       # the good row swapped out
+    capsys.readouterr()
+    assert main(argv) == 0
+    out = capsys.readouterr().out
+    assert "has an inverted base state (J_min = -0.47); computed again" in out
+    rows = read_table(path, TABLES["section"])
+    assert sorted((r["D0"], float(r["J_min"]) > 0) for r in rows) == [("1", True),
+                                                                       ("2", False)]
+    assert [r["n_negative"] for r in rows if r["D0"] == "1"] == [good["n_negative"]]
+    aside = path.with_name(path.name + ".damaged").read_text()
+    assert "computed again with other settings" in aside and ",-0.47," in aside

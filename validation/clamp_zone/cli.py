@@ -325,16 +325,24 @@ def _command(argv) -> str:
 
 
 def _run(args, name: str, tasks, show, *, incremental: bool = False, files=None,
-         stale=None) -> int:
+         stale=None, superseded=None) -> int:
     """Run ``tasks`` (``[(label, row_key, callable)]``) not yet in the table ``name``,
     writing each task's rows (with the run's command) as soon as they exist; ``files(row)``
     writes a row's own files first (a row in the table has them).  ``stale(row)``: why a
     row of the table does not hold for this run's settings (``""``: it holds); such a
-    row's task runs again, and its new row replaces it (the old one kept aside)."""
+    row's task runs again, and its new row replaces it (the old one kept aside).
+    ``superseded(row)``: the same for the rows of tasks without a ``row_key`` (which skip
+    the rows they find themselves): a new row with the key of such a row replaces it."""
     path = _table_path(args, name)
     command = _command(getattr(args, "argv", None))
     with TableWriter(path, TABLES[name], note=_say) as table:
         todo, replace = [], []
+        for r in table.rows if superseded is not None else ():
+            why = superseded(r)
+            if why:
+                _say(f"{TABLES[name].key_of(r)}: its row in {path.name} {why}; computed "
+                     f"again (the old row kept in {aside_path(path).name})")
+                replace.append(r)
         for label, row_key, task in tasks:
             have = table.find(row_key) if row_key is not None else []
             why = next((w for w in map(stale, have) if w), "") if stale and have else ""
@@ -608,13 +616,37 @@ def _cmd_section(args) -> int:
         raise ValueError(f"--h0 must be below --length {length:g}, got {max(h0s):g}")
     ks = DEFAULT_K if args.k is None else _charges("--k", args.k)
     path = _table_path(args, "section")
-    done = {TABLES["section"].key_of(r) for r in read_table(path, TABLES["section"])}
+    done = {TABLES["section"].key_of(r) for r in read_table(path, TABLES["section"])
+            if not _section_inverted(r)}
     tasks = [(f"{UnitKey(a, el, opts['grading'])} D0 = {d:g}", None, functools.partial(
         _task, run_edge_section, UnitKey(a, el, opts["grading"]), d, h0s, ks,
         stream="on_rows", grad_div=grad_div, length=length, solver=opts["solver"],
         done=done))
         for a in opts["alphas"] for d in D0]
-    return _run(args, "section", tasks, lambda r: None, incremental=True)
+    ours = {(UnitKey(a, el, opts["grading"]), float(f"{d:.6g}"), float(f"{h:.6g}"))
+            for a in opts["alphas"] for d in D0 for h in h0s}
+
+    def superseded(row: dict) -> str:      # an inverted row of a state this run computes
+        try:
+            mine = ((UnitKey.from_row(row), float(row["D0"]), float(row["h0"])) in ours
+                    and float(row["grad_div"]) == grad_div
+                    and float(row["length"]) == length)
+        except (KeyError, ValueError):
+            return ""
+        return _section_inverted(row) if mine else ""
+
+    return _run(args, "section", tasks, lambda r: None, incremental=True,
+                superseded=superseded)
+
+
+def _section_inverted(row: dict) -> str:
+    """Why a ``section`` row does not hold: its base state was inverted somewhere
+    (``J_min <= 0``: a state the section's solver now refuses); ``""`` if it holds."""
+    try:
+        j = float(row["J_min"])
+    except (KeyError, TypeError, ValueError):
+        return ""
+    return f"has an inverted base state (J_min = {j:g})" if j <= 0 else ""
 
 
 def _damaged_rows(source) -> None:
