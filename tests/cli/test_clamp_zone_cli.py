@@ -442,6 +442,7 @@ def test_an_inverted_section_row_is_computed_again_and_kept_aside(tmp_path, caps
     capsys.readouterr()
     assert main(argv) == 0
     out = capsys.readouterr().out
+    assert "1 row(s) in edge_section.csv (1, 4x1x2, 0.5, " in out
     assert "has an inverted base state (J_min = -0.47); computed again" in out
     rows = read_table(path, TABLES["section"])
     assert sorted((r["D0"], float(r["J_min"]) > 0) for r in rows) == [("1", True),

@@ -337,12 +337,16 @@ def _run(args, name: str, tasks, show, *, incremental: bool = False, files=None,
     command = _command(getattr(args, "argv", None))
     with TableWriter(path, TABLES[name], note=_say) as table:
         todo, replace = [], []
+        said = {}
         for r in table.rows if superseded is not None else ():
             why = superseded(r)
             if why:
-                _say(f"{TABLES[name].key_of(r)}: its row in {path.name} {why}; computed "
-                     f"again (the old row kept in {aside_path(path).name})")
                 replace.append(r)
+                said.setdefault(why, []).append(TABLES[name].key_of(r))
+        for why, keys in said.items():        # one line per reason, not per row
+            _say(f"{len(keys)} row(s) in {path.name} ({', '.join(map(str, keys[0]))}"
+                 f"{' ...' if len(keys) > 1 else ''}) {why}; computed again (the old rows "
+                 f"kept in {aside_path(path).name})")
         for label, row_key, task in tasks:
             have = table.find(row_key) if row_key is not None else []
             why = next((w for w in map(stale, have) if w), "") if stale and have else ""
