@@ -77,3 +77,27 @@ def fake_wrinkling():
     """``fake_wrinkling(monkeypatch, calls=None)``: cheap stand-ins of the wrinkling-fe FE
     rows (:func:`_fake_wrinkling`)."""
     return _fake_wrinkling
+
+
+def _buckling_figure_rows() -> tuple[dict, list, list]:
+    """``(row, scan, plain)`` of buckling.png for alpha = 1 on 10 x 1 x 5: D0_b = 2.9147, the
+    lowest physical eigenvalue scanned at D0 = 2, 2.5 and 3 (through zero between the last
+    two), the grad-div form's interior P33 onset 0.645 and the plain form's 2.52."""
+    import validation.studies.buckling as bk
+
+    nan = float("nan")
+    row = {c: nan for c in bk.COLUMNS} | {"alpha": 1.0, "mesh": "10x1x5", "D0_b": 2.9147,
+                                          "class": "x1 S", "P33_onset_interior": 0.645}
+    scan = [{c: nan for c in bk.SCAN_COLUMNS} | {"alpha": 1.0, "mesh": "10x1x5", "D0": d,
+                                                 "physical": v, **{f"P33_{k}": -0.02 * d
+                                                                   for k in bk.P33_SETS}}
+            for d, v in ((2.0, nan), (2.5, 0.05), (3.0, -0.02))]
+    plain = [{c: nan for c in bk.PLAIN_COLUMNS} | {"alpha": 1.0, "mesh": "10x1x5",
+                                                   "P33_onset_interior": 2.52}]
+    return row, scan, plain
+
+
+@pytest.fixture
+def buckling_figure_rows():
+    """The rows buckling.png is drawn from in the tests (:func:`_buckling_figure_rows`)."""
+    return _buckling_figure_rows()

@@ -277,7 +277,8 @@ def test_validate_and_buckling_quick_report_the_same_D0_b(tmp_path):
     assert "\n".join(meaning_lines()) in report     # the three meanings and the located order
 
 
-def test_the_study_figure_passes_through_zero_at_D0_b_and_names_the_forms(tmp_path):
+def test_the_study_figure_passes_through_zero_at_D0_b_and_names_the_forms(tmp_path,
+                                                                          buckling_figure_rows):
     """buckling.png: the eigenvalue panel joins the scanned states and the location's trial
     states in D0 order, so its line crosses zero at the row's D0_b (the trials' closed
     form: eigenvalue = 0 at 2.9147), not where the straight line between the two scanned
@@ -290,19 +291,11 @@ def test_the_study_figure_passes_through_zero_at_D0_b_and_names_the_forms(tmp_pa
 
     import validation.studies.buckling as bk
 
-    nan = float("nan")
-    row = {c: nan for c in bk.COLUMNS} | {"alpha": 1.0, "mesh": "10x1x5", "D0_b": 2.9147,
-                                          "class": "x1 S", "P33_onset_interior": 0.645}
-    scan = [{c: nan for c in bk.SCAN_COLUMNS} | {"alpha": 1.0, "mesh": "10x1x5", "D0": d,
-                                                 "physical": v, **{f"P33_{k}": -0.02 * d
-                                                                   for k in bk.P33_SETS}}
-            for d, v in ((2.0, nan), (2.5, 0.05), (3.0, -0.02))]
+    row, scan, plain = buckling_figure_rows
     trials = [{"alpha": 1.0, "mesh": "10x1x5", "D0": d, "eigenvalue": v,
                "physical_class": "x1 S"}
               for d, v in ((2.5, 0.05), (3.0, -0.02), (2.93, -0.003), (2.91, 0.0008),
                            (2.9147, 0.0))]
-    plain = [{c: nan for c in bk.PLAIN_COLUMNS} | {"alpha": 1.0, "mesh": "10x1x5",
-                                                   "P33_onset_interior": 2.52}]
     shown = {}
     real_save = bk.save_figure
 

@@ -510,15 +510,9 @@ def _study_figure_axes(tmp_path):
     import validation.studies.buckling as bk
     import validation.studies.postbuckling as pb
 
-    nan = float("nan")
-    row = {c: nan for c in bk.COLUMNS} | {"alpha": 1.0, "mesh": "10x1x5", "D0_b": 2.9147,
-                                          "class": "x1 S", "P33_onset_interior": 0.645}
-    scan = [{c: nan for c in bk.SCAN_COLUMNS} | {"alpha": 1.0, "mesh": "10x1x5", "D0": d,
-                                                 "physical": v, **{f"P33_{k}": -0.02 * d
-                                                                   for k in bk.P33_SETS}}
-            for d, v in ((2.0, nan), (2.5, 0.05), (3.0, -0.02))]
-    plain = [{c: nan for c in bk.PLAIN_COLUMNS} | {"alpha": 1.0, "mesh": "10x1x5",
-                                                   "P33_onset_interior": 2.52}]
+    from conftest import _buckling_figure_rows
+
+    row, scan, plain = _buckling_figure_rows()
     summary = [{"alpha": 1.0, "model": m, "mesh": "10x1x5", "ndofs": n, "D0_b": 2.9}
                for m, n in (("3D", 900), ("membrane", 100))]
     rows = [{"alpha": 1.0, "mesh": "10x1x5", "model": m, "branch": b, "D0": d,
