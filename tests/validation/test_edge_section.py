@@ -293,3 +293,28 @@ def test_the_section_base_guards_every_step_against_inversion():
 
     with pytest.raises(ValueError, match="first guess is not admissible: inverted"):
         solve_section_base(g1, g2, MAT, fields, D0, guess=inverted, grad_div=10.0)
+
+
+def test_the_alpha_1_5_section_sentence_is_the_table_s():
+    """docs/clamp-zone.md's alpha = 1.5 sentence from the shipped rows: no row with an
+    inverted base state, ``J`` between the rows' least ``J_min`` and largest ``J_max`` (to
+    the two printed digits), the range of the row sets' least ``J``, and the first
+    ``k`` with a negative mode 9.267 on every mesh and state."""
+    from pathlib import Path
+
+    from validation.data.registry import load
+
+    rows = [r for r in load("section") if r["alpha"] == "1.5"]
+    assert rows and min(float(r["J_min"]) for r in rows) > 0
+    text = (Path(__file__).resolve().parents[2] / "docs" / "clamp-zone.md").read_text()
+    lo, hi = min(float(r["J_min"]) for r in rows), max(float(r["J_max"]) for r in rows)
+    assert f"`J` between {lo:.2f} and {hi:.2f}" in text
+    top = max(float(r["J_min"]) for r in rows)      # the least J of the most regular set
+    assert f"of {lo:.2f}-{top:.2f} at the edge" in text
+    first = {}
+    for r in rows:
+        if int(r["n_negative"]) > 0:
+            key = (r["D0"], r["h0"])
+            first[key] = min(first.get(key, float("inf")), float(r["k"]))
+    assert len(first) == 9 and set(first.values()) == {9.267}
+    assert "the band starts at 9.267/mm on every mesh and\n  state" in text
