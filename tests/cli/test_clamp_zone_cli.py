@@ -76,7 +76,7 @@ def test_a_second_writer_is_refused_naming_the_holder(tmp_path, capsys):
         [sys.executable, "-c", textwrap.dedent(f"""
             import sys, time
             from validation.data.registry import TABLES
-            from validation.clamp_zone.table import TableWriter
+            from validation.store import TableWriter
             with TableWriter({str(out / 'clamp_units.csv')!r}, TABLES["units"]):
                 print("held", flush=True)
                 time.sleep(60)

@@ -19,7 +19,7 @@ from hypothesis.stateful import (RuleBasedStateMachine, initialize, invariant,  
                                  rule)
 
 from validation.data.spec import TableSpec, read_table  # noqa: E402
-from validation.clamp_zone.table import TableWriter  # noqa: E402
+from validation.store import TableWriter  # noqa: E402
 from validation.store import RowFile, StudyStore, read_rows  # noqa: E402
 
 SPEC = TableSpec("demo", "demo.csv", ("alpha", "mesh", "D0_b", "note"), ("alpha", "mesh"),

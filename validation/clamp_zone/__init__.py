@@ -7,7 +7,7 @@ tables are listed in :data:`validation.data.registry.TABLES` and read by :func:`
 says what a unit is and how to run one on a laptop or a dask cluster.
 
 * :mod:`validation.data.key` -- :class:`~validation.data.key.UnitKey`, what names a unit;
-* :mod:`validation.data.spec`, :mod:`validation.clamp_zone.table` -- a table's columns and
+* :mod:`validation.data.spec`, :mod:`validation.store.tables` -- a table's columns and
   reading it back; writing it under its lock;
 * :mod:`validation.data.registry` -- the tables by name, :func:`~validation.data.registry.load`, the convergence rule of a load;
 * :mod:`validation.clamp_zone.units`, :mod:`validation.clamp_zone.onsets`, :mod:`validation.clamp_zone.p33`, :mod:`validation.clamp_zone.layer`, :mod:`validation.clamp_zone.flagged`,

@@ -27,7 +27,7 @@ from ..cluster import check_scheduler, dask_executor
 from ..fe.model import BUCKLING_GRAD_DIV
 from ..figures.common import save_figure
 from ..options import out_dir, positive, solver_name
-from ..store import aside_path
+from ..store import TableWriter, aside_path
 from .band import band_table, edge_band_figure
 from .costs import estimated_GB, physical_GB
 from .counts import CountsPaused, run_edge_counts
@@ -43,7 +43,6 @@ from .p33 import run_p33_unit
 from .scaling import scaling_tables
 from .section import DEFAULT_K, check_section_size, run_edge_section
 from ..data.spec import read_table
-from .table import TableWriter
 from .tables import breakdown_table, clamp_study_tables
 from .units import run_unit, write_mode
 

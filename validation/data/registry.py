@@ -38,7 +38,7 @@ CLASS_COLUMNS = tuple(a + b + c for a in "SA" for b in "SA" for c in "SA")
 _UNIT = ("alpha", "mesh", "grading", "formulation")
 _MODEL = "eighth model, neo-Hookean, g = 9.81"
 
-#: the study's tables by name (:class:`~validation.clamp_zone.table.TableSpec`)
+#: the study's tables by name (:class:`~validation.data.spec.TableSpec`)
 TABLES = {t.name: t for t in (
     TableSpec("units", "clamp_units.csv",
               _UNIT + ("dofs", "D0_step", "D0_b", "class", "corner_share", "mesh_scale",
@@ -138,7 +138,7 @@ def load(name: str, where=None, *, note=None) -> list[dict]:
         The table's file, or a folder that holds it (a run's ``--out``); default: the
         shipped table.  A missing file has no rows.
     note : callable, optional
-        ``note(message)`` for each damaged row left out (:func:`~validation.clamp_zone.table.read_table`).
+        ``note(message)`` for each damaged row left out (:func:`~validation.data.spec.read_table`).
 
     Raises
     ------

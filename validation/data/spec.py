@@ -1,5 +1,5 @@
 """What a table of the clamp-zone study holds (:class:`TableSpec`) and reading one back
-with its damaged rows named (:func:`read_table`); :mod:`validation.clamp_zone.table` writes one under its lock.
+with its damaged rows named (:func:`read_table`); :mod:`validation.store.tables` writes one under its lock.
 
 A table is a CSV whose first line declares which of the study's tables it is
 (``# clamp-zone table: <name>``), then ``#`` lines saying what it holds, the header and
@@ -105,7 +105,7 @@ def read_table(path, spec: TableSpec, *, note=None, on_damaged=None) -> list[dic
         and the line.
     on_damaged : callable, optional
         ``on_damaged(line number, text, why)`` for each row left out, instead of ``note``
-        (the writer keeps them aside: :class:`~validation.clamp_zone.table.TableWriter`).
+        (the writer keeps them aside: :class:`~validation.store.tables.TableWriter`).
 
     Raises
     ------

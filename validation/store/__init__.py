@@ -9,13 +9,16 @@ interruptions, for every command that writes into ``--out``.
 * :mod:`.rows` -- the files of the studies: :class:`StudyStore` (settings checked, resumed
   unit by unit, each file rewritten atomically, the table last), :func:`read_rows`,
   and :func:`command_lock`, the lock of a command that writes a
-  folder.
+  folder;
+* :mod:`.tables` -- :class:`TableWriter`, a measured table of
+  :data:`validation.data.registry.TABLES` held under its lock and written row by row.
 """
 
 from .case_files import (CaseFiles, append_csv_rows, case_manifest, resume_plan, spec_sig,
                          state_path)
 from .rows import (DamagedFileError, RowFile, StudyStore, TEXT_COLUMNS,
                    command_lock, read_rows)
+from .tables import TableWriter
 from .files import (STATE_VERSION, FolderLock, LockedError, RowDigest, aside_path,
                     csv_line, dumps, keep_aside, load_state, read_npz, regular_file,
                     save_state,
@@ -27,5 +30,5 @@ __all__ = [
     "RowDigest", "save_state", "load_state", "dumps", "STATE_VERSION",
     "CaseFiles", "append_csv_rows", "case_manifest", "resume_plan", "spec_sig", "state_path",
     "command_lock", "read_rows", "DamagedFileError", "RowFile", "StudyStore",
-    "TEXT_COLUMNS",
+    "TEXT_COLUMNS", "TableWriter",
 ]

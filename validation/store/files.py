@@ -133,11 +133,18 @@ def _replace(tmp: Path, path: Path, fh) -> None:
 def write_text_atomic(path, text: str) -> Path:
     """Write ``text`` to ``path`` atomically (temporary file, ``fsync``, ``os.replace``);
     line ends are written as given (no newline translation)."""
+    return _write_atomic(path, lambda fh: fh.write(text), "w")
+
+
+def _write_atomic(path, write, mode: str) -> Path:
+    """``write(fh)`` into a temporary file opened with ``mode`` next to ``path``, then
+    ``fsync`` and ``os.replace``; an error names ``path`` (a full disk names no file),
+    and the temporary file never stays."""
     path = Path(path)
     tmp = _tmp_path(path)
     try:
-        fh = open(tmp, "w", newline="")
-        fh.write(text)
+        fh = open(tmp, mode, **({"newline": ""} if "b" not in mode else {}))
+        write(fh)
         _replace(tmp, path, fh)
     except OSError as exc:
         if exc.filename is None:          # a full disk names no file: name the one written
@@ -247,20 +254,7 @@ def write_csv_atomic(path, header: list[str], rows) -> Path:
 def write_npz_atomic(path, **arrays) -> Path:
     """Write ``arrays`` as an ``.npz`` file atomically (temporary file, ``fsync``,
     ``os.replace``): a killed write leaves no half file; an error names ``path``."""
-    path = Path(path)
-    tmp = _tmp_path(path)
-    try:
-        fh = open(tmp, "wb")
-        np.savez(fh, **arrays)
-        _replace(tmp, path, fh)
-    except OSError as exc:
-        if exc.filename is None:          # a full disk names no file: name the one written
-            raise OSError(exc.errno, exc.strerror or str(exc), str(path)) from exc
-        raise
-    finally:
-        if tmp.exists():
-            tmp.unlink()
-    return path
+    return _write_atomic(path, lambda fh: np.savez(fh, **arrays), "wb")
 
 
 def csv_line(row) -> str:

@@ -57,6 +57,35 @@ def command_lock(out, name: str, what: str) -> FolderLock:
     return FolderLock(state_root / f"{name}.lock", what)
 
 
+class LockedWriter:
+    """What every writer of a folder's rows does on entering and leaving: take its
+    :func:`command_lock` (``_lock_args()``: the folder, the lock's name and what it
+    protects), then open its files (``_open()``), releasing the lock if that fails; the
+    lock is released on leaving.  :class:`StudyStore` and
+    :class:`~.tables.TableWriter` are the two."""
+
+    _lock = None
+
+    def _lock_args(self) -> tuple:
+        raise NotImplementedError
+
+    def _open(self) -> None:
+        raise NotImplementedError
+
+    def __enter__(self):
+        self._lock = command_lock(*self._lock_args())
+        self._lock.__enter__()
+        try:
+            self._open()
+        except BaseException:
+            self._lock.__exit__(None, None, None)
+            raise
+        return self
+
+    def __exit__(self, *exc) -> None:
+        self._lock.__exit__(*exc)
+
+
 class DamagedFileError(OSError):
     """A complete row of a study CSV that cannot be read back (exit code 3 of the CLI):
     ``filename`` is the file, the message names the row (its line number) and why."""
@@ -153,7 +182,7 @@ class RowFile:
         return tuple(row[self.columns.index(c)] for c in self.key)
 
 
-class StudyStore:
+class StudyStore(LockedWriter):
     """The files of one study in ``out``, held under its lock: resumed unit by unit.
 
     A unit of work (one alpha x mesh) ends with one row of the ``table`` and any number
@@ -229,18 +258,8 @@ class StudyStore:
         self._lock = None
 
     # -- opening ---------------------------------------------------------------------
-    def __enter__(self) -> "StudyStore":
-        self._lock = command_lock(self.out, self.name, f"the {self.name} study in {self.out}")
-        self._lock.__enter__()
-        try:
-            self._open()
-        except BaseException:
-            self._lock.__exit__(None, None, None)
-            raise
-        return self
-
-    def __exit__(self, *exc) -> None:
-        self._lock.__exit__(*exc)
+    def _lock_args(self) -> tuple:
+        return self.out, self.name, f"the {self.name} study in {self.out}"
 
     def _files(self):
         return (self.table,) + self.details

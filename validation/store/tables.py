@@ -1,7 +1,7 @@
-"""Writing a table of the clamp-zone study under its lock (:class:`TableWriter`): a second
-writer is refused and named, damaged rows are left out and recomputed, every write is
-atomic (temporary file, ``fsync``, ``os.replace``).  What a table holds and how it is read
-back: :mod:`validation.data.spec`.
+"""Writing a measured table under its lock (:class:`TableWriter`): a second writer is
+refused and named, damaged rows are kept aside and recomputed, every write is atomic
+(temporary file, ``fsync``, ``os.replace``).  What a table holds and how it is read back:
+:mod:`validation.data.spec`; the tables: :data:`validation.data.registry.TABLES`.
 """
 
 from __future__ import annotations
@@ -13,9 +13,9 @@ from pathlib import Path
 
 import numpy as np
 
-from ..store import (aside_path, command_lock, csv_line, keep_aside, regular_file,
-                     write_text_atomic)
 from ..data.spec import TableSpec, read_table
+from .files import aside_path, csv_line, keep_aside, regular_file, write_text_atomic
+from .rows import LockedWriter
 
 __all__ = ["TableWriter"]
 
@@ -30,7 +30,7 @@ def _cell(v) -> str:
 
 
 
-class TableWriter:
+class TableWriter(LockedWriter):
     """A table held for writing: its lock taken, its rows read back.
 
     Parameters
@@ -73,23 +73,16 @@ class TableWriter:
         self.rows: list[dict] = []
         self.damaged: list[tuple] = []
 
-    def __enter__(self) -> "TableWriter":
-        self._lock = command_lock(self.path.parent, self.path.name,
-                                  f"the clamp-zone {self.spec.name} table {self.path}")
-        self._lock.__enter__()
-        try:
-            for tmp in self.path.parent.glob(f".{self.path.name}.*.tmp"):   # a killed write
-                tmp.unlink()
-            regular_file(self.path, f"the clamp-zone {self.spec.name} table")
-            self.damaged = []
-            self.rows = read_table(self.path, self.spec, on_damaged=self._damaged)
-        except BaseException:
-            self._lock.__exit__(None, None, None)
-            raise
-        return self
+    def _lock_args(self) -> tuple:
+        return (self.path.parent, self.path.name,
+                f"the clamp-zone {self.spec.name} table {self.path}")
 
-    def __exit__(self, *exc) -> None:
-        self._lock.__exit__(*exc)
+    def _open(self) -> None:
+        for tmp in self.path.parent.glob(f".{self.path.name}.*.tmp"):     # a killed write
+            tmp.unlink()
+        regular_file(self.path, f"the clamp-zone {self.spec.name} table")
+        self.damaged = []
+        self.rows = read_table(self.path, self.spec, on_damaged=self._damaged)
 
     def _damaged(self, line: int, text: str, why: str) -> None:
         """A row :func:`read_table` leaves out: named now, kept aside at the next write."""
