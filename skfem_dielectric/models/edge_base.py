@@ -37,17 +37,36 @@ from typing import Callable
 
 import numpy as np
 import scipy.sparse as sp
-from skfem import Basis, ElementQuad1, ElementQuad2, FacetBasis, LinearForm, MeshQuad
+from skfem import Basis, ElementQuad0, ElementQuad1, ElementQuad2, FacetBasis, LinearForm, MeshQuad
 
 from ..kinematics import segment_det_limit
 from ..materials import ideal_dielectric_response
 from ..problem import Layout, Problem
 
-__all__ = ["SectionBase", "SectionBaseProblem", "pointwise_tangent"]
+__all__ = ["SectionBase", "SectionBaseProblem", "pointwise_tangent", "PRESSURES",
+           "pressure_element"]
 
 #: in-plane entries of ``F`` (row-major ``3 i + J``), of ``Grad phi``, and ``p`` in the
 #: 13 unknowns ``(F, Grad phi, p)`` of the pointwise tangent
 _IN_PLANE = (0, 1, 3, 4, 9, 10, 12)
+
+
+#: the section's pressure spaces: ``"Q1"`` continuous bilinear (Taylor-Hood with the Q2
+#: displacement), ``"P0"`` one constant per element (Q2-P0)
+PRESSURES = ("Q1", "P0")
+
+
+def pressure_element(pressure: str):
+    """The scikit-fem element of the pressure space ``pressure`` (:data:`PRESSURES`).
+
+    Raises
+    ------
+    ValueError
+        An unknown ``pressure``.
+    """
+    if pressure not in PRESSURES:
+        raise ValueError(f"pressure must be one of {', '.join(PRESSURES)}, got {pressure!r}")
+    return ElementQuad1() if pressure == "Q1" else ElementQuad0()
 
 
 def _tensor_cells(mesh, X1, X2) -> np.ndarray:
@@ -185,13 +204,16 @@ class SectionBaseProblem(Problem):
         section (default ``fields``).
     grad_div
         The plate's grad-div weight, in units of ``mu``.
+    pressure
+        The pressure space, ``"Q1"`` (continuous, Taylor-Hood) or ``"P0"`` (one constant
+        per element), :data:`PRESSURES`.
     """
 
     def __init__(self, g1, g2, material, fields: Callable, D0: float, *,
-                 guess: Callable | None = None, grad_div: float = 0.0):
+                 guess: Callable | None = None, grad_div: float = 0.0, pressure: str = "Q1"):
         mesh = MeshQuad.init_tensor(np.asarray(g1, float), np.asarray(g2, float))
         b2 = Basis(mesh, ElementQuad2(), intorder=4)
-        b1 = Basis(mesh, ElementQuad1(), intorder=4)
+        b1 = Basis(mesh, pressure_element(pressure), intorder=4)
         n2, n1 = b2.N, b1.N
         ndofs = 3 * n2 + n1
         Xq = b2.mapping.F(b2.X)
@@ -227,18 +249,19 @@ class SectionBaseProblem(Problem):
             face[2 * n2:3 * n2] += sign * sigma * LinearForm(lambda v, w: v).assemble(fb)
 
         dN = np.moveaxis(np.stack([np.asarray(f[0].grad) for f in b2.basis], axis=-1), 0, 2)
-        M = np.stack([np.asarray(f[0]) for f in b1.basis], axis=-1)                   # (e,q,4)
-        B = np.zeros((ne, nq, 7, 31))             # rows: _IN_PLANE; columns: u1, u2, phi, p
+        M = np.stack([np.asarray(f[0]) for f in b1.basis], axis=-1)                 # (e,q,4|1)
+        nb = 27 + M.shape[-1]                     # the element's unknowns: u1, u2, phi, p
+        B = np.zeros((ne, nq, 7, nb))             # rows: _IN_PLANE; columns: u1, u2, phi, p
         for a in range(2):
             for K in range(2):
                 B[:, :, 2 * a + K, 9 * a:9 * a + 9] = dN[:, :, K]
         for K in range(2):
             B[:, :, 4 + K, 18:27] = dN[:, :, K]
-        B[:, :, 6, 27:31] = M
+        B[:, :, 6, 27:nb] = M
         edofs = np.concatenate([b2.element_dofs + f * n2 for f in range(3)]
-                               + [b1.element_dofs + 3 * n2]).T                    # (e, 31)
-        rows = np.repeat(edofs, 31, axis=1).ravel()
-        cols = np.tile(edofs, (1, 31)).ravel()
+                               + [b1.element_dofs + 3 * n2]).T                    # (e, nb)
+        rows = np.repeat(edofs, nb, axis=1).ravel()
+        cols = np.tile(edofs, (1, nb)).ravel()
         w = np.asarray(b2.dx).reshape(npt)
         idx = np.array(_IN_PLANE)
 

@@ -20,7 +20,8 @@ splits into a *cosine group* (``dF_aK`` for ``a, K`` in-plane, ``dF_33 = k a3``,
 (``F_13 = F_31 = F_23 = F_32 = G_3 = 0``, as on the plate's symmetry plane).  The charges
 and dead loads are linear in the unknowns (charge control): they add nothing.
 
-Discretisation: ``a1, a2, a3, c`` continuous Q2, ``b`` continuous Q1 (Taylor-Hood) on a
+Discretisation: ``a1, a2, a3, c`` continuous Q2, ``b`` continuous Q1 (Taylor-Hood) or one
+constant per element (Q2-P0, ``pressure="P0"``) on a
 quadrilateral mesh of the section, graded geometrically towards the clamp face and towards
 both faces of the plate so that the elements at the clamp edge are squares of side ``h0``
 (:func:`edge_section_grids`).  The negative eigenvalues of the energy are counted by
@@ -37,21 +38,22 @@ from typing import Callable
 
 import numpy as np
 import scipy.sparse as sp
-from skfem import Basis, ElementQuad1, ElementQuad2, MeshQuad
+from skfem import Basis, ElementQuad2, MeshQuad
 
 from ..checks import check_positive
 from ..linalg.inertia import counted_inertia
 from ..materials import ideal_dielectric_response
-from .edge_base import pointwise_tangent
+from .edge_base import PRESSURES, pointwise_tangent, pressure_element
 from .plate import evaluate_fields
 
 __all__ = ["EdgeSection", "edge_section_grids", "graded_spacing", "homogeneous_base",
-           "plate_fields", "plate_base", "FIXED"]
+           "plate_fields", "plate_base", "FIXED", "PRESSURES"]
 
 #: a base state: ``base(X1, X2) -> (F (3, 3, n), G (3, n), p (n))`` at ``n`` points
 FIXED = ("ends", "normal", "none")
 
 BaseState = Callable[[np.ndarray, np.ndarray], tuple]
+
 
 
 def graded_spacing(length: float, h0: float, growth: float, hmax: float) -> np.ndarray:
@@ -212,15 +214,17 @@ class EdgeSection:
         only ``a1 = 0`` there (mirror planes: a strip of an unbounded plate, whose modes are
         ``cos(n pi X1 / length)``, ``n = 0`` being the plate's own); ``"none"``: no
         displacement fixed.
+    pressure
+        The pressure space (:data:`PRESSURES`): ``"Q1"`` (Taylor-Hood) or ``"P0"``.
 
     Raises
     ------
     ValueError
-        Bad grids, a negative ``grad_div`` or an unknown ``fixed``.
+        Bad grids, a negative ``grad_div``, an unknown ``fixed`` or ``pressure``.
     """
 
     def __init__(self, g1, g2, material, base: BaseState, *, grad_div: float = 0.0,
-                 fixed: str = "ends") -> None:
+                 fixed: str = "ends", pressure: str = "Q1") -> None:
         g1, g2 = np.asarray(g1, dtype=float), np.asarray(g2, dtype=float)
         for name, g in (("g1", g1), ("g2", g2)):
             if g.ndim != 1 or g.size < 2 or not np.all(np.diff(g) > 0):
@@ -231,15 +235,17 @@ class EdgeSection:
             raise ValueError(f"grad_div must be a finite number >= 0, got {grad_div!r}")
         self.mesh = MeshQuad.init_tensor(g1, g2)
         self.b2 = Basis(self.mesh, ElementQuad2(), intorder=4)
-        self.b1 = Basis(self.mesh, ElementQuad1(), intorder=4)
+        self.b1 = Basis(self.mesh, pressure_element(pressure), intorder=4)
+        self.pressure = pressure
         self.material, self.grad_div = material, float(grad_div)
         n2, n1 = self.b2.N, self.b1.N
-        #: unknowns: a1, a2, a3, c (Q2 each), then b (Q1)
+        #: unknowns: a1, a2, a3, c (Q2 each), then b (the pressure space)
         self.n2, self.n1 = n2, n1
         self.ndofs = 4 * n2 + n1
-        edofs2, edofs1 = self.b2.element_dofs, self.b1.element_dofs        # (9, e), (4, e)
+        edofs2, edofs1 = self.b2.element_dofs, self.b1.element_dofs        # (9, e), (4|1, e)
         self.edofs = np.concatenate([edofs2 + f * n2 for f in range(4)]
-                                    + [edofs1 + 4 * n2]).T                  # (e, 40)
+                                    + [edofs1 + 4 * n2]).T                  # (e, 36 + 4|1)
+        self.nb = self.edofs.shape[1]
         free = np.ones(self.ndofs, dtype=bool)
         if fixed != "none":
             x = self.b2.doflocs[0]
@@ -264,7 +270,7 @@ class EdgeSection:
         T *= b2.dx.reshape(npt)[:, None, None]
         N2 = np.stack([np.asarray(f[0]) for f in b2.basis], axis=-1)          # (e,q,9)
         dN2 = np.stack([np.asarray(f[0].grad) for f in b2.basis], axis=-1)          # (2,e,q,9)
-        N1 = np.stack([np.asarray(f[0]) for f in b1.basis], axis=-1)          # (e,q,4)
+        N1 = np.stack([np.asarray(f[0]) for f in b1.basis], axis=-1)          # (e,q,4|1)
         self.base_F, self.base_J = F, r.J
         return _Cache(T.reshape(ne, nq, 13, 13), N2, np.moveaxis(dN2, 0, 2), N1)
 
@@ -282,8 +288,9 @@ class EdgeSection:
         c = self._cache
         ne, nq = c.N2.shape[:2]
         N, dN, M = c.N2, c.dN2, c.N1
-        Bc = np.zeros((ne, nq, 13, 40))
-        Bs = np.zeros((ne, nq, 13, 40))
+        nb = self.nb
+        Bc = np.zeros((ne, nq, 13, nb))
+        Bs = np.zeros((ne, nq, 13, nb))
         s2 = [slice(9 * f, 9 * f + 9) for f in range(4)]           # a1, a2, a3, c
         # cosine group: dF_aK = a_a,K (a, K in-plane), dF_33 = k a3, dG_K = c,K, dp = b
         for a in range(2):
@@ -292,7 +299,7 @@ class EdgeSection:
         Bc[:, :, 8, s2[2]] = k * N
         for K in range(2):
             Bc[:, :, 9 + K, s2[3]] = dN[:, :, K]
-        Bc[:, :, 12, 36:40] = M
+        Bc[:, :, 12, 36:nb] = M
         # sine group: dF_3K = a3,K, dF_a3 = -k a_a, dG_3 = -k c
         for K in range(2):
             Bs[:, :, 6 + K, s2[2]] = dN[:, :, K]
@@ -305,8 +312,8 @@ class EdgeSection:
         # the diagonal is stored (zero for the pressure unknowns): a symmetric
         # factorisation reads the upper triangle, which must have every row
         diag = np.arange(self.ndofs)
-        rows = np.concatenate([np.repeat(self.edofs, 40, axis=1).ravel(), diag])
-        cols = np.concatenate([np.tile(self.edofs, (1, 40)).ravel(), diag])
+        rows = np.concatenate([np.repeat(self.edofs, nb, axis=1).ravel(), diag])
+        cols = np.concatenate([np.tile(self.edofs, (1, nb)).ravel(), diag])
         data = np.concatenate([Ke.ravel(), np.zeros(self.ndofs)])
         K = sp.coo_matrix((data, (rows, cols)), shape=(self.ndofs,) * 2).tocsr()
         return K[self.free][:, self.free]

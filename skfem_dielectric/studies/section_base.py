@@ -20,13 +20,14 @@ __all__ = ["solve_section_base", "continue_section_base"]
 
 def solve_section_base(g1, g2, material, fields: Callable, D0: float, *,
                        guess: Callable | None = None, grad_div: float = 0.0,
-                       tol: float = 1e-10, max_iter: int = 40) -> SectionBase:
+                       tol: float = 1e-10, max_iter: int = 40,
+                       pressure: str = "Q1") -> SectionBase:
     """Solve the section's base state from the 3D state ``fields``.
 
     Parameters
     ----------
-    g1, g2, material, fields, D0, guess, grad_div
-        The section and its 3D state
+    g1, g2, material, fields, D0, guess, grad_div, pressure
+        The section, its 3D state and its pressure space
         (:class:`~skfem_dielectric.models.edge_base.SectionBaseProblem`); ``guess`` is the
         first guess inside the section (default ``fields``): the solution on a coarser
         section (:meth:`~skfem_dielectric.models.edge_base.SectionBase.fields`) is a better
@@ -48,7 +49,8 @@ def solve_section_base(g1, g2, material, fields: Callable, D0: float, *,
         A first guess with ``J <= 0`` somewhere, or Newton not converging within
         ``max_iter`` steps (the message gives Newton's reason: an inverted state is one).
     """
-    pb = SectionBaseProblem(g1, g2, material, fields, D0, guess=guess, grad_div=grad_div)
+    pb = SectionBaseProblem(g1, g2, material, fields, D0, guess=guess, grad_div=grad_div,
+                            pressure=pressure)
     y = pb.initial_state()
     why = pb.admissible(y)
     if why:
@@ -91,7 +93,8 @@ def _shifted(sb: SectionBase, old: Callable, new: Callable) -> Callable:
 
 def continue_section_base(g1, g2, material, path, *, grad_div: float = 0.0,
                           tol: float = 1e-10, max_iter: int = 40, max_halvings: int = 6,
-                          progress: Callable | None = None) -> SectionBase:
+                          progress: Callable | None = None,
+                          pressure: str = "Q1") -> SectionBase:
     """Solve the section's base state along a path of 3D states, by continuation in the
     charge.
 
@@ -103,7 +106,7 @@ def continue_section_base(g1, g2, material, path, *, grad_div: float = 0.0,
 
     Parameters
     ----------
-    g1, g2, material, grad_div, tol, max_iter
+    g1, g2, material, grad_div, tol, max_iter, pressure
         As for :func:`solve_section_base`.
     path
         ``[(D0, fields), ...]`` in the order to follow (e.g. the 3D ramp's converged
@@ -131,7 +134,7 @@ def continue_section_base(g1, g2, material, path, *, grad_div: float = 0.0,
         raise ValueError("path must hold at least one (D0, fields) state, got none")
     D0, f0 = path[0]
     sb = solve_section_base(g1, g2, material, f0, D0, grad_div=grad_div, tol=tol,
-                            max_iter=max_iter)
+                            max_iter=max_iter, pressure=pressure)
     total = sb.iterations
     for (Da, fa), (Db, fb) in zip(path[:-1], path[1:]):
         t, dt = 0.0, 1.0
@@ -141,7 +144,7 @@ def continue_section_base(g1, g2, material, path, *, grad_div: float = 0.0,
             try:
                 sb = solve_section_base(g1, g2, material, new, (1 - t1) * Da + t1 * Db,
                                         guess=_shifted(sb, old, new), grad_div=grad_div,
-                                        tol=tol, max_iter=max_iter)
+                                        tol=tol, max_iter=max_iter, pressure=pressure)
             except ValueError:
                 if dt <= 2.0 ** -max_halvings:
                     raise ValueError(f"the section's base state did not converge at D0 = "
