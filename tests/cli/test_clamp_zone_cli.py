@@ -450,3 +450,38 @@ def test_an_inverted_section_row_is_computed_again_and_kept_aside(tmp_path, caps
     assert [r["n_negative"] for r in rows if r["D0"] == "1"] == [good["n_negative"]]
     aside = path.with_name(path.name + ".damaged").read_text()
     assert "computed again with other settings" in aside and ",-0.47," in aside
+
+
+def test_the_section_s_pressure_space_is_part_of_its_rows_key(tmp_path, capsys):
+    """A table written before the ``pressure`` column (the shipped one) reads with Q1;
+    ``section --pressure P0`` of a state adds its rows beside the Q1 ones of the same
+    state (the key holds the space), and the table is then written with the whole header,
+    the older rows keeping Q1.  The P0 section has one pressure per element instead of one
+    per vertex: ``(n1 + 1)(n2 + 1) - n1 n2 = n1 + n2 + 1`` unknowns fewer."""
+    from validation.data.spec import read_table
+
+    shipped = load("section")
+    assert shipped and {r["pressure"] for r in shipped} == {"Q1"}
+    base = ["clamp-zone", "section", "--alpha", "1", "--mesh", "4x1x2", "--grading", "0.5",
+            "--D0", "1", "--h0", "0.1", "--k", "1", "--solver", "superlu", "--out",
+            str(tmp_path)]
+    assert main(base) == 0
+    path = tmp_path / TABLES["section"].file
+    lines = path.read_text().splitlines()            # as a file of the earlier release
+    header = lines.index(next(ln for ln in lines if ln.startswith("alpha,")))
+    cols = lines[header].split(",")
+    i = cols.index("pressure")
+    old = [",".join(c for j, c in enumerate(ln.split(",")) if j != i)
+           for ln in lines[header:]]
+    path.write_text("\n".join(lines[:header] + old) + "\n")
+    (q1,) = read_table(path, TABLES["section"])
+    assert q1["pressure"] == "Q1"
+    assert main([*base, "--pressure", "P0"]) == 0
+    rows = read_table(path, TABLES["section"])
+    assert sorted(r["pressure"] for r in rows) == ["P0", "Q1"]
+    assert "pressure" in path.read_text().splitlines()[header].split(",")
+    from skfem_dielectric.models.edge_section import edge_section_grids
+
+    g1, g2 = edge_section_grids(50.0, 5.0, 1.0, 0.1)
+    p0 = next(r for r in rows if r["pressure"] == "P0")
+    assert int(q1["section_dofs"]) - int(p0["section_dofs"]) == len(g1) + len(g2) - 1

@@ -267,9 +267,9 @@ def test_band_onsets_and_the_figure(tmp_path):
             (("0.04", ((1, 0), (10, 2), (100, 4))), ("0.02", ((1, 0), (10, 0), (100, 2))))
             for k, n in kn] + [row("1.5", "4.5", "0.04", k, 0) for k in (1, 10)]
     got = band_onsets(rows)
-    assert got[(1.0, 3.25, "40x1x36", 0.1, 10.0)] == {0.04: (10.0, 2, 100.0, False),
-                                                      0.02: (100.0, 2, 100.0, False)}
-    assert got[(1.5, 4.5, "40x1x36", 0.1, 10.0)] == {0.04: (None, 0, 10.0, True)}
+    assert got[(1.0, 3.25, "40x1x36", 0.1, 10.0, "Q1")] == {
+        0.04: (10.0, 2, 100.0, False), 0.02: (100.0, 2, 100.0, False)}
+    assert got[(1.5, 4.5, "40x1x36", 0.1, 10.0, "Q1")] == {0.04: (None, 0, 10.0, True)}
     fig = edge_band_figure(rows)
     visible = [ax for ax in fig.axes if ax.get_visible()]
     assert len(visible) == 2 and [len(ax.lines) for ax in visible] == [2, 1]

@@ -27,7 +27,12 @@ __all__ = ["band_onsets", "band_table", "mesh_reach", "edge_band_figure"]
 
 def _state(r: dict) -> tuple:
     return (float(r["alpha"]), float(r["D0"]), str(r["mesh"]), float(r["grading"]),
-            float(r["grad_div"]))
+            float(r["grad_div"]), str(r.get("pressure") or "Q1"))
+
+
+def _grad_div_cell(gd: float, pressure: str) -> str:
+    """The grad-div weight, with the section's pressure space where it is not Q1."""
+    return f"{gd:g}" if pressure == "Q1" else f"{gd:g} ({pressure})"
 
 
 def mesh_reach(mesh: str) -> float:
@@ -66,7 +71,7 @@ def band_onsets(rows: list[dict]) -> dict:
     Returns
     -------
     dict
-        ``{(alpha, D0, mesh, grading, grad_div): {h0: (k_onset, n_at_onset, k_max,
+        ``{(alpha, D0, mesh, grading, grad_div, pressure): {h0: (k_onset, n_at_onset, k_max,
         inverted)}}``: the smallest ``k`` of the sweep with a negative mode (``None`` where
         there is none, with ``n_at_onset = 0``), the count there, the sweep's largest
         ``k``, and whether the section's base state has inverted elements (``J_min <= 0``,
@@ -101,13 +106,14 @@ def band_table(rows: list[dict]) -> str:
              "mode (1/mm) | `k` held by the 3D mesh |",
              "| --- | --- | --- | --- | --- | --- | --- |"]
     for state, by_h in sorted(band_onsets(rows).items()):
-        alpha, D0, mesh, grading, gd = state
+        alpha, D0, mesh, grading, gd, pressure = state
         h0s = sorted(by_h, reverse=True)
         cells = []
         for h0 in h0s:
             k0, _, _, inverted = by_h[h0]
             cells.append("inverted" if inverted else "none" if k0 is None else f"{k0:.4g}")
-        lines.append(f"| {alpha:g} | {D0:g} | {mesh} g{grading:g} | {gd:g} | "
+        lines.append(f"| {alpha:g} | {D0:g} | {mesh} g{grading:g} | "
+                     f"{_grad_div_cell(gd, pressure)} | "
                      f"{' / '.join(f'{h:g}' for h in h0s)} | {' / '.join(cells)} | "
                      f"{mesh_reach(mesh):.2f} |")
     return "\n".join(lines) + "\n"
@@ -150,13 +156,15 @@ def edge_band_figure(rows: list[dict]):
             else:
                 ax.plot(k, n, styles[i % len(styles)], ms=3.5, lw=1.1,
                         label=rf"$h_0$ = {h0:g} mm")
-        alpha, D0, mesh, grading, gd = state
+        alpha, D0, mesh, grading, gd, pressure = state
         k_min = min(kn[0][0] for kn, _ in by_h.values())
         ax.axvspan(k_min, mesh_reach(mesh), color="0.9", zorder=0,
                    label=f"held by the 3D mesh {mesh}")
         ax.set_xscale("log")
         ax.set_title(rf"$\alpha = {alpha:g}$, $D_0 = {D0:g}$ (3D {mesh} g{grading:g}, "
-                     rf"grad-div {gd:g}$\mu$)", fontsize=9)
+                     rf"grad-div {gd:g}$\mu$"
+                     + ("" if pressure == "Q1" else f", section pressure {pressure}") + ")",
+                     fontsize=9)
         ax.tick_params(labelsize=7)
         ax.legend(fontsize=7, loc="upper left")
         ax.set_ylim(bottom=-0.3)

@@ -188,6 +188,8 @@ def add_clamp_zone_command(add) -> None:
                    help="grad-div weight (units of mu; default that of the units)")
     s.add_argument("--h0", nargs="+", type=float, default=[0.04, 0.02, 0.01],
                    help="edge element sizes of the section (mm)")
+    s.add_argument("--pressure", choices=["Q1", "P0"], default="Q1",
+                   help="the section's pressure space (the 3D ramp keeps Q1)")
     s.add_argument("--k", nargs="+", type=float, default=None,
                    help="wavenumbers along x3 (1/mm; default 25 from 2 pi/50 to 200)")
     s.add_argument("--length", type=float, default=5.0, help="the section's length (mm)")
@@ -624,7 +626,7 @@ def _cmd_section(args) -> int:
     tasks = [(f"{UnitKey(a, el, opts['grading'])} D0 = {d:g}", None, functools.partial(
         _task, run_edge_section, UnitKey(a, el, opts["grading"]), d, h0s, ks,
         stream="on_rows", grad_div=grad_div, length=length, solver=opts["solver"],
-        done=done))
+        done=done, pressure=args.pressure))
         for a in opts["alphas"] for d in D0]
     ours = {(UnitKey(a, el, opts["grading"]), float(f"{d:.6g}"), float(f"{h:.6g}"))
             for a in opts["alphas"] for d in D0 for h in h0s}
@@ -633,7 +635,7 @@ def _cmd_section(args) -> int:
         try:
             mine = ((UnitKey.from_row(row), float(row["D0"]), float(row["h0"])) in ours
                     and float(row["grad_div"]) == grad_div
-                    and float(row["length"]) == length)
+                    and float(row["length"]) == length and row["pressure"] == args.pressure)
         except (KeyError, ValueError):
             return ""
         return _section_inverted(row) if mine else ""

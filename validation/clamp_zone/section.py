@@ -80,7 +80,7 @@ def check_section_size(length: float, h0s, *, names=("length", "h0")) -> None:
 def run_edge_section(key: UnitKey, D0: float, h0s, ks=DEFAULT_K, *,
                      grad_div: float = BUCKLING_GRAD_DIV,
                      length: float = 5.0, solver: str = "auto", done=frozenset(),
-                     on_rows=None, progress=None) -> list[dict]:
+                     on_rows=None, progress=None, pressure: str = "Q1") -> list[dict]:
     """The rows of :data:`COLUMNS` for one 3D state and every ``h0`` x ``k``.
 
     Parameters
@@ -90,6 +90,9 @@ def run_edge_section(key: UnitKey, D0: float, h0s, ks=DEFAULT_K, *,
         mesh, grading along ``x1`` and formulation (the formulation is not used).
     grad_div
         The plate's grad-div weight (:func:`~validation.clamp_zone.units.unit_problem`).
+    pressure
+        The section's pressure space, ``"Q1"`` or ``"P0"``
+        (:data:`~skfem_dielectric.models.edge_section.PRESSURES`; the 3D ramp keeps Q1).
     D0
         The charge of the state (positive).
     h0s, ks
@@ -118,7 +121,7 @@ def run_edge_section(key: UnitKey, D0: float, h0s, ks=DEFAULT_K, *,
     check_section_size(length, h0s)
     el = tuple(int(n) for n in elements)
     base_row = {"alpha": alpha, "mesh": mesh_text(el), "grading": grading,
-                "grad_div": grad_div, "D0": float(D0), "length": length}
+                "grad_div": grad_div, "pressure": pressure, "D0": float(D0), "length": length}
     todo = [(h, k) for h in h0s for k in ks
             if _key({**base_row, "h0": h, "k": k}) not in done]
     if not todo:
@@ -141,8 +144,10 @@ def run_edge_section(key: UnitKey, D0: float, h0s, ks=DEFAULT_K, *,
         t1 = time.process_time()
         g1, g2 = edge_section_grids(50.0, length, 1.0, h0)
         try:
-            sb = continue_section_base(g1, g2, pb.material, path, grad_div=pb.grad_div)
-            sec = EdgeSection(g1, g2, pb.material, sb.base, grad_div=pb.grad_div)
+            sb = continue_section_base(g1, g2, pb.material, path, grad_div=pb.grad_div,
+                                       pressure=pressure)
+            sec = EdgeSection(g1, g2, pb.material, sb.base, grad_div=pb.grad_div,
+                              pressure=pressure)
         except Exception as exc:        # scikit-fem's inverse map raises a bare Exception
             if type(exc) is not Exception or "Newton iteration" not in str(exc):
                 raise

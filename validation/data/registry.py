@@ -108,16 +108,17 @@ TABLES = {t.name: t for t in (
 # counts by Sylvester's law of inertia (no classification: the corner quartet is 4 of them).
 """),
     TableSpec("section", "edge_section.csv",
-              ("alpha", "mesh", "grading", "grad_div", "D0", "length", "h0", "k",
+              ("alpha", "mesh", "grading", "grad_div", "pressure", "D0", "length", "h0", "k",
                "section_dofs", "n_negative", "base_iterations", "J_min", "J_max",
                "F11_section", "F11_3d", "count_cpu_s", "base_cpu_s", "state_cpu_s",
                "peak_GB", "date", "command"),
-              ("alpha", "mesh", "grading", "grad_div", "D0", "length", "h0", "k"), """\
+              ("alpha", "mesh", "grading", "grad_div", "pressure", "D0", "length", "h0", "k"),
+              """\
 # Negative modes of the clamp-edge section against waves cos/sin(k X3), one row per k.
 # Written by skfem-dielectric clamp-zone section (docs/clamp-zone.md defines every column):
 # eighth-model plate, neo-Hookean, g = 9.81; section at the centre plane, base state solved
-# on the section's own mesh (edge elements h0, mm, H = 1).
-"""),
+# on the section's own mesh (edge elements h0, mm, H = 1); pressure space Q1 or P0.
+""", added=(("pressure", "Q1"),)),
 )}
 
 

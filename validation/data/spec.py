@@ -53,6 +53,10 @@ class TableSpec:
         The columns that hold text; every other cell is a number or empty.
     multi
         Several rows share a key (written together: the negative modes of one state).
+    added
+        Columns added to the table after its first release, each with the value the rows
+        of a file written before it take (pairs: ``(("pressure", "Q1"),)``): such a file
+        is read with that value, and its next write has the whole header.
     """
 
     name: str
@@ -63,6 +67,7 @@ class TableSpec:
     text: frozenset = frozenset({"mesh", "formulation", "class", "solver", "date",
                                  "scan_counts", "note", "command", "pressure", "kind"})
     multi: bool = False
+    added: tuple = ()
 
     @property
     def declaration(self) -> str:
@@ -150,7 +155,10 @@ def read_table(path, spec: TableSpec, *, note=None, on_damaged=None) -> list[dic
     if not body:
         return []
     header = next(csv.reader([body[0][1]]))
-    if tuple(header) != tuple(spec.columns):
+    old = dict(spec.added)              # a file written before the added columns
+    if tuple(header) != tuple(c for c in spec.columns if c not in old):
+        old = {}
+    if not old and tuple(header) != tuple(spec.columns):
         raise ForeignTableError(f"{path} has other columns than the clamp-zone {spec.name} "
                                 f"table ({len(header)} against {len(spec.columns)}); choose "
                                 f"another --out")
@@ -158,10 +166,11 @@ def read_table(path, spec: TableSpec, *, note=None, on_damaged=None) -> list[dic
     for line, ln in body[1:]:
         cells = next(csv.reader([ln]), [])
         why = ""
-        if len(cells) != len(spec.columns):
-            why = f"has {len(cells)} cells, the header {len(spec.columns)}"
+        if len(cells) != len(header):
+            why = f"has {len(cells)} cells, the header {len(header)}"
         else:
-            row = dict(zip(spec.columns, cells))
+            row = {**old, **dict(zip(header, cells))}
+            row = {c: row[c] for c in spec.columns}
             why = _bad_cell(spec, row)
             if not why and not spec.multi:
                 k = spec.key_of(row)
