@@ -317,18 +317,11 @@ def save_state(path, *, step: int, state: dict | None, done: bool, reason: str,
     spec : str
         The run's settings (JSON); a state saved for other settings is not trusted.
     """
-    path = Path(path)
     arrays = {f"x_{k}": np.asarray(v) for k, v in (state or {}).items()}
-    tmp = _tmp_path(path)
-    try:
-        fh = open(tmp, "wb")
-        np.savez(fh, __version__=STATE_VERSION, __step__=step, __done__=done,
-                 __reason__=reason, __rows__=rows.count, __sha__=rows.hexdigest(),
-                 __frows__=frows.count, __fsha__=frows.hexdigest(), __spec__=spec, **arrays)
-        _replace(tmp, path, fh)
-    finally:
-        if tmp.exists():
-            tmp.unlink()
+    write_npz_atomic(path, __version__=STATE_VERSION, __step__=step, __done__=done,
+                     __reason__=reason, __rows__=rows.count, __sha__=rows.hexdigest(),
+                     __frows__=frows.count, __fsha__=frows.hexdigest(), __spec__=spec,
+                     **arrays)
 
 
 def load_state(path, spec: str) -> tuple[dict | None, str]:
