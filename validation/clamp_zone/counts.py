@@ -48,7 +48,7 @@ import skfem_dielectric as fe
 from skfem_dielectric.models.plate.scan import PlateScan
 
 from ..fe.model import BUCKLING_GRAD_DIV
-from ..store.files import read_npz, write_npz_atomic
+from ..store.files import read_npz, save_point, saved_point, write_npz_atomic
 from .costs import Meter
 from ..data.registry import CLASS_COLUMNS, TABLES
 from ..data.key import UnitKey, mesh_text
@@ -69,14 +69,13 @@ class CountsPaused(Exception):
 
 
 def _save_checkpoint(path, tag: str, step) -> None:
-    """The ramp's state after a reached target (``step``) into ``path``, atomically."""
-    empty = np.zeros(0)
-    back, factors = step.back, step.factors
-    write_npz_atomic(path, tag=np.array(tag), x=step.x, load=np.asarray(step.load, float),
-                     back_x=empty if back is None else back[0],
-                     back_load=empty if back is None else np.asarray(back[1], float),
-                     factors_x=empty if factors is None else factors[0],
-                     factors_load=empty if factors is None else np.asarray(factors[1], float))
+    """The ramp's state after a reached target (``step``) into ``path``, atomically: its
+    ``x`` and ``load`` and the two points a resumed ramp restarts on
+    (:func:`~validation.store.files.save_point`)."""
+    state = {"x": step.x, "load": np.asarray(step.load, float)}
+    save_point(state, step.back, "back")
+    save_point(state, step.factors, "factors")
+    write_npz_atomic(path, tag=np.array(tag), **state)
 
 
 def _load_checkpoint(path, tag: str):
@@ -88,9 +87,7 @@ def _load_checkpoint(path, tag: str):
     z = read_npz(path)
     if str(z["tag"]) != tag:
         return None
-    back = None if z["back_x"].size == 0 else (z["back_x"], z["back_load"])
-    factors = None if z["factors_x"].size == 0 else (z["factors_x"], z["factors_load"])
-    return z["x"], z["load"], back, factors
+    return z["x"], z["load"], saved_point(z, "back"), saved_point(z, "factors")
 
 #: the columns of a row, in order (the ``counts`` table)
 COLUMNS = TABLES["counts"].columns

@@ -34,6 +34,7 @@ from skfem_dielectric.studies.buckling import locate_buckling
 
 from ..progress import report_step
 from ..records import RunOutcome
+from ..store.files import save_point, saved_point
 from .columns import plate_buckling_columns, step_record, stability_monitor
 from ..specs import LOCATION_TOL
 from .model import (BUCKLING_NEWTON, buckling_problem, build_problem,
@@ -90,8 +91,8 @@ def _stabilised_states(spec, targets, state, linear_solver) -> dict:
 
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", RuntimeWarning)       # its rows show the failure
-        fe.ramp(problem, targets, x0=x0, start=start, back=_saved_back(state, "stab_"),
-                factors=_saved_back(state, "stab_", "factors"), on_step=cb,
+        fe.ramp(problem, targets, x0=x0, start=start, back=saved_point(state, "back", "stab_"),
+                factors=saved_point(state, "factors", "stab_"), on_step=cb,
                 **ramp_settings(spec, linear_solver))
     return {"problem": problem, "x": states, "back": backs, "factors": factors}
 
@@ -104,25 +105,6 @@ def grad_div_states(spec, linear_solver: str = "superlu") -> tuple:
     spec = with_dead_load(spec)
     st = _stabilised_states(spec, ramp_targets(spec), None, linear_solver)
     return st["problem"], [(x, np.array([spec.s, d])) for d, x in sorted(st["x"].items())]
-
-
-def _saved_back(state, prefix="", name="back") -> tuple | None:
-    """A state ``(x, load)`` of the ramp saved with a row's state: the secant predictor's
-    second point (``name="back"``: ``x_back``, ``load_back``) or the origin of the factors
-    the next step starts on (``name="factors"``, ``StepResult.factors``), or those of the
-    grad-div form with ``prefix="stab_"``; ``None`` if not saved."""
-    if state is None or f"x_{prefix}{name}" not in state:
-        return None
-    return (np.asarray(state[f"x_{prefix}{name}"], dtype=float),
-            np.asarray(state[f"load_{prefix}{name}"], dtype=float))
-
-
-def _save_back(saved: dict, back, prefix="", name="back") -> None:
-    """Add a state ``back = (x, load)`` of the ramp to a row's state (see
-    :func:`_saved_back`)."""
-    if back is not None:
-        saved[f"x_{prefix}{name}"] = back[0]
-        saved[f"load_{prefix}{name}"] = np.asarray(back[1], dtype=float)
 
 
 def run_fe(spec, start, state, on_step, linear_solver="superlu"):
@@ -180,8 +162,8 @@ def run_fe(spec, start, state, on_step, linear_solver="superlu"):
         i = spec.D0.index(float(load[1]))
         rec = step_record(spec, problem, step, _analysis(monitor, step, load))
         saved = {"x": step.x, "load": load}
-        _save_back(saved, step.back)
-        _save_back(saved, step.factors, name="factors")
+        save_point(saved, step.back, "back")
+        save_point(saved, step.factors, "factors")
         if stab is not None:
             xs = stab["x"].get(float(load[1]))
             if xs is not None:
@@ -195,8 +177,8 @@ def run_fe(spec, start, state, on_step, linear_solver="superlu"):
                     track["located"] = True
                 track["prev"] = (xs, load)
                 saved["x_stab"] = xs
-                _save_back(saved, stab["back"].get(float(load[1])), "stab_")
-                _save_back(saved, stab["factors"].get(float(load[1])), "stab_", "factors")
+                save_point(saved, stab["back"].get(float(load[1])), "back", "stab_")
+                save_point(saved, stab["factors"].get(float(load[1])), "factors", "stab_")
                 after = scan.state
                 saved["scan_counts"], saved["scan_physical"] = after["counts"], after["physical"]
             saved["located"] = np.array(track["located"])
@@ -205,7 +187,7 @@ def run_fe(spec, start, state, on_step, linear_solver="superlu"):
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", RuntimeWarning)   # the failure is recorded
         res = fe.ramp(problem, targets, x0=x0, start=start_load,
-                      back=_saved_back(state), factors=_saved_back(state, name="factors"),
+                      back=saved_point(state, "back"), factors=saved_point(state, "factors"),
                       on_step=cb,
                       stop=lambda step: track.pop("stop", False),   # at the breakdown
                       state_analysis=monitor, **ramp_settings(spec, linear_solver))

@@ -37,7 +37,8 @@ with warnings.catch_warnings():       # where there is neither fcntl nor Windows
 
 __all__ = ["LockedError", "FolderLock", "write_text_atomic", "write_csv_atomic",
            "write_npz_atomic", "csv_line", "regular_file", "aside_path", "keep_aside", "read_npz",
-           "RowDigest", "save_state", "load_state", "dumps", "STATE_VERSION"]
+           "RowDigest", "save_state", "load_state", "dumps", "STATE_VERSION", "save_point",
+           "saved_point"]
 
 #: Layout version of the state files; a state of another layout is not trusted.
 STATE_VERSION = 2
@@ -294,6 +295,26 @@ class RowDigest:
         for r in rows:
             d.add(r)
         return d
+
+
+def save_point(saved: dict, point, name: str, prefix: str = "") -> None:
+    """Add a state ``point = (x, load)`` of a ramp to the arrays ``saved`` of a resume
+    state, as ``x_<prefix><name>`` and ``load_<prefix><name>``: the secant predictor's
+    second point (``name="back"``, ``StepResult.back``) or where the factors the next step
+    starts on were made (``name="factors"``, ``StepResult.factors``); nothing for
+    ``None``."""
+    if point is not None:
+        saved[f"x_{prefix}{name}"] = point[0]
+        saved[f"load_{prefix}{name}"] = np.asarray(point[1], dtype=float)
+
+
+def saved_point(saved, name: str, prefix: str = "") -> tuple | None:
+    """The state ``(x, load)`` that :func:`save_point` added to ``saved`` (a dict of arrays
+    or an opened ``.npz``), or ``None`` if there is none."""
+    if saved is None or f"x_{prefix}{name}" not in saved:
+        return None
+    return (np.asarray(saved[f"x_{prefix}{name}"], dtype=float),
+            np.asarray(saved[f"load_{prefix}{name}"], dtype=float))
 
 
 def save_state(path, *, step: int, state: dict | None, done: bool, reason: str,
