@@ -267,14 +267,14 @@ class SectionBaseProblem(Problem):
 
         self.mesh, self.b2, self.b1, self.material = mesh, b2, b1, material
         self.n2, self.ndofs_full, self.npt, self.ne, self.nq = n2, ndofs, npt, ne, nq
-        self.lam3, self.lam3_q, self.x0, self.fixed, self.free = lam3, lam3_q, x, fixed, free
+        self.lam3, self.lam3_q, self.x0, self.free = lam3, lam3_q, x, free
         self.face, self.B, self.edofs, self.rows, self.cols = face, B, edofs, rows, cols
         self.w, self.idx, self.grad_div = w, idx, float(grad_div)
         area = (g1[-1] - g1[0]) * (g2[-1] - g2[0])
-        R0 = self.evaluate(x, tangent=False)[0][free]
+        #: the residual's norm at the first guess
+        self.residual0 = float(np.linalg.norm(self.evaluate(x, tangent=False)[0][free]))
         #: the residual's scale: the first residual, the charge's load, mu times the section
-        self.scale = max(float(np.linalg.norm(R0)), float(np.linalg.norm(face)),
-                         material.mu * area)
+        self.scale = max(self.residual0, float(np.linalg.norm(face)), material.mu * area)
 
     @property
     def layout(self) -> Layout:

@@ -55,7 +55,7 @@ def solve_section_base(g1, g2, material, fields: Callable, D0: float, *,
     why = pb.admissible(y)
     if why:
         raise ValueError(f"the section's first guess is not admissible: {why}")
-    r0 = float((pb.residual(y) ** 2).sum() ** 0.5) / pb.scale
+    r0 = pb.residual0 / pb.scale
     if r0 < tol:
         return pb.base(y, 0, r0)
     guards = pb.newton_guards()
