@@ -1,4 +1,4 @@
-"""Fast assembly helpers: dof reduction and a precomputed COO -> CSR scatter map.
+"""Fast assembly machinery: dof reduction and a precomputed COO -> CSR scatter map.
 
 The FE models compute element matrices for all elements at once (batched numpy over
 elements and quadrature points) and scatter them into a CSR matrix whose sparsity pattern
