@@ -66,7 +66,7 @@ P33_ONSET_LOCATED = Marker(
     "P33 onset, located", "red bar",
     "the reference layer of the P33 criterion: the plain form's first charge with "
     "P33/mu < -0.01 in the interior, located to 1e-4 on the finest graded mesh of the "
-    "clamp-zone study (validation/data/p33_units.csv), where the run's own P33 breakdown "
+    "clamp-zone study (validation/data/clamp_p33.csv), where the run's own P33 breakdown "
     "is the first step of its coarse grid",
     dict(marker="_", color="red", ms=16, mew=2.6, zorder=8))
 AFTER_BREAKDOWN = Marker(

@@ -195,8 +195,10 @@ BAD = {
     "flagged": [("--D0", "-1"), ("--D0", "nan"), ("--D0", "x")],
     "counts": [("--D0", "0"), ("--grad-div", "-1"), ("--grad-div", "nan"),
                ("--pressure", "P1")],
-    "section": [("--D0", "inf"), ("--h0", "0"), ("--h0", "6"), ("--k", "-1"),
+    "section": [("--D0", "inf"), ("--D0", "-1"), ("--h0", "0"), ("--h0", "6"), ("--k", "-1"),
                 ("--length", "0"), ("--mesh", "40x1"), ("--mesh", "1000x10x100")],
+    "voltage": [("--alpha", "inf"), ("--mesh", "4x1"), ("--grading", "0"), ("--jobs", "0"),
+                ("--scheduler", "udp://h:1")],
     "tables": [("--from", "missing")],
     "band": [("--from", "missing")],
     "modes": [("--from", "missing")],
@@ -208,6 +210,7 @@ GOOD = {"units": ["--alpha", "1", "--mesh", "4x1x2"],
         "flagged": ["--alpha", "1", "--mesh", "4x1x2", "--D0", "1"],
         "counts": ["--alpha", "1", "--mesh", "4x1x2", "--D0", "1"],
         "section": ["--alpha", "1", "--D0", "1"],
+        "voltage": ["--alpha", "1", "--mesh", "4x1x2"],
         "tables": [], "band": [], "modes": []}
 
 
@@ -217,8 +220,8 @@ def test_every_bad_value_is_one_line_and_exit_2(tmp_path, capsys, monkeypatch, c
                                                 option, value):
     """Each option of each subcommand with a bad value: one line on stderr, exit code 2,
     no traceback, nothing written and no runner called."""
-    for name in ("run_unit", "run_class_onsets", "run_clamp_layer", "run_p33_unit",
-                 "run_flagged_modes", "run_edge_counts", "run_edge_section"):
+    for name in ("run_unit", "run_onsets", "run_layer", "run_p33",
+                 "run_flagged", "run_counts", "run_section", "run_voltage"):
         monkeypatch.setattr(zone_cli, name, lambda *a, **k: pytest.fail("a runner ran"))
     argv = list(GOOD[command])
     if option in argv:
@@ -442,7 +445,7 @@ def test_an_inverted_section_row_is_computed_again_and_kept_aside(tmp_path, caps
     capsys.readouterr()
     assert main(argv) == 0
     out = capsys.readouterr().out
-    assert "1 row(s) in edge_section.csv (1, 4x1x2, 0.5, " in out
+    assert "1 row(s) in clamp_section.csv (1, 4x1x2, 0.5, " in out
     assert "has an inverted base state (J_min = -0.47); computed again" in out
     rows = read_table(path, TABLES["section"])
     assert sorted((r["D0"], float(r["J_min"]) > 0) for r in rows) == [("1", True),
@@ -483,3 +486,27 @@ def test_the_section_s_pressure_space_is_part_of_its_rows_key(tmp_path, capsys):
     g1, g2 = edge_section_grids(50.0, 5.0, 1.0, 0.1)
     p0 = next(r for r in rows if r["pressure"] == "P0")
     assert int(q1["section_dofs"]) - int(p0["section_dofs"]) == len(g1) + len(g2) - 1
+
+
+def test_the_section_of_the_dead_load_alone_is_the_limit_of_small_charges(tmp_path):
+    """``section --D0 0``: the state at the pre-load's end (no charge step).  Its rows are
+    the limit of a small charge's: the base state's F11 at the section's middle (5 digits)
+    and the negative-mode count at every k agree with ``D0 = 1e-6``, both with the 3D
+    plate's F11 from its own ramp."""
+    from validation.data.spec import read_table
+
+    base = ["clamp-zone", "section", "--alpha", "1.5", "--mesh", "4x1x2", "--grading",
+            "0.5", "--h0", "0.1", "--k", "1", "20", "--solver", "superlu", "--out",
+            str(tmp_path)]
+    assert main([*base, "--D0", "0", "1e-6"]) == 0
+    rows = read_table(tmp_path / TABLES["section"].file, TABLES["section"])
+    by = {(float(r["D0"]), float(r["k"])): r for r in rows}
+    assert sorted(by) == [(0.0, 1.0), (0.0, 20.0), (1e-6, 1.0), (1e-6, 20.0)]
+    for k in (1.0, 20.0):
+        zero, small = by[0.0, k], by[1e-6, k]
+        assert float(zero["F11_section"]) == pytest.approx(float(small["F11_section"]),
+                                                           abs=1e-5)
+        assert float(zero["F11_3d"]) == pytest.approx(float(small["F11_3d"]), abs=1e-5)
+        assert zero["n_negative"] == small["n_negative"]
+        assert float(zero["F11_section"]) == pytest.approx(float(zero["F11_3d"]), rel=0.05)
+        assert float(zero["J_min"]) > 0

@@ -641,7 +641,7 @@ def test_the_newton_band_spans_every_mesh_with_a_limit():
 
     data = Path(__file__).resolve().parents[2] / "validation" / "data"
     per: dict = {}
-    with open(data / "p33_units.csv") as fh:
+    with open(data / "clamp_p33.csv") as fh:
         for r in csv.DictReader(ln for ln in fh if not ln.startswith("#")):
             if r["newton_limit"]:
                 per.setdefault(float(r["alpha"]), []).append(float(r["newton_limit"]))

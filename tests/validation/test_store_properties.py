@@ -20,7 +20,7 @@ from hypothesis.stateful import (RuleBasedStateMachine, initialize, invariant,  
 
 from validation.data.spec import TableSpec, read_table  # noqa: E402
 from validation.store import TableWriter  # noqa: E402
-from validation.store import RowFile, StudyStore, read_rows  # noqa: E402
+from validation.store import StudyStore, read_rows  # noqa: E402
 
 SPEC = TableSpec("demo", "demo.csv", ("alpha", "mesh", "D0_b", "note"), ("alpha", "mesh"),
                  "# a table of the property tests\n", text=frozenset({"mesh", "note"}))
@@ -127,8 +127,8 @@ class ClampTable(RuleBasedStateMachine):
 class StudyTable(RuleBasedStateMachine):
     """The studies' store (:class:`StudyStore`): a table and one detail file."""
 
-    T = RowFile("t.csv", ("alpha", "mesh", "D0_b", "n"), ("alpha", "mesh"))
-    D = RowFile("d.csv", ("alpha", "mesh", "D0"), ("alpha", "mesh"))
+    T = TableSpec.plain("t.csv", ("alpha", "mesh", "D0_b", "n"), ("alpha", "mesh"))
+    D = TableSpec.plain("d.csv", ("alpha", "mesh", "D0"), ("alpha", "mesh"))
 
     @initialize(seed=st.integers(0, 2**16))
     def start(self, seed):

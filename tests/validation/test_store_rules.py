@@ -13,7 +13,8 @@ import pytest
 
 from test_study_store import STUDIES, patch_fakes, run
 from validation.cli import main
-from validation.store import RowFile, StudyStore
+from validation.data.spec import TableSpec
+from validation.store import StudyStore
 
 
 @pytest.fixture
@@ -85,7 +86,7 @@ def test_keep_aside_appends_and_names_each_line(tmp_path):
 
 
 def test_a_repeated_unit_row_is_kept_aside(tmp_path):
-    t = RowFile("t.csv", ("alpha", "mesh", "D0_b"), ("alpha", "mesh"))
+    t = TableSpec.plain("t.csv", ("alpha", "mesh", "D0_b"), ("alpha", "mesh"))
     (tmp_path / "t.csv").write_text("alpha,mesh,D0_b\n1,2x1x1,0.5\n1,2x1x1,0.75\n")
     (tmp_path / ".state").mkdir()
     (tmp_path / ".state" / "demo.json").write_text("{}")
@@ -195,7 +196,7 @@ def test_a_rerun_with_other_charge_settings_recomputes_what_they_change(fake_uni
 def test_a_p33_row_ramped_to_a_smaller_charge_is_recomputed(tmp_path, capsys, monkeypatch):
     calls = []
 
-    def run_p33_unit(key, *, D0_step, D0_max, **kw):
+    def run_p33(key, *, D0_step, D0_max, **kw):
         alpha, el, grading = key.alpha, key.mesh, key.grading
         calls.append((D0_step, D0_max))
         row = {c: "" for c in TABLES["p33"].columns if c != "command"}
@@ -204,7 +205,7 @@ def test_a_p33_row_ramped_to_a_smaller_charge_is_recomputed(tmp_path, capsys, mo
                    else float("nan"), cpu_s=1)
         return row
 
-    monkeypatch.setattr(zone_cli, "run_p33_unit", run_p33_unit)
+    monkeypatch.setattr(zone_cli, "run_p33", run_p33)
     out = tmp_path / "run"
     base = ["p33", "--alpha", "1", "--mesh", "4x1x2", "--out", str(out)]
     assert _zone(base + ["--D0-max", "2"], capsys)[0] == 0
@@ -272,8 +273,8 @@ def test_an_empty_key_cell_is_a_damaged_row_named_with_its_line(fake_units, tmp_
         "units-alpha-digits", "units-grading-digits", "section-h0", "section-length"])
 def test_sizes_are_bounded_before_anything_is_allocated(argv, message, tmp_path, capsys,
                                                         monkeypatch):
-    for name in ("run_unit", "run_class_onsets", "run_clamp_layer", "run_p33_unit",
-                 "run_flagged_modes", "run_edge_counts", "run_edge_section"):
+    for name in ("run_unit", "run_onsets", "run_layer", "run_p33",
+                 "run_flagged", "run_counts", "run_section"):
         monkeypatch.setattr(zone_cli, name, lambda *a, **k: pytest.fail("a runner ran"))
     out = tmp_path / "run"
     code, _, err = _zone(argv + ["--out", str(out)], capsys)

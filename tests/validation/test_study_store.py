@@ -25,7 +25,8 @@ import validation.store.rows as rows_module
 import validation.studies.buckling as bk
 import validation.studies.postbuckling as pb
 from validation.cli import main
-from validation.store import DamagedFileError, LockedError, RowFile, StudyStore, read_rows
+from validation.data.spec import TableSpec
+from validation.store import DamagedFileError, LockedError, StudyStore, read_rows
 
 ROOT = Path(__file__).resolve().parents[2]
 
@@ -315,7 +316,7 @@ def test_too_many_targets_are_refused_before_any_work(study, fake, tmp_path, cap
 
 
 def test_a_second_writer_of_the_study_is_refused(tmp_path):
-    t = RowFile("t.csv", ("alpha", "mesh", "D0_b"), ("alpha", "mesh"))
+    t = TableSpec.plain("t.csv", ("alpha", "mesh", "D0_b"), ("alpha", "mesh"))
     with StudyStore(tmp_path, "demo", {}, t, plan=[(1.0, "2x1x1")]) as first:
         with pytest.raises(LockedError, match=f"pid {os.getpid()}"):
             with StudyStore(tmp_path, "demo", {}, t, plan=[(1.0, "2x1x1")]):
@@ -328,8 +329,8 @@ def test_a_second_writer_of_the_study_is_refused(tmp_path):
 
 def test_detail_rows_of_an_unfinished_unit_are_dropped(tmp_path):
     # a stop between the detail file and the table: the detail rows of unit 2 only
-    t = RowFile("t.csv", ("alpha", "mesh", "D0_b"), ("alpha", "mesh"))
-    d = RowFile("d.csv", ("alpha", "mesh", "D0"), ("alpha", "mesh"))
+    t = TableSpec.plain("t.csv", ("alpha", "mesh", "D0_b"), ("alpha", "mesh"))
+    d = TableSpec.plain("d.csv", ("alpha", "mesh", "D0"), ("alpha", "mesh"))
     (tmp_path / "t.csv").write_text("alpha,mesh,D0_b\n1,2x1x1,0.5\n")
     (tmp_path / "d.csv").write_text("alpha,mesh,D0\n1,2x1x1,0.5\n2,2x1x1,0.5\n2,2x1x1,1\n")
     (tmp_path / ".state").mkdir()

@@ -137,7 +137,7 @@ def edge_band_figure(rows: list[dict]):
         No rows.
     """
     if not rows:
-        raise ValueError("rows must hold at least one row of the edge_section study, got none")
+        raise ValueError("rows must hold at least one row of the section table, got none")
     sweeps = _sweeps(rows)
     states = sorted(sweeps)
     cols = min(len(states), 2)

@@ -30,18 +30,19 @@ from ..options import out_dir, positive, solver_name
 from ..store import TableWriter, aside_path
 from .band import band_table, edge_band_figure
 from .costs import estimated_GB, physical_GB
-from .counts import CountsPaused, run_edge_counts
+from .counts import CountsPaused, run_counts
 from ..data.clamp_zone import clamp_unit_load
 from ..data.registry import MAX_D0, TABLES, load, shipped_path, table_file
 from ..specs import LOCATION_TOL
-from .flagged import run_flagged_modes
+from .flagged import run_flagged
 from ..data.key import FORMULATIONS, UnitKey, parse_mesh
-from .layer import run_clamp_layer
+from .layer import run_layer
 from .modes import clamp_modes_figure, read_clamp_modes
-from .onsets import run_class_onsets
-from .p33 import run_p33_unit
+from .onsets import run_onsets
+from .p33 import run_p33
 from .scaling import scaling_tables
-from .section import DEFAULT_K, check_section_size, run_edge_section
+from .section import DEFAULT_K, check_section_size, run_section
+from .voltage import run_voltage
 from ..data.spec import read_table
 from .tables import breakdown_table, clamp_study_tables
 from .units import run_unit, write_mode
@@ -180,10 +181,18 @@ def add_clamp_zone_command(add) -> None:
                         "and exit with code 4; its state is kept under OUT/.state/counts/ "
                         "and a rerun of the same command continues it")
 
+    v = new("voltage", "follow each unit's plate under voltage control through its first "
+                       "limit point, with the first negative mode before it (table voltage)")
+    _common(v)
+    v.add_argument("--scheduler", default=None, metavar="ADDRESS",
+                   help="run the units on a dask.distributed cluster (as for units)")
+    v.add_argument("--jobs", type=int, default=2, help="workers of --scheduler local")
+
     s = new("section", "the clamp edge in section against waves along the clamp "
                        "(table section)")
     _common(s, meshes=False, mesh_default="40x1x36", grading=0.1, formulation=False)
-    s.add_argument("--D0", nargs="+", type=float, required=True, help="the charges")
+    s.add_argument("--D0", nargs="+", type=float, required=True,
+                   help="the charges (0: the dead load alone)")
     s.add_argument("--grad-div", dest="grad_div", type=float, default=None,
                    help="grad-div weight (units of mu; default that of the units)")
     s.add_argument("--h0", nargs="+", type=float, default=[0.04, 0.02, 0.01],
@@ -251,14 +260,14 @@ def _charges(name: str, values) -> list[float]:
     return list(dict.fromkeys(_finite(name, v) for v in values))
 
 
-def _charge_list(name: str, values) -> list[float]:
+def _charge_list(name: str, values, *, zero: bool = False) -> list[float]:
     """Charges (:func:`_charge`), each once, in the order given."""
-    return list(dict.fromkeys(_charge(name, v) for v in values))
+    return list(dict.fromkeys(_charge(name, v, zero=zero) for v in values))
 
 
-def _charge(name: str, value) -> float:
-    """A charge: finite, > 0 and at most :data:`MAX_D0`."""
-    value = _finite(name, value)
+def _charge(name: str, value, *, zero: bool = False) -> float:
+    """A charge: finite, > 0 (``>= 0`` if ``zero``) and at most :data:`MAX_D0`."""
+    value = _finite(name, value, zero=zero)
     if value > MAX_D0:
         raise ValueError(f"{name} must be at most {MAX_D0:g} (the study's plates wrinkle or "
                          f"stop below D0 = 6), got {value:g}")
@@ -488,6 +497,26 @@ def _cmd_units(args) -> int:
                 stale=_units_stale(args.D0_step, args.D0_max))
 
 
+def _cmd_voltage(args) -> int:
+    if args.scheduler is not None:
+        check_scheduler(args.scheduler)
+    if args.jobs < 1:
+        raise ValueError(f"--jobs must be >= 1, got {args.jobs}")
+    opts = _settings(args)
+    tasks = [(str(k), dict(zip(TABLES["voltage"].key, k.cells)),
+              functools.partial(_task, run_voltage, k, one_row=True, solver=opts["solver"]))
+             for k in (UnitKey(a, el, opts["grading"], args.formulation)
+                       for a in opts["alphas"] for el in _meshes(args, args.mesh))]
+
+    def show(r):
+        _say(f"  {UnitKey.from_row(r)}: E0 limit {float(r['E0_limit'] or 'nan'):.5f} "
+             + (f"({r['note']}) " if r.get("note") else "")
+             + f"at D0 {float(r.get('D0_limit') or 'nan'):.4f}, "
+             f"{float(r.get('ratio') or 'nan'):.4f} of max_E0; {r['dofs']} DOFs, "
+             f"{r['cpu_s']} CPU s, {r['peak_GB']} GB")
+    return _run(args, "voltage", tasks, show)
+
+
 def _units_source(args):
     return None if args.into_package else Path(args.out)
 
@@ -512,7 +541,7 @@ def _cmd_onsets(args) -> int:
                 _say(f"{key}: kept")
                 continue
             tasks.append((str(key), None, functools.partial(
-                _task, run_class_onsets, key, stream="on_row", solver=opts["solver"],
+                _task, run_onsets, key, stream="on_row", solver=opts["solver"],
                 classes=args.classes, skip=done,
                 units=_units_source(args), given=bracket)))
     return _run(args, "onsets", tasks, lambda r: None, incremental=True)
@@ -525,7 +554,7 @@ def _cmd_layer(args) -> int:
         raise ValueError("--mesh: the clamp layer needs n1 >= 2 (two element layers at the "
                          "clamp)")
     tasks = [(str(k), dict(zip(TABLES["layer"].key, k.cells)),
-              functools.partial(_task, run_clamp_layer, k, one_row=True,
+              functools.partial(_task, run_layer, k, one_row=True,
                                 solver=opts["solver"], units=_units_source(args)))
              for k in (UnitKey(a, el, opts["grading"], args.formulation)
                        for a in opts["alphas"] for el in meshes)]
@@ -542,7 +571,7 @@ def _cmd_p33(args) -> int:
     _ramp(args.D0_step, args.D0_max)
     meshes = _meshes(args, args.mesh)
     tasks = [(str(k), {"alpha": k.alpha, "mesh": k.mesh_text, "grading": k.grading},
-              functools.partial(_task, run_p33_unit, k, one_row=True, D0_step=args.D0_step,
+              functools.partial(_task, run_p33, k, one_row=True, D0_step=args.D0_step,
                                 D0_max=args.D0_max, solver=opts["solver"]))
              for k in (UnitKey(a, el, opts["grading"]) for a in opts["alphas"]
                        for el in meshes)]
@@ -561,7 +590,7 @@ def _cmd_flagged(args) -> int:
     meshes = _meshes(args, args.mesh)
     tasks = [(f"{k} D0 = {D0:g}", {"alpha": k.alpha, "mesh": k.mesh_text,
                                    "grading": k.grading, "D0": D0},
-              functools.partial(_task, run_flagged_modes, k, D0, solver=opts["solver"]))
+              functools.partial(_task, run_flagged, k, D0, solver=opts["solver"]))
              for k in (UnitKey(a, el, opts["grading"]) for a in opts["alphas"]
                        for el in meshes)]
 
@@ -598,7 +627,7 @@ def _cmd_counts(args) -> int:
                 continue
             state = states / f"{key.stem}_gd{grad_div:g}_{args.pressure}.npz"
             tasks.append((str(key), None, functools.partial(
-                _task, run_edge_counts, key, D0, stream="on_row", grad_div=grad_div,
+                _task, run_counts, key, D0, stream="on_row", grad_div=grad_div,
                 pressure=args.pressure, solver=opts["solver"], skip=done, checkpoint=state,
                 budget=budget)))
     try:
@@ -611,7 +640,7 @@ def _cmd_counts(args) -> int:
 
 def _cmd_section(args) -> int:
     opts = _settings(args)
-    D0 = _charge_list("--D0", args.D0)
+    D0 = _charge_list("--D0", args.D0, zero=True)
     (el,) = _meshes(args, [args.mesh])
     grad_div = _grad_div(args)
     length = _finite("--length", args.length)
@@ -624,7 +653,7 @@ def _cmd_section(args) -> int:
     done = {TABLES["section"].key_of(r) for r in read_table(path, TABLES["section"])
             if not _section_inverted(r)}
     tasks = [(f"{UnitKey(a, el, opts['grading'])} D0 = {d:g}", None, functools.partial(
-        _task, run_edge_section, UnitKey(a, el, opts["grading"]), d, h0s, ks,
+        _task, run_section, UnitKey(a, el, opts["grading"]), d, h0s, ks,
         stream="on_rows", grad_div=grad_div, length=length, solver=opts["solver"],
         done=done, pressure=args.pressure))
         for a in opts["alphas"] for d in D0]
@@ -715,7 +744,7 @@ def _cmd_modes(args) -> int:
 
 _SUBCOMMANDS = {"units": _cmd_units, "onsets": _cmd_onsets, "layer": _cmd_layer,
                 "p33": _cmd_p33, "flagged": _cmd_flagged, "counts": _cmd_counts,
-                "section": _cmd_section, "tables": _cmd_tables, "scaling": _cmd_scaling,
+                "section": _cmd_section, "voltage": _cmd_voltage, "tables": _cmd_tables, "scaling": _cmd_scaling,
                 "band": _cmd_band, "modes": _cmd_modes}
 
 

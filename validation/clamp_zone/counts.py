@@ -54,7 +54,7 @@ from ..data.registry import CLASS_COLUMNS, TABLES
 from ..data.key import UnitKey, mesh_text
 from .units import charge_path, unit_problem, unit_ramp
 
-__all__ = ["COLUMNS", "CLASS_COLUMNS", "CountsPaused", "run_edge_counts"]
+__all__ = ["COLUMNS", "CLASS_COLUMNS", "CountsPaused", "run_counts"]
 
 
 class CountsPaused(Exception):
@@ -98,7 +98,7 @@ def _column(name: str) -> str:
     return "".join(part.strip()[-1] for part in name.split(","))
 
 
-def run_edge_counts(key: UnitKey, D0, *, grad_div: float = BUCKLING_GRAD_DIV,
+def run_counts(key: UnitKey, D0, *, grad_div: float = BUCKLING_GRAD_DIV,
                     pressure: str = "Q1", solver: str = "auto", skip=(), progress=None,
                     on_row=None, checkpoint=None, budget: float | None = None) -> list[dict]:
     """Count the negative modes of every class at each charge of ``D0``.

@@ -31,13 +31,13 @@ from ..data.key import UnitKey, mesh_text
 from .units import ramp_to_charge, unit_problem
 from .local_theory import energy_centroid
 
-__all__ = ["COLUMNS", "run_flagged_modes"]
+__all__ = ["COLUMNS", "run_flagged"]
 
 #: the columns of a row, in order (the ``flagged`` table)
 COLUMNS = TABLES["flagged"].columns
 
 
-def run_flagged_modes(key: UnitKey, D0: float, *, solver: str = "auto") -> list[dict]:
+def run_flagged(key: UnitKey, D0: float, *, solver: str = "auto") -> list[dict]:
     """The rows of one state: every negative mode of the whole plate at ``D0``.
 
     Parameters

@@ -33,7 +33,7 @@ from ..data.registry import LAYER_WIDTHS, TABLES
 from ..data.key import UnitKey, mesh_text
 from .units import clamp_centre_J, ramp_to_charge, unit_problem
 
-__all__ = ["COLUMNS", "LAYER_WIDTHS", "volume_ratios", "run_clamp_layer"]
+__all__ = ["COLUMNS", "LAYER_WIDTHS", "volume_ratios", "run_layer"]
 
 #: the columns of a row, in order (the ``layer`` table)
 COLUMNS = TABLES["layer"].columns
@@ -80,7 +80,7 @@ def volume_ratios(problem, x: np.ndarray, load) -> dict:
     return out
 
 
-def run_clamp_layer(key: UnitKey, *, solver: str = "auto", D0: float | None = None,
+def run_layer(key: UnitKey, *, solver: str = "auto", D0: float | None = None,
                     units=None) -> dict:
     """One unit: the charge ramp (steps of 0.5) to ``D0`` and the row of :data:`COLUMNS`.
 

@@ -57,7 +57,7 @@ from ..data.key import UnitKey, mesh_text
 from .units import charge_path, unit_problem, unit_ramp
 from .local_theory import energy_centroid, half_waves
 
-__all__ = ["COLUMNS", "bracket", "run_class_onsets"]
+__all__ = ["COLUMNS", "bracket", "run_onsets"]
 
 #: the columns of a row, in order
 COLUMNS = TABLES["onsets"].columns
@@ -95,7 +95,7 @@ def bracket(row: dict) -> tuple[float, float]:
     return max(below), min(above)
 
 
-def run_class_onsets(key: UnitKey, *, solver: str = "auto", classes=None,
+def run_onsets(key: UnitKey, *, solver: str = "auto", classes=None,
                      skip=(), units=None, progress=None,
                      on_row=None, given=None) -> list[dict]:
     """One unit of the study: a row of :data:`COLUMNS` per located class.

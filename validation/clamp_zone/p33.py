@@ -45,13 +45,13 @@ from ..specs import LOCATION_TOL
 from ..data.key import UnitKey, mesh_text
 from .units import charge_path, unit_ramp
 
-__all__ = ["COLUMNS", "SETS", "run_p33_unit"]
+__all__ = ["COLUMNS", "SETS", "run_p33"]
 
 #: the columns of a row, in order (the ``p33`` table)
 COLUMNS = TABLES["p33"].columns
 
 
-def run_p33_unit(key: UnitKey, *, D0_step: float = 0.25, D0_max: float = 6.0,
+def run_p33(key: UnitKey, *, D0_step: float = 0.25, D0_max: float = 6.0,
                  solver: str = "auto", progress=None) -> dict:
     """One unit: the row of :data:`COLUMNS` (module docstring).
 

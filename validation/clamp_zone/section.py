@@ -49,7 +49,7 @@ from ..data.registry import TABLES
 from ..data.key import UnitKey, mesh_text
 from .units import ramp_states, unit_problem
 
-__all__ = ["COLUMNS", "DEFAULT_K", "run_edge_section", "check_section_size", "MIN_H0",
+__all__ = ["COLUMNS", "DEFAULT_K", "run_section", "check_section_size", "MIN_H0",
            "PLATE_HALF_LENGTH"]
 
 #: the eighth model's length along ``X1`` (mm): the section cannot be longer
@@ -77,7 +77,7 @@ def check_section_size(length: float, h0s, *, names=("length", "h0")) -> None:
                          f"fail in scikit-fem's facet-basis inverse map), got {min(h0s):g}")
 
 
-def run_edge_section(key: UnitKey, D0: float, h0s, ks=DEFAULT_K, *,
+def run_section(key: UnitKey, D0: float, h0s, ks=DEFAULT_K, *,
                      grad_div: float = BUCKLING_GRAD_DIV,
                      length: float = 5.0, solver: str = "auto", done=frozenset(),
                      on_rows=None, progress=None, pressure: str = "Q1") -> list[dict]:
@@ -94,7 +94,7 @@ def run_edge_section(key: UnitKey, D0: float, h0s, ks=DEFAULT_K, *,
         The section's pressure space, ``"Q1"`` or ``"P0"``
         (:data:`~skfem_dielectric.models.edge_section.PRESSURES`; the 3D ramp keeps Q1).
     D0
-        The charge of the state (positive).
+        The charge of the state (``>= 0``; ``0``: the dead load alone).
     h0s, ks
         Edge element sizes of the section (mm, positive) and wavenumbers (positive).
     length
@@ -110,11 +110,13 @@ def run_edge_section(key: UnitKey, D0: float, h0s, ks=DEFAULT_K, *,
     Raises
     ------
     ValueError
-        A non-positive ``D0``, ``h0``, ``k`` or ``length``; the ramp stopping before
+        A negative ``D0``, a non-positive ``h0``, ``k`` or ``length``; the ramp stopping before
         ``D0``; the section's base state not converging.
     """
     alpha, elements, grading = key.alpha, key.mesh, key.grading
-    for name, vals in (("D0", [D0]), ("h0", h0s), ("k", ks), ("length", [length])):
+    if not (math.isfinite(float(D0)) and float(D0) >= 0):
+        raise ValueError(f"D0 must be non-negative and finite, got {D0!r}")
+    for name, vals in (("h0", h0s), ("k", ks), ("length", [length])):
         for v in vals:
             if not (math.isfinite(float(v)) and float(v) > 0):
                 raise ValueError(f"{name} must be positive and finite, got {v!r}")

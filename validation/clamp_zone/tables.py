@@ -4,10 +4,9 @@
 from __future__ import annotations
 
 import math
-from pathlib import Path
 
 from ..data.clamp_zone import clamp_unit_load, plain_p33_row
-from ..data.registry import TABLES
+from ..data.registry import table_file
 from ..specs import LOCATION_TOL
 from ..data.registry import load as load_table
 
@@ -15,7 +14,7 @@ __all__ = ["clamp_study_tables", "breakdown_numbers", "breakdown_table"]
 
 
 def _file(where, name: str):
-    return None if where is None else Path(where) / TABLES[name].file
+    return None if where is None else table_file(name, where)
 
 
 def clamp_study_tables(where=None) -> str:

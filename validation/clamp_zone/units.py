@@ -66,16 +66,18 @@ UNIT_SETTINGS = replace(fe.gallery.KEPLINGER_SETTINGS, max_cutbacks=6, max_iter=
 
 def unit_problem(alpha: float, elements, *, grading: float = 1.0,
                  formulation: str = "mixed", grad_div: float = BUCKLING_GRAD_DIV,
-                 pressure: str = "Q1"):
+                 pressure: str = "Q1", control: str = "charge"):
     """The plate of a unit and its dead load: ``(problem, s)``.
 
     The clamped Keplinger plate, eighth model, graded along ``x1`` (``grading``), grad-div
     ``grad_div`` (default :data:`~validation.fe.model.BUCKLING_GRAD_DIV`), ``J = 1`` imposed
-    as ``formulation`` with the pressure space ``pressure`` (``"Q1"`` or ``"P0"``,
-    :class:`~skfem_dielectric.gallery.plates.PlateOptions`); ``s`` of weight fraction
-    ``alpha`` with ``g = 9.81``.
+    as ``formulation`` with the pressure space ``pressure`` (``"Q1"`` or ``"P0"``),
+    actuated by ``control`` (``"charge"``: the load is ``(s, D0)``; ``"voltage"``:
+    ``(s, E0)``; :class:`~skfem_dielectric.gallery.plates.PlateOptions`); ``s`` of weight
+    fraction ``alpha`` with ``g = 9.81``.
     """
-    options = fe.PlateOptions(grad_div=grad_div, formulation=formulation, pressure=pressure)
+    options = fe.PlateOptions(grad_div=grad_div, formulation=formulation, pressure=pressure,
+                              control=control)
     pb = fe.gallery.keplinger_problem(elements=tuple(int(n) for n in elements),
                                       symmetry="eighth", grading=grading, options=options)
     return pb, fe.gallery.keplinger_s(alpha, g=9.81)
@@ -107,8 +109,8 @@ def unit_ramp(problem, targets, *, on_step, solver: str = "auto", start=None, **
 
 def ramp_states(problem, s: float, D0: float, *, solver: str = "auto",
                 name: str = "") -> list[tuple[float, np.ndarray, np.ndarray]]:
-    """The converged states ``(D0_i, x, load)`` of a unit's ramp to the charge ``D0``: the
-    dead load ``s`` in the Keplinger pre-load steps (its end is ``D0_i = 0``), then the
+    """The converged states ``(D0_i, x, load)`` of a unit's ramp to the charge ``D0 >= 0``:
+    the dead load ``s`` in the Keplinger pre-load steps (its end is ``D0_i = 0``), then the
     charge in steps of 0.5 and ``D0`` (:data:`UNIT_SETTINGS`), in the ramp's order.
 
     Raises
@@ -117,7 +119,8 @@ def ramp_states(problem, s: float, D0: float, *, solver: str = "auto",
         The ramp stops before ``D0`` (the message names the ramp as ``name``).
     """
     D0 = float(D0)
-    targets = [d for d in np.round(np.arange(0.5, D0, 0.5), 10) if d < D0 - 1e-9] + [D0]
+    targets = ([d for d in np.round(np.arange(0.5, D0, 0.5), 10) if d < D0 - 1e-9]
+               + ([D0] if D0 > 0 else []))         # D0 = 0: the pre-load's end
     states = {}
 
     def on_step(step):

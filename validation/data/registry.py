@@ -20,7 +20,7 @@ from .spec import TableSpec, read_table
 MAX_D0 = 50.0
 
 __all__ = ["TABLES", "MAX_D0", "load", "table_file", "shipped_path",
-           "MIN_ELEMENTS_PER_HALF_WAVE", "CLASS_TIE", "LAYER_WIDTHS", "P33_SETS",
+           "FORMER_UNTIL", "MIN_ELEMENTS_PER_HALF_WAVE", "CLASS_TIE", "LAYER_WIDTHS", "P33_SETS",
            "CLASS_COLUMNS"]
 
 #: elements across the width per half-wave below which a mesh cannot hold the mode
@@ -38,6 +38,12 @@ CLASS_COLUMNS = tuple(a + b + c for a in "SA" for b in "SA" for c in "SA")
 _UNIT = ("alpha", "mesh", "grading", "formulation")
 _MODEL = "eighth model, neo-Hookean, g = 9.81"
 
+#: the last release that reads a table under its former file name
+#: (:attr:`~validation.data.spec.TableSpec.former`): each table's file is
+#: ``clamp_<name>.csv``, written by ``clamp-zone <name>`` and tested in
+#: ``tests/validation/test_clamp_<name>.py``
+FORMER_UNTIL = "0.1"
+
 #: the study's tables by name (:class:`~validation.data.spec.TableSpec`)
 TABLES = {t.name: t for t in (
     TableSpec("units", "clamp_units.csv",
@@ -52,7 +58,7 @@ TABLES = {t.name: t for t in (
 # along x1 (towards the clamp); D0_b located to 1e-4; J at the mid-plane centres of the
 # elements next to the clamp at D0_b; cpu_s and peak_GB of the unit's process.
 """),
-    TableSpec("onsets", "class_onsets.csv",
+    TableSpec("onsets", "clamp_onsets.csv",
               _UNIT + ("class", "dofs", "lo", "hi", "D0_c", "half_waves",
                        "elements_per_half_wave", "corner_share", "mesh_scale",
                        "factorisations", "cpu_s", "peak_GB", "solver", "date", "note",
@@ -62,8 +68,8 @@ TABLES = {t.name: t for t in (
 # (the units table).  Written by skfem-dielectric clamp-zone onsets (docs/clamp-zone.md
 # defines every column): {_MODEL}, grad-div 10; D0_c
 # located to 1e-4 with the class's own indicator; cpu_s and peak_GB of the unit's process.
-"""),
-    TableSpec("p33", "p33_units.csv",
+""", former="class_onsets.csv"),
+    TableSpec("p33", "clamp_p33.csv",
               ("alpha", "mesh", "grading", "dofs", "D0_step")
               + tuple(f"P33_onset_{k}" for k in P33_SETS)
               + ("newton_limit", "D0_max", "states", "trials", "factorisations", "cpu_s",
@@ -73,7 +79,7 @@ TABLES = {t.name: t for t in (
 # per row).  Written by skfem-dielectric clamp-zone p33 (docs/clamp-zone.md defines every
 # column): {_MODEL}, plain form (grad_div = 0); an onset is the
 # D0 where min P33/mu on its set reaches -0.01, located to 1e-4 by Brent's method.
-"""),
+""", former="p33_units.csv"),
     TableSpec("layer", "clamp_layer.csv",
               _UNIT + ("dofs", "D0", "J_first_min", "J_first_max", "J_second_min",
                        "J_second_max", "J_centre_min", "J_centre_max",
@@ -86,7 +92,7 @@ TABLES = {t.name: t for t in (
 # layers at the clamp, J at the first layer's mid-plane centres, volume ratios of the
 # layers L - d < X1 < L and of the whole model.
 """),
-    TableSpec("flagged", "flagged_modes.csv",
+    TableSpec("flagged", "clamp_flagged.csv",
               ("alpha", "mesh", "grading", "D0", "dofs", "eigenvalue", "class", "kind",
                "corner_share", "mesh_scale", "X1", "X2", "X3", "layer", "cpu_s", "date",
                "command"),
@@ -96,8 +102,8 @@ TABLES = {t.name: t for t in (
 # {_MODEL}, grad-div 10; energy centroid X1, X2, X3 in mm (the
 # clamp at X1 = 50); layer = element layer along X1 counted from the clamp; cpu_s of the
 # state's analysis.
-""", multi=True),
-    TableSpec("counts", "edge_counts.csv",
+""", multi=True, former="flagged_modes.csv"),
+    TableSpec("counts", "clamp_counts.csv",
               _UNIT + ("grad_div", "pressure", "D0", "dofs", "n_negative", "n_x2A")
               + CLASS_COLUMNS + ("cpu_s", "count_cpu_s", "peak_GB", "factorisations",
                                  "solver", "date", "command"),
@@ -106,8 +112,8 @@ TABLES = {t.name: t for t in (
 # Written by skfem-dielectric clamp-zone counts (docs/clamp-zone.md defines every column):
 # {_MODEL}, grading = last / first element length along x1;
 # counts by Sylvester's law of inertia (no classification: the corner quartet is 4 of them).
-"""),
-    TableSpec("section", "edge_section.csv",
+""", former="edge_counts.csv"),
+    TableSpec("section", "clamp_section.csv",
               ("alpha", "mesh", "grading", "grad_div", "pressure", "D0", "length", "h0", "k",
                "section_dofs", "n_negative", "base_iterations", "J_min", "J_max",
                "F11_section", "F11_3d", "count_cpu_s", "base_cpu_s", "state_cpu_s",
@@ -118,7 +124,24 @@ TABLES = {t.name: t for t in (
 # Written by skfem-dielectric clamp-zone section (docs/clamp-zone.md defines every column):
 # eighth-model plate, neo-Hookean, g = 9.81; section at the centre plane, base state solved
 # on the section's own mesh (edge elements h0, mm, H = 1); pressure space Q1 or P0.
-""", added=(("pressure", "Q1"),)),
+""", added=(("pressure", "Q1"),), former="edge_section.csv"),
+    TableSpec("voltage", "clamp_voltage.csv",
+              _UNIT + ("dofs", "s", "E0_limit", "D0_limit", "lam1_limit", "max_E0",
+                       "lam1_max_E0", "ratio", "E0_physical", "D0_physical", "physical_class",
+                       "n_negative_start", "E0_first",
+                       "first_eigenvalue", "first_class", "first_kind",
+                       "first_corner_share", "first_mesh_scale", "first_X1", "first_X2",
+                       "first_X3", "first_layer", "points", "iterations", "factorisations",
+                       "cpu_s", "peak_GB", "solver", "date", "note", "command"),
+              _UNIT, f"""\
+# The clamped plate under voltage control, unit by unit (one alpha on one mesh per row).
+# Written by skfem-dielectric clamp-zone voltage (docs/clamp-zone.md defines every column):
+# {_MODEL}, grad-div 10; E0 followed at fixed s by arclength
+# continuation, its first limit point located; max_E0: the homogeneous uni-axial limit at s;
+# the first point with a physical negative mode (D0_physical: the charge at the centre);
+# the first negative mode the dead load does not have, before the limit, with its energy
+# centroid (mm; clamp at X1 = 50); cpu_s and peak_GB of the unit's process.
+"""),
 )}
 
 
@@ -159,8 +182,14 @@ def load(name: str, where=None, *, note=None) -> list[dict]:
 
 def table_file(name: str, where=None) -> Path:
     """The file of the table ``name``: ``where`` itself, or the table's file in the folder
-    ``where``, or the shipped table (``where`` is ``None``)."""
+    ``where`` (its :attr:`~validation.data.spec.TableSpec.former` name in a folder of an
+    earlier release), or the shipped table (``where`` is ``None``)."""
     if where is None:
         return shipped_path(name)
     path = Path(where)
-    return path / TABLES[name].file if path.is_dir() else path
+    if not path.is_dir():
+        return path
+    spec = TABLES[name]
+    if spec.former and not (path / spec.file).exists() and (path / spec.former).is_file():
+        return path / spec.former       # a folder written before the table's renaming
+    return path / spec.file

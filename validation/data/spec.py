@@ -17,11 +17,20 @@ from __future__ import annotations
 
 import csv
 import errno
+import math
 import stat
 from dataclasses import dataclass
 from pathlib import Path
 
-__all__ = ["TableSpec", "ForeignTableError", "read_table", "DECLARATION"]
+import numpy as np
+
+__all__ = ["TableSpec", "ForeignTableError", "read_table", "DECLARATION", "TEXT_COLUMNS"]
+
+#: the columns of the studies' plain CSVs that hold text (:meth:`TableSpec.plain`); every
+#: other cell is a number
+TEXT_COLUMNS = frozenset({"mesh", "class", "physical_class", "branch", "reason", "model",
+                          "control", "mode", "note", "case", "run", "loading", "variant",
+                          "kind", "stable", "stable_charge"})
 
 #: the first line of every table of the study: ``DECLARATION.format(name=...)``
 DECLARATION = "# clamp-zone table: {name}"
@@ -34,7 +43,14 @@ class ForeignTableError(ValueError):
 
 @dataclass(frozen=True)
 class TableSpec:
-    """One table of the study.
+    """One measured table: its file, its columns, the columns that key a row to its unit
+    of work, and how it is written.
+
+    Two kinds share it: the clamp-zone study's declared tables (:data:`~validation.data.
+    registry.TABLES`: a declaration line and ``#`` lines, floats to 6 digits, written by
+    :class:`~validation.store.tables.TableWriter`) and the other studies' plain CSVs
+    (:meth:`plain`: the header first, floats to 10 digits, written with their detail files
+    by :class:`~validation.store.rows.StudyStore`).
 
     Attributes
     ----------
@@ -57,6 +73,23 @@ class TableSpec:
         Columns added to the table after its first release, each with the value the rows
         of a file written before it take (pairs: ``(("pressure", "Q1"),)``): such a file
         is read with that value, and its next write has the whole header.
+    declared
+        The file begins with :attr:`declaration` and the :attr:`about` lines (else with
+        its header).
+    digits
+        Significant digits of a float cell.
+    former
+        The file's name in earlier releases (``"edge_counts.csv"``), read in a folder that
+        has no file of the present name; the table's writer renames it (kept for one
+        release: :data:`~validation.data.registry.FORMER_UNTIL`).
+
+    Examples
+    --------
+    >>> t = TableSpec.plain("buckling.csv", ("alpha", "mesh", "D0_b"), ("alpha", "mesh"))
+    >>> t.name, t.key_of({"alpha": 1, "mesh": "2x1x1", "D0_b": 0.5})
+    ('buckling', ('1', '2x1x1'))
+    >>> t.cell(2 / 3), TableSpec("demo", "demo.csv", ("x",), ("x",), "").cell(2 / 3)
+    ('0.6666666667', '0.666667')
     """
 
     name: str
@@ -65,19 +98,49 @@ class TableSpec:
     key: tuple
     about: str
     text: frozenset = frozenset({"mesh", "formulation", "class", "solver", "date",
-                                 "scan_counts", "note", "command", "pressure", "kind"})
+                                 "scan_counts", "note", "command", "pressure", "kind",
+                                 "first_class", "first_kind", "physical_class"})
     multi: bool = False
     added: tuple = ()
+    declared: bool = True
+    digits: int = 6
+    former: str = ""
+
+    @classmethod
+    def plain(cls, file: str, columns, key, *, text=TEXT_COLUMNS) -> "TableSpec":
+        """A study's plain CSV ``file`` (its name: the file's stem): the header first, no
+        declaration, floats to 10 digits, text in the columns ``text``."""
+        return cls(Path(file).stem, file, tuple(columns), tuple(key), "",
+                   text=frozenset(text), declared=False, digits=10)
 
     @property
     def declaration(self) -> str:
         """The table's first line."""
         return DECLARATION.format(name=self.name)
 
-    def key_of(self, row: dict) -> tuple:
-        """The key of ``row`` (text or numbers) as text: numbers to 10 digits."""
-        return tuple(str(row[c]) if c in self.text else f"{float(row[c]):.10g}"
+    def cell(self, v) -> str:
+        """A row value as its cell: ``None`` and ``nan`` as the empty cell, floats to
+        :attr:`digits` significant digits, anything else as ``str``."""
+        if v is None:
+            return ""
+        if isinstance(v, (float, np.floating)):
+            return "" if math.isnan(v) else f"{float(v):.{self.digits}g}"
+        return str(v)
+
+    def key_of(self, row) -> tuple:
+        """The key of ``row`` (a dict of text or numbers, or the list of a row's cells) as
+        text: numbers to 10 digits, an empty cell as empty."""
+        if not isinstance(row, dict):
+            row = dict(zip(self.columns, row))
+        return tuple(str(row[c]) if c in self.text else _key_number(row[c])
                      for c in self.key)
+
+
+def _key_number(v) -> str:
+    if isinstance(v, str) and v.strip() == "":
+        return ""
+    v = float(v)
+    return "" if math.isnan(v) else f"{v:.10g}"
 
 
 def _bad_cell(spec: TableSpec, row: dict) -> str:

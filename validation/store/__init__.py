@@ -16,7 +16,7 @@ interruptions, for every command that writes into ``--out``.
 
 from .case_files import (CaseFiles, append_csv_rows, case_manifest, resume_plan, spec_sig,
                          state_path)
-from .rows import (DamagedFileError, RowFile, StudyStore, TEXT_COLUMNS,
+from .rows import (DamagedFileError, StudyStore,
                    command_lock, read_rows)
 from .tables import TableWriter
 from .files import (STATE_VERSION, FolderLock, LockedError, RowDigest, aside_path,
@@ -30,6 +30,6 @@ __all__ = [
     "RowDigest", "save_state", "load_state", "save_point", "saved_point", "dumps",
     "STATE_VERSION",
     "CaseFiles", "append_csv_rows", "case_manifest", "resume_plan", "spec_sig", "state_path",
-    "command_lock", "read_rows", "DamagedFileError", "RowFile", "StudyStore",
-    "TEXT_COLUMNS", "TableWriter",
+    "command_lock", "read_rows", "DamagedFileError", "StudyStore",
+    "TableWriter",
 ]

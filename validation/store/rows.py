@@ -15,23 +15,14 @@ from __future__ import annotations
 import csv
 import io
 import json
-import math
 import shutil
-from dataclasses import dataclass
 from pathlib import Path
 
-import numpy as np
-
+from ..data.spec import TEXT_COLUMNS, TableSpec
 from .files import (FolderLock, aside_path, csv_line, dumps, keep_aside, regular_file,
                     write_csv_atomic, write_text_atomic)
 
-__all__ = ["read_rows", "command_lock", "DamagedFileError", "RowFile",
-           "StudyStore", "TEXT_COLUMNS"]
-
-#: the columns of the study CSVs that hold text; every other cell is a number
-TEXT_COLUMNS = frozenset({"mesh", "class", "physical_class", "branch", "reason", "model",
-                          "control", "mode", "note", "case", "run", "loading", "variant",
-                          "kind", "stable", "stable_charge"})
+__all__ = ["read_rows", "command_lock", "DamagedFileError", "StudyStore"]
 
 
 def command_lock(out, name: str, what: str) -> FolderLock:
@@ -95,25 +86,15 @@ class DamagedFileError(OSError):
         super().__init__(None, f"{where}{why}", str(path))
 
 
-def _text(v) -> str:
-    """The cell of a row value: ``""`` for ``None`` and ``nan`` (no value), floats with 10
-    significant digits."""
-    if v is None:
-        return ""
-    if isinstance(v, (float, np.floating)):
-        return "" if math.isnan(v) else f"{float(v):.10g}"
-    return str(v)
-
-
-def _cells(columns, cells: list[str]) -> list[str]:
+def _cells(spec: TableSpec, cells: list[str]) -> list[str]:
     """``cells`` of a row read back, a ``nan`` in a number column as the empty cell that
-    :func:`_text` now writes for it (files of earlier versions)."""
-    return ["" if c not in TEXT_COLUMNS and t.strip().lower() == "nan" else t
-            for c, t in zip(columns, cells)]
+    :meth:`TableSpec.cell` now writes for it (files of earlier versions)."""
+    return ["" if c not in spec.text and t.strip().lower() == "nan" else t
+            for c, t in zip(spec.columns, cells)]
 
 
-def _value(path, line: int, column: str, text: str):
-    if column in TEXT_COLUMNS:
+def _value(path, line: int, column: str, text: str, text_columns=TEXT_COLUMNS):
+    if column in text_columns:
         return text
     if text == "":
         return float("nan")
@@ -166,22 +147,6 @@ def read_rows(path: Path) -> list[dict]:
     return out
 
 
-@dataclass(frozen=True)
-class RowFile:
-    """One CSV of a study: its file name in ``out``, its columns and the columns that key
-    a row to its unit of work (e.g. ``("alpha", "mesh")``)."""
-
-    name: str
-    columns: tuple
-    key: tuple
-
-    def key_of(self, row) -> tuple:
-        """The key of ``row`` (a dict of values or the list of its cells) as text."""
-        if isinstance(row, dict):
-            return tuple(_text(row[c]) for c in self.key)
-        return tuple(row[self.columns.index(c)] for c in self.key)
-
-
 class StudyStore(LockedWriter):
     """The files of one study in ``out``, held under its lock: resumed unit by unit.
 
@@ -203,9 +168,9 @@ class StudyStore(LockedWriter):
         What the results depend on besides their keys (e.g. the charge step); a folder
         whose saved settings differ is discarded, with a note, and recomputed, its rows
         first kept aside in ``<file>.damaged`` (:func:`~.files.keep_aside`).
-    table : RowFile
-        One row per unit, written last.
-    details : tuple of RowFile
+    table : TableSpec
+        One row per unit, written last (a plain CSV: :meth:`TableSpec.plain`).
+    details : tuple of TableSpec
         The units' other rows.
     derived : tuple of str
         Files and folders in ``out`` drawn from the rows (figures, mode shapes): removed
@@ -230,8 +195,8 @@ class StudyStore(LockedWriter):
     --------
     >>> import tempfile
     >>> out = tempfile.mkdtemp()
-    >>> t = RowFile("t.csv", ("alpha", "mesh", "D0_b"), ("alpha", "mesh"))
-    >>> d = RowFile("d.csv", ("alpha", "mesh", "D0"), ("alpha", "mesh"))
+    >>> t = TableSpec.plain("t.csv", ("alpha", "mesh", "D0_b"), ("alpha", "mesh"))
+    >>> d = TableSpec.plain("d.csv", ("alpha", "mesh", "D0"), ("alpha", "mesh"))
     >>> with StudyStore(out, "demo", {"D0_step": 0.5}, t, (d,), plan=[(1.0, "2x1x1")],
     ...                 note=print) as st:
     ...     st.commit({"alpha": 1.0, "mesh": "2x1x1", "D0_b": 0.25},
@@ -247,17 +212,21 @@ class StudyStore(LockedWriter):
     True
     """
 
-    def __init__(self, out, name: str, settings: dict, table: RowFile,
+    def __init__(self, out, name: str, settings: dict, table: TableSpec,
                  details: tuple = (), *, plan, derived: tuple = (), note=None,
                  counts: dict | None = None, force: bool = False):
         self.out, self.name, self.settings = Path(out), name, settings
         self.counts, self.force = dict(counts or {}), force
         self.table, self.details, self.derived = table, tuple(details), tuple(derived)
-        self.plan = [tuple(_text(v) for v in k) for k in plan]
+        self.plan = [self._key(k) for k in plan]
         self.note = note or (lambda msg: None)
         self._lock = None
 
     # -- opening ---------------------------------------------------------------------
+    def _key(self, values) -> tuple:
+        """The key of a unit given by the values of the table's key columns."""
+        return self.table.key_of(dict(zip(self.table.key, values)))
+
     def _lock_args(self) -> tuple:
         return self.out, self.name, f"the {self.name} study in {self.out}"
 
@@ -267,7 +236,7 @@ class StudyStore(LockedWriter):
     def _owned(self) -> list[Path]:
         """The files this study writes in ``out`` (its CSVs, its derived files); each must
         be a regular file or absent, else the study stops before touching anything."""
-        names = [f.name for f in self._files()] + [d for d in self.derived
+        names = [f.file for f in self._files()] + [d for d in self.derived
                                                     if Path(d).suffix]
         return [regular_file(self.out / n, f"a file of the {self.name} study")
                 for n in names]
@@ -275,12 +244,12 @@ class StudyStore(LockedWriter):
     def _open(self) -> None:
         self._owned()
         for f in self._files():                     # temporaries of a killed write
-            path = self.out / f.name
+            path = self.out / f.file
             for tmp in path.parent.glob(f".{path.name}.*.tmp"):
                 tmp.unlink()
         man = self.out / ".state" / f"{self.name}.json"
         want = json.loads(dumps(self.settings))
-        present = [f.name for f in self._files() if (self.out / f.name).exists()]
+        present = [f.file for f in self._files() if (self.out / f.file).exists()]
         why = ""
         if self.force:
             self._discard()
@@ -317,7 +286,7 @@ class StudyStore(LockedWriter):
         aside: dict[str, list] = {}
         lines: dict[str, dict[tuple, list[int]]] = {}
         for f in self._files():
-            path = self.out / f.name
+            path = self.out / f.file
             text = _read_text(path)
             header, rows, cut = _parse(path, text)
             if header is not None and header != list(f.columns):
@@ -326,10 +295,10 @@ class StudyStore(LockedWriter):
                 line = text.count("\n") + 1
                 self.note(f"{path}: its last row is incomplete (no line end); kept aside "
                           f"in {aside_path(path).name}")
-                aside.setdefault(f.name, []).append(
+                aside.setdefault(f.file, []).append(
                     (line, text[text.rfind("\n") + 1:], "incomplete (no line end)"))
                 repaired = True
-                cut_files.add(f.name)
+                cut_files.add(f.file)
             by: dict[tuple, list] = {}
             at: dict[tuple, list[int]] = {}
             for line, r in rows:
@@ -337,13 +306,13 @@ class StudyStore(LockedWriter):
                     raise DamagedFileError(path, line, f"has {len(r)} cells, the header "
                                            f"{len(f.columns)}")
                 for c, t in zip(f.columns, r):
-                    _value(path, line, c, t)
-                r = _cells(f.columns, r)
+                    _value(path, line, c, t, f.text)
+                r = _cells(f, r)
                 k = f.key_of(r)
                 if f is self.table and k in by:
                     self.note(f"{path}: row {line} repeats the unit {', '.join(k)}; kept "
                               f"aside in {aside_path(path).name}")
-                    aside.setdefault(f.name, []).append(
+                    aside.setdefault(f.file, []).append(
                         (line, csv_line(r).rstrip("\n"), "repeats the unit"))
                     repaired = True
                     continue
@@ -351,19 +320,20 @@ class StudyStore(LockedWriter):
                 at.setdefault(k, []).append(line)
                 if f is self.table:
                     self.order.append(k)
-            self.cells[f.name] = by
-            lines[f.name] = at
+            self.cells[f.file] = by
+            lines[f.file] = at
 
         def put_aside(name, k, why):
             aside.setdefault(name, []).extend(
                 (n, csv_line(r).rstrip("\n"), why)
                 for n, r in zip(lines[name].get(k, []), self.cells[name].get(k, [])))
 
-        table, recounted = self.cells[self.table.name], set()
+        table, recounted = self.cells[self.table.file], set()
         for name, column in self.counts.items():    # units missing rows of a detail file
             i = self.table.columns.index(column)
             short = [k for k in self.order
-                     if _value(self.out / self.table.name, 0, column, table[k][0][i])
+                     if _value(self.out / self.table.file, 0, column, table[k][0][i],
+                            self.table.text)
                      != len(self.cells[name].get(k, []))]
             if short:
                 if name not in cut_files:       # the cut row's note says it
@@ -371,7 +341,7 @@ class StudyStore(LockedWriter):
                               f"missing or extra ({'; '.join(', '.join(k) for k in short)}); "
                               f"recomputed")
                 for k in short:
-                    put_aside(self.table.name, k, f"its unit has another number of rows "
+                    put_aside(self.table.file, k, f"its unit has another number of rows "
                                                   f"in {name} than {column}")
                     del table[k]
                 recounted.update(short)
@@ -379,14 +349,14 @@ class StudyStore(LockedWriter):
                 repaired = True
         done = set(self.order)
         for f in self.details:
-            extra = [k for k in self.cells[f.name] if k not in done]
+            extra = [k for k in self.cells[f.file] if k not in done]
             if extra:        # an interrupted commit: not a result (the table row is)
                 for k in recounted.intersection(extra):
-                    put_aside(f.name, k, "a row of a unit whose rows are incomplete")
-                rows = {k: self.cells[f.name].pop(k) for k in extra}
+                    put_aside(f.file, k, "a row of a unit whose rows are incomplete")
+                rows = {k: self.cells[f.file].pop(k) for k in extra}
                 unfinished = [k for k in extra if k not in recounted]   # others: noted
-                if unfinished and f.name not in cut_files:
-                    self.note(f"{self.out / f.name}: "
+                if unfinished and f.file not in cut_files:
+                    self.note(f"{self.out / f.file}: "
                               f"{sum(len(rows[k]) for k in unfinished)} row(s) of "
                               f"{len(unfinished)} unfinished unit(s) dropped")
                 repaired = True
@@ -402,7 +372,7 @@ class StudyStore(LockedWriter):
         the side files written."""
         kept = []
         for f in self._files():
-            path = self.out / f.name
+            path = self.out / f.file
             if not path.exists():
                 continue
             text = path.read_text(encoding="utf-8", errors="replace")
@@ -421,45 +391,46 @@ class StudyStore(LockedWriter):
             p = self.out / name
             if not Path(name).suffix and p.is_dir() and not p.is_symlink():
                 shutil.rmtree(p)
-        self.cells = {f.name: {} for f in self._files()}
+        self.cells = {f.file: {} for f in self._files()}
         self.order = []
 
     # -- use -------------------------------------------------------------------------
     def kept(self) -> int:
         """How many units of ``plan`` are in the table (kept from an earlier run)."""
-        return sum(k in self.cells[self.table.name] for k in self.plan)
+        return sum(k in self.cells[self.table.file] for k in self.plan)
 
     def done(self, key) -> bool:
         """Whether the unit ``key`` (values of the table's key columns) is in the table."""
-        return tuple(_text(v) for v in key) in self.cells[self.table.name]
+        return self._key(key) in self.cells[self.table.file]
 
     def _keys(self) -> list[tuple]:
         planned = set(self.plan)
-        have = self.cells[self.table.name]
+        have = self.cells[self.table.file]
         return ([k for k in self.order if k not in planned]
                 + [k for k in self.plan if k in have])
 
     def _write(self) -> None:
         keys = self._keys()
         for f in self.details + (self.table,):          # the table last: it commits
-            by = self.cells[f.name]
+            by = self.cells[f.file]
             rows = [r for k in keys for r in by.get(k, [])]
-            if rows or (self.out / f.name).exists():
-                write_csv_atomic(self.out / f.name, list(f.columns), rows)
+            if rows or (self.out / f.file).exists():
+                write_csv_atomic(self.out / f.file, list(f.columns), rows)
 
     def commit(self, row: dict, details: dict) -> None:
         """Record one finished unit: its table ``row`` and its rows in each detail file
         (``{file name: [dict, ...]}``), all files rewritten (the table last)."""
         k = self.table.key_of(row)
         for f in self.details:
-            self.cells[f.name][k] = [[_text(r[c]) for c in f.columns]
-                                     for r in details.get(f.name, [])]
-        if k not in self.cells[self.table.name]:
+            self.cells[f.file][k] = [[f.cell(r[c]) for c in f.columns]
+                                     for r in details.get(f.file, [])]
+        if k not in self.cells[self.table.file]:
             self.order.append(k)
-        self.cells[self.table.name][k] = [[_text(row[c]) for c in self.table.columns]]
+        self.cells[self.table.file][k] = [[self.table.cell(row[c]) for c in self.table.columns]]
         self._write()
 
     def rows(self, name: str | None = None) -> list[dict]:
-        """The rows of the table (or of the detail file ``name``) as dicts, in file order."""
-        path = self.out / (name or self.table.name)
+        """The rows of the table (or of the detail file ``name``: its :attr:`TableSpec.file`)
+        as dicts, in file order."""
+        path = self.out / (name or self.table.file)
         return read_rows(path)

@@ -8,26 +8,14 @@ from __future__ import annotations
 
 import csv
 import io
-import math
+import os
 from pathlib import Path
-
-import numpy as np
 
 from ..data.spec import TableSpec, read_table
 from .files import aside_path, csv_line, keep_aside, regular_file, write_text_atomic
 from .rows import LockedWriter
 
 __all__ = ["TableWriter"]
-
-
-def _cell(v) -> str:
-    """A row value as its cell: floats to 6 digits, ``nan`` and ``None`` as empty."""
-    if v is None:
-        return ""
-    if isinstance(v, (float, np.floating)):
-        return "" if not math.isfinite(v) else f"{float(v):.6g}"
-    return str(v)
-
 
 
 class TableWriter(LockedWriter):
@@ -68,6 +56,9 @@ class TableWriter(LockedWriter):
     """
 
     def __init__(self, path, spec: TableSpec, *, note=None):
+        if not spec.declared:
+            raise ValueError(f"spec must be a declared table (a plain CSV is written by "
+                             f"StudyStore), got {spec.file!r}")
         self.path, self.spec, self.note = Path(path), spec, note
         self._lock = None
         self.rows: list[dict] = []
@@ -81,6 +72,13 @@ class TableWriter(LockedWriter):
         for tmp in self.path.parent.glob(f".{self.path.name}.*.tmp"):     # a killed write
             tmp.unlink()
         regular_file(self.path, f"the clamp-zone {self.spec.name} table")
+        former = self.path.with_name(self.spec.former) if self.spec.former else None
+        if former is not None and not self.path.exists() and former.is_file():
+            read_table(former, self.spec)           # another table is refused, untouched
+            os.replace(former, self.path)
+            if self.note is not None:
+                self.note(f"{former} renamed {self.path.name}, the table's file from "
+                          f"this release on")
         self.damaged = []
         self.rows = read_table(self.path, self.spec, on_damaged=self._damaged)
 
@@ -102,12 +100,12 @@ class TableWriter(LockedWriter):
         return [r for r in self.rows if self.spec.key_of(r) == k]
 
     def add(self, rows, *, replace=()) -> None:
-        """Append ``rows`` (dicts; floats to 6 digits, ``nan`` as an empty cell) and
+        """Append ``rows`` (dicts; each value as :meth:`TableSpec.cell` writes it) and
         rewrite the table atomically.  The rows read back as damaged are first kept aside
         (:func:`validation.store.keep_aside`), once; so are the rows of ``replace`` (rows
         of this table computed with other settings) that have the key of a new row: the
         new row replaces them."""
-        new = [{c: _cell(r.get(c, "")) for c in self.spec.columns} for r in rows]
+        new = [{c: self.spec.cell(r.get(c, "")) for c in self.spec.columns} for r in rows]
         keys = {self.spec.key_of(r) for r in new} if replace else set()
         old = [r for r in self.rows if any(r is x for x in replace)
                and self.spec.key_of(r) in keys]

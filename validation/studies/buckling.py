@@ -41,7 +41,8 @@ from ..fe.model import BUCKLING_GRAD_DIV, BUCKLING_NEWTON
 from ..specs import LOCATION_TOL
 from ..figures import save_figure
 from ..options import load_targets
-from ..store import RowFile, StudyStore, read_npz, write_npz_atomic
+from ..data.spec import TableSpec
+from ..store import StudyStore, read_npz, write_npz_atomic
 from ..data.loads import buckling_loads, p33_onsets
 from ..markers import CONVERGED_BUCKLING, P33_ONSET_LOCATED, legend_style
 from ..table import BREAKDOWN_TOL
@@ -187,10 +188,10 @@ def run_plain(alpha: float, elements, *, D0_step: float, D0_max: float,
 
 
 #: the files of the study (:class:`~validation.store.StudyStore`): the table last
-TABLE = RowFile("buckling.csv", tuple(COLUMNS), ("alpha", "mesh"))
-SCAN = RowFile("buckling-scan.csv", tuple(SCAN_COLUMNS), ("alpha", "mesh"))
-TRIALS = RowFile("buckling-trials.csv", tuple(TRIAL_COLUMNS), ("alpha", "mesh"))
-PLAIN = RowFile("buckling-plain.csv", tuple(PLAIN_COLUMNS), ("alpha", "mesh"))
+TABLE = TableSpec.plain("buckling.csv", tuple(COLUMNS), ("alpha", "mesh"))
+SCAN = TableSpec.plain("buckling-scan.csv", tuple(SCAN_COLUMNS), ("alpha", "mesh"))
+TRIALS = TableSpec.plain("buckling-trials.csv", tuple(TRIAL_COLUMNS), ("alpha", "mesh"))
+PLAIN = TableSpec.plain("buckling-plain.csv", tuple(PLAIN_COLUMNS), ("alpha", "mesh"))
 
 
 def charge_targets(D0_step: float, D0_max: float) -> np.ndarray:
@@ -225,9 +226,9 @@ def run_buckling(out: Path, *, alphas, meshes, D0_step: float, D0_max: float,
                     derived=("buckling.png", "buckling.pdf", ".modes"), note=note) as store:
 
         def draw():
-            buckling_figure(store.rows(), store.rows(SCAN.name), out / ".modes",
+            buckling_figure(store.rows(), store.rows(SCAN.file), out / ".modes",
                             out / "buckling.png", footer=footer,
-                            trials=store.rows(TRIALS.name), plain=store.rows(PLAIN.name))
+                            trials=store.rows(TRIALS.file), plain=store.rows(PLAIN.file))
 
         for alpha in alphas:
             for el in meshes:
@@ -236,7 +237,7 @@ def run_buckling(out: Path, *, alphas, meshes, D0_step: float, D0_max: float,
                 row, scan, trials = run_one(alpha, el, D0_step=D0_step, D0_max=D0_max,
                                             solver=solver, modes_dir=out / ".modes")
                 plain = run_plain(alpha, el, D0_step=D0_step, D0_max=D0_max, solver=solver)
-                store.commit(row, {SCAN.name: scan, TRIALS.name: trials, PLAIN.name: [plain]})
+                store.commit(row, {SCAN.file: scan, TRIALS.file: trials, PLAIN.file: [plain]})
                 draw()              # the figure follows the table: every finished row
                 if progress is not None:
                     progress(row, plain)

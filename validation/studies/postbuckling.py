@@ -36,7 +36,8 @@ from skfem_dielectric.studies.postbuckling import (critical_mode, midplane_defle
                                            midplane_nodes, post_buckled_branch)
 
 from ..options import load_targets
-from ..store import RowFile, StudyStore, read_npz, write_npz_atomic
+from ..data.spec import TableSpec
+from ..store import StudyStore, read_npz, write_npz_atomic
 from ..fe.model import BUCKLING_GRAD_DIV
 from ..figures import save_figure
 
@@ -65,8 +66,8 @@ WINDOW = {0.05: (0.65, 1.5), 0.3: (1.3, 2.0), 0.7: (2.2, 3.0), 1.0: (2.55, 3.3)}
 
 
 #: the files of the study (:class:`~validation.store.StudyStore`): the summary last
-TABLE = RowFile("post-buckling-summary.csv", tuple(SUMMARY_COLUMNS), ("alpha", "mesh", "model"))
-STATES = RowFile("post-buckling.csv", tuple(COLUMNS), ("alpha", "mesh", "model"))
+TABLE = TableSpec.plain("post-buckling-summary.csv", tuple(SUMMARY_COLUMNS), ("alpha", "mesh", "model"))
+STATES = TableSpec.plain("post-buckling.csv", tuple(COLUMNS), ("alpha", "mesh", "model"))
 
 
 def charge_targets(D0_step: float, D0_max: float, D0_from: float = 0.0) -> np.ndarray:
@@ -266,16 +267,16 @@ def run_post_buckling(out: Path, *, alphas, meshes, D0_step: float, D0_max: floa
                 summary, rows = run_one(alpha, el, D0_step=D0_step, D0_max=top,
                                         D0_from=start, solver=solver, model=model,
                                         shapes_dir=out / ".post-buckling")
-                store.commit(summary, {STATES.name: rows})
+                store.commit(summary, {STATES.file: rows})
                 # the figure follows the table: a long study shows every finished row
-                post_buckling_figure(store.rows(), store.rows(STATES.name),
+                post_buckling_figure(store.rows(), store.rows(STATES.file),
                                      out / ".post-buckling", out / "post-buckling.png",
                                      footer=footer)
                 if progress is not None:
                     progress(summary)
         summary = store.rows()
         if summary:
-            post_buckling_figure(summary, store.rows(STATES.name), out / ".post-buckling",
+            post_buckling_figure(summary, store.rows(STATES.file), out / ".post-buckling",
                                  out / "post-buckling.png", footer=footer)
     return summary
 

@@ -46,7 +46,8 @@ from ..figures import (MODEL_NAME, PAPER_FIGURE, add_caption, mesh_caption,
 from ..markers import (LIMIT_POINT, STABLE_STATE, UNSTABLE_STATE, VOLTAGE_LIMIT_LOCUS,
                        legend_style, line_style)
 from ..specs import ALPHAS, KEPLINGER
-from ..store import RowFile, StudyStore
+from ..data.spec import TableSpec
+from ..store import StudyStore
 
 __all__ = ["VOLTAGE_CONTROL", "VOLTAGE_COLUMNS", "RUN_COLUMNS", "POINTS", "RUNS", "LIMIT_TOL",
            "voltage_runs", "voltage_rows",
@@ -62,8 +63,8 @@ VOLTAGE_COLUMNS = ["case", "run", "point", "model", "loading", "variant", "s", "
 #: the resume table (one row per path, written after the path's points; below ``.state``)
 RUN_COLUMNS = ["run", "model", "loading", "s", "alpha", "n_points"]
 #: the files of the case (:class:`~validation.store.StudyStore`), a path the unit
-POINTS = RowFile(f"{VOLTAGE_CONTROL}.csv", tuple(VOLTAGE_COLUMNS), ("run",))
-RUNS = RowFile(f".state/{VOLTAGE_CONTROL}-runs.csv", tuple(RUN_COLUMNS), ("run",))
+POINTS = TableSpec.plain(f"{VOLTAGE_CONTROL}.csv", tuple(VOLTAGE_COLUMNS), ("run",))
+RUNS = TableSpec.plain(f".state/{VOLTAGE_CONTROL}-runs.csv", tuple(RUN_COLUMNS), ("run",))
 #: verdict tolerance on the relative lam1 error of the homogeneous limit points (the
 #: stated target is 1e-4 in lam1 and 1e-6 in E0; the limit point is located to
 #: ``|dE0/ds| <= 1e-9``, so the measured errors are near 1e-10)
@@ -411,12 +412,12 @@ def run_voltage_control(out, quick: bool = False, on_run=None, note=None, say=No
     out.mkdir(parents=True, exist_ok=True)
     runs = voltage_runs(quick)
     with StudyStore(out, VOLTAGE_CONTROL, {"quick": bool(quick)}, RUNS, (POINTS,),
-                    plan=[(_run_key(r),) for r in runs], counts={POINTS.name: "n_points"},
+                    plan=[(_run_key(r),) for r in runs], counts={POINTS.file: "n_points"},
                     derived=(f"{VOLTAGE_CONTROL}.png", f"{VOLTAGE_CONTROL}.pdf"), note=note,
                     force=force) as store:
         kept = sum(int(r["n_points"]) for r in store.rows() if store.done((r["run"],)))
         if store.kept() and say is not None:
-            say(f"{out / POINTS.name}: kept {store.kept()} of {len(runs)} paths ({kept} rows) "
+            say(f"{out / POINTS.file}: kept {store.kept()} of {len(runs)} paths ({kept} rows) "
                 f"of an earlier run")
         for r in runs:
             if store.done((_run_key(r),)):
@@ -425,12 +426,12 @@ def run_voltage_control(out, quick: bool = False, on_run=None, note=None, say=No
             new = _rows_of(r, quick)
             store.commit({**{c: _fmt(r[c]) for c in ("model", "loading", "s", "alpha")},
                           "run": _run_key(r), "n_points": str(len(new))},
-                         {POINTS.name: [dict(zip(VOLTAGE_COLUMNS, map(_fmt, row)))
+                         {POINTS.file: [dict(zip(VOLTAGE_COLUMNS, map(_fmt, row)))
                                         for row in new]})
             if on_run is not None:
                 on_run(r, new, time.perf_counter() - t1)
-        rows = [_read_back(row) for row in store.rows(POINTS.name)]
-        csv_path = out / POINTS.name
+        rows = [_read_back(row) for row in store.rows(POINTS.file)]
+        csv_path = out / POINTS.file
         ax = voltage_figure(rows, quick=quick)
         paths = [csv_path] + save_figure(ax[0].figure, out, VOLTAGE_CONTROL)
     col = {c: VOLTAGE_COLUMNS.index(c) for c in VOLTAGE_COLUMNS}

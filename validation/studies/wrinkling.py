@@ -32,7 +32,8 @@ import skfem_dielectric as fe
 from ..figures import MODEL_NAME, add_caption, mesh_caption, run_caption, save_figure, tag_panels
 from ..markers import (MODE_LINES, SECTION_ANTISYMMETRIC, SECTION_SYMMETRIC, THICK_PLATE_LIMIT,
                        line_style)
-from ..store import RowFile, StudyStore
+from ..data.spec import TableSpec
+from ..store import StudyStore
 
 __all__ = ["WRINKLING_COLUMNS", "ELASTIC_COLUMNS", "TABLE", "ELASTIC", "wrinkling_grid",
            "wrinkling_rows",
@@ -46,8 +47,8 @@ ELASTIC_COLUMNS = ["mode", "kh", "lam_fe", "lam_stroh", "rel_error", "mesh", "no
 MODES = ("symmetric", "antisymmetric")
 CONTROLS = ("charge", "voltage")
 #: the files (:class:`~validation.store.StudyStore`), one row per grid point
-TABLE = RowFile("wrinkling-fe.csv", tuple(WRINKLING_COLUMNS), ("control", "mode", "lam", "kh"))
-ELASTIC = RowFile("wrinkling-fe-elastic.csv", tuple(ELASTIC_COLUMNS), ("mode", "kh"))
+TABLE = TableSpec.plain("wrinkling-fe.csv", tuple(WRINKLING_COLUMNS), ("control", "mode", "lam", "kh"))
+ELASTIC = TableSpec.plain("wrinkling-fe-elastic.csv", tuple(ELASTIC_COLUMNS), ("mode", "kh"))
 
 
 def wrinkling_grid(quick: bool = False) -> dict:
@@ -117,7 +118,7 @@ def _grid_keys(quick: bool) -> list[tuple]:
             for lam in g["lam"] for kh in g["kh"]]
 
 
-def _stored(store, table: RowFile, keys, compute, on_row) -> list[list]:
+def _stored(store, table: TableSpec, keys, compute, on_row) -> list[list]:
     """The rows of ``keys``: those in ``store`` kept, the others computed
     (``compute(key)``), committed one by one and passed to ``on_row``.  With a store every
     row is returned as written (an empty cell as ``None``), so that what is drawn and
@@ -363,10 +364,10 @@ def run_wrinkling_fe(out, quick: bool = False, on_row=None, on_elastic_row=None,
                        plan=list(elastic_grid(quick)["rows"]), **kw) as se:
         for store, table in ((st, TABLE), (se, ELASTIC)):
             if store.kept() and say is not None:
-                say(f"{out / table.name}: kept {store.kept()} of {len(store.plan)} rows of "
+                say(f"{out / table.file}: kept {store.kept()} of {len(store.plan)} rows of "
                     f"an earlier run")
         rows = wrinkling_rows(quick, on_row, store=st)
         elastic = elastic_rows(quick, on_elastic_row, store=se)
         ax = wrinkling_figure(rows, elastic=elastic, quick=quick)
-        return ([out / TABLE.name, out / ELASTIC.name]
+        return ([out / TABLE.file, out / ELASTIC.file]
                 + save_figure(ax[0].figure, out, "wrinkling-fe"))

@@ -12,7 +12,7 @@ from validation.data.key import UnitKey
 from validation.cli import main
 from validation.data.registry import load
 from validation.specs import LOCATION_TOL
-from validation.clamp_zone.onsets import COLUMNS, bracket, run_class_onsets
+from validation.clamp_zone.onsets import COLUMNS, bracket, run_onsets
 
 
 def _unit(alpha: str, mesh: str, grading: str) -> dict:
@@ -36,7 +36,7 @@ def test_the_class_of_a_unit_reproduces_its_D0_b_along_another_path(tmp_path):
     that class's indicator alone lands within twice the location tolerance of the row's
     D0_b (the unit located it from its full scan); the row holds every column."""
     ref = _unit("1", "10x1x24", "0.1")
-    rows = run_class_onsets(UnitKey(1.0, (10, 1, 24), 0.1), classes=[ref["class"]])
+    rows = run_onsets(UnitKey(1.0, (10, 1, 24), 0.1), classes=[ref["class"]])
     assert len(rows) == 1 and rows[0]["class"] == ref["class"]
     assert abs(rows[0]["D0_c"] - float(ref["D0_b"])) <= 2 * LOCATION_TOL
     assert rows[0]["half_waves"] == int(ref["half_waves"])
@@ -71,7 +71,7 @@ def test_bad_input_is_one_line(tmp_path, capsys):
                  "--out", str(tmp_path)]) == 2
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and "alpha = 0.9 4x1x2" in err[0] and "clamp-zone units" in err[0]
-    assert not (tmp_path / "class_onsets.csv").exists()
+    assert not (tmp_path / "clamp_onsets.csv").exists()
 
 
 @pytest.mark.slow
@@ -81,9 +81,9 @@ def test_a_given_bracket_needs_no_unit_and_says_so():
     that nothing on this mesh was scanned below lo; a bracket that is not 0 < lo < hi is a
     ValueError naming it."""
     ref = _unit("1", "10x1x24", "0.1")
-    rows = run_class_onsets(UnitKey(1.0, (10, 1, 24), 0.1), classes=[ref["class"]],
+    rows = run_onsets(UnitKey(1.0, (10, 1, 24), 0.1), classes=[ref["class"]],
                             given=(2.90625, 2.9375), units=Path("/nonexistent.csv"))
     assert abs(rows[0]["D0_c"] - float(ref["D0_b"])) <= 2 * LOCATION_TOL
     assert "bracket given" in rows[0]["note"]
     with pytest.raises(ValueError, match="bracket must be 0 < lo < hi, got 3, 2"):
-        run_class_onsets(UnitKey(1.0, (4, 1, 2), 1.0), given=(3.0, 2.0))
+        run_onsets(UnitKey(1.0, (4, 1, 2), 1.0), given=(3.0, 2.0))

@@ -6,7 +6,7 @@ from __future__ import annotations
 
 import pytest
 
-from validation.clamp_zone.counts import CLASS_COLUMNS, COLUMNS, run_edge_counts
+from validation.clamp_zone.counts import CLASS_COLUMNS, COLUMNS, run_counts
 from validation.data.clamp_zone import scan_states, unit_row
 from validation.data.registry import load
 from validation.data.key import UnitKey
@@ -19,7 +19,7 @@ def test_the_counts_equal_the_units_full_scan():
     ``scan_counts``); Sylvester's counts of one ramp give the same integers."""
     unit = unit_row(UnitKey(1.0, (10, 1, 24), 0.1))
     scanned = {d: n for d, n, _ in scan_states(unit)}
-    rows = run_edge_counts(UnitKey(1.0, (10, 1, 24), 0.1), [2.5, 3.0])
+    rows = run_counts(UnitKey(1.0, (10, 1, 24), 0.1), [2.5, 3.0])
     assert [r["D0"] for r in rows] == [2.5, 3.0]
     for r in rows:
         assert r["n_negative"] == scanned[r["D0"]]
@@ -45,8 +45,8 @@ def test_the_second_pressure_space_counts_one_pressure_per_element():
     """With ``pressure="P0"`` the plate has one pressure unknown per element instead of one
     per vertex: 4 x 1 x 6 has 24 elements and 5 * 2 * 7 = 70 vertices, so 46 unknowns
     fewer; its counts add up over the classes as the Taylor-Hood ones do."""
-    q1 = run_edge_counts(UnitKey(1.0, (4, 1, 6), 0.1), [2.5])
-    p0 = run_edge_counts(UnitKey(1.0, (4, 1, 6), 0.1), [2.5], pressure="P0")
+    q1 = run_counts(UnitKey(1.0, (4, 1, 6), 0.1), [2.5])
+    p0 = run_counts(UnitKey(1.0, (4, 1, 6), 0.1), [2.5], pressure="P0")
     assert q1[0]["dofs"] - p0[0]["dofs"] == 70 - 24
     assert p0[0]["pressure"] == "P0" and q1[0]["pressure"] == "Q1"
     assert p0[0]["n_negative"] == sum(p0[0][c] for c in CLASS_COLUMNS)
@@ -81,7 +81,7 @@ def test_a_paused_ramp_resumes_to_the_same_counts(tmp_path):
     from validation.clamp_zone.counts import CountsPaused
 
     key = UnitKey(1.0, (4, 1, 6), 0.1)
-    whole = run_edge_counts(key, [1.0, 1.5])
+    whole = run_counts(key, [1.0, 1.5])
     ck = tmp_path / "ck.npz"
     rows, pauses = [], 0
 
@@ -90,7 +90,7 @@ def test_a_paused_ramp_resumes_to_the_same_counts(tmp_path):
 
     while True:
         try:
-            run_edge_counts(key, [1.0, 1.5], skip={r["D0"] for r in rows}, checkpoint=ck,
+            run_counts(key, [1.0, 1.5], skip={r["D0"] for r in rows}, checkpoint=ck,
                             budget=1e-3, on_row=keep)
             break
         except CountsPaused as exc:
@@ -109,4 +109,4 @@ def test_a_paused_ramp_resumes_to_the_same_counts(tmp_path):
 
 def test_a_budget_must_be_positive():
     with pytest.raises(ValueError, match="budget must be positive and finite, got 0"):
-        run_edge_counts(UnitKey(1.0, (2, 1, 2), 1.0), [1.0], budget=0)
+        run_counts(UnitKey(1.0, (2, 1, 2), 1.0), [1.0], budget=0)

@@ -12,7 +12,7 @@ from validation.studies.buckling import p33_measures
 from validation.cli import main
 from validation.data.registry import load
 from validation.specs import LOCATION_TOL as ONSET_TOL
-from validation.clamp_zone.p33 import COLUMNS, SETS, run_p33_unit
+from validation.clamp_zone.p33 import COLUMNS, SETS, run_p33
 from validation.clamp_zone.units import UNIT_SETTINGS
 from validation.table import BREAKDOWN_TOL
 from validation.data.key import UnitKey
@@ -23,7 +23,7 @@ def test_a_located_onset_is_where_an_independent_ramp_crosses_the_flag(tmp_path)
     bracketing step, and an independent ramp from D0 = 0 (not the trial states of the
     location) to 2 ONSET_TOL below and above it reads min P33/mu above and below
     -BREAKDOWN_TOL there; the row holds every column and a rerun with its settings keeps it."""
-    row = run_p33_unit(UnitKey(1.0, (8, 1, 4), 0.25), D0_step=0.5, D0_max=4.0)
+    row = run_p33(UnitKey(1.0, (8, 1, 4), 0.25), D0_step=0.5, D0_max=4.0)
     assert math.isnan(row["newton_limit"]) and row["states"] == 8
     for k in SETS:
         d = row[f"P33_onset_{k}"]
@@ -49,10 +49,10 @@ def test_a_located_onset_is_where_an_independent_ramp_crosses_the_flag(tmp_path)
 
 def test_the_smallest_committed_unit_is_reproduced():
     """alpha = 1 on 12 x 1 x 6 graded 0.25 run again: every onset within twice its
-    location tolerance of its row in validation/data/p33_units.csv."""
+    location tolerance of its row in validation/data/clamp_p33.csv."""
     ref = next(r for r in load("p33") if r["alpha"] == "1" and r["mesh"] == "12x1x6"
                and r["grading"] == "0.25")
-    row = run_p33_unit(UnitKey(1.0, (12, 1, 6), 0.25), D0_step=float(ref["D0_step"]),
+    row = run_p33(UnitKey(1.0, (12, 1, 6), 0.25), D0_step=float(ref["D0_step"]),
                        D0_max=float(ref["D0_max"]))
     for k in SETS:
         assert abs(row[f"P33_onset_{k}"] - float(ref[f"P33_onset_{k}"])) <= 2 * ONSET_TOL

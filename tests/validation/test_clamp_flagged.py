@@ -9,7 +9,7 @@ from skfem_dielectric.models.plate.scan import PlateScan
 from validation.fe.model import BUCKLING_GRAD_DIV
 from validation.cli import main
 from validation.data.registry import load
-from validation.clamp_zone.flagged import COLUMNS, run_flagged_modes
+from validation.clamp_zone.flagged import COLUMNS, run_flagged
 from validation.data.key import UnitKey
 
 
@@ -19,7 +19,7 @@ def test_every_negative_mode_is_a_row_and_the_clamps_mirror_each_other():
     computed), each row's layer the element layer of its centroid's X1, and the modes at
     the clamps come in mirror pairs about the plate's centre (classes x1 S and x1 A, the
     clamps 100 mm apart): equal eigenvalues to 1e-6 of the largest."""
-    rows = run_flagged_modes(UnitKey(1.0, (10, 1, 24), 0.1), 2.75)
+    rows = run_flagged(UnitKey(1.0, (10, 1, 24), 0.1), 2.75)
     res = fe.keplinger_plate(1.0, D0=list(np.arange(0.5, 2.75, 0.5)) + [2.75],
                              elements=(10, 1, 24), grading=0.1,
                              options=fe.PlateOptions(grad_div=BUCKLING_GRAD_DIV),
@@ -37,7 +37,7 @@ def test_every_negative_mode_is_a_row_and_the_clamps_mirror_each_other():
 
 
 def test_a_state_is_written_once_and_bad_input_is_one_line(tmp_path, capsys):
-    out = tmp_path / "flagged_modes.csv"
+    out = tmp_path / "clamp_flagged.csv"
     args = ["clamp-zone", "flagged", "--alpha", "1", "--mesh", "4x1x2", "--grading", "0.5",
             "--D0", "0.5", "--out", str(tmp_path)]
     assert main(args) == 0
