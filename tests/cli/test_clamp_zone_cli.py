@@ -198,6 +198,7 @@ BAD = {
     "section": [("--D0", "inf"), ("--D0", "-1"), ("--h0", "0"), ("--h0", "6"), ("--k", "-1"),
                 ("--length", "0"), ("--mesh", "40x1"), ("--mesh", "1000x10x100")],
     "voltage": [("--alpha", "inf"), ("--mesh", "4x1"), ("--grading", "0"), ("--jobs", "0"),
+                ("--grad-div", "-1"), ("--grad-div", "nan"),
                 ("--scheduler", "udp://h:1")],
     "tables": [("--from", "missing")],
     "band": [("--from", "missing")],

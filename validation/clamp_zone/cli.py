@@ -184,6 +184,9 @@ def add_clamp_zone_command(add) -> None:
     v = new("voltage", "follow each unit's plate under voltage control through its first "
                        "limit point, with the first negative mode before it (table voltage)")
     _common(v)
+    v.add_argument("--grad-div", dest="grad_div", type=float, default=None,
+                   help="grad-div weight (units of mu; default that of the units; 0: the "
+                        "plain mixed form)")
     v.add_argument("--scheduler", default=None, metavar="ADDRESS",
                    help="run the units on a dask.distributed cluster (as for units)")
     v.add_argument("--jobs", type=int, default=2, help="workers of --scheduler local")
@@ -466,11 +469,16 @@ def _on_cluster(args, todo, write) -> None:
             q.setLevel(level)
 
 
-def _cmd_units(args) -> int:
+def _cluster_options(args) -> None:
+    """``--scheduler`` and ``--jobs`` checked before anything runs."""
     if args.scheduler is not None:
         check_scheduler(args.scheduler)
     if args.jobs < 1:
         raise ValueError(f"--jobs must be >= 1, got {args.jobs}")
+
+
+def _cmd_units(args) -> int:
+    _cluster_options(args)
     opts = _settings(args)
     _ramp(args.D0_step, args.D0_max)
     meshes = _meshes(args, args.mesh)
@@ -498,18 +506,17 @@ def _cmd_units(args) -> int:
 
 
 def _cmd_voltage(args) -> int:
-    if args.scheduler is not None:
-        check_scheduler(args.scheduler)
-    if args.jobs < 1:
-        raise ValueError(f"--jobs must be >= 1, got {args.jobs}")
+    _cluster_options(args)
     opts = _settings(args)
-    tasks = [(str(k), dict(zip(TABLES["voltage"].key, k.cells)),
-              functools.partial(_task, run_voltage, k, one_row=True, solver=opts["solver"]))
+    grad_div = _grad_div(args)
+    tasks = [(str(k), dict(zip(TABLES["voltage"].key, (*k.cells, grad_div))),
+              functools.partial(_task, run_voltage, k, one_row=True, grad_div=grad_div,
+                                solver=opts["solver"]))
              for k in (UnitKey(a, el, opts["grading"], args.formulation)
                        for a in opts["alphas"] for el in _meshes(args, args.mesh))]
 
     def show(r):
-        _say(f"  {UnitKey.from_row(r)}: E0 limit {float(r['E0_limit'] or 'nan'):.5f} "
+        _say(f"  {UnitKey.from_row(r)} grad-div {float(r['grad_div']):g}: E0 limit {float(r['E0_limit'] or 'nan'):.5f} "
              + (f"({r['note']}) " if r.get("note") else "")
              + f"at D0 {float(r.get('D0_limit') or 'nan'):.4f}, "
              f"{float(r.get('ratio') or 'nan'):.4f} of max_E0; {r['dofs']} DOFs, "

@@ -2,7 +2,8 @@
 when the voltage (``E0``) is prescribed instead of the charge.
 
 A *voltage unit* is the plate of a clamp-zone unit (the same key: weight fraction, eighth
-mesh, grading along ``x1``, formulation; grad-div 10, neo-Hookean, ``g = 9.81``) with the
+mesh, grading along ``x1``, formulation; neo-Hookean, ``g = 9.81``; grad-div 10 as the units
+or another weight, ``0`` the plain mixed form) with the
 potential difference prescribed: pre-loaded by its weight, then followed in ``E0`` at fixed
 ``s`` by pseudo-arclength continuation
 (:func:`~skfem_dielectric.solvers.continuation.continuation`) through its first limit
@@ -11,8 +12,10 @@ spectrum (:class:`~skfem_dielectric.models.plate.scan.PlateScan`: inertia counts
 symmetry class of the voltage-controlled stiffness, the modes that cross classified).  The
 row holds
 
-* the limit point: ``E0_limit``, ``D0_limit`` (the charge at the plate's centre there) and
-  ``lam1_limit`` (the stretch at the centre); beside it the homogeneous uni-axial limit
+* the limit point: ``E0_limit``, ``D0_limit`` (the charge at the plate's centre there),
+  ``lam1_limit`` (the stretch at the centre) and the range of ``J = det F`` over every
+  quadrature point there (``J_min_limit``, ``J_max_limit``; the material is
+  incompressible, so a discrete state far from ``J = 1`` is not the continuum's); beside it the homogeneous uni-axial limit
   :func:`analytic.max_E0` at the same ``s`` (``max_E0``, ``lam1_max_E0``) and their
   ratio;
 * ``E0_membrane``: the limit of the clamped membrane (:func:`membrane_voltage_limit`), an
@@ -44,6 +47,7 @@ from skfem_dielectric.models.plate.scan import PlateScan
 
 from ..data.key import UnitKey, mesh_text
 from ..data.registry import TABLES
+from ..fe.model import BUCKLING_GRAD_DIV
 from .costs import Meter
 from .local_theory import energy_centroid
 from .units import UNIT_SETTINGS, charge_path, unit_problem, unit_ramp
@@ -118,8 +122,8 @@ def membrane_voltage_limit(alpha: float, elements=MEMBRANE_MESH, *,
     return float(lim.t), float(lim["lam1"])
 
 
-def run_voltage(key: UnitKey, *, solver: str = "auto", settings=VOLTAGE_SETTINGS,
-                progress=None) -> dict:
+def run_voltage(key: UnitKey, *, grad_div: float = BUCKLING_GRAD_DIV, solver: str = "auto",
+                settings=VOLTAGE_SETTINGS, progress=None) -> dict:
     """One voltage unit: the row of :data:`COLUMNS` (module docstring).
 
     Parameters
@@ -127,6 +131,9 @@ def run_voltage(key: UnitKey, *, solver: str = "auto", settings=VOLTAGE_SETTINGS
     key : UnitKey
         The unit (:class:`~validation.data.key.UnitKey`): weight fraction, eighth-model
         mesh, grading along ``x1`` and formulation.
+    grad_div
+        The plate's grad-div weight (units of ``mu``; default that of the units,
+        :data:`~validation.fe.model.BUCKLING_GRAD_DIV`; ``0``: the plain mixed form).
     solver
         Linear solver of the pre-load and the continuation's bordered systems.
     settings : ContinuationSettings
@@ -142,10 +149,12 @@ def run_voltage(key: UnitKey, *, solver: str = "auto", settings=VOLTAGE_SETTINGS
     """
     meter = Meter()
     alpha, el = key.alpha, key.mesh
+    if not (math.isfinite(float(grad_div)) and float(grad_div) >= 0):
+        raise ValueError(f"grad_div must be non-negative and finite, got {grad_div!r}")
     pb, s = unit_problem(alpha, el, grading=key.grading, formulation=key.formulation,
-                         control="voltage")
+                         grad_div=grad_div, control="voltage")
     row = {"alpha": alpha, "mesh": mesh_text(el), "grading": key.grading,
-           "formulation": key.formulation, "dofs": pb.ndofs, "s": s}
+           "formulation": key.formulation, "grad_div": grad_div, "dofs": pb.ndofs, "s": s}
     lam_h, E0_h = (float(v) for v in an.max_E0(s, loading="uniaxial"))
     row.update(max_E0=E0_h, lam1_max_E0=lam_h)
     pre = unit_ramp(pb, charge_path(s, []), on_step=lambda step: None, solver=solver)
@@ -177,6 +186,9 @@ def run_voltage(key: UnitKey, *, solver: str = "auto", settings=VOLTAGE_SETTINGS
         row.update(meter.columns(solver))
         return row
     lim = limits[0]
+    J = np.concatenate([np.linalg.det(np.moveaxis(F, (0, 1), (-2, -1))).ravel()
+                        for _, F, _, _ in pb.quadrature_fields(lim.x, lim.load)])
+    row.update(J_min_limit=float(J.min()), J_max_limit=float(J.max()))
     row.update(E0_limit=lim.t, D0_limit=lim["D0_centre"], lam1_limit=lim["lam1"],
                ratio=lim.t / E0_h, E0_membrane=membrane_voltage_limit(alpha)[0])
     start = seen[0][1].n_negative

@@ -126,17 +126,18 @@ TABLES = {t.name: t for t in (
 # on the section's own mesh (edge elements h0, mm, H = 1); pressure space Q1 or P0.
 """, added=(("pressure", "Q1"),), former="edge_section.csv"),
     TableSpec("voltage", "clamp_voltage.csv",
-              _UNIT + ("dofs", "s", "E0_limit", "D0_limit", "lam1_limit", "max_E0",
+              _UNIT + ("grad_div", "dofs", "s", "E0_limit", "D0_limit", "lam1_limit",
+                       "J_min_limit", "J_max_limit", "max_E0",
                        "lam1_max_E0", "ratio", "E0_membrane", "E0_physical", "D0_physical", "physical_class",
                        "n_negative_start", "E0_first",
                        "first_eigenvalue", "first_class", "first_kind",
                        "first_corner_share", "first_mesh_scale", "first_X1", "first_X2",
                        "first_X3", "first_layer", "points", "iterations", "factorisations",
                        "cpu_s", "peak_GB", "solver", "date", "note", "command"),
-              _UNIT, f"""\
+              _UNIT + ("grad_div",), f"""\
 # The clamped plate under voltage control, unit by unit (one alpha on one mesh per row).
 # Written by skfem-dielectric clamp-zone voltage (docs/clamp-zone.md defines every column):
-# {_MODEL}, grad-div 10; E0 followed at fixed s by arclength
+# {_MODEL}, grad-div grad_div (mu; the units' 10); E0 followed at fixed s by arclength
 # continuation, its first limit point located; max_E0: the homogeneous uni-axial limit at s;
 # E0_membrane: the limit of the clamped membrane (20 x 10 Q2 elements on the quarter);
 # the first point with a physical negative mode (D0_physical: the charge at the centre);
