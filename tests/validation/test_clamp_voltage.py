@@ -115,3 +115,29 @@ def test_the_plain_form_s_early_snap_is_a_discrete_collapse_of_j():
     assert plain["grad_div"] == 0.0 and stab["grad_div"] == 10.0
     with pytest.raises(ValueError, match="grad_div must be non-negative"):
         run_voltage(key, grad_div=-1.0)
+
+
+def test_the_converged_limit_needs_two_agreeing_meshes(tmp_path):
+    """``clamp_voltage_limit`` takes the two finest rows of a weight (by unknowns, with the
+    units' grad-div): their relative spread in E0_limit is reported and must be within
+    the tolerance; the plain form's rows are not mixed in."""
+    from validation.data.clamp_zone import clamp_voltage_limit
+    from validation.store import TableWriter
+
+    def row(mesh, dofs, E0, gd=10.0):
+        return {"alpha": 1.0, "mesh": mesh, "grading": 0.1, "formulation": "mixed",
+                "grad_div": gd, "dofs": dofs, "E0_limit": E0, "D0_limit": 3.7,
+                "lam1_limit": 3.35, "ratio": E0 / 0.2893836, "E0_membrane": 0.2905612}
+    path = tmp_path / TABLES["voltage"].file
+    with TableWriter(path, TABLES["voltage"]) as t:
+        t.add([row("10x1x12", 4677, 0.2905674), row("20x1x24", 20482, 0.2905801),
+               row("30x1x24", 30722, 0.19, gd=0.0)])
+    got = clamp_voltage_limit(1.0, path=tmp_path)
+    assert got["E0_limit"] == pytest.approx(0.2905801, abs=5e-7)    # cells: 6 digits
+    assert got["spread"] == pytest.approx(0.29058 / 0.290567 - 1, rel=1e-9)
+    assert got["meshes"] == ("10x1x12 g0.1", "20x1x24 g0.1")
+    assert math.isnan(got["D0_physical"])
+    with pytest.raises(ValueError, match="not converged"):
+        clamp_voltage_limit(1.0, path=tmp_path, tol=1e-5)
+    with pytest.raises(ValueError, match="two meshes are needed"):
+        clamp_voltage_limit(1.0, path=tmp_path, grad_div=0.0)

@@ -12,7 +12,8 @@ from .key import UnitKey
 from .registry import (CLASS_TIE, MAX_D0, MIN_ELEMENTS_PER_HALF_WAVE, load, shipped_path,
                        table_file)
 
-__all__ = ["unit_row", "scan_states", "plain_p33_row", "clamp_unit_load", "tied_classes"]
+__all__ = ["unit_row", "scan_states", "plain_p33_row", "clamp_unit_load", "tied_classes",
+           "clamp_voltage_limit"]
 
 
 def scan_states(row: dict) -> list[tuple[float, int, int]]:
@@ -194,3 +195,57 @@ def tied_classes(row: dict, path=None) -> dict:
     first = float(mine[0]["D0_c"])
     return {r["class"]: int(r["half_waves"]) for r in mine
             if float(r["D0_c"]) - first <= CLASS_TIE}
+
+
+def clamp_voltage_limit(alpha: float, *, tol: float = 1e-3, grad_div: float = 10.0,
+                        path=None) -> dict:
+    """The voltage-controlled limit of the clamped plate of ``alpha`` where the two finest
+    meshes of the ``voltage`` table agree.
+
+    The rows of ``alpha`` with ``grad_div`` and a located limit, ordered by unknowns; the two
+    finest must give ``E0_limit`` within ``tol`` (relative).  No value is extrapolated.
+
+    Parameters
+    ----------
+    alpha : float
+        Weight fraction (matched to ``1e-9``).
+    tol : float
+        Largest relative difference of the two finest meshes' ``E0_limit``.
+    grad_div : float
+        The grad-div weight of the rows used (the units': 10).
+    path : path-like, optional
+        The ``voltage`` table (a file or folder; default: the shipped one).
+
+    Returns
+    -------
+    dict
+        The finest mesh's ``E0_limit``, ``D0_limit``, ``lam1_limit``, ``ratio``,
+        ``E0_membrane``, ``D0_physical`` (``nan``: no physical mode before the limit);
+        ``spread`` (the two finest meshes' relative difference in ``E0_limit``),
+        ``meshes`` (the two finest, coarser first, with their grading) and ``rows``.
+
+    Raises
+    ------
+    ValueError
+        Fewer than two located rows, or the two finest differ by more than ``tol``; the
+        message gives their numbers.
+    """
+    alpha = float(alpha)
+    rows = [r for r in load("voltage", path) if r["E0_limit"]
+            and math.isclose(float(r["alpha"]), alpha, rel_tol=0.0, abs_tol=1e-9)
+            and float(r["grad_div"]) == float(grad_div)]
+    rows.sort(key=lambda r: int(r["dofs"]))
+    if len(rows) < 2:
+        raise ValueError(f"alpha = {alpha:g} has {len(rows)} voltage-controlled limit(s) "
+                         f"with grad-div {grad_div:g} in "
+                         f"{path or shipped_path('voltage').name}: two meshes are needed")
+    a, b = rows[-2], rows[-1]
+    spread = abs(float(b["E0_limit"]) / float(a["E0_limit"]) - 1.0)
+    if spread > tol:
+        raise ValueError(f"E0_limit not converged (relative spread {spread:.2g} > tol "
+                         f"{tol:g}); alpha = {alpha:g}: {a['mesh']} {a['E0_limit']}, "
+                         f"{b['mesh']} {b['E0_limit']}")
+    num = {c: float(b[c] or "nan") for c in ("E0_limit", "D0_limit", "lam1_limit", "ratio",
+                                              "E0_membrane", "D0_physical")}
+    return {**num, "spread": spread, "rows": rows,
+            "meshes": tuple(f"{r['mesh']} g{r['grading']}" for r in (a, b))}
