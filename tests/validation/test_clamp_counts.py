@@ -53,7 +53,7 @@ def test_the_second_pressure_space_counts_one_pressure_per_element():
 
 
 def test_the_alpha_1_5_counts_on_the_page_are_the_table_s():
-    """docs/breakdown.md states the alpha = 1.5 counts of three meshes: each sentence
+    """docs/breakdown.md states the alpha = 1.5 counts of four meshes: each sentence
     ``N1 x N2 x N3 has a, b and c negative modes at D0 = 4, 4.5 and 4.75`` equals the
     shipped rows (Q1, graded 0.1), and each of those rows is antisymmetric in x2."""
     import re
@@ -62,7 +62,7 @@ def test_the_alpha_1_5_counts_on_the_page_are_the_table_s():
     page = (Path(__file__).resolve().parents[2] / "docs" / "breakdown.md").read_text()
     said = re.findall(r"(\d+) x (\d+) x (\d+) has (\d+), (\d+) and (\d+) negative modes at "
                       r"`D0` = 4, 4\.5 and 4\.75", " ".join(page.split()))
-    assert len(said) == 3, said
+    assert len(said) == 4, said
     rows = {(r["mesh"], float(r["D0"])): r for r in load("counts")
             if r["alpha"] == "1.5" and r["pressure"] == "Q1" and r["grading"] == "0.1"}
     for n1, n2, n3, *counts in said:
@@ -110,3 +110,51 @@ def test_a_paused_ramp_resumes_to_the_same_counts(tmp_path):
 def test_a_budget_must_be_positive():
     with pytest.raises(ValueError, match="budget must be positive and finite, got 0"):
         run_counts(UnitKey(1.0, (2, 1, 2), 1.0), [1.0], budget=0)
+
+
+def test_the_verdict_s_numbers_are_the_tables():
+    """Every number of the verdicts of docs/breakdown.md on alpha = 1 and 1.5 that comes
+    from a table is generated here from the shipped rows and found on the page: the
+    section band's first wavenumbers (3 significant digits), the Q1 and P0 counts, the
+    finest mesh's unknowns and the onset brackets of the thickness-refined meshes."""
+    from pathlib import Path
+
+    from validation.clamp_zone.band import band_onsets
+
+    page = " ".join((Path(__file__).resolve().parents[2] / "docs" / "breakdown.md")
+                    .read_text().split())
+    bands = band_onsets(load("section"))
+
+    def ks(alpha, D0, gd=10.0, pressure="Q1"):
+        by_h = bands[(alpha, D0, "40x1x36", 0.1, gd, pressure)]
+        return [f"{by_h[h][0]:.3g}" for h in sorted(by_h, reverse=True)]
+    assert f"{', '.join(ks(1.0, 3.25)[:2])} and {ks(1.0, 3.25)[2]}/mm" in page
+    assert f"{', '.join(ks(1.0, 2.5)[:2])} and {ks(1.0, 2.5)[2]}/mm at 2.5" in page
+    assert f"stops receding ({ks(1.0, 3.25, gd=100.0)[-1]}/mm)" in page
+    for D0 in (3.5, 4.0, 4.5):
+        assert set(ks(1.5, D0)) == {"9.27"}
+    assert set(ks(1.5, 3.5, pressure="P0")) == {"9.27"}
+    assert "from 9.267/mm" in page
+
+    counts = {(r["alpha"], r["mesh"], r["pressure"], float(r["D0"])): int(r["n_negative"])
+              for r in load("counts") if r["grading"] == "0.1"}
+    assert (f"20 x 1 x 24: {counts[('1', '20x1x24', 'Q1', 3.25)]} negative modes with Q1, "
+            f"the corner quartet's {counts[('1', '20x1x24', 'P0', 3.25)]} with P0") in page
+    q1 = [counts[("1.5", "30x1x36", "Q1", d)] for d in (4.0, 4.5)]
+    p0 = [counts[("1.5", "30x1x36", "P0", d)] for d in (4.0, 4.5)]
+    assert (f"30 x 1 x 36: {q1[0]} and {q1[1]} at `D0` = 4 and 4.5 with Q1, {p0[0]} and "
+            f"{p0[1]} with P0") in page
+    (dofs,) = {r["dofs"] for r in load("counts") if r["mesh"] == "70x4x36"}
+    assert f"70 x 4 x 36, {int(dofs):,} unknowns: negative from between 4 and 4.5" in page
+
+    def bracket(mesh):
+        n = [counts[("1.5", mesh, "Q1", d)] for d in (4.0, 4.5, 4.75)]
+        return "between 4 and 4.5" if n[0] == 0 < n[1] else \
+            "between 4.5 and 4.75" if n[1] == 0 < n[2] else None
+    assert f"50 x 2 x 36: {bracket('50x2x36')}; 70 x 2 x 36: {bracket('70x2x36')}" in page
+    other = " ".join((Path(__file__).resolve().parents[2] / "docs" / "clamp-zone.md")
+                     .read_text().split())
+    n = [counts[("1.5", "70x4x36", "Q1", d)] for d in (4.0, 4.5, 4.75)]
+    spaced = f"{int(dofs):,}".replace(",", " ")
+    assert (f"70 x 4 x 36 ({spaced} unknowns) has {n[1]} and {n[2]} negative modes at "
+            f"`D0` = 4.5 and 4.75") in other and n[0] == 0
