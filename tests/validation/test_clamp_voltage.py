@@ -24,6 +24,18 @@ def light():
     return run_voltage(UnitKey(0.05, (4, 1, 2), 0.5), solver="superlu")
 
 
+@pytest.fixture(scope="module")
+def heavy():
+    """alpha = 1 on the same plate, with the units' grad-div."""
+    return run_voltage(UnitKey(1.0, (4, 1, 2), 0.5), solver="superlu")
+
+
+@pytest.fixture(scope="module")
+def membrane():
+    """The clamped membrane's voltage limit for alpha = 1 on the default mesh."""
+    return membrane_voltage_limit(1.0)
+
+
 def test_a_light_plate_snaps_where_the_homogeneous_plate_does(light):
     """As alpha -> 0 the stretch at the clamp vanishes and the plate is the homogeneous
     uni-axial plate: its limit E0 is max_E0 at its s (Sec. 5, Eq. DEuniax), here within
@@ -42,14 +54,12 @@ def test_a_light_plate_snaps_where_the_homogeneous_plate_does(light):
     assert set(light) - {"mode"} <= set(COLUMNS)
 
 
-def test_the_limit_point_is_the_path_s_largest_field():
+def test_the_limit_point_is_the_path_s_largest_field(heavy):
     """The located limit point is the largest field of the branch: a load ramp in E0 (the
     package's ramp, which cannot pass a maximum) from the same pre-load reaches within 3 %
     of it in steps of 2.5 % and stops before 0.2 % above it."""
-    key = UnitKey(1.0, (4, 1, 2), 0.5)
-    row = run_voltage(key, solver="superlu")
     pb, s = unit_problem(1.0, (4, 1, 2), grading=0.5, control="voltage")
-    E0 = row["E0_limit"]
+    E0 = heavy["E0_limit"]
     assert math.isfinite(E0)
     # a ramp in E0 from the pre-load cannot pass the limit: it stops below E0_limit
     steps = []
@@ -75,22 +85,21 @@ def test_the_command_writes_the_row_and_a_rerun_keeps_it(tmp_path, capsys, light
     assert (tmp_path / TABLES["voltage"].file).read_bytes() == before
 
 
-def test_the_clamped_membrane_snaps_just_above_the_homogeneous_limit():
+def test_the_clamped_membrane_snaps_just_above_the_homogeneous_limit(heavy, membrane):
     """The 2D clamped membrane (no through-thickness corner, no out-of-plane mode): its
     voltage limit for alpha = 1 is the same on 20 x 10 and 40 x 20 Q2 elements to 1e-6
     (mesh-converged), and lies above the homogeneous uni-axial max_E0 by less than 1 %
     (the clamps stiffen the plate; they cannot make it snap earlier); the 3D plate of a
     unit on the coarse 4 x 1 x 2 mesh snaps within 2e-3 of it."""
-    E0, lam1 = membrane_voltage_limit(1.0)
+    E0, lam1 = membrane
     E0_fine, lam1_fine = membrane_voltage_limit(1.0, (40, 20))
     assert E0 == pytest.approx(E0_fine, rel=1e-6)
     assert lam1 == pytest.approx(lam1_fine, rel=1e-4)
     s = fe.gallery.keplinger_s(1.0, g=9.81)
     _, E0_h = (float(v) for v in an.max_E0(s, loading="uniaxial"))
     assert 1.0 < E0 / E0_h < 1.01
-    row = run_voltage(UnitKey(1.0, (4, 1, 2), 0.5), solver="superlu")
-    assert row["E0_membrane"] == pytest.approx(E0, rel=1e-12)
-    assert row["E0_limit"] == pytest.approx(E0, rel=2e-3)
+    assert heavy["E0_membrane"] == pytest.approx(E0, rel=1e-12)
+    assert heavy["E0_limit"] == pytest.approx(E0, rel=2e-3)
 
 
 def test_bad_input_names_the_parameter():
@@ -98,7 +107,7 @@ def test_bad_input_names_the_parameter():
         membrane_voltage_limit(-1.0)
 
 
-def test_the_plain_form_s_early_snap_is_a_discrete_collapse_of_j():
+def test_the_plain_form_s_early_snap_is_a_discrete_collapse_of_j(heavy, membrane):
     """Without grad-div (the plain mixed form, ``--grad-div 0``) the same plate snaps at
     two thirds of the membrane's limit, and its state there is far from incompressible
     (``J`` below 0.5 somewhere): a collapse the discrete pressure allows, not the
@@ -106,8 +115,8 @@ def test_the_plain_form_s_early_snap_is_a_discrete_collapse_of_j():
     ``J`` stays within 0.2 of 1 on the same coarse mesh."""
     key = UnitKey(1.0, (4, 1, 2), 0.5)
     plain = run_voltage(key, grad_div=0.0, solver="superlu")
-    stab = run_voltage(key, solver="superlu")
-    E0_m, _ = membrane_voltage_limit(1.0)
+    stab = heavy
+    E0_m, _ = membrane
     assert plain["E0_limit"] < 0.7 * E0_m
     assert plain["J_min_limit"] < 0.5 and plain["J_max_limit"] > 1.5
     assert stab["E0_limit"] == pytest.approx(E0_m, rel=2e-3)

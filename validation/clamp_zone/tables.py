@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import math
 
-from ..data.clamp_zone import clamp_unit_load, plain_p33_row
+from ..data.clamp_zone import clamp_unit_load, clamp_voltage_limit, plain_p33_row
 from ..data.registry import table_file
 from ..specs import LOCATION_TOL
 from ..data.registry import load as load_table
@@ -121,7 +121,10 @@ def breakdown_numbers(where=None) -> list[dict]:
         One per weight with a converged load and a graded ``P33`` row, in increasing
         ``alpha``: ``alpha``, ``centre``, ``interior`` (the onsets), ``p33_mesh``,
         ``D0_b``, ``error`` (the two meshes' spread, at least the location tolerance),
-        ``meshes``, ``newton_limit`` (``nan``: none up to ``D0_max``), ``D0_max``.
+        ``meshes``, ``newton_limit`` (``nan``: none up to ``D0_max``), ``D0_max``, and
+        ``voltage``: the converged voltage-controlled limit of the weight
+        (:func:`~validation.data.clamp_zone.clamp_voltage_limit`), ``None`` where the
+        ``voltage`` table has no two agreeing meshes.
     """
     out = []
     for a in sorted({float(r["alpha"]) for r in load_table("p33", where)}):
@@ -140,8 +143,15 @@ def breakdown_numbers(where=None) -> list[dict]:
                     "meshes": tuple(f"{m} g{g['rows'][-2 + i]['grading']}"
                                     for i, m in enumerate(g["meshes"])),
                     "newton_limit": float(r["newton_limit"] or "nan"),
-                    "D0_max": float(r["D0_max"])})
+                    "D0_max": float(r["D0_max"]), "voltage": _voltage(a, where)})
     return out
+
+
+def _voltage(alpha: float, where) -> dict | None:
+    try:
+        return clamp_voltage_limit(alpha, path=_file(where, "voltage"))
+    except ValueError:
+        return None
 
 
 def breakdown_table(where=None) -> str:

@@ -40,6 +40,7 @@ import skfem_dielectric as fe
 from skfem_dielectric.gallery.loads import keplinger_s
 from skfem_dielectric.studies import SNAP_THROUGH_SETTINGS
 
+from ..fe.model import BUCKLING_GRAD_DIV
 from ..cases import analytic_model
 from ..figures import (MODEL_NAME, PAPER_FIGURE, add_caption, mesh_caption,
                       run_caption, save_figure, tag_panels)
@@ -103,9 +104,12 @@ def _analytic_E0(r: dict, lam1):
 
 
 def _keplinger_path(r: dict, quick: bool) -> tuple:
-    """Voltage-controlled Keplinger plate: pre-load, then continuation in ``E0``."""
-    pb = fe.gallery.keplinger_problem(elements=KEPLINGER_MESH,
-                                      options=fe.PlateOptions(control="voltage"))
+    """Voltage-controlled Keplinger plate: pre-load, then continuation in ``E0``; the
+    mixed form with the clamp-zone units' grad-div weight (the plain form lets the clamp
+    layer's discrete ``J`` collapse and snaps early, docs/clamp-zone.md)."""
+    pb = fe.gallery.keplinger_problem(
+        elements=KEPLINGER_MESH,
+        options=fe.PlateOptions(control="voltage", grad_div=BUCKLING_GRAD_DIV))
     pre = fe.gallery.run_ramp(pb, [np.array([r["s"] * k / 4, 0.0]) for k in range(1, 5)])
     lam0 = pre.steps[-1]["lam1"] if pre.steps else 1.0
 
