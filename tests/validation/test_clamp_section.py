@@ -279,14 +279,15 @@ def test_band_onsets_and_the_figure(tmp_path):
 
 def test_the_docs_show_the_committed_band_table():
     """docs/clamp-zone.md shows ``band_table`` of the committed rows verbatim, and every
-    Taylor-Hood state of the committed rows has three section meshes (the P0 one two)."""
+    charged Taylor-Hood state of the committed rows has three section meshes (the P0 and
+    the dead-load states two)."""
     from pathlib import Path
 
     from validation.clamp_zone.band import band_onsets, band_table
     from validation.data.registry import load
 
     rows = load("section")
-    assert all(len(by_h) == (3 if state[-1] == "Q1" else 2)
+    assert all(len(by_h) == (3 if state[-1] == "Q1" and state[1] > 0 else 2)
                for state, by_h in band_onsets(rows).items())
     docs = (Path(__file__).resolve().parents[2] / "docs" / "clamp-zone.md").read_text()
     assert band_table(rows) in docs
@@ -339,16 +340,25 @@ def test_the_alpha_1_5_section_sentence_is_the_table_s():
 
     every = [r for r in load("section") if r["alpha"] == "1.5"]
     assert every and min(float(r["J_min"]) for r in every) > 0
-    rows = [r for r in every if r["pressure"] == "Q1"]       # the sentence's sections
+    rows = [r for r in every if r["pressure"] == "Q1"           # the sentence's sections
+            and float(r["D0"]) > 0]
     text = (Path(__file__).resolve().parents[2] / "docs" / "clamp-zone.md").read_text()
     lo, hi = min(float(r["J_min"]) for r in rows), max(float(r["J_max"]) for r in rows)
     assert f"`J` between {lo:.2f} and {hi:.2f}" in text
     top = max(float(r["J_min"]) for r in rows)      # the least J of the most regular set
-    assert f"of {lo:.2f}-{top:.2f} at the edge" in text
+    assert f"`J` ({lo:.2f}-{top:.2f} at the edge)" in " ".join(text.split())
     first = {}
     for r in every:                                     # both pressure spaces
         if int(r["n_negative"]) > 0:
             key = (r["D0"], r["h0"])
             first[key] = min(first.get(key, float("inf")), float(r["k"]))
-    assert len(first) == 9 and set(first.values()) == {9.267}
+    assert len(first) == 11 and set(first.values()) == {9.267}
     assert "the band starts at 9.267/mm on every mesh and\n  state" in text
+    dead = [r for r in every if float(r["D0"]) == 0]        # the dead load alone
+    assert {(r["pressure"], r["h0"]) for r in dead} == {(p, h) for p in ("Q1", "P0")
+                                                       for h in ("0.04", "0.02")}
+    neg = [float(r["k"]) for r in dead if int(r["n_negative"]) > 0]
+    assert min(neg) == 9.267 and f"up to {max(neg):.3g}/mm" in " ".join(text.split())
+    assert {int(r["n_negative"]) for r in dead if int(r["n_negative"]) > 0} == {2}
+    lo, hi = min(float(r["J_min"]) for r in dead), max(float(r["J_max"]) for r in dead)
+    assert f"`J` between {lo:.2f} and {hi:.2f} in the section" in " ".join(text.split())
