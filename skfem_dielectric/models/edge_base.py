@@ -203,14 +203,29 @@ class SectionBaseProblem(Problem):
         ``guess(X1, X2) -> dict`` with ``u``, ``phi``, ``p``: the first guess inside the
         section (default ``fields``).
     grad_div
-        The plate's grad-div weight, in units of ``mu``.
+        The plate's grad-div weight, in units of ``mu``: that of the 3D state where
+        ``fields`` says it (its attribute ``grad_div``,
+        :func:`~skfem_dielectric.models.edge_section.plate_fields`), since the section
+        takes its boundary data and ``F33`` from that state, whose discrete equilibrium
+        holds the grad-div term (with another weight Newton does not converge even under
+        the dead load alone).
     pressure
         The pressure space, ``"Q1"`` (continuous, Taylor-Hood) or ``"P0"`` (one constant
         per element), :data:`PRESSURES`.
+
+    Raises
+    ------
+    ValueError
+        ``grad_div`` other than the 3D state's.
     """
 
     def __init__(self, g1, g2, material, fields: Callable, D0: float, *,
                  guess: Callable | None = None, grad_div: float = 0.0, pressure: str = "Q1"):
+        state = getattr(fields, "grad_div", None)
+        if state is not None and float(grad_div) != float(state):
+            raise ValueError(f"grad_div must be the 3D state's grad-div weight {state:g} (the "
+                             f"section takes its boundary data and F33 from that state), "
+                             f"got {grad_div!r}")
         mesh = MeshQuad.init_tensor(np.asarray(g1, float), np.asarray(g2, float))
         b2 = Basis(mesh, ElementQuad2(), intorder=4)
         b1 = Basis(mesh, pressure_element(pressure), intorder=4)

@@ -138,7 +138,9 @@ def plate_fields(problem, xf: np.ndarray, X3: float = 0.0) -> Callable:
     ``G``) of the full dof vector ``xf`` (``problem.full(x, load)``), extended to
     ``X2 < 0`` by the plate's mirror symmetry about its mid-plane (``u2`` and ``phi`` odd
     in ``X2``: ``u(-X2) = M u``, ``F(-X2) = M F M``, ``Grad phi(-X2) = -M Grad phi``,
-    ``p`` even, ``M = diag(1, -1, 1)``).
+    ``p`` even, ``M = diag(1, -1, 1)``).  The function's attribute ``grad_div`` is the
+    plate's grad-div weight (units of ``mu``), which the section's base state must take
+    (:class:`~skfem_dielectric.models.edge_base.SectionBaseProblem`).
 
     Raises
     ------
@@ -165,6 +167,7 @@ def plate_fields(problem, xf: np.ndarray, X3: float = 0.0) -> Callable:
         f["G"][:, lower] *= -M[:, None]
         return f
 
+    fields.grad_div = float(problem.grad_div)      # the weight its equilibrium holds
     return fields
 
 

@@ -77,6 +77,8 @@ def _blend(fa: Callable, fb: Callable, t: float) -> Callable:
     def fields(X1, X2):
         a, b = fa(X1, X2), fb(X1, X2)
         return {name: (1.0 - t) * a[name] + t * b[name] for name in ("u", "phi", "p", "F")}
+    if hasattr(fa, "grad_div"):
+        fields.grad_div = fa.grad_div
     return fields
 
 

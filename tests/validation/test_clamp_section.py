@@ -362,3 +362,26 @@ def test_the_alpha_1_5_section_sentence_is_the_table_s():
     assert {int(r["n_negative"]) for r in dead if int(r["n_negative"]) > 0} == {2}
     lo, hi = min(float(r["J_min"]) for r in dead), max(float(r["J_max"]) for r in dead)
     assert f"`J` between {lo:.2f} and {hi:.2f} in the section" in " ".join(text.split())
+
+
+def test_the_section_takes_the_grad_div_of_its_3d_state():
+    """The section's boundary data and F33 come from the 3D state, whose discrete
+    equilibrium holds its grad-div term: with the state's weight the section's base state
+    converges under the dead load (a 4 x 1 x 2 plate of alpha = 1.5, the 10 of the
+    units); another weight is refused before any Newton step, naming ``grad_div`` and the
+    state's weight (it would not converge: measured, 40 steps at a relative residual of
+    0.66 for weight 0)."""
+    from skfem_dielectric.models.edge_section import plate_fields
+    from skfem_dielectric.studies.section_base import continue_section_base
+    from validation.clamp_zone.units import ramp_states, unit_problem
+
+    pb, s = unit_problem(1.5, (4, 1, 2), grading=0.5)
+    path = [(d, plate_fields(pb, pb.full(x, load))) for d, x, load in ramp_states(pb, s, 0.0)]
+    assert path[0][1].grad_div == 10.0
+    g1, g2 = edge_section_grids(50.0, 5.0, 1.0, 0.1)
+    sb = continue_section_base(g1, g2, pb.material, path, grad_div=10.0)
+    assert sb.iterations > 0 and sb.residual <= 1e-10
+    for other in (0.0, 30.0):
+        with pytest.raises(ValueError, match=r"grad_div must be the 3D state's grad-div "
+                                             r"weight 10 .*got " + f"{other!r}"):
+            continue_section_base(g1, g2, pb.material, path, grad_div=other)
