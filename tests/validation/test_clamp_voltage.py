@@ -150,3 +150,17 @@ def test_the_converged_limit_needs_two_agreeing_meshes(tmp_path):
         clamp_voltage_limit(1.0, path=tmp_path, tol=1e-5)
     with pytest.raises(ValueError, match="two meshes are needed"):
         clamp_voltage_limit(1.0, path=tmp_path, grad_div=0.0)
+
+
+def test_the_physical_crossing_is_bracketed_by_two_points_before_the_limit(heavy):
+    """The first physical negative mode of the path lies between two of its points, both
+    at or before the limit point: the charge at the centre rises along the path up to the
+    limit, so the bracket's charges are ordered below the limit's (alpha = 1 on 6 x 1 x 8
+    graded 0.1, whose clamp zone holds the wrinkle).  The 4 x 1 x 2 plate has none before
+    its limit: the point past the limit, scanned before the located limit point, is not
+    counted as before it."""
+    row = run_voltage(UnitKey(1.0, (6, 1, 8), 0.1), solver="superlu")
+    assert row["E0_stable"] < row["E0_physical"] <= row["E0_limit"]
+    assert row["D0_stable"] < row["D0_physical"] <= row["D0_limit"] + 1e-9
+    assert row["physical_class"].startswith("x1 ")
+    assert "E0_physical" not in heavy and heavy["points"] > 0

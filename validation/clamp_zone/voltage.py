@@ -21,8 +21,10 @@ row holds
 * ``E0_membrane``: the limit of the clamped membrane (:func:`membrane_voltage_limit`), an
   independent cross-check;
 * the first point of the path with a physical negative mode (``E0_physical``, the charge
-  at the centre there ``D0_physical``, to compare with the charge-controlled ``D0_b``, and
-  the mode's class), empty where none crosses before the limit;
+  at the centre there ``D0_physical``, and the mode's class) and the point before it
+  (``E0_stable``, ``D0_stable``): the crossing lies between them (the path's steps, not
+  located), to compare with the charge-controlled ``D0_b``; empty where none crosses
+  before the limit;
 * the first point of the path with a negative mode that the dead load alone does not have:
   its ``E0_first``, the mode's eigenvalue, class, kind (physical, clamp corner or mesh
   scale: :func:`~skfem_dielectric.models.plate.modes.classify_mode`), corner share, mesh
@@ -191,17 +193,24 @@ def run_voltage(key: UnitKey, *, grad_div: float = BUCKLING_GRAD_DIV, solver: st
     row.update(J_min_limit=float(J.min()), J_max_limit=float(J.max()))
     row.update(E0_limit=lim.t, D0_limit=lim["D0_centre"], lam1_limit=lim["lam1"],
                ratio=lim.t / E0_h, E0_membrane=membrane_voltage_limit(alpha)[0])
-    start = seen[0][1].n_negative
-    first = next(((E0, r, x, load) for E0, r, x, load in seen
-                  if E0 <= lim.t and r.n_negative > start and r.labels), None)
+    # the scanned points in the path's order up to the limit point (the scan saw the
+    # point past the limit before the located limit point)
+    scanned = {E0: (r, x, load) for E0, r, x, load in seen}
+    k = next(j for j, p in enumerate(path.points) if p is lim)
+    before = [(p.t, *scanned[p.t]) for p in path.points[:k + 1] if p.t in scanned]
+    start = before[0][1].n_negative
+    first = next(((E0, r, x, load) for E0, r, x, load in before
+                  if r.n_negative > start and r.labels), None)
     row["n_negative_start"] = start
-    phys = next(((E0, r, x, load) for E0, r, x, load in seen
-                 if E0 <= lim.t and r.n_physical > 0), None)
-    if phys is not None:
-        E0, r, x, load = phys
+    i = next((i for i, (E0, r, _, _) in enumerate(before) if r.n_physical > 0), None)
+    if i is not None:
+        E0, r, x, load = before[i]
         m = next((m for m in r.labels if m.kind == "physical"), None)
         row.update(E0_physical=E0, D0_physical=pb.postprocess(x, load)["D0_centre"],
                    physical_class=m.symmetry if m is not None else "")
+        if i > 0:                   # the bracket's lower end: the point before it
+            E0, _, x, load = before[i - 1]
+            row.update(E0_stable=E0, D0_stable=pb.postprocess(x, load)["D0_centre"])
     if first is not None:
         E0, r, x, load = first
         m = r.labels[0]

@@ -128,7 +128,8 @@ TABLES = {t.name: t for t in (
     TableSpec("voltage", "clamp_voltage.csv",
               _UNIT + ("grad_div", "dofs", "s", "E0_limit", "D0_limit", "lam1_limit",
                        "J_min_limit", "J_max_limit", "max_E0",
-                       "lam1_max_E0", "ratio", "E0_membrane", "E0_physical", "D0_physical", "physical_class",
+                       "lam1_max_E0", "ratio", "E0_membrane", "E0_stable", "D0_stable",
+                       "E0_physical", "D0_physical", "physical_class",
                        "n_negative_start", "E0_first",
                        "first_eigenvalue", "first_class", "first_kind",
                        "first_corner_share", "first_mesh_scale", "first_X1", "first_X2",
@@ -140,7 +141,8 @@ TABLES = {t.name: t for t in (
 # {_MODEL}, grad-div grad_div (mu; the units' 10); E0 followed at fixed s by arclength
 # continuation, its first limit point located; max_E0: the homogeneous uni-axial limit at s;
 # E0_membrane: the limit of the clamped membrane (20 x 10 Q2 elements on the quarter);
-# the first point with a physical negative mode (D0_physical: the charge at the centre);
+# the first point with a physical negative mode and the point before it (E0/D0_physical,
+# E0/D0_stable: the crossing lies between them; D0 at the plate's centre);
 # the first negative mode the dead load does not have, before the limit, with its energy
 # centroid (mm; clamp at X1 = 50); cpu_s and peak_GB of the unit's process.
 """),
