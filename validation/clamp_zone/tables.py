@@ -156,7 +156,11 @@ def _voltage(alpha: float, where) -> dict | None:
 
 def breakdown_table(where=None) -> str:
     """:func:`breakdown_numbers` as a Markdown table (docs/breakdown.md shows it, generated
-    by ``skfem-dielectric clamp-zone tables --breakdown``).
+    by ``skfem-dielectric clamp-zone tables --breakdown``): the three meanings of breakdown
+    under charge control, and the same plate under voltage control where the ``voltage``
+    table has two agreeing meshes (its snap-through charge at the centre with the two
+    meshes' difference, the bracket of its first physical mode, and ``D0_b`` over the
+    snap-through charge).
 
     Returns
     -------
@@ -164,12 +168,25 @@ def breakdown_table(where=None) -> str:
     """
     lines = ["| alpha | `P33` onset, centre line / interior (plain form) | `D0_b` (grad-div "
              "form) | `D0_b` minus the interior onset | Newton limit, plain form | meshes "
-             "(graded): `P33` and Newton limit / `D0_b` |", "| --- " * 6 + "|"]
+             "(graded): `P33` and Newton limit / `D0_b` | voltage control: snap-through "
+             "`D0` (`E0` / `max_E0`); first physical mode between | `D0_b` / snap-through "
+             "`D0` |", "| --- " * 8 + "|"]
     for n in breakdown_numbers(where):
         newton = (f"{n['newton_limit']:g}" if math.isfinite(n["newton_limit"])
                   else f"none up to {n['D0_max']:g}")
+        v = n["voltage"]
+        if v is None:
+            volt, ratio = "not computed on two agreeing meshes", ""
+        else:
+            first = (f"{v['D0_stable']:.2f}-{v['D0_physical']:.2f}"
+                     if math.isfinite(v["D0_physical"]) else "none before it")
+            volt = (f"{v['D0_limit']:.3f} +- {v['D0_spread']:.3f} ({v['ratio']:.4f}); "
+                    f"{first} ({', '.join(v['meshes'])})")
+            r = n["D0_b"] / v["D0_limit"]
+            err = r * (n["error"] / n["D0_b"] + v["D0_spread"] / v["D0_limit"])
+            ratio = f"{r:.3f} +- {err:.3f}"
         lines.append(f"| {n['alpha']:g} | {n['centre']:.4f} / {n['interior']:.4f} | "
                      f"{n['D0_b']:.4f} +- {n['error']:.4f} | "
                      f"{n['D0_b'] - n['interior']:.3f} | {newton} | {n['p33_mesh']} / "
-                     f"{', '.join(n['meshes'])} |")
+                     f"{', '.join(n['meshes'])} | {volt} | {ratio} |")
     return "\n".join(lines) + "\n"

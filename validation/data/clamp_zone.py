@@ -220,8 +220,10 @@ def clamp_voltage_limit(alpha: float, *, tol: float = 1e-3, grad_div: float = 10
     -------
     dict
         The finest mesh's ``E0_limit``, ``D0_limit``, ``lam1_limit``, ``ratio``,
-        ``E0_membrane``, ``D0_physical`` (``nan``: no physical mode before the limit);
-        ``spread`` (the two finest meshes' relative difference in ``E0_limit``),
+        ``E0_membrane``, ``D0_stable`` and ``D0_physical`` (the bracket of the first
+        physical mode; ``nan``: none before the limit); ``spread`` (the two finest meshes'
+        relative difference in ``E0_limit``), ``D0_spread`` (their difference in
+        ``D0_limit``),
         ``meshes`` (the two finest, coarser first, with their grading) and ``rows``.
 
     Raises
@@ -246,6 +248,7 @@ def clamp_voltage_limit(alpha: float, *, tol: float = 1e-3, grad_div: float = 10
                          f"{tol:g}); alpha = {alpha:g}: {a['mesh']} {a['E0_limit']}, "
                          f"{b['mesh']} {b['E0_limit']}")
     num = {c: float(b[c] or "nan") for c in ("E0_limit", "D0_limit", "lam1_limit", "ratio",
-                                              "E0_membrane", "D0_physical")}
+                                              "E0_membrane", "D0_stable", "D0_physical")}
     return {**num, "spread": spread, "rows": rows,
+            "D0_spread": abs(float(b["D0_limit"]) - float(a["D0_limit"])),
             "meshes": tuple(f"{r['mesh']} g{r['grading']}" for r in (a, b))}

@@ -33,12 +33,12 @@ from dataclasses import dataclass
 from importlib import resources
 
 from ..specs import LOCATION_TOL
-from .clamp_zone import clamp_unit_load, plain_p33_row
+from .clamp_zone import clamp_unit_load, clamp_voltage_limit, plain_p33_row
 from .registry import load
 
 __all__ = ["BUCKLING_LOADS_FILE", "CLAMP_UNITS_FILE", "BucklingEntry", "buckling_loads",
            "uniform_buckling_loads", "buckling_provenance", "converged_buckling_load",
-           "newton_limits", "newton_limit_bands", "p33_onsets"]
+           "newton_limits", "newton_limit_bands", "p33_onsets", "voltage_limits"]
 
 #: the data file of the uniform meshes, relative to the ``validation`` package
 BUCKLING_LOADS_FILE = "data/buckling_loads.csv"
@@ -233,6 +233,27 @@ def p33_onsets() -> list[tuple[float, float, str]]:
         r = plain_p33_row(a)
         if r is not None and r["P33_onset_interior"]:
             out.append((a, float(r["P33_onset_interior"]), f"{r['mesh']} g{r['grading']}"))
+    return out
+
+
+def voltage_limits() -> list[tuple[float, float, tuple[str, ...]]]:
+    """The snap-through of the clamped plate under voltage control, one per weight whose two
+    finest meshes of the ``voltage`` table agree
+    (:func:`~validation.data.clamp_zone.clamp_voltage_limit`): ``(alpha, D0, meshes)``, the
+    charge at the plate's centre at the limit point of the finest mesh, in increasing
+    ``alpha``; the map draws it beside ``D0_b`` (docs/breakdown.md).
+
+    Returns
+    -------
+    list of tuple
+    """
+    out = []
+    for a in sorted({round(float(r["alpha"]), 9) for r in load("voltage") if r["E0_limit"]}):
+        try:
+            v = clamp_voltage_limit(a)
+        except ValueError:
+            continue
+        out.append((a, v["D0_limit"], v["meshes"]))
     return out
 
 

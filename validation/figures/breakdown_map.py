@@ -17,10 +17,11 @@ import numpy as np
 import analytic as an
 from analytic.units import keplinger_s
 
-from ..data.loads import buckling_loads, newton_limit_bands, newton_limits, p33_onsets
+from ..data.loads import (buckling_loads, newton_limit_bands, newton_limits, p33_onsets,
+                          voltage_limits)
 from ..cases import ALPHAS, analytic_model
 from ..specs import KEPLINGER
-from ..markers import (CONVERGED_BUCKLING, MESH_BUCKLING, NEWTON_BAND, NEWTON_BAND_LABEL,
+from ..markers import (CONVERGED_BUCKLING, LIMIT_POINT, MESH_BUCKLING, NEWTON_BAND, NEWTON_BAND_LABEL,
                        NEWTON_LIMIT, NOT_CONVERGED_NOTE,
                        P33_BREAKDOWN, P33_ONSET_LOCATED, P33_SHAPES, RUN_BUCKLING, RUN_NEWTON,
                        WRINKLING_NOT_REACHED, legend_style, line_style)
@@ -130,6 +131,9 @@ def plot_breakdown_map(p33=None, run_buckling=None, run_newton=None, loads=None,
         :data:`~validation.markers.P33_ONSET_LOCATED`) are drawn with them: with the
         converged loads and the Newton limits they are the reference layer, in the order
         the charge meets them, beside which a run's own values show what its mesh gives.
+        The same plate under voltage control snaps through at the charge of
+        :func:`validation.data.loads.voltage_limits` (:data:`~validation.markers.LIMIT_POINT`,
+        where two meshes agree).
     alphas : sequence of float, optional
         The weights of the homogeneous wrinkling limits (:func:`homogeneous_wrinkling_D0`):
         a blue line where a path reaches one, else a blue arrow at the top of the axes.
@@ -183,6 +187,13 @@ def plot_breakdown_map(p33=None, run_buckling=None, run_newton=None, loads=None,
                 gid="newton-limit",
                 label=f"{NEWTON_LIMIT.name} ({', '.join(sorted({m for _, _, m in nl}))})",
                 **legend_style(NEWTON_LIMIT))
+    volt = voltage_limits()
+    if volt:
+        ax.plot([a for a, _, _ in volt], [d for _, d, _ in volt], ls="none",
+                gid="voltage-limit",
+                label=f"{LIMIT_POINT.name} under voltage control: the charge at the "
+                      f"centre, converged ({', '.join(sorted({m for *_, ms in volt for m in ms}))})",
+                **legend_style(LIMIT_POINT))
     onsets = p33_onsets()
     if onsets:
         ax.plot([a for a, _, _ in onsets], [d for _, d, _ in onsets], ls="none",
