@@ -84,6 +84,18 @@ def unit_row(key: UnitKey, where=None) -> dict:
                      f"clamp-zone units for it first")
 
 
+def _rows_by_size(name: str, alpha: float, path, keep, what: str) -> list[dict]:
+    """The rows of the table ``name`` of ``alpha`` (to ``1e-9``) that ``keep``, by
+    unknowns; ``ValueError`` (naming ``what`` and the table) unless there are two."""
+    rows = [r for r in load(name, path) if keep(r)
+            and math.isclose(float(r["alpha"]), alpha, rel_tol=0.0, abs_tol=1e-9)]
+    rows.sort(key=lambda r: int(r["dofs"]))
+    if len(rows) < 2:
+        raise ValueError(f"alpha = {alpha:g} has {len(rows)} {what} in "
+                         f"{path or shipped_path(name).name}: two meshes are needed")
+    return rows
+
+
 def clamp_unit_load(alpha: float, *, tol: float | None = None, path=None,
                     formulation: str = "mixed", classes_path=None) -> dict:
     """The clamp-zone buckling load of ``alpha`` where the study's two finest meshes agree.
@@ -131,13 +143,9 @@ def clamp_unit_load(alpha: float, *, tol: float | None = None, path=None,
     alpha = float(alpha)
     if tol is None:
         tol = 0.05 if alpha >= 1.5 else 0.02
-    rows = [r for r in load("units", path) if r["D0_b"] and r["formulation"] == formulation
-            and math.isclose(float(r["alpha"]), alpha, rel_tol=0.0, abs_tol=1e-9)]
-    rows.sort(key=lambda r: int(r["dofs"]))
-    if len(rows) < 2:
-        raise ValueError(f"alpha = {alpha:g} has {len(rows)} located clamp-zone unit(s) with "
-                         f"formulation {formulation!r} in "
-                         f"{path or shipped_path('units').name}: two meshes are needed")
+    rows = _rows_by_size("units", alpha, path,
+                         lambda r: r["D0_b"] and r["formulation"] == formulation,
+                         f"located clamp-zone unit(s) with formulation {formulation!r}")
     a, b = rows[-2], rows[-1]
     what = (f"alpha = {alpha:g}: {a['mesh']} graded {a['grading']} D0_b {a['D0_b']} "
             f"({a['half_waves']} half-waves, {float(a['elements_per_half_wave']):.1f} "
@@ -233,14 +241,9 @@ def clamp_voltage_limit(alpha: float, *, tol: float = 1e-3, grad_div: float = 10
         message gives their numbers.
     """
     alpha = float(alpha)
-    rows = [r for r in load("voltage", path) if r["E0_limit"]
-            and math.isclose(float(r["alpha"]), alpha, rel_tol=0.0, abs_tol=1e-9)
-            and float(r["grad_div"]) == float(grad_div)]
-    rows.sort(key=lambda r: int(r["dofs"]))
-    if len(rows) < 2:
-        raise ValueError(f"alpha = {alpha:g} has {len(rows)} voltage-controlled limit(s) "
-                         f"with grad-div {grad_div:g} in "
-                         f"{path or shipped_path('voltage').name}: two meshes are needed")
+    rows = _rows_by_size("voltage", alpha, path,
+                         lambda r: r["E0_limit"] and float(r["grad_div"]) == float(grad_div),
+                         f"voltage-controlled limit(s) with grad-div {grad_div:g}")
     a, b = rows[-2], rows[-1]
     spread = abs(float(b["E0_limit"]) / float(a["E0_limit"]) - 1.0)
     if spread > tol:

@@ -181,26 +181,17 @@ def plot_breakdown_map(p33=None, run_buckling=None, run_newton=None, loads=None,
     for i, (a, lo, hi, _) in enumerate(bands):
         ax.plot([a, a], [lo, hi], **line_style(NEWTON_BAND),
                 label=None if i else NEWTON_BAND_LABEL)
-    nl = newton_limits()
-    if nl:
-        ax.plot([a for a, _, _ in nl], [d for _, d, _ in nl], ls="none",
-                gid="newton-limit",
-                label=f"{NEWTON_LIMIT.name} ({', '.join(sorted({m for _, _, m in nl}))})",
-                **legend_style(NEWTON_LIMIT))
-    volt = voltage_limits()
-    if volt:
-        ax.plot([a for a, _, _ in volt], [d for _, d, _ in volt], ls="none",
-                gid="voltage-limit",
-                label=f"{LIMIT_POINT.name} under voltage control: the charge at the "
-                      f"centre, converged ({', '.join(sorted({m for *_, ms in volt for m in ms}))})",
-                **legend_style(LIMIT_POINT))
-    onsets = p33_onsets()
-    if onsets:
-        ax.plot([a for a, _, _ in onsets], [d for _, d, _ in onsets], ls="none",
-                gid="p33-onset-located",
-                label=f"{P33_ONSET_LOCATED.name} (interior, plain form; "
-                      f"{', '.join(sorted({m for _, _, m in onsets}))})",
-                **legend_style(P33_ONSET_LOCATED))
+    volt = [(a, d, ", ".join(ms)) for a, d, ms in voltage_limits()]
+    for pts, gid, label, marker in (
+            (newton_limits(), "newton-limit", NEWTON_LIMIT.name + " ({})", NEWTON_LIMIT),
+            (volt, "voltage-limit", LIMIT_POINT.name + " under voltage control: the charge "
+                                    "at the centre, converged ({})", LIMIT_POINT),
+            (p33_onsets(), "p33-onset-located",
+             P33_ONSET_LOCATED.name + " (interior, plain form; {})", P33_ONSET_LOCATED)):
+        if pts:                          # the reference layer: (alpha, D0, mesh) per weight
+            meshes = ", ".join(sorted({m for _, _, m in pts}))
+            ax.plot([a for a, _, _ in pts], [d for _, d, _ in pts], ls="none", gid=gid,
+                    label=label.format(meshes), **legend_style(marker))
     for v, per in (p33 or {}).items():
         pts = [(float(a), d) for a, d in per.items() if d is not None]
         if pts:
