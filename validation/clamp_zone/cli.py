@@ -44,7 +44,7 @@ from .scaling import scaling_tables
 from .section import DEFAULT_K, check_section_size, run_section
 from .voltage import run_voltage
 from ..data.spec import read_table
-from .tables import breakdown_table, clamp_study_tables
+from .tables import breakdown_table, clamp_study_tables, voltage_table
 from .units import run_unit, write_mode
 
 __all__ = ["add_clamp_zone_command", "cmd_clamp_zone", "MAX_ELEMENTS", "DEFAULT_OUT",
@@ -209,6 +209,8 @@ def add_clamp_zone_command(add) -> None:
     t = new("tables", "print the study's Markdown tables from its tables")
     t.add_argument("--breakdown", action="store_true",
                    help="only the three meanings of breakdown per weight (docs/breakdown.md)")
+    t.add_argument("--voltage", action="store_true",
+                   help="only the voltage table, a row per unit (docs/clamp-zone.md)")
     t.add_argument("--from", dest="source", type=out_dir, default=None, metavar="DIR",
                    help="a run's --out (default: the shipped tables)")
 
@@ -701,7 +703,8 @@ def _damaged_rows(source) -> None:
 def _cmd_tables(args) -> int:
     source = _source(args)
     _damaged_rows(source)
-    sys.stdout.write(breakdown_table(source) if args.breakdown else clamp_study_tables(source))
+    sys.stdout.write(breakdown_table(source) if args.breakdown else
+                     voltage_table(source) if args.voltage else clamp_study_tables(source))
     return 0
 
 
@@ -751,8 +754,8 @@ def _cmd_modes(args) -> int:
 
 _SUBCOMMANDS = {"units": _cmd_units, "onsets": _cmd_onsets, "layer": _cmd_layer,
                 "p33": _cmd_p33, "flagged": _cmd_flagged, "counts": _cmd_counts,
-                "section": _cmd_section, "voltage": _cmd_voltage, "tables": _cmd_tables, "scaling": _cmd_scaling,
-                "band": _cmd_band, "modes": _cmd_modes}
+                "section": _cmd_section, "voltage": _cmd_voltage, "tables": _cmd_tables,
+                "scaling": _cmd_scaling, "band": _cmd_band, "modes": _cmd_modes}
 
 
 def cmd_clamp_zone(args) -> int:

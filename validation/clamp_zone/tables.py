@@ -10,7 +10,7 @@ from ..data.registry import table_file
 from ..specs import LOCATION_TOL
 from ..data.registry import load as load_table
 
-__all__ = ["clamp_study_tables", "breakdown_numbers", "breakdown_table"]
+__all__ = ["clamp_study_tables", "breakdown_numbers", "breakdown_table", "voltage_table"]
 
 
 def _file(where, name: str):
@@ -190,3 +190,40 @@ def breakdown_table(where=None) -> str:
                      f"{n['D0_b'] - n['interior']:.3f} | {newton} | {n['p33_mesh']} / "
                      f"{', '.join(n['meshes'])} | {volt} | {ratio} |")
     return "\n".join(lines) + "\n"
+
+
+def voltage_table(where=None) -> str:
+    """The ``voltage`` table as Markdown, a row per unit (by weight, grad-div and unknowns):
+    the limit field against the homogeneous ``max_E0`` and the clamped membrane's, the
+    charge at the centre at the limit, the bracket of the first physical mode, the first
+    new negative mode with where its energy sits, ``J`` at the limit and the costs
+    (``skfem-dielectric clamp-zone tables --voltage``; docs/clamp-zone.md shows it).
+
+    Parameters
+    ----------
+    where : path-like, optional
+        A folder of the study's tables; default: the shipped tables.
+
+    Returns
+    -------
+    str
+    """
+    rows = [r for r in load_table("voltage", where) if r["E0_limit"]]
+    rows.sort(key=lambda r: (float(r["alpha"]), -float(r["grad_div"]), int(r["dofs"])))
+    out = ["| alpha | mesh (grading) | grad-div | unknowns | `E0` limit | / `max_E0` | "
+           "membrane's limit | `D0` at the limit | first physical mode between `D0` | "
+           "first new negative mode: `E0`, kind, class, centroid `X1` (layer) | `J` at the "
+           "limit | CPU s, GB |", "| --- " * 12 + "|"]
+    for r in rows:
+        phys = (f"{float(r['D0_stable']):.3f}-{float(r['D0_physical']):.3f}"
+                if r["D0_physical"] and r["D0_stable"] else "none before the limit")
+        first = (f"{float(r['E0_first']):.5f}, {r['first_kind']}, `{r['first_class']}`, "
+                 f"{float(r['first_X1']):.1f} mm ({r['first_layer']})" if r["E0_first"]
+                 else "none before the limit")
+        out.append(f"| {float(r['alpha']):g} | {r['mesh']} ({r['grading']}) | "
+                   f"{float(r['grad_div']):g} | {int(r['dofs'])} | "
+                   f"{float(r['E0_limit']):.6f} | {float(r['ratio']):.4f} | "
+                   f"{float(r['E0_membrane']):.6f} | {float(r['D0_limit']):.4f} | {phys} | "
+                   f"{first} | {float(r['J_min_limit']):.2f}-{float(r['J_max_limit']):.2f} | "
+                   f"{r['cpu_s']}, {r['peak_GB']} |")
+    return "\n".join(out) + "\n"
