@@ -180,11 +180,12 @@ def breakdown_table(where=None) -> str:
         else:
             first = (f"{v['D0_stable']:.2f}-{v['D0_physical']:.2f}"
                      if math.isfinite(v["D0_physical"]) else "none before it")
-            volt = (f"{v['D0_limit']:.3f} +- {v['D0_spread']:.3f} ({v['ratio']:.4f}); "
+            volt = (f"{v['D0_limit']:.4f} +- {max(v['D0_spread'], 1e-4):.4f} "
+                    f"({v['ratio']:.4f}); "
                     f"{first} ({', '.join(v['meshes'])})")
             r = n["D0_b"] / v["D0_limit"]
             err = r * (n["error"] / n["D0_b"] + v["D0_spread"] / v["D0_limit"])
-            ratio = f"{r:.3f} +- {err:.3f}"
+            ratio = f"{r:.4f} +- {max(err, 1e-4):.4f}"
         lines.append(f"| {n['alpha']:g} | {n['centre']:.4f} / {n['interior']:.4f} | "
                      f"{n['D0_b']:.4f} +- {n['error']:.4f} | "
                      f"{n['D0_b'] - n['interior']:.3f} | {newton} | {n['p33_mesh']} / "
