@@ -234,7 +234,16 @@ def test_the_breakdown_map_draws_the_vocabulary():
         drawn.add(m.name)
     assert drawn == {P33_BREAKDOWN.name, RUN_BUCKLING.name, CONVERGED_BUCKLING.name,
                      MESH_BUCKLING.name, NEWTON_LIMIT.name, RUN_NEWTON.name,
-                     WRINKLING_NOT_REACHED.name, P33_ONSET_LOCATED.name}
+                     WRINKLING_NOT_REACHED.name, P33_ONSET_LOCATED.name,
+                     LIMIT_POINT.name}
+    # the voltage-controlled snap-through: a red star per weight with two agreeing meshes,
+    # at the charge of the voltage table
+    from validation.data.loads import voltage_limits
+
+    (stars,) = [ln for ln in ax.lines if ln.get_gid() == "voltage-limit"]
+    want = voltage_limits()
+    assert want and list(stars.get_xdata()) == [a for a, _, _ in want]
+    assert list(stars.get_ydata()) == [d for _, d, _ in want]
     # every weight has its diamond; with the uniform meshes' loads alone alpha = 1.5 has
     # none (three meshes that disagree), and a note in the figure says why
     assert not [t for t in ax.texts if t.get_gid() == "not-converged"]
