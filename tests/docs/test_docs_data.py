@@ -165,3 +165,20 @@ def test_clamp_zone_md_shows_the_generated_voltage_table(capsys):
     for r in rows:
         assert 1.0 <= float(r["ratio"]) < 1.01
         assert abs(float(r["E0_limit"]) / float(r["E0_membrane"]) - 1) < 2e-3
+
+
+def test_breakdown_md_states_the_voltage_contrast_as_the_rows_give_it():
+    """The range of D0_b over the voltage-controlled snap-through charge (two decimals) over
+    the weights whose voltage meshes agree, and D0_b below the bracket of the voltage
+    plate's first physical mode on the finest mesh of each, as docs/breakdown.md says."""
+    rows = [r for r in breakdown_numbers() if r["voltage"] is not None]
+    assert rows
+    ratios = [r["D0_b"] / r["voltage"]["D0_limit"] for r in rows]
+    text = " ".join((DOCS / "breakdown.md").read_text().split())
+    said = (f"{min(ratios):.2f}" if f"{min(ratios):.2f}" == f"{max(ratios):.2f}"
+            else f"{min(ratios):.2f}-{max(ratios):.2f}")
+    assert f"`D0_b` is {said} of the charge at which the voltage-controlled plate snaps" \
+        in text
+    for r in rows:
+        assert r["D0_b"] + r["error"] < r["voltage"]["D0_stable"], r["alpha"]
+        assert 1.0 <= r["voltage"]["ratio"] < 1.005

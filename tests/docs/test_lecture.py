@@ -51,6 +51,8 @@ def test_the_lectures_numbers_are_the_datas():
     assert f"(and {light.D0_b:.3f} for `alpha` = 0.05," in flat
     gaps = [r["D0_b"] - r["interior"] for r in rows]
     assert f"precedes it by {min(gaps):.2f}-{max(gaps):.2f}" in flat
+    ratios = [r["D0_b"] / r["voltage"]["D0_limit"] for r in rows if r["voltage"]]
+    assert ratios and f"`D0_b` is {min(ratios):.2f}-{max(ratios):.2f} of that charge" in flat
 
 
 @pytest.mark.slow
