@@ -188,3 +188,23 @@ def test_breakdown_md_states_the_voltage_contrast_as_the_rows_give_it():
     for r in rows:
         assert r["D0_b"] - r["error"] < r["voltage"]["D0_physical"], r["alpha"]
         assert 1.0 <= r["voltage"]["ratio"] < 1.005
+
+
+def test_clamp_zone_md_says_where_the_voltage_modes_sit_as_the_rows_give_it():
+    """The centroid ranges and kinds of the first new negative mode under voltage control
+    that docs/clamp-zone.md states, from the voltage rows with the units' grad-div."""
+    from validation.data.registry import load
+
+    rows = [r for r in load("voltage") if r["E0_limit"] and float(r["grad_div"]) == 10]
+    by = {}
+    for r in rows:
+        by.setdefault(r["alpha"], []).append(r)
+    text = " ".join((DOCS / "clamp-zone.md").read_text().split())
+
+    def span(alphas):
+        x = [float(r["first_X1"]) for a in alphas for r in by[a]]
+        assert all(r["first_kind"] == "physical" for a in alphas for r in by[a])
+        return f"{min(x):.1f}-{max(x):.1f}"
+    assert f"(centroid {span(['0.7', '1'])} mm from the centre" in text
+    assert f"nearer the clamps ({span(['0.05', '0.3'])} mm)" in text
+    assert {r["first_kind"] for r in by["1.5"]} == {"mesh-scale"}
