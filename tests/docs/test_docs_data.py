@@ -183,8 +183,10 @@ def test_breakdown_md_states_the_voltage_contrast_as_the_rows_give_it():
     below = [f"{r['alpha']:g}" for r in rows
              if r["D0_b"] + r["error"] < r["voltage"]["D0_stable"]]
     inside = [f"{r['alpha']:g}" for r in rows if f"{r['alpha']:g}" not in below]
-    assert (f"below it for `alpha` = {' and '.join(below)}, inside it for "
-            f"{' and '.join(inside)}") in text
+    def words(xs):
+        return xs[0] if len(xs) == 1 else ", ".join(xs[:-1]) + " and " + xs[-1]
+    assert (f"below it for `alpha` = {words(below)}, inside it for {words(inside)}"
+            in text)
     for r in rows:
         assert r["D0_b"] - r["error"] < r["voltage"]["D0_physical"], r["alpha"]
         assert 1.0 <= r["voltage"]["ratio"] < 1.005
