@@ -151,9 +151,8 @@ def test_the_breakdown_column_is_described_as_it_is_computed():
 
 def test_clamp_zone_md_shows_the_generated_voltage_table(capsys):
     """The voltage table of docs/clamp-zone.md is ``clamp-zone tables --voltage``
-    verbatim, and every unit of the units' grad-div snaps within 1 % above the homogeneous
-    max_E0 and within 2e-3 of the clamped membrane's limit (the membrane of alpha = 0.05
-    stops 0.15 % low, before its own limit is located on finer meshes)."""
+    verbatim, and every unit of the units' grad-div snaps within 0.5 % of the homogeneous
+    max_E0 (the range the page gives) and within 2e-3 of the clamped membrane's limit."""
     from validation.clamp_zone.tables import voltage_table
     from validation.data.registry import load
 
@@ -162,8 +161,11 @@ def test_clamp_zone_md_shows_the_generated_voltage_table(capsys):
     assert capsys.readouterr().out == voltage_table()
     rows = [r for r in load("voltage") if r["E0_limit"] and float(r["grad_div"]) == 10]
     assert rows
+    ratios = [float(r["ratio"]) for r in rows]
+    assert all(abs(x - 1) < 5e-3 for x in ratios)
+    assert f"({min(ratios):.4f}-{max(ratios):.4f} times it)" in " ".join(
+        (DOCS / "clamp-zone.md").read_text().split())
     for r in rows:
-        assert 1.0 <= float(r["ratio"]) < 1.01
         assert abs(float(r["E0_limit"]) / float(r["E0_membrane"]) - 1) < 2e-3
 
 
@@ -189,7 +191,7 @@ def test_breakdown_md_states_the_voltage_contrast_as_the_rows_give_it():
             in text)
     for r in rows:
         assert r["D0_b"] - r["error"] < r["voltage"]["D0_physical"], r["alpha"]
-        assert 1.0 <= r["voltage"]["ratio"] < 1.005
+        assert abs(r["voltage"]["ratio"] - 1) < 5e-3
 
 
 def test_clamp_zone_md_says_where_the_voltage_modes_sit_as_the_rows_give_it():
@@ -210,3 +212,20 @@ def test_clamp_zone_md_says_where_the_voltage_modes_sit_as_the_rows_give_it():
     assert f"(centroid {span(['0.7', '1'])} mm from the centre" in text
     assert f"nearer the clamps ({span(['0.05', '0.3'])} mm)" in text
     assert {r["first_kind"] for r in by["1.5"]} == {"mesh-scale"}
+
+
+def test_clamp_zone_md_states_the_voltage_meshes_agreement_as_the_rows_give_it():
+    """The two meshes' agreement per weight that docs/clamp-zone.md states: for alpha >=
+    0.3 within 2e-5 (relative) in E0 and 5e-3 in D0 at the limit, 0.35-0.45 % above
+    max_E0; for alpha = 0.05 about 1e-3 and 0.08, the finer mesh nearer the membrane."""
+    from validation.data.clamp_zone import clamp_voltage_limit
+
+    for a in (0.3, 0.7, 1.0, 1.5):
+        v = clamp_voltage_limit(a)
+        assert v["spread"] < 2e-5 and v["D0_spread"] < 5e-3, a
+        assert 1.0035 <= round(v["ratio"], 4) <= 1.0045, a
+    v = clamp_voltage_limit(0.05)
+    assert 0.5e-3 < v["spread"] < 1e-3 and round(v["D0_spread"], 2) == 0.08
+    coarse, fine = v["rows"][-2], v["rows"][-1]
+    assert abs(float(fine["E0_limit"]) - float(fine["E0_membrane"])) < \
+        abs(float(coarse["E0_limit"]) - float(coarse["E0_membrane"]))
