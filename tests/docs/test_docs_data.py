@@ -229,3 +229,20 @@ def test_clamp_zone_md_states_the_voltage_meshes_agreement_as_the_rows_give_it()
     coarse, fine = v["rows"][-2], v["rows"][-1]
     assert abs(float(fine["E0_limit"]) - float(fine["E0_membrane"])) < \
         abs(float(coarse["E0_limit"]) - float(coarse["E0_membrane"]))
+
+
+def test_clamp_zone_md_quotes_where_the_plain_form_s_path_stops():
+    """The plain form's voltage row on 20 x 1 x 24: no limit, its corrector failing at the
+    field the page quotes (3 digits), two thirds of the units' form's limit."""
+    import re
+
+    from validation.data.registry import load
+
+    (row,) = [r for r in load("voltage") if r["grad_div"] == "0" and r["mesh"] == "20x1x24"]
+    assert not row["E0_limit"]
+    t = float(re.search(r"corrector failed at t = ([0-9.]+)", row["note"])[1])
+    text = " ".join((DOCS / "clamp-zone.md").read_text().split())
+    assert f"its corrector fails at `E0` = {t:.3f}" in text
+    (stab,) = [r for r in load("voltage") if r["grad_div"] == "10" and r["alpha"] == "1"
+               and r["mesh"] == "20x1x24"]
+    assert round(t / float(stab["E0_limit"]), 2) == 0.67
