@@ -45,6 +45,7 @@ import numpy as np
 
 import analytic as an
 import skfem_dielectric as fe
+from skfem_dielectric.kinematics import det3
 from skfem_dielectric.models.plate.scan import PlateScan
 
 from ..data.key import UnitKey, mesh_text
@@ -109,10 +110,9 @@ def membrane_voltage_limit(alpha: float, elements=MEMBRANE_MESH, *,
     pb = fe.MembranePlate(fe.membrane_mesh(100.0, 1.0, 50.0, n1, n3),
                           fe.NeoHookeanDielectric(1.0, 1.0), loading="uniaxial",
                           control="voltage")
-    steps = fe.gallery.KEPLINGER_PRELOAD_STEPS
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", RuntimeWarning)     # a stopped path is data
-        pre = fe.ramp(pb, [np.array([s * k / steps, 0.0]) for k in range(1, steps + 1)])
+        pre = fe.ramp(pb, charge_path(s, []))               # the units' pre-load steps
         if not pre.converged:
             return math.nan, math.nan
         path = fe.continuation(pb, np.array([s, 0.0]), np.array([0.0, 1.0]), x0=pre.x,
@@ -165,11 +165,11 @@ def run_voltage(key: UnitKey, *, grad_div: float = BUCKLING_GRAD_DIV, solver: st
                                            f"{np.asarray(pre.failed_at)[0]:g}")
         row.update(meter.columns(solver))
         return row
-    scan, seen = PlateScan(pb), []
+    scan, scanned = PlateScan(pb), {}
 
     def count(x, load):
         r = scan.analyse(x, load)
-        seen.append((float(load[1]), r, x.copy(), np.asarray(load, float)))
+        scanned[float(load[1])] = (r, x.copy(), np.asarray(load, float))
         if progress is not None:
             progress(f"E0 = {load[1]:.5f}: {r.n_negative} negative "
                      f"({r.n_physical} physical), {r.cpu:.1f} CPU s")
@@ -188,14 +188,13 @@ def run_voltage(key: UnitKey, *, grad_div: float = BUCKLING_GRAD_DIV, solver: st
         row.update(meter.columns(solver))
         return row
     lim = limits[0]
-    J = np.concatenate([np.linalg.det(np.moveaxis(F, (0, 1), (-2, -1))).ravel()
+    J = np.concatenate([det3(F).ravel()
                         for _, F, _, _ in pb.quadrature_fields(lim.x, lim.load)])
     row.update(J_min_limit=float(J.min()), J_max_limit=float(J.max()))
     row.update(E0_limit=lim.t, D0_limit=lim["D0_centre"], lam1_limit=lim["lam1"],
                ratio=lim.t / E0_h, E0_membrane=membrane_voltage_limit(alpha)[0])
     # the scanned points in the path's order up to the limit point (the scan saw the
     # point past the limit before the located limit point)
-    scanned = {E0: (r, x, load) for E0, r, x, load in seen}
     k = next(j for j, p in enumerate(path.points) if p is lim)
     before = [(p.t, *scanned[p.t]) for p in path.points[:k + 1] if p.t in scanned]
     start = before[0][1].n_negative
