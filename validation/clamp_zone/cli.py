@@ -518,7 +518,8 @@ def _cmd_voltage(args) -> int:
                        for a in opts["alphas"] for el in _meshes(args, args.mesh))]
 
     def show(r):
-        _say(f"  {UnitKey.from_row(r)} grad-div {float(r['grad_div']):g}: E0 limit {float(r['E0_limit'] or 'nan'):.5f} "
+        _say(f"  {UnitKey.from_row(r)} grad-div {float(r['grad_div']):g}: E0 limit "
+             f"{float(r['E0_limit'] or 'nan'):.5f} "
              + (f"({r['note']}) " if r.get("note") else "")
              + f"at D0 {float(r.get('D0_limit') or 'nan'):.4f}, "
              f"{float(r.get('ratio') or 'nan'):.4f} of max_E0; {r['dofs']} DOFs, "

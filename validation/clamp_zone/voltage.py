@@ -15,9 +15,9 @@ row holds
 * the limit point: ``E0_limit``, ``D0_limit`` (the charge at the plate's centre there),
   ``lam1_limit`` (the stretch at the centre) and the range of ``J = det F`` over every
   quadrature point there (``J_min_limit``, ``J_max_limit``; the material is
-  incompressible, so a discrete state far from ``J = 1`` is not the continuum's); beside it the homogeneous uni-axial limit
-  :func:`analytic.max_E0` at the same ``s`` (``max_E0``, ``lam1_max_E0``) and their
-  ratio;
+  incompressible, so a discrete state far from ``J = 1`` is not the continuum's); beside
+  it the homogeneous uni-axial limit :func:`analytic.max_E0` at the same ``s``
+  (``max_E0``, ``lam1_max_E0``) and their ratio;
 * ``E0_membrane``: the limit of the clamped membrane (:func:`membrane_voltage_limit`), an
   independent cross-check;
 * the first point of the path with a physical negative mode (``E0_physical``, the charge

@@ -1,16 +1,17 @@
-"""What a table of the clamp-zone study holds (:class:`TableSpec`) and reading one back
-with its damaged rows named (:func:`read_table`); :mod:`validation.store.tables` writes one under its lock.
+"""What a measured table holds (:class:`TableSpec`: a clamp-zone table, or a study's plain
+CSV by :meth:`TableSpec.plain`) and reading a clamp-zone table back with its damaged rows
+named (:func:`read_table`); :mod:`validation.store.tables` writes one under its lock.
 
-A table is a CSV whose first line declares which of the study's tables it is
+A clamp-zone table is a CSV whose first line declares which of the study's tables it is
 (``# clamp-zone table: <name>``), then ``#`` lines saying what it holds, the header and
 one row per unit (or per state, or per class: :attr:`TableSpec.key`).  A file that does
 not declare the same table, or whose header has other columns, is another table and is
 never rewritten.  A row that cannot be read back (cut short by a kill, another number of
 cells, text in a number column, an empty key cell) or that repeats a key is named in a
 note (file and line) and left out; the writer keeps it aside in ``<table>.damaged`` before
-the table is rewritten, and its unit is computed again if the command runs it; the file is rewritten atomically (temporary file, ``fsync``,
-``os.replace``) with each new unit's rows, under a lock that refuses a second writer and
-names the holder.
+the table is rewritten, and its unit is computed again if the command runs it; the file
+is rewritten atomically (temporary file, ``fsync``, ``os.replace``) with each new unit's
+rows, under a lock that refuses a second writer and names the holder.
 """
 
 from __future__ import annotations

@@ -21,8 +21,8 @@ from ..data.loads import (buckling_loads, newton_limit_bands, newton_limits, p33
                           voltage_limits)
 from ..cases import ALPHAS, analytic_model
 from ..specs import KEPLINGER
-from ..markers import (CONVERGED_BUCKLING, LIMIT_POINT, MESH_BUCKLING, NEWTON_BAND, NEWTON_BAND_LABEL,
-                       NEWTON_LIMIT, NOT_CONVERGED_NOTE,
+from ..markers import (CONVERGED_BUCKLING, LIMIT_POINT, MESH_BUCKLING, NEWTON_BAND,
+                       NEWTON_BAND_LABEL, NEWTON_LIMIT, NOT_CONVERGED_NOTE,
                        P33_BREAKDOWN, P33_ONSET_LOCATED, P33_SHAPES, RUN_BUCKLING, RUN_NEWTON,
                        WRINKLING_NOT_REACHED, legend_style, line_style)
 from .common import MODEL_NAME, add_caption
