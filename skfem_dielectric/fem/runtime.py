@@ -74,10 +74,11 @@ class SetupCache:
         return value
 
 
-#: Systems smaller than this are not worth a :func:`trim_heap`: their temporaries are
-#: small, and handing the memory back only makes the next allocations fault it in again
-#: (docs/performance.md).
-TRIM_MIN_UNKNOWNS = 20_000
+#: Systems smaller than this are not worth a :func:`trim_heap`, nor freeing the old
+#: factors before the next tangent of a Newton solve is assembled: their temporaries and
+#: factors are small beside the process, and handing the memory back only makes the next
+#: allocations fault it in again (docs/performance.md).
+TRIM_MIN_UNKNOWNS = 100_000
 
 
 def trim_heap(unknowns: int | None = None) -> bool:

@@ -14,8 +14,8 @@ load of every step is the pair
 post-processed values of the model plus ``phase`` (``"preload"`` or ``"charge"``) and
 ``stable`` (inertia verdict with PARDISO, else ``None``).
 
-Resuming: pass ``x0=step.x``, ``start=step.load``, ``back=step.back`` and
-``factors=step.factors`` of a saved step together with the *same* arguments; targets up to
+Resuming: pass ``x0=step.x``, ``start=step.load``, ``back=step.back``,
+``back2=step.back2`` and ``factors=step.factors`` of a saved step together with the *same* arguments; targets up to
 and including ``start`` are skipped and the remaining steps are bit-for-bit those of the
 uninterrupted run (deterministic linear solver).  ``factors`` is where the factors the next
 step starts on come from (``keep_factors`` of the settings, as in :data:`KEPLINGER_SETTINGS`);
@@ -55,12 +55,14 @@ __all__ = ["EQUIBIAXIAL_SETTINGS", "KEPLINGER_SETTINGS", "MAXWELL_KEPLINGER_SETT
 #: round-off, so a tight ``rtol`` relative to the external load alone (``atol = 0``).
 EQUIBIAXIAL_SETTINGS = RampSettings(atol=0.0, rtol=EQUIBIAXIAL_RTOL, max_cutbacks=6)
 #: How :func:`keplinger_plate` solves its load steps: ``rtol`` relative to the external
-#: load alone, chord steps while the residual contracts tenfold, and a small Newton budget
+#: load alone, factors kept while the (accelerated) chord steps halve the residual, each
+#: solve started from the parabola through the last three states, a small Newton budget
 #: (converged steps need <= 6 iterations on the 40 x 20 eighth model up to ``D0 = 5``, up
 #: to 9 right before the breakdown; a low limit makes the attempts beyond it cheap).
 KEPLINGER_SETTINGS = RampSettings(atol=0.0, rtol=KEPLINGER_RTOL, max_iter=KEPLINGER_MAX_ITER,
                                   max_cutbacks=4, chord=KEPLINGER_CHORD,
-                                  acceleration=KEPLINGER_ACCELERATION, keep_factors=True)
+                                  acceleration=KEPLINGER_ACCELERATION, keep_factors=True,
+                                  predictor="quadratic")
 #: How :func:`maxwell_keplinger` solves its load steps: :data:`KEPLINGER_SETTINGS` with
 #: the ramp's default Newton budget (6 cut-backs, 25 iterations).
 MAXWELL_KEPLINGER_SETTINGS = replace(KEPLINGER_SETTINGS, max_iter=25, max_cutbacks=6)
@@ -106,7 +108,8 @@ def run_ramp(problem: Problem, targets: Sequence[Any], *,
         Callback and resume state: with ``start`` (the load of a saved step, which must be
         one of ``targets``), ``x0`` (its state), ``factors`` (its ``StepResult.factors``,
         in ``ramp_options``) and ``back`` (its ``StepResult.back``, the
-        secant predictor's second point) the ramp continues after ``start``.
+        predictor's second point; its third, ``back2``, in ``ramp_options``) the ramp
+        continues after ``start``.
     linear_solver
         Name or instance (:func:`~skfem_dielectric.linalg.linear.get_linear_solver`).
     extra
@@ -236,7 +239,8 @@ def equibiaxial_plate(s: float, D0: Sequence[float], *, model: Any = "neo-Hookea
                       x0: np.ndarray | None = None, start: Any = None,
                       back: tuple[np.ndarray, Any] | None = None,
                       factors: tuple[np.ndarray, Any] | None = None,
-                      settings: RampSettings = EQUIBIAXIAL_SETTINGS) -> RampResult:
+                      settings: RampSettings = EQUIBIAXIAL_SETTINGS,
+                      back2: tuple[np.ndarray, Any] | None = None) -> RampResult:
     """Equi-biaxial dead-load plate: pre-load ``s``, then the charge ramp ``D0``.
 
     Parameters
@@ -255,7 +259,7 @@ def equibiaxial_plate(s: float, D0: Sequence[float], *, model: Any = "neo-Hookea
     linear_solver
         ``"auto"``, ``"superlu"`` or ``"pardiso"`` (for ``coupling="maxwell"`` PARDISO is
         its general LU).
-    on_step, x0, start, back, factors
+    on_step, x0, start, back, back2, factors
         Callback and resume state, see the module docstring.
     settings
         How the load steps are solved (:class:`~skfem_dielectric.solvers.ramp.RampSettings`;
@@ -277,8 +281,8 @@ def equibiaxial_plate(s: float, D0: Sequence[float], *, model: Any = "neo-Hookea
     if options.coupling == "maxwell":
         extra["variant"] = f"maxwell-{options.field}"
     out = run_ramp(prob, preload_then_charge(s, D0, preload_steps), on_step=on_step, x0=x0,
-                   start=start, back=back, factors=factors, linear_solver=linear_solver,
-                   extra=extra, settings=settings)
+                   start=start, back=back, back2=back2, factors=factors,
+                   linear_solver=linear_solver, extra=extra, settings=settings)
     out.targets = _charge_loads(s, D0)
     return out
 
@@ -295,7 +299,8 @@ def keplinger_plate(alpha: float | None = 1.0, D0: Sequence[float] = (1, 2, 3, 4
                     on_step: Callable[[StepResult], Any] | None = None,
                     x0: np.ndarray | None = None, start: Any = None,
                     back: tuple[np.ndarray, Any] | None = None,
-                    factors: tuple[np.ndarray, Any] | None = None) -> RampResult:
+                    factors: tuple[np.ndarray, Any] | None = None,
+                    back2: tuple[np.ndarray, Any] | None = None) -> RampResult:
     """The uni-axial Keplinger plate: weight on a rigid clamp, then the charge ramp.
 
     Parameters
@@ -322,8 +327,9 @@ def keplinger_plate(alpha: float | None = 1.0, D0: Sequence[float] = (1, 2, 3, 4
     settings
         How the load steps are solved (:class:`~skfem_dielectric.solvers.ramp.RampSettings`;
         default :data:`KEPLINGER_SETTINGS`: ``rtol = 1e-9``, ``atol = 0``, 4 cut-backs, 12
-        Newton iterations per attempt, chord steps at ``chord = 0.1``, each Newton solve
-        started from the secant through the last two converged states).
+        Newton iterations per attempt, factors kept across load steps, Anderson-accelerated
+        chord steps at ``chord = 0.5``, each Newton solve started from the parabola
+        through the last three converged states, ``predictor="quadratic"``).
         ``replace(KEPLINGER_SETTINGS, stop_on_instability=True)`` stops at the first step
         whose tangent inertia says unstable (PARDISO only): the discrete breakdown near the
         clamps; ``predictor="none"`` starts each solve from the last converged state.
@@ -331,7 +337,7 @@ def keplinger_plate(alpha: float | None = 1.0, D0: Sequence[float] = (1, 2, 3, 4
         Analysis of every converged state on the factorisation of its tangent, e.g.
         ``StabilityMonitor(k=5)`` (:mod:`skfem_dielectric.stability.monitor`); see
         :func:`~skfem_dielectric.solvers.ramp.ramp`.
-    on_step, x0, start, back, factors
+    on_step, x0, start, back, back2, factors
         Callback and resume state (see the module docstring).
 
     Returns
@@ -354,8 +360,9 @@ def keplinger_plate(alpha: float | None = 1.0, D0: Sequence[float] = (1, 2, 3, 4
     if options.coupling == "maxwell":
         extra["variant"] = f"maxwell-{options.field}"
     out = run_ramp(prob, preload_then_charge(s, D0, preload_steps), on_step=on_step, x0=x0,
-                   start=start, back=back, factors=factors, linear_solver=linear_solver,
-                   extra=extra, settings=settings, state_analysis=state_analysis)
+                   start=start, back=back, back2=back2, factors=factors,
+                   linear_solver=linear_solver, extra=extra, settings=settings,
+                   state_analysis=state_analysis)
     out.targets = _charge_loads(s, D0)
     return out
 

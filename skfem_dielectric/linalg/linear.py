@@ -160,23 +160,26 @@ class PardisoSolver(LinearSolver):
     PARDISO ``iparm(22)``, ``iparm(23)`` (Sylvester inertia of the factorised matrix).  The
     results may differ in the last bits between runs because MKL is multi-threaded.
 
-    Pivoting: after the symmetric scaling and weighted matching of the analysis, the
-    factorisation takes 1x1 diagonal pivots (``iparm(21) = 0``); a matrix whose
-    factorisation had to perturb a pivot (``iparm(14) > 0``) is factorised again at once
-    with Bunch-Kaufman 1x1 and 2x2 pivoting (``iparm(21) = 1``, which was the only
-    pivoting before) by a second solver with its own analysis (the pivoting cannot change
-    between an analysis and its factorisations), whose factors then serve
-    :meth:`resolve` and the inertia; :attr:`fallbacks` counts them.  On
-    every converged state of the Keplinger ramps (eighth and full plate, up to ``D0 =
-    6.5``) both give the same inertia and residuals and no perturbed pivot, and the 1x1
-    pivots factorise in 0.7 times the time (docs/performance.md).
+    Pivoting: after the symmetric scaling of the analysis, without weighted matching
+    (``iparm(13) = 0``), the factorisation takes 1x1 diagonal pivots (``iparm(21) = 0``);
+    a matrix whose factorisation had to perturb a pivot (``iparm(14) > 0``) is factorised
+    again at once with weighted matching and Bunch-Kaufman 1x1 and 2x2 pivoting
+    (``iparm(13) = iparm(21) = 1``, which was the only pivoting before) by a second
+    solver with its own analysis (neither can change between an analysis and its
+    factorisations), whose factors then serve :meth:`resolve` and the inertia;
+    :attr:`fallbacks` counts them.  On every converged state of the Keplinger ramps
+    (eighth and full plate, up to ``D0 = 6.5``) the 1x1 and Bunch-Kaufman pivots give
+    the same inertia and residuals and no perturbed pivot, and so do the factorisations
+    with and without the matching (40 x 1 x 20, eighth and full plate, ``D0 = 0.5 ...
+    5.5``); the 1x1 pivots factorise in 0.7 times the time, and without the matching the
+    analysis takes a third of the time and a factorisation 0.9 of it (docs/performance.md).
     """
 
     name = "pardiso"
     reads_upper = True
     _mtype = -2                      # real symmetric indefinite
     _pivoting = {10: 8, 21: 0}       # pivot perturbation 1e-8, 1x1 diagonal pivots
-    _fallback = {21: 1}              # after a perturbed pivot: Bunch-Kaufman pivoting
+    _fallback = {13: 1, 21: 1}       # after a perturbed pivot: matching, Bunch-Kaufman
 
     def __init__(self, refine: int = 2, ordering: str = "auto",
                  refine_tol: float = 1e-13):
@@ -189,7 +192,7 @@ class PardisoSolver(LinearSolver):
         p.set_iparm(2, _ORDERINGS.get(ordering, 0))
         p.set_iparm(8, 0)    # no refinement inside PARDISO (see ``refine``)
         p.set_iparm(11, 1)   # (symmetric) scaling
-        p.set_iparm(13, 1)   # (symmetric) weighted matching (recommended for saddle points)
+        p.set_iparm(13, 0)   # no weighted matching (the fallback below matches)
         for i, v in self._pivoting.items():
             p.set_iparm(i, v)
         # zero-based index arrays: PARDISO reads the upper triangle's own indptr/indices

@@ -32,6 +32,7 @@ import scipy.sparse as sp
 
 from ..checks import (check_callable, check_count, check_nonnegative, check_nonnegative_int,
                      check_tolerances)
+from ..fem.runtime import TRIM_MIN_UNKNOWNS
 from ..linalg.linear import get_linear_solver
 from ..linalg.solver_base import LinearSolver
 
@@ -224,7 +225,9 @@ class _NewtonIteration:
         # with chord steps and a residual-only evaluation, the tangent is assembled only
         # where it is factorised
         self.lazy = settings.chord > 0 and residual is not None
-        self.discard = getattr(solver, "discard", None)
+        # the old factors are freed before a new tangent only where they are large
+        self.discard = (getattr(solver, "discard", None)
+                        if x.shape[0] >= TRIM_MIN_UNKNOWNS else None)
         self.x = x
         self.K = self.r = None
         self.rn = self.tol = np.inf
@@ -267,7 +270,10 @@ class _NewtonIteration:
 
     def tangent_to_factorise(self, x: np.ndarray) -> _Point:
         """The tangent at ``x`` that is factorised next: the old factors (of no more use)
-        are freed first, so that they and the new tangent are not held together."""
+        are freed first on a system of at least
+        :data:`~skfem_dielectric.fem.runtime.TRIM_MIN_UNKNOWNS` unknowns, so that they and
+        the new tangent are not held together (on a smaller one the solver's next
+        factorisation reuses their memory)."""
         if self.discard is not None:
             self.discard()
         return self.evaluate(x)

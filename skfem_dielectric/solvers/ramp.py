@@ -5,10 +5,11 @@ array (e.g. ``(s, D0)``); between two consecutive targets the load is interpolat
 and sub-stepped adaptively: a sub-step whose Newton iteration fails is halved (cut-back) up
 to ``max_cutbacks`` times, and after a success the sub-step doubles again (never beyond the
 target).  Every target starts from the full interval, so a target's solution depends only on
-the state at the previous target and the converged state before it (the secant
-predictor's second point, ``StepResult.back``) and, with ``keep_factors``, on the factors
-the solver holds (``StepResult.factors``): resuming a ramp with ``x0=step.x,
-start=step.load, back=step.back, factors=step.factors`` gives bit-for-bit the same
+the state at the previous target and the converged states before it (the predictor's
+second and third points, ``StepResult.back`` and ``StepResult.back2``) and, with
+``keep_factors``, on the factors the solver holds (``StepResult.factors``): resuming a ramp
+with ``x0=step.x, start=step.load, back=step.back, back2=step.back2,
+factors=step.factors`` gives bit-for-bit the same
 subsequent steps as the uninterrupted run (for a deterministic linear solver such as
 SuperLU).
 
@@ -47,7 +48,7 @@ from .newton import NewtonResult, NewtonSettings, check_settings, newton
 
 __all__ = ["RampSettings", "StepResult", "RampResult", "ramp", "check_callbacks"]
 
-PREDICTORS = ("none", "secant")
+PREDICTORS = ("none", "secant", "quadratic")
 
 
 @dataclass(frozen=True)
@@ -72,10 +73,13 @@ class RampSettings(NewtonSettings):
     predictor
         Start of each Newton solve: ``"secant"`` (the default: extrapolated through the
         last two converged states when the load keeps its direction and the extrapolation
-        lowers the residual) or ``"none"`` (the last converged state).  The secant start
-        depends on the state before the last one, which every step keeps
-        (``StepResult.back``): a ramp resumed with it repeats the uninterrupted one bit for
-        bit.
+        lowers the residual), ``"quadratic"`` (the parabola through the last three
+        converged states where their loads lie in order on the line of the new increment
+        and it lowers the residual, else the secant's start) or ``"none"`` (the last
+        converged state).  The secant start depends on the state before the last one, the
+        quadratic one also on the state before that, which every step keeps
+        (``StepResult.back``, ``StepResult.back2``): a ramp resumed with them repeats the
+        uninterrupted one bit for bit.
     keep_factors
         Start every Newton solve with chord steps on the factors the linear solver holds
         from the solve before (``reuse_factors`` of
@@ -151,6 +155,10 @@ class StepResult:
         secant predictor.  Pass it as ``back=`` together with ``x0=step.x`` and
         ``start=step.load`` to resume a ramp bit for bit (``None`` for the first step of a
         ramp started without ``back``: its start is a guess, not a converged state).
+    back2
+        The converged (sub-)step before ``back``, ``(x, load)``: the third point of the
+        quadratic predictor (``None`` where there is none).  Pass it as ``back2=`` with
+        ``back`` to resume a ramp bit for bit.
     factors
         With ``keep_factors``: where the factors the linear solver holds after this step
         come from, ``(x, load)``, the state whose tangent was factorised last (the
@@ -174,6 +182,7 @@ class StepResult:
     factorisations: int = 0
     back: tuple[np.ndarray, Any] | None = None
     factors: tuple[np.ndarray, Any] | None = None
+    back2: tuple[np.ndarray, Any] | None = None
 
     def __getitem__(self, key: str) -> Any:
         return self.quantities[key]
@@ -360,6 +369,41 @@ def _secant_guess(problem: Problem, x: np.ndarray, at: Any, back: tuple | None,
     return x, r_x
 
 
+def _quadratic_guess(problem: Problem, x: np.ndarray, at: Any, back: tuple | None,
+                     back2: tuple | None, load: Any) -> tuple[np.ndarray, np.ndarray | None]:
+    """Start of the Newton solve at ``load``: the parabola through the converged states
+    ``back2``, ``back`` and ``x`` (at ``at``) evaluated at ``load`` (Lagrange
+    extrapolation in the distance along the load line) where the three loads lie in order
+    on the line of the new increment and the parabola lowers the residual below that of
+    ``x``; else :func:`_secant_guess`."""
+    if back is None or back2 is None:
+        return _secant_guess(problem, x, at, back, load)
+    new = np.atleast_1d(np.asarray(load, float))
+    d = new - np.atleast_1d(np.asarray(at, float))
+    nd = float(np.linalg.norm(d))
+    t = []
+    for ld in (back2[1], back[1], at):
+        e = np.atleast_1d(np.asarray(ld, float)) - new
+        ti = float(e @ d) / nd if nd > 0 else 0.0
+        if not nd > 0 or np.linalg.norm(e - ti * d / nd) > 1e-9 * max(abs(ti), nd):
+            return _secant_guess(problem, x, at, back, load)
+        t.append(ti)
+    t0, t1, t2 = t
+    if not t0 < t1 < t2 < 0.0:
+        return _secant_guess(problem, x, at, back, load)
+    w0 = t1 * t2 / ((t0 - t1) * (t0 - t2))
+    w1 = t0 * t2 / ((t1 - t0) * (t1 - t2))
+    w2 = t0 * t1 / ((t2 - t0) * (t2 - t1))
+    guess = w0 * back2[0] + w1 * back[0] + w2 * x
+    try:
+        r_guess, r_x = problem.residual(guess, load), problem.residual(x, load)
+    except (FloatingPointError, ValueError, ZeroDivisionError):
+        return x, None
+    if np.all(np.isfinite(r_guess)) and np.linalg.norm(r_guess) < np.linalg.norm(r_x):
+        return guess, r_guess
+    return x, r_x
+
+
 @dataclass
 class _Approach:
     """The sub-steps from the last converged load ``start`` towards one ``target``: the
@@ -409,6 +453,7 @@ class _Ramp:
                         and getattr(solver, "reads_upper", False) else problem.assemble)
         self.x, self.load = x, load
         self.back = None     # the converged state before x and its load (secant predictor)
+        self.back2 = None    # the one before back (quadratic predictor)
         self.solved = False  # x is a solution (not the initial guess of a fresh ramp)
         self.reuse = False   # the next solve starts with chord steps on the factors at hand
         self.factors = None  # (x, load) whose tangent the solver's factors are of
@@ -427,12 +472,12 @@ class _Ramp:
             load = ap.load_at(f_new)
             scale = self.problem.residual_scale(load)
             at = ap.load_at(ap.fraction) if ap.fraction > 0 else self.load
-            x_start, r_start = (_secant_guess(self.problem, self.x, at, self.back, load)
-                                if self.settings.predictor == "secant" else (self.x, None))
+            x_start, r_start = self.predict(at, load)
             nr = self.solve(load, x_start, scale, r_start)
             if nr.converged:
                 # the secant's second point is a solution: a converged (sub-)step, or the
                 # resumed step whose own back was given (not a mere initial guess)
+                self.back2 = self.back if self.solved else None
                 self.back = (self.x, at) if self.solved else None
                 self.solved = True
                 self.x = nr.x
@@ -452,6 +497,16 @@ class _Ramp:
                     break
                 ap.step *= 0.5
         return ap
+
+    def predict(self, at: Any, load: Any) -> tuple[np.ndarray, np.ndarray | None]:
+        """Start of the Newton solve at ``load`` from ``x`` (at ``at``) by the settings'
+        predictor, with its residual where the predictor evaluated it."""
+        kind = self.settings.predictor
+        if kind == "quadratic":
+            return _quadratic_guess(self.problem, self.x, at, self.back, self.back2, load)
+        if kind == "secant":
+            return _secant_guess(self.problem, self.x, at, self.back, load)
+        return self.x, None
 
     def solve(self, load: Any, x_start: np.ndarray, scale: float | None,
               r_start: np.ndarray | None = None) -> NewtonResult:
@@ -564,7 +619,7 @@ class _Ramp:
                           assembly_seconds=ap.assembly_seconds,
                           solve_seconds=ap.solve_seconds, inertia=ap.inertia,
                           target_reached=target_reached, factorisations=ap.factorisations,
-                          back=self.back,
+                          back=self.back, back2=self.back2,
                           factors=self.factors if self.settings.keep_factors else None)
         step.quantities = dict(self.problem.postprocess(self.x, load))
         step.quantities.update(extra)
@@ -588,6 +643,7 @@ def check_callbacks(options: dict[str, Any]) -> None:
 
 def ramp(problem: Problem, loads: Sequence[Any], *, x0: np.ndarray | None = None,
          start: Any = None, back: tuple[np.ndarray, Any] | None = None,
+         back2: tuple[np.ndarray, Any] | None = None,
          factors: tuple[np.ndarray, Any] | None = None,
          on_step: Callable[[StepResult], Any] | None = None,
          stop: Callable[[StepResult], bool] | None = None,
@@ -608,7 +664,8 @@ def ramp(problem: Problem, loads: Sequence[Any], *, x0: np.ndarray | None = None
     x0, start
         State to start from: the reduced vector and its load.  Default:
         ``problem.initial_state()`` at zero load.  To resume a ramp pass ``x0=step.x``,
-        ``start=step.load`` and ``back=step.back`` of a saved :class:`StepResult` and the
+        ``start=step.load``, ``back=step.back`` and ``back2=step.back2`` of a saved
+        :class:`StepResult` and the
         remaining loads.
     back
         The converged state before ``x0`` and its load, ``(x, load)``: the second point of
@@ -616,6 +673,9 @@ def ramp(problem: Problem, loads: Sequence[Any], *, x0: np.ndarray | None = None
         state) is taken as a guess, not as a solution: the secant starts from the second
         converged sub-step, and a resumed ramp repeats the uninterrupted one only within
         the Newton tolerance.
+    back2
+        The converged state before ``back`` (``StepResult.back2``): the third point of the
+        quadratic predictor; without it the first resumed step starts from the secant.
     factors
         With ``settings.keep_factors``: the state whose tangent the uninterrupted ramp
         held factorised after ``x0``, ``(x, load)`` (``StepResult.factors``); it is
@@ -691,6 +751,7 @@ def ramp(problem: Problem, loads: Sequence[Any], *, x0: np.ndarray | None = None
     run = _Ramp(problem, solver, settings, step_limit, admissible, state_analysis, on_step,
                 x, _as_load(start))
     run.back = _check_back(back, x0, len(x_init))
+    run.back2 = None if run.back is None else _check_back(back2, x0, len(x_init), "back2")
     run.solved = run.back is not None
     factors = _check_back(factors, x0, len(x_init), "factors")
     if targets and factors is not None and settings.keep_factors:

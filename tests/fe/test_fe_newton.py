@@ -1,5 +1,6 @@
 """Generic Newton / ramp machinery on small problems with closed-form solutions."""
 
+import sys
 import warnings
 
 import numpy as np
@@ -288,6 +289,58 @@ def test_secant_is_the_default_and_resume_needs_its_second_point():
         ramp(prob, loads[2:], x0=full.steps[1].x, start=2.0, back=(np.zeros(2), 1.0))
 
 
+class Parabola(Problem):
+    """r_i(x) = x_i + x_i^3 - (t^2 c_i + (t^2 c_i)^3): the root x_i = t^2 c_i, a parabola
+    in the load (nonlinear in x, so that Newton needs iterations from any other start)."""
+
+    c = np.array([0.1, 0.2, 0.3])
+    layout = Layout.single(3)
+
+    def initial_state(self):
+        return np.zeros(3)
+
+    def assemble(self, x, load):
+        q = load**2 * self.c
+        return sp.diags(1 + 3 * x**2).tocsr(), x + x**3 - (q + q**3)
+
+    def residual_scale(self, load):
+        return 1.0
+
+    def postprocess(self, x, load):
+        return {"x2": x[2]}
+
+
+def test_quadratic_predictor_is_exact_on_a_parabola_and_resumes_bit_for_bit():
+    # three converged states on a path x(t) = t^2 c: the parabola through them is the path
+    # itself, so from the fourth step on each solve starts at the root (within the
+    # tolerance of the three states, amplified by the weights 1, -3, 3), where the secant
+    # start misses it by h^2 c = 0.3 (x2) and needs iterations
+    prob = Parabola()
+    loads = [1.0, 2.0, 3.0, 4.0, 5.0, 6.0]
+    quad = ramp(prob, loads, settings=RampSettings(atol=1e-12, rtol=0, predictor="quadratic"))
+    sec = ramp(prob, loads, settings=RampSettings(atol=1e-12, rtol=0, predictor="secant"))
+    for res in (quad, sec):
+        assert res.converged
+        np.testing.assert_allclose(res.column("x2"), 0.3 * np.array(loads) ** 2, atol=1e-12)
+    first = [st.residual_norms[0][0] for st in quad.steps[3:]]
+    assert max(first) < 1e-10 and all(st.iterations <= 1 for st in quad.steps[3:])
+    assert min(st.residual_norms[0][0] for st in sec.steps[3:]) > 0.1
+    assert all(st.iterations >= 3 for st in sec.steps[3:])
+    # each step's back2 is the step before its back
+    assert quad.steps[1].back2 is None
+    for older, st in zip(quad.steps[1:], quad.steps[3:]):
+        assert np.array_equal(st.back2[0], older.x) and st.back2[1] == older.load
+    # resumed with back and back2: bit for bit; without back2 the first step is the secant's
+    kw = dict(x0=quad.steps[2].x, start=quad.steps[2].load, back=quad.steps[2].back,
+              settings=RampSettings(atol=1e-12, rtol=0, predictor="quadratic"))
+    part = ramp(prob, loads[3:], back2=quad.steps[2].back2, **kw)
+    assert all(np.array_equal(a.x, b.x) for a, b in zip(part.steps, quad.steps[3:]))
+    cold = ramp(prob, loads[3:], **kw)
+    assert cold.steps[0].residual_norms[0][0] > 0.1 and cold.steps[1].residual_norms[0][0] < 1e-10
+    with pytest.raises(ValueError, match="back2 must be a pair"):
+        ramp(prob, loads[3:], back2=quad.steps[2].x, **kw)
+
+
 def test_chord_and_predictor_bad_input():
     prob = Cubic()
     with pytest.raises(ValueError, match="chord must be in"):
@@ -322,10 +375,12 @@ def test_ramp_settings_reach_every_newton_solve():
 
 
 @pytest.mark.parametrize("solver", ["superlu"] + (["pardiso"] if pardiso_available() else []))
-def test_old_factors_are_discarded_before_a_tangent_to_factorise(solver):
+def test_old_factors_are_discarded_before_a_tangent_to_factorise(solver, monkeypatch):
     # with chord steps the tangent is assembled only to be factorised: the solver's old
-    # factors are freed before each such assembly (never before a chord step), and the
-    # iterations are those of a solver that keeps them
+    # factors of a large system are freed before each such assembly (never before a chord
+    # step), and the iterations are those of a solver that keeps them; a small system's
+    # are kept (the next factorisation reuses their memory)
+    newton_module = sys.modules[newton.__module__]
     prob = Cubic()
     events = []
 
@@ -349,10 +404,14 @@ def test_old_factors_are_discarded_before_a_tangent_to_factorise(solver):
 
     kw = dict(settings=NewtonSettings(atol=1e-13, rtol=0, chord=0.3),
               residual=lambda x: prob.assemble(x, 2.0)[1])
+    small = newton(assemble, np.full(3, 0.5), linear_solver=Watched(), **kw)
+    assert small.converged and small.factorisations >= 2 and "discard" not in events
+    events.clear()
+    monkeypatch.setattr(newton_module, "TRIM_MIN_UNKNOWNS", 3)     # 3 unknowns: large
     res = newton(assemble, np.full(3, 0.5), linear_solver=Watched(), **kw)
     ref = newton(lambda x: prob.assemble(x, 2.0), np.full(3, 0.5),
                  linear_solver=get_linear_solver(solver), **kw)
-    assert res.converged and np.array_equal(res.x, ref.x)
+    assert res.converged and np.array_equal(res.x, ref.x) and np.array_equal(small.x, ref.x)
     assert res.chord_steps == ref.chord_steps >= 1 and "none" not in events
     seq = " ".join(events)
     assert seq.count("discard assemble solve") == res.factorisations

@@ -74,12 +74,13 @@ def _save_checkpoint(path, tag: str, step) -> None:
     (:func:`~validation.store.files.save_point`)."""
     state = {"x": step.x, "load": np.asarray(step.load, float)}
     save_point(state, step.back, "back")
+    save_point(state, step.back2, "back2")
     save_point(state, step.factors, "factors")
     write_npz_atomic(path, tag=np.array(tag), **state)
 
 
 def _load_checkpoint(path, tag: str):
-    """``(x, load, back, factors)`` of a checkpoint written for ``tag``, else ``None`` (no
+    """``(x, load, back, factors, back2)`` of a checkpoint written for ``tag``, else ``None`` (no
     file, or one of another load path: the ramp starts from the beginning and its first
     target's state replaces it)."""
     if path is None or not Path(path).is_file():
@@ -87,7 +88,8 @@ def _load_checkpoint(path, tag: str):
     z = read_npz(path)
     if str(z["tag"]) != tag:
         return None
-    return z["x"], z["load"], saved_point(z, "back"), saved_point(z, "factors")
+    return (z["x"], z["load"], saved_point(z, "back"), saved_point(z, "factors"),
+            saved_point(z, "back2"))
 
 #: the columns of a row, in order (the ``counts`` table)
 COLUMNS = TABLES["counts"].columns

@@ -159,7 +159,7 @@ def run_onsets(key: UnitKey, *, solver: str = "auto", classes=None,
     def on_step(st):
         load = np.asarray(st.load, dtype=float)
         if st.target_reached and load[0] == s:
-            states[float(load[1])] = (st.x, load, st.back, st.factors)
+            states[float(load[1])] = (st.x, load, st.back, st.factors, st.back2)
 
     def ramp(targets, start=None):
         res = unit_ramp(pb, targets, on_step=on_step, solver=solver, start=start)

@@ -94,13 +94,15 @@ def unit_ramp(problem, targets, *, on_step, solver: str = "auto", start=None, **
     """A unit's ramp of ``problem`` through ``targets`` with :data:`UNIT_SETTINGS`, its
     ``RuntimeWarning`` silenced (the caller reports a ramp that stopped).
 
-    ``start``: a converged state ``(x, load, back, factors)`` of an earlier ramp of the same
-    plate (its step's ``x``, ``load``, ``back`` and ``factors``) to continue from, bit for
+    ``start``: a converged state ``(x, load, back, factors, back2)`` of an earlier ramp of
+    the same plate (its step's ``x``, ``load``, ``back``, ``factors`` and ``back2``; without
+    ``back2`` the first resumed step starts from the secant) to continue from, bit for
     bit; ``options``: more options of :func:`~skfem_dielectric.gallery.drivers.run_ramp`
     (e.g. ``stop``).  Returns the :class:`~skfem_dielectric.solvers.ramp.RampResult`.
     """
     resume = {} if start is None else dict(x0=start[0], start=start[1], back=start[2],
-                                           factors=start[3])
+                                           factors=start[3],
+                                           back2=start[4] if len(start) > 4 else None)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", RuntimeWarning)
         return fe.gallery.run_ramp(problem, targets, on_step=on_step, linear_solver=solver,
@@ -206,10 +208,10 @@ def run_unit(key: UnitKey, *, D0_step: float = 0.5, D0_max: float = 6.0,
             progress(f"D0 = {load[1]:.4f}: {row.n_negative} negative, {row.n_physical} "
                      f"physical, {row.cpu:.1f} CPU s")
         if row.n_physical > 0 and track["prev"] is not None:
-            track.update(before=before, row=row, cur=(step.x, load, step.back, step.factors),
-                         crossed=True)
+            track.update(before=before, row=row,
+                         cur=(step.x, load, step.back, step.factors, step.back2), crossed=True)
             return
-        track["prev"] = (step.x, load, step.back, step.factors)
+        track["prev"] = (step.x, load, step.back, step.factors, step.back2)
 
     def crossed(step):          # the ramp's stop predicate: the first physical crossing
         return track.pop("crossed", False)

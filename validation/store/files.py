@@ -299,8 +299,9 @@ class RowDigest:
 
 def save_point(saved: dict, point, name: str, prefix: str = "") -> None:
     """Add a state ``point = (x, load)`` of a ramp to the arrays ``saved`` of a resume
-    state, as ``x_<prefix><name>`` and ``load_<prefix><name>``: the secant predictor's
-    second point (``name="back"``, ``StepResult.back``) or where the factors the next step
+    state, as ``x_<prefix><name>`` and ``load_<prefix><name>``: the predictor's second or
+    third point (``name="back"``, ``StepResult.back``; ``"back2"``,
+    ``StepResult.back2``) or where the factors the next step
     starts on were made (``name="factors"``, ``StepResult.factors``); nothing for
     ``None``."""
     if point is not None:
