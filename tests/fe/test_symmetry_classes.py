@@ -153,3 +153,39 @@ def test_the_class_tangent_is_the_galerkin_product():
     # seven classes select; the symmetric one ties unknowns (a column of P with 15 ones,
     # the electrode's potential), and takes the products
     assert selected == len(classes) - 1 == 7
+
+
+def test_the_class_upper_triangle_is_that_of_the_class_tangent():
+    """``class_upper`` of the union tangent's upper triangle (assembled directly) is the
+    upper triangle of ``class_tangent`` of the whole union tangent, every diagonal entry
+    stored, for every class of a charged eighth plate: the seven that select and the
+    symmetric one, whose tied unknowns (the electrode) count a union entry between two of
+    them twice on the diagonal."""
+    import importlib
+
+    import scipy.sparse as sp
+
+    import skfem_dielectric as fe
+
+    sc = importlib.import_module("skfem_dielectric.models.plate.symmetry_classes")
+    pb = fe.gallery.keplinger_problem(elements=(3, 1, 2), symmetry="eighth", grading=0.5,
+                                      options=fe.PlateOptions(grad_div=10.0))
+    rng = np.random.default_rng(3)
+    x = pb.initial_state() + 1e-3 * rng.standard_normal(pb.ndofs)   # a general state
+    load = np.array([1.0, 0.5])
+    classes, K = sc.union_tangent(pb, x, load, 10.0)
+    same, U = sc.union_upper(pb, x, load, 10.0)
+    assert [c.name for c in same] == [c.name for c in classes]
+    assert abs(sp.triu(K) - U).max() <= 1e-14 * abs(K).max()
+    tied = 0
+    for c in classes:
+        want = sp.triu(sc.class_tangent(c, K), format="csr")
+        got = sc.class_upper(c, U)
+        tied += sc._selection(c.P) is None
+        assert got.shape == want.shape
+        assert abs(got.upper - want).max() <= 1e-13 * abs(want).max()
+        assert abs(got.tocsr() - sc.class_tangent(c, K)).max() <= 1e-13 * abs(want).max()
+        n = got.shape[0]
+        rows = np.repeat(np.arange(n), np.diff(got.upper.indptr))
+        assert np.count_nonzero(got.upper.indices == rows) == n   # every diagonal stored
+    assert tied == 1

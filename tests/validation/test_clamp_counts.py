@@ -79,6 +79,7 @@ def test_a_paused_ramp_resumes_to_the_same_counts(tmp_path):
     the paused-and-resumed ramp equal those of one uninterrupted ramp, state by state
     (the resumed ramp restarts on the same state, secant point and factors)."""
     from validation.clamp_zone.counts import CountsPaused
+    from validation.clamp_zone.units import COUNT_PRELOAD_STEPS
 
     key = UnitKey(1.0, (4, 1, 6), 0.1)
     whole = run_counts(key, [1.0, 1.5])
@@ -97,9 +98,9 @@ def test_a_paused_ramp_resumes_to_the_same_counts(tmp_path):
             pauses += 1
             assert ck.is_file() and exc.checkpoint == ck
             assert pauses < 40
-    # the pre-load's targets (KEPLINGER_PRELOAD_STEPS = 3) and the charge targets 0.5, 1
-    # and 1.5: one pause per target but the last
-    assert pauses == 3 + 3 - 1
+    # the pre-load's targets (COUNT_PRELOAD_STEPS = 6) and the charge targets 0.5, 1 and
+    # 1.5: one pause per target but the last
+    assert COUNT_PRELOAD_STEPS == 6 and pauses == 6 + 3 - 1
     assert not ck.exists()                     # a finished unit keeps no state
     assert [r["D0"] for r in rows] == [r["D0"] for r in whole] == [1.0, 1.5]
     for a, b in zip(rows, whole):

@@ -52,7 +52,7 @@ from ..store.files import read_npz, save_point, saved_point, write_npz_atomic
 from .costs import Meter
 from ..data.registry import CLASS_COLUMNS, TABLES
 from ..data.key import UnitKey, mesh_text
-from .units import charge_path, unit_problem, unit_ramp
+from .units import COUNT_PRELOAD_STEPS, charge_path, unit_problem, unit_ramp
 
 __all__ = ["COLUMNS", "CLASS_COLUMNS", "CountsPaused", "run_counts"]
 
@@ -192,7 +192,7 @@ def run_counts(key: UnitKey, D0, *, grad_div: float = BUCKLING_GRAD_DIV,
     top = max(wanted)
     targets = sorted({*np.round(np.arange(0.5, top, 0.5), 10).tolist(),
                       *[d for d in D0 if d <= top]})
-    path = charge_path(s, targets)
+    path = charge_path(s, targets, COUNT_PRELOAD_STEPS)
     tag = (f"{alpha!r} {mesh_text(el)} {grading!r} {formulation} {grad_div!r} {pressure} "
            f"{' '.join(repr(float(v)) for ld in path for v in np.atleast_1d(ld))}")
     start = _load_checkpoint(checkpoint, tag)

@@ -42,12 +42,13 @@ import numpy as np
 
 from ...checks import check_count, check_positive
 from ...linalg.inertia import inertia_factors, reusable_factors
+from ...linalg.linear import pardiso_available
 from ...linalg.solver_base import back_substitution_count, factorisation_count
 from ...stability.analysis import lowest_modes, modes_near_zero
 from .modes import ModeLabel, classify_mode, corner_radius
 from .problem import PlateProblem
-from .symmetry_classes import (class_mode_full, class_tangent, class_threads, symmetry_classes,
-                               union_tangent)
+from .symmetry_classes import (class_mode_full, class_tangent, class_threads, class_upper,
+                               symmetry_classes, union_tangent, union_upper)
 
 __all__ = ["ScanRow", "PlateScan"]
 
@@ -227,7 +228,11 @@ class PlateScan:
         physical negative mode (an earlier scan of the same path said so), where
         :meth:`analyse` from scratch would compute every negative mode to classify it.
         The physical counts are set to zero.  Each class's factors are freed before the
-        next class is factorised: the count holds one factorisation at a time.
+        next class is factorised: the count holds one factorisation at a time.  With
+        PARDISO the count holds only upper triangles: that of the union tangent, assembled
+        directly (:func:`~skfem_dielectric.models.plate.symmetry_classes.union_upper`), and
+        that of one class at a time
+        (:func:`~skfem_dielectric.models.plate.symmetry_classes.class_upper`).
 
         Parameters
         ----------
@@ -239,10 +244,14 @@ class PlateScan:
         dict
             Negative eigenvalues per class name.
         """
-        classes, K = union_tangent(self.problem, x, load, self.grad_div)
+        upper = self.method == "pardiso" or (self.method == "auto" and pardiso_available())
+        classes, K = (union_upper if upper else union_tangent)(self.problem, x, load,
+                                                               self.grad_div)
         counts = {}
         for c in classes:
-            inertia, factors = inertia_factors(class_tangent(c, K), self.method, c.orders)
+            Kc = class_upper(c, K) if upper else class_tangent(c, K)
+            inertia, factors = inertia_factors(Kc, self.method, c.orders)
+            del Kc
             if factors is not None and callable(getattr(factors, "discard", None)):
                 factors.discard()        # not held while the next class is factorised
             del factors

@@ -28,12 +28,14 @@ from ...checks import check_count
 from ...fem.assembly import DofReduction
 from ...fem.runtime import assembly_threads
 from ...linalg.linear import pardiso_available
+from ...linalg.symmetric import SymmetricUpper
 from ...problem import Layout
 from ...stability.analysis import StabilityResult, tangent_stability
 from .problem import PlateProblem, increment_classes, plate_reduction
 
 __all__ = ["SymmetryClass", "ClassStability", "symmetry_classes", "class_stability",
-           "class_mode_full", "union_tangent", "class_tangent", "class_threads"]
+           "class_mode_full", "union_tangent", "union_upper", "class_tangent", "class_upper",
+           "class_threads"]
 
 #: per base problem: the union-space problem and its classes (built once)
 _CACHE: "weakref.WeakKeyDictionary[PlateProblem, tuple]" = weakref.WeakKeyDictionary()
@@ -271,6 +273,54 @@ def union_tangent(problem: PlateProblem, x: np.ndarray, load: Any,
     gd = problem.grad_div if grad_div is None else float(grad_div)
     xf = problem.full(x, load)
     return classes, union.scatter.csr(union.form.assemble(xf, gd * problem.material.mu)[0])
+
+
+def union_upper(problem: PlateProblem, x: np.ndarray, load: Any,
+                grad_div: float | None = None) -> tuple[list[SymmetryClass], sp.csr_matrix]:
+    """:func:`union_tangent` as its upper triangle (CSR, the diagonal included), assembled
+    directly: half the memory of the whole union tangent, for the classes' upper
+    triangles (:func:`class_upper`) that a count by PARDISO factorises.
+
+    Raises
+    ------
+    ValueError
+        As :func:`union_tangent`.
+    """
+    classes = symmetry_classes(problem)
+    if not problem.symmetric:
+        raise ValueError("the Maxwell coupling has no symmetric tangent: analyse the fully "
+                         "coupled model")
+    x = np.asarray(x, dtype=float)
+    if x.shape != (problem.ndofs,):
+        raise ValueError(f"x must have shape ({problem.ndofs},), got {x.shape}")
+    union = _union(problem)[0]
+    gd = problem.grad_div if grad_div is None else float(grad_div)
+    data = union.form.assemble(problem.full(x, load), gd * problem.material.mu, upper=True)[0]
+    return classes, union.form.upper_scatter.csr(data)
+
+
+def class_upper(c: SymmetryClass, U: sp.csr_matrix) -> SymmetricUpper:
+    """The tangent of class ``c`` (:func:`class_tangent`) as its upper triangle, every
+    diagonal entry stored, from the upper triangle ``U`` of the union tangent
+    (:func:`union_upper`), without the whole matrix of either.
+
+    With ``A = P_c^T U P_c`` (the submatrix ``U[s][:, s]`` where ``P_c`` selects), every
+    pair of off-diagonal entries of ``P_c^T K P_c`` appears once in ``A``, above or below
+    the diagonal, and is folded above it; the diagonal is ``2 diag(A) - P_c^T diag(U)``
+    (a union entry between two tied unknowns counts twice, a diagonal one once).
+    """
+    sel = _selection(c.P)
+    A = (U[sel][:, sel] if sel is not None else c.P.T @ U @ c.P).tocoo()
+    n = A.shape[0]
+    off = A.row != A.col
+    i = np.arange(n)
+    diag = 2.0 * A.diagonal() - c.P.T @ U.diagonal()
+    Uc = sp.csr_matrix((np.concatenate([A.data[off], diag]),
+                        (np.concatenate([np.minimum(A.row[off], A.col[off]), i]),
+                         np.concatenate([np.maximum(A.row[off], A.col[off]), i]))),
+                       shape=(n, n))
+    Uc.sum_duplicates()
+    return SymmetricUpper(Uc)
 
 
 def class_tangent(c: SymmetryClass, K: sp.csr_matrix) -> sp.csr_matrix:
