@@ -25,7 +25,8 @@ Usage::
 ``--against OLD`` runs the same ramp with the packages of the source tree ``OLD`` (e.g.
 ``git archive 13becd9 | tar -x -C OLD``) and of this tree in alternation (``--repeat``
 times each, default 3), each in its own subprocess, and prints the counts, the medians of
-wall and CPU time, the peak memory, the factors' entries and memory (PARDISO's
+wall and CPU time (of the ramp, and of the whole process with the interpreter's start and
+the imports), the peak memory, the factors' entries and memory (PARDISO's
 ``iparm(18)``, ``iparm(16) + iparm(17)``) and ordering, the ratio of the medians and the
 largest difference of every per-step column (``lam1``, ``lam3``, ``min_P33``, ...).  ``--one-core`` runs every ramp on one core
 (``taskset -c 0``); set ``OMP_NUM_THREADS=MKL_NUM_THREADS=OPENBLAS_NUM_THREADS=1`` for one
@@ -74,7 +75,9 @@ def run(a) -> dict:
                                   KEPLINGER_SETTINGS,
                                   chord=0.0 if a.plain else (KEPLINGER_SETTINGS.chord
                                                              if a.chord is None else a.chord),
-                                  predictor="none" if a.plain else a.predictor,
+                                  predictor="none" if a.plain else (
+                                      KEPLINGER_SETTINGS.predictor if a.predictor is None
+                                      else a.predictor),
                                   **({"acceleration": 0, "keep_factors": False}
                                      if a.plain and hasattr(KEPLINGER_SETTINGS,
                                                             "keep_factors") else {})))
@@ -154,18 +157,26 @@ def child(a, tree: str | None = None, **over) -> dict:
     cmd = prefix + [sys.executable, __file__, "--json", "--solver", d["solver"], "--symmetry",
            d["symmetry"], "--elements", *map(str, d["elements"]), "--preload-steps",
            str(d["preload_steps"]), "--D0-step", str(d["D0_step"]), "--D0-max",
-           str(d["D0_max"]), "--predictor", d["predictor"]]
+           str(d["D0_max"])]
+    if d["predictor"] is not None:
+        cmd += ["--predictor", d["predictor"]]
     if d["chord"] is not None:
         cmd += ["--chord", str(d["chord"])]
     if d["plain"]:
         cmd.append("--plain")
     if d["save"]:
         cmd += ["--save", d["save"]]
+    t0, r0 = time.perf_counter(), resource.getrusage(resource.RUSAGE_CHILDREN)
     p = subprocess.run(cmd, capture_output=True, text=True, env=env,
                        cwd=tree if tree is not None else None)
+    wall, r1 = time.perf_counter() - t0, resource.getrusage(resource.RUSAGE_CHILDREN)
     if p.returncode != 0:
         raise RuntimeError(p.stderr[-2000:])
-    return json.loads(p.stdout.strip().splitlines()[-1])
+    out = json.loads(p.stdout.strip().splitlines()[-1])
+    # the whole process, the interpreter's start and the imports included
+    out["process_wall_s"] = wall
+    out["process_cpu_s"] = (r1.ru_utime - r0.ru_utime) + (r1.ru_stime - r0.ru_stime)
+    return out
 
 
 def against(a) -> None:
@@ -182,16 +193,17 @@ def against(a) -> None:
             r = child(a, tree=tree)
             runs[name].append(r)
             print(f"  {name:>9}: wall {r['wall_s']:6.1f} s, CPU {r['cpu_s']:6.1f} s, "
-                  f"load {r['load_average'][0][0]:.2f} -> {r['load_average'][1][0]:.2f}",
-                  flush=True)
+                  f"whole process wall {r['process_wall_s']:6.1f} s, CPU "
+                  f"{r['process_cpu_s']:6.1f} s, load {r['load_average'][0][0]:.2f} -> "
+                  f"{r['load_average'][1][0]:.2f}", flush=True)
     print(f"{'':>10} {'unknowns':>9} {'steps':>5} {'iter.':>5} {'fact.':>5} "
           f"{'wall s':>7} {'CPU s':>7} {'peak MB':>7} {'factor entries':>14} "
           f"{'factors MB':>10} ordering")
     med = {}
     for name, rs in runs.items():
         r = rs[0]
-        med[name] = (float(np.median([x["wall_s"] for x in rs])),
-                     float(np.median([x["cpu_s"] for x in rs])))
+        med[name] = tuple(float(np.median([x[k] for x in rs]))
+                          for k in ("wall_s", "cpu_s", "process_wall_s", "process_cpu_s"))
         fill = r.get("factor_entries")
         fmb = r.get("factor_MB")
         print(f"{name:>10} {r['dofs']:>9} {r['steps']:>5} {r['iterations']:>5} "
@@ -201,7 +213,10 @@ def against(a) -> None:
               f"{'-' if fmb is None else format(fmb, '.0f'):>10} {r.get('ordering') or '-'}")
     print(f"time ratio (this tree / reference, medians): wall "
           f"{med['this tree'][0] / med['reference'][0]:.3f}, CPU "
-          f"{med['this tree'][1] / med['reference'][1]:.3f}")
+          f"{med['this tree'][1] / med['reference'][1]:.3f}; the whole process: wall "
+          f"{med['this tree'][2] / med['reference'][2]:.3f}, CPU "
+          f"{med['this tree'][3] / med['reference'][3]:.3f} (medians "
+          f"{med['this tree'][2]:.1f} and {med['reference'][2]:.1f} s wall)")
     new, ref = runs["this tree"][0]["columns"], runs["reference"][0]["columns"]
     for col in COLUMNS:
         if col in new and col in ref and len(new[col]) == len(ref[col]):
@@ -248,7 +263,8 @@ def main(argv=None) -> int:
     ap.add_argument("--D0-max", type=float, default=5.0)
     ap.add_argument("--chord", type=float, default=None,
                     help="chord contraction of the Newton solves (default: keplinger_plate's)")
-    ap.add_argument("--predictor", choices=["none", "secant"], default="secant")
+    ap.add_argument("--predictor", choices=["none", "secant", "quadratic"], default=None,
+                    help="start of each Newton solve (default: keplinger_plate's)")
     ap.add_argument("--plain", action="store_true",
                     help="plain Newton: factorise in every iteration, no predictor")
     ap.add_argument("--save", default=None, help="write lam1, lam3, min P33 and x to NPZ")
