@@ -359,7 +359,13 @@ def _secant_guess(problem: Problem, x: np.ndarray, at: Any, back: tuple | None,
     n_old, n_new = float(np.linalg.norm(d_old)), float(np.linalg.norm(d_new))
     if not (n_old > 0 and n_new > 0) or abs(d_old @ d_new - n_old * n_new) > 1e-9 * n_old * n_new:
         return x, None
-    guess = x + (n_new / n_old) * (x - back[0])
+    return _lower_residual(problem, x + (n_new / n_old) * (x - back[0]), x, load)
+
+
+def _lower_residual(problem: Problem, guess: np.ndarray, x: np.ndarray,
+                    load: Any) -> tuple[np.ndarray, np.ndarray | None]:
+    """``guess`` and its residual at ``load`` where that is lower than the residual of
+    ``x``, else ``x`` and its residual (``x`` and ``None`` where either fails)."""
     try:
         r_guess, r_x = problem.residual(guess, load), problem.residual(x, load)
     except (FloatingPointError, ValueError, ZeroDivisionError):
@@ -394,14 +400,7 @@ def _quadratic_guess(problem: Problem, x: np.ndarray, at: Any, back: tuple | Non
     w0 = t1 * t2 / ((t0 - t1) * (t0 - t2))
     w1 = t0 * t2 / ((t1 - t0) * (t1 - t2))
     w2 = t0 * t1 / ((t2 - t0) * (t2 - t1))
-    guess = w0 * back2[0] + w1 * back[0] + w2 * x
-    try:
-        r_guess, r_x = problem.residual(guess, load), problem.residual(x, load)
-    except (FloatingPointError, ValueError, ZeroDivisionError):
-        return x, None
-    if np.all(np.isfinite(r_guess)) and np.linalg.norm(r_guess) < np.linalg.norm(r_x):
-        return guess, r_guess
-    return x, r_x
+    return _lower_residual(problem, w0 * back2[0] + w1 * back[0] + w2 * x, x, load)
 
 
 @dataclass

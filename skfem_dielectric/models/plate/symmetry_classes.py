@@ -262,6 +262,13 @@ def union_tangent(problem: PlateProblem, x: np.ndarray, load: Any,
     ValueError
         A non-symmetric (Maxwell) coupling, or ``x`` of the wrong size.
     """
+    classes, union, xf, gd = _union_state(problem, x, load, grad_div)
+    return classes, union.scatter.csr(union.form.assemble(xf, gd)[0])
+
+
+def _union_state(problem: PlateProblem, x: np.ndarray, load: Any, grad_div: float | None):
+    """The classes, the union-space problem, the full dof vector of ``(x, load)`` and the
+    grad-div weight in stress units, checked (see :func:`union_tangent`)."""
     classes = symmetry_classes(problem)
     if not problem.symmetric:
         raise ValueError("the Maxwell coupling has no symmetric tangent: analyse the fully "
@@ -269,10 +276,8 @@ def union_tangent(problem: PlateProblem, x: np.ndarray, load: Any,
     x = np.asarray(x, dtype=float)
     if x.shape != (problem.ndofs,):
         raise ValueError(f"x must have shape ({problem.ndofs},), got {x.shape}")
-    union = _union(problem)[0]
     gd = problem.grad_div if grad_div is None else float(grad_div)
-    xf = problem.full(x, load)
-    return classes, union.scatter.csr(union.form.assemble(xf, gd * problem.material.mu)[0])
+    return classes, _union(problem)[0], problem.full(x, load), gd * problem.material.mu
 
 
 def union_upper(problem: PlateProblem, x: np.ndarray, load: Any,
@@ -286,17 +291,8 @@ def union_upper(problem: PlateProblem, x: np.ndarray, load: Any,
     ValueError
         As :func:`union_tangent`.
     """
-    classes = symmetry_classes(problem)
-    if not problem.symmetric:
-        raise ValueError("the Maxwell coupling has no symmetric tangent: analyse the fully "
-                         "coupled model")
-    x = np.asarray(x, dtype=float)
-    if x.shape != (problem.ndofs,):
-        raise ValueError(f"x must have shape ({problem.ndofs},), got {x.shape}")
-    union = _union(problem)[0]
-    gd = problem.grad_div if grad_div is None else float(grad_div)
-    data = union.form.assemble(problem.full(x, load), gd * problem.material.mu, upper=True)[0]
-    return classes, union.form.upper_scatter.csr(data)
+    classes, union, xf, gd = _union_state(problem, x, load, grad_div)
+    return classes, union.form.upper_scatter.csr(union.form.assemble(xf, gd, upper=True)[0])
 
 
 def class_upper(c: SymmetryClass, U: sp.csr_matrix) -> SymmetricUpper:
