@@ -15,9 +15,9 @@ post-processed values of the model plus ``phase`` (``"preload"`` or ``"charge"``
 ``stable`` (inertia verdict with PARDISO, else ``None``).
 
 Resuming: pass ``x0=step.x``, ``start=step.load``, ``back=step.back``,
-``back2=step.back2`` and ``factors=step.factors`` of a saved step together with the *same* arguments; targets up to
-and including ``start`` are skipped and the remaining steps are bit-for-bit those of the
-uninterrupted run (deterministic linear solver).  ``factors`` is where the factors the next
+``back2=step.back2`` and ``factors=step.factors`` of a saved step together with the *same*
+arguments; targets up to and including ``start`` are skipped and the remaining steps are
+bit-for-bit those of the uninterrupted run (deterministic linear solver).  ``factors`` is where the factors the next
 step starts on come from (``keep_factors`` of the settings, as in :data:`KEPLINGER_SETTINGS`);
 ``None`` for settings without it.
 """

@@ -387,11 +387,13 @@ def _quadratic_guess(problem: Problem, x: np.ndarray, at: Any, back: tuple | Non
     new = np.atleast_1d(np.asarray(load, float))
     d = new - np.atleast_1d(np.asarray(at, float))
     nd = float(np.linalg.norm(d))
+    if not nd > 0:
+        return _secant_guess(problem, x, at, back, load)
     t = []
     for ld in (back2[1], back[1], at):
         e = np.atleast_1d(np.asarray(ld, float)) - new
-        ti = float(e @ d) / nd if nd > 0 else 0.0
-        if not nd > 0 or np.linalg.norm(e - ti * d / nd) > 1e-9 * max(abs(ti), nd):
+        ti = float(e @ d) / nd
+        if np.linalg.norm(e - ti * d / nd) > 1e-9 * max(abs(ti), nd):
             return _secant_guess(problem, x, at, back, load)
         t.append(ti)
     t0, t1, t2 = t

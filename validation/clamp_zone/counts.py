@@ -48,7 +48,7 @@ import skfem_dielectric as fe
 from skfem_dielectric.models.plate.scan import PlateScan
 
 from ..fe.model import BUCKLING_GRAD_DIV
-from ..store.files import read_npz, save_point, saved_point, write_npz_atomic
+from ..store.files import read_npz, save_points, saved_points, write_npz_atomic
 from .costs import Meter
 from ..data.registry import CLASS_COLUMNS, TABLES
 from ..data.key import UnitKey, mesh_text
@@ -73,23 +73,21 @@ def _save_checkpoint(path, tag: str, step) -> None:
     ``x`` and ``load`` and the two points a resumed ramp restarts on
     (:func:`~validation.store.files.save_point`)."""
     state = {"x": step.x, "load": np.asarray(step.load, float)}
-    save_point(state, step.back, "back")
-    save_point(state, step.back2, "back2")
-    save_point(state, step.factors, "factors")
+    save_points(state, step)
     write_npz_atomic(path, tag=np.array(tag), **state)
 
 
 def _load_checkpoint(path, tag: str):
-    """``(x, load, back, factors, back2)`` of a checkpoint written for ``tag``, else ``None`` (no
-    file, or one of another load path: the ramp starts from the beginning and its first
-    target's state replaces it)."""
+    """``(x, load, back, factors, back2)`` of a checkpoint written for ``tag``, else
+    ``None`` (no file, or one of another load path: the ramp starts from the beginning and
+    its first target's state replaces it)."""
     if path is None or not Path(path).is_file():
         return None
     z = read_npz(path)
     if str(z["tag"]) != tag:
         return None
-    return (z["x"], z["load"], saved_point(z, "back"), saved_point(z, "factors"),
-            saved_point(z, "back2"))
+    p = saved_points(z)
+    return z["x"], z["load"], p["back"], p["factors"], p["back2"]
 
 #: the columns of a row, in order (the ``counts`` table)
 COLUMNS = TABLES["counts"].columns

@@ -53,8 +53,9 @@ from ..specs import LOCATION_TOL
 from ..data.key import UnitKey, mesh_text
 from .local_theory import energy_centroid, half_waves, local_state
 
-__all__ = ["COLUMNS", "UNIT_SETTINGS", "COUNT_PRELOAD_STEPS", "run_unit", "write_mode", "unit_problem",
-           "charge_path", "unit_ramp", "ramp_states", "ramp_to_charge", "clamp_centre_J"]
+__all__ = ["COLUMNS", "UNIT_SETTINGS", "COUNT_PRELOAD_STEPS", "run_unit", "write_mode",
+           "unit_problem", "charge_path", "unit_ramp", "ramp_states", "ramp_to_charge",
+           "clamp_centre_J"]
 
 #: the columns of a unit's row, in order (the ``units`` table)
 COLUMNS = TABLES["units"].columns
@@ -102,14 +103,13 @@ def unit_ramp(problem, targets, *, on_step, solver: str = "auto", start=None, **
     ``RuntimeWarning`` silenced (the caller reports a ramp that stopped).
 
     ``start``: a converged state ``(x, load, back, factors, back2)`` of an earlier ramp of
-    the same plate (its step's ``x``, ``load``, ``back``, ``factors`` and ``back2``; without
-    ``back2`` the first resumed step starts from the secant) to continue from, bit for
+    the same plate (its step's ``x``, ``load``, ``back``, ``factors`` and ``back2``) to
+    continue from, bit for
     bit; ``options``: more options of :func:`~skfem_dielectric.gallery.drivers.run_ramp`
     (e.g. ``stop``).  Returns the :class:`~skfem_dielectric.solvers.ramp.RampResult`.
     """
     resume = {} if start is None else dict(x0=start[0], start=start[1], back=start[2],
-                                           factors=start[3],
-                                           back2=start[4] if len(start) > 4 else None)
+                                           factors=start[3], back2=start[4])
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", RuntimeWarning)
         return fe.gallery.run_ramp(problem, targets, on_step=on_step, linear_solver=solver,

@@ -34,7 +34,7 @@ from skfem_dielectric.studies.buckling import locate_buckling
 
 from ..progress import report_step
 from ..records import RunOutcome
-from ..store.files import save_point, saved_point
+from ..store.files import save_points, saved_points
 from .columns import plate_buckling_columns, step_record, stability_monitor
 from ..specs import LOCATION_TOL
 from .model import (BUCKLING_NEWTON, buckling_problem, build_problem,
@@ -78,7 +78,7 @@ def _stabilised_states(spec, targets, state, linear_solver) -> dict:
         return {"problem": problem, "x": {}}      # that ramp had stopped before
     x0 = None if state is None else np.asarray(state["x_stab"], dtype=float)
     start = None if state is None else np.asarray(state["load"], dtype=float)
-    states, backs, backs2, factors = {}, {}, {}, {}
+    states, steps = {}, {}
 
     def cb(step):
         load = np.asarray(step.load, dtype=float)
@@ -86,18 +86,13 @@ def _stabilised_states(spec, targets, state, linear_solver) -> dict:
             states[float(load[1])] = step.x
             report_step(f"{spec.key} D0={load[1]:.3g} (grad-div form, for the whole "
                         f"plate's spectrum)")
-            backs[float(load[1])] = step.back
-            backs2[float(load[1])] = step.back2
-            factors[float(load[1])] = step.factors
+            steps[float(load[1])] = step
 
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", RuntimeWarning)       # its rows show the failure
-        fe.ramp(problem, targets, x0=x0, start=start, back=saved_point(state, "back", "stab_"),
-                back2=saved_point(state, "back2", "stab_"),
-                factors=saved_point(state, "factors", "stab_"), on_step=cb,
-                **ramp_settings(spec, linear_solver))
-    return {"problem": problem, "x": states, "back": backs, "back2": backs2,
-            "factors": factors}
+        fe.ramp(problem, targets, x0=x0, start=start, on_step=cb,
+                **saved_points(state, "stab_"), **ramp_settings(spec, linear_solver))
+    return {"problem": problem, "x": states, "steps": steps}
 
 
 def grad_div_states(spec, linear_solver: str = "superlu") -> tuple:
@@ -165,9 +160,7 @@ def run_fe(spec, start, state, on_step, linear_solver="superlu"):
         i = spec.D0.index(float(load[1]))
         rec = step_record(spec, problem, step, _analysis(monitor, step, load))
         saved = {"x": step.x, "load": load}
-        save_point(saved, step.back, "back")
-        save_point(saved, step.back2, "back2")
-        save_point(saved, step.factors, "factors")
+        save_points(saved, step)
         if stab is not None:
             xs = stab["x"].get(float(load[1]))
             if xs is not None:
@@ -181,9 +174,7 @@ def run_fe(spec, start, state, on_step, linear_solver="superlu"):
                     track["located"] = True
                 track["prev"] = (xs, load)
                 saved["x_stab"] = xs
-                save_point(saved, stab["back"].get(float(load[1])), "back", "stab_")
-                save_point(saved, stab["back2"].get(float(load[1])), "back2", "stab_")
-                save_point(saved, stab["factors"].get(float(load[1])), "factors", "stab_")
+                save_points(saved, stab["steps"].get(float(load[1])), "stab_")
                 after = scan.state
                 saved["scan_counts"], saved["scan_physical"] = after["counts"], after["physical"]
             saved["located"] = np.array(track["located"])
@@ -192,9 +183,7 @@ def run_fe(spec, start, state, on_step, linear_solver="superlu"):
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", RuntimeWarning)   # the failure is recorded
         res = fe.ramp(problem, targets, x0=x0, start=start_load,
-                      back=saved_point(state, "back"), back2=saved_point(state, "back2"),
-                      factors=saved_point(state, "factors"),
-                      on_step=cb,
+                      on_step=cb, **saved_points(state),
                       stop=lambda step: track.pop("stop", False),   # at the breakdown
                       state_analysis=monitor, **ramp_settings(spec, linear_solver))
     if res.stopped_at is not None:

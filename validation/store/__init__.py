@@ -21,13 +21,14 @@ from .rows import (DamagedFileError, StudyStore,
 from .tables import TableWriter
 from .files import (STATE_VERSION, FolderLock, LockedError, RowDigest, aside_path,
                     csv_line, dumps, keep_aside, load_state, read_npz, regular_file,
-                    save_point, save_state, saved_point,
+                    save_point, save_points, save_state, saved_point, saved_points,
                     write_csv_atomic, write_npz_atomic, write_text_atomic)
 
 __all__ = [
     "LockedError", "FolderLock", "write_text_atomic", "write_csv_atomic", "write_npz_atomic",
     "csv_line", "regular_file", "aside_path", "keep_aside", "read_npz",
-    "RowDigest", "save_state", "load_state", "save_point", "saved_point", "dumps",
+    "RowDigest", "save_state", "load_state", "save_point", "saved_point", "save_points",
+    "saved_points", "dumps",
     "STATE_VERSION",
     "CaseFiles", "append_csv_rows", "case_manifest", "resume_plan", "spec_sig", "state_path",
     "command_lock", "read_rows", "DamagedFileError", "StudyStore",

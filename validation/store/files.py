@@ -38,7 +38,7 @@ with warnings.catch_warnings():       # where there is neither fcntl nor Windows
 __all__ = ["LockedError", "FolderLock", "write_text_atomic", "write_csv_atomic",
            "write_npz_atomic", "csv_line", "regular_file", "aside_path", "keep_aside", "read_npz",
            "RowDigest", "save_state", "load_state", "dumps", "STATE_VERSION", "save_point",
-           "saved_point"]
+           "saved_point", "RESUME_POINTS", "save_points", "saved_points"]
 
 #: Layout version of the state files; a state of another layout is not trusted.
 STATE_VERSION = 2
@@ -307,6 +307,24 @@ def save_point(saved: dict, point, name: str, prefix: str = "") -> None:
     if point is not None:
         saved[f"x_{prefix}{name}"] = point[0]
         saved[f"load_{prefix}{name}"] = np.asarray(point[1], dtype=float)
+
+
+#: The states a ramp resumes on besides its last one (``StepResult`` attributes and
+#: :func:`~skfem_dielectric.solvers.ramp.ramp` arguments of the same names)
+RESUME_POINTS = ("back", "back2", "factors")
+
+
+def save_points(saved: dict, step, prefix: str = "") -> None:
+    """:func:`save_point` of each of a ramp step's :data:`RESUME_POINTS` (nothing for a
+    ``step`` of ``None``)."""
+    for name in RESUME_POINTS:
+        save_point(saved, None if step is None else getattr(step, name), name, prefix)
+
+
+def saved_points(saved, prefix: str = "") -> dict:
+    """The :data:`RESUME_POINTS` that :func:`save_points` added to ``saved``, by name
+    (``None`` where there is none): the keyword arguments of a resumed ramp."""
+    return {name: saved_point(saved, name, prefix) for name in RESUME_POINTS}
 
 
 def saved_point(saved, name: str, prefix: str = "") -> tuple | None:
