@@ -166,8 +166,8 @@ class PardisoSolver(LinearSolver):
     again at once with weighted matching and Bunch-Kaufman 1x1 and 2x2 pivoting
     (``iparm(13) = iparm(21) = 1``, which was the only pivoting before) by a second
     solver with its own analysis (neither can change between an analysis and its
-    factorisations), whose factors then serve :meth:`resolve` and the inertia;
-    :attr:`fallbacks` counts them.  On every converged state of the Keplinger ramps
+    factorisations; the first one's factors and analysis are freed before it), whose
+    factors then serve :meth:`resolve` and the inertia; :attr:`fallbacks` counts them.  On every converged state of the Keplinger ramps
     (eighth and full plate, up to ``D0 = 6.5``) the 1x1 and Bunch-Kaufman pivots give
     the same inertia and residuals and no perturbed pivot, and so do the factorisations
     with and without the matching (40 x 1 x 20, eighth and full plate, ``D0 = 0.5 ...
@@ -323,8 +323,10 @@ class PardisoSolver(LinearSolver):
         count_factorisation()
         if self._fallback and int(self._ps.iparm[13]) > 0:
             # a perturbed pivot: this matrix again with Bunch-Kaufman pivoting, which needs
-            # its own analysis (a second PARDISO handle); these factors are freed
-            self._call(0, U, b)
+            # its own analysis (a second PARDISO handle); this handle's factors and
+            # analysis are freed first (not held beside the second's)
+            self._call(-1, U, b)
+            self._pattern = None
             self._last = None
             robust = self._robust_solver()
             x = robust.solve(K, b)
@@ -395,6 +397,19 @@ class PardisoSolver(LinearSolver):
         self._last = None
         self._call(0, U, np.zeros(U.shape[0]))
         trim_heap(U.shape[0])
+
+    def release(self) -> None:
+        """Free the factorisation and the analysis (PARDISO phase -1: all of the
+        solver's memory): the next :meth:`solve` analyses its matrix again.  For a solver
+        that waits while other large systems are factorised (a ramp's, during the counts
+        of a state)."""
+        self.discard()
+        if self._robust is not None:
+            self._robust.release()
+        if self._pattern is not None:
+            self._call(-1, sp.identity(1, format="csr"), np.zeros(1))
+            self._pattern = None
+            trim_heap()
 
     def resolve(self, b: np.ndarray) -> np.ndarray | None:
         """Solve with the last numerical factorisation (PARDISO phase 33), without

@@ -87,6 +87,12 @@ class LinearSolver:
         """Free the last factorisation (a new matrix is factorised next): :meth:`resolve`
         returns ``None`` until the next :meth:`solve`."""
 
+    def release(self) -> None:
+        """Free all the memory the solver holds for its matrices (the factors and any
+        analysis kept for the next matrix of the same pattern); the default is
+        :meth:`discard`."""
+        self.discard()
+
     def factor_inertia(self) -> tuple[int, int, int] | None:
         """Inertia ``(n_positive, n_negative, n_zero)`` of the last factorised matrix if
         the factors show it (``None`` otherwise)."""

@@ -231,3 +231,30 @@ def test_a_perturbed_1x1_pivot_is_refactorised_with_bunch_kaufman(seed):
     x2 = s.solve(K2, b2)
     assert s.fallbacks == 1 and s.perturbed_pivots() == 0
     np.testing.assert_allclose(s.resolve(b2), x2, rtol=1e-10, atol=1e-12)
+    np.testing.assert_allclose(x2, spla.spsolve(K2.tocsc(), b2), rtol=1e-9, atol=1e-12)
+    # the fallback freed the first handle's analysis: the same matrix again is analysed
+    # and falls back again, with the same solution
+    x3 = s.solve(K, b)
+    assert s.fallbacks == 2
+    np.testing.assert_allclose(x3, np.linalg.solve(dense, b), rtol=1e-9, atol=1e-9)
+
+
+def test_a_released_solver_analyses_again_and_solves_as_before():
+    # release frees the factors and the analysis: resolve has nothing to solve with, and
+    # the next solve (same pattern, then another) matches scipy's LU
+    K, b = saddle(30, 10, 3), np.cos(np.arange(40.0))
+    s = PardisoSolver()
+    x = s.solve(K, b)
+    s.release()
+    assert s.resolve(b) is None
+    x2 = s.solve(K, b)
+    np.testing.assert_allclose(x2, spla.spsolve(K.tocsc(), b), rtol=1e-10, atol=1e-12)
+    np.testing.assert_allclose(x2, x, rtol=1e-12, atol=1e-14)
+    assert s.inertia == (30, 10, 0)
+    K3 = zero_diagonal(40, 0)
+    s.release()
+    x3 = s.solve(K3, b)
+    np.testing.assert_allclose(x3, np.linalg.solve(K3.toarray(), b), rtol=1e-9, atol=1e-9)
+    s.release()
+    s.release()                                 # twice: nothing left to free
+    assert s.resolve(b) is None

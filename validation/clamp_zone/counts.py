@@ -167,8 +167,9 @@ def run_counts(key: UnitKey, D0, *, grad_div: float = BUCKLING_GRAD_DIV,
         if not any(abs(d - w) < 1e-12 for w in wanted):
             return
         t1 = time.process_time()
-        if callable(getattr(ramp_solver, "discard", None)):
-            ramp_solver.discard()     # the ramp's factors: not held beside the counts'
+        if callable(getattr(ramp_solver, "release", None)):
+            ramp_solver.release()     # the ramp's factors and analysis: not held beside
+                                      # the counts'
         counts = scan.count(st.x, load)
         row = {"alpha": alpha, "mesh": mesh_text(el), "grading": grading,
                "formulation": formulation, "grad_div": grad_div, "pressure": pressure,
