@@ -61,7 +61,10 @@ def run(a) -> dict:
     from skfem_dielectric.gallery import KEPLINGER_SETTINGS
 
     load0 = os.getloadavg()
-    solver = get_linear_solver(a.solver)
+    # the precision of the factors keplinger_plate's settings choose (a tree from before
+    # the option has none: its solver as it was)
+    precision = a.precision or getattr(KEPLINGER_SETTINGS, "factor_precision", None)
+    solver = get_linear_solver(a.solver, **({"precision": precision} if precision else {}))
     ps = getattr(solver, "_ps", None)             # PARDISO: report the factors' entries
     if ps is not None:
         ps.set_iparm(18, -1)
@@ -113,6 +116,7 @@ def run(a) -> dict:
         # PARDISO's own report of its last factorisation: entries of the factors
         # (iparm(18)) and its permanent + factorisation memory (iparm(16) + iparm(17))
         "factor_entries": int(ps.iparm[17]) if ps is not None else None,
+        "precision": getattr(solver, "precision", "double" if ps is not None else None),
         "factor_MB": (int(ps.iparm[15]) + int(ps.iparm[16])) / 1024 if ps is not None else None,
         "ordering": getattr(solver, "chosen_ordering", None) or getattr(solver, "ordering", None),
     }
@@ -198,7 +202,7 @@ def against(a) -> None:
                   f"{r['load_average'][1][0]:.2f}", flush=True)
     print(f"{'':>10} {'unknowns':>9} {'steps':>5} {'iter.':>5} {'fact.':>5} "
           f"{'wall s':>7} {'CPU s':>7} {'peak MB':>7} {'factor entries':>14} "
-          f"{'factors MB':>10} ordering")
+          f"{'factors MB':>10} ordering, precision")
     med = {}
     for name, rs in runs.items():
         r = rs[0]
@@ -210,7 +214,8 @@ def against(a) -> None:
               f"{r['factorisations']:>5} {med[name][0]:>7.1f} {med[name][1]:>7.1f} "
               f"{max(x['peak_rss_MB'] for x in rs):>7.0f} "
               f"{'-' if fill is None else fill:>14} "
-              f"{'-' if fmb is None else format(fmb, '.0f'):>10} {r.get('ordering') or '-'}")
+              f"{'-' if fmb is None else format(fmb, '.0f'):>10} {r.get('ordering') or '-'}, "
+              f"{r.get('precision') or '-'}")
     print(f"time ratio (this tree / reference, medians): wall "
           f"{med['this tree'][0] / med['reference'][0]:.3f}, CPU "
           f"{med['this tree'][1] / med['reference'][1]:.3f}; the whole process: wall "
@@ -265,6 +270,8 @@ def main(argv=None) -> int:
                     help="chord contraction of the Newton solves (default: keplinger_plate's)")
     ap.add_argument("--predictor", choices=["none", "secant", "quadratic"], default=None,
                     help="start of each Newton solve (default: keplinger_plate's)")
+    ap.add_argument("--precision", choices=["double", "single"], default=None,
+                    help="precision of PARDISO's factors (default: keplinger_plate's)")
     ap.add_argument("--plain", action="store_true",
                     help="plain Newton: factorise in every iteration, no predictor")
     ap.add_argument("--save", default=None, help="write lam1, lam3, min P33 and x to NPZ")

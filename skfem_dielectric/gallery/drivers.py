@@ -62,7 +62,7 @@ EQUIBIAXIAL_SETTINGS = RampSettings(atol=0.0, rtol=EQUIBIAXIAL_RTOL, max_cutback
 KEPLINGER_SETTINGS = RampSettings(atol=0.0, rtol=KEPLINGER_RTOL, max_iter=KEPLINGER_MAX_ITER,
                                   max_cutbacks=4, chord=KEPLINGER_CHORD,
                                   acceleration=KEPLINGER_ACCELERATION, keep_factors=True,
-                                  predictor="quadratic")
+                                  predictor="quadratic", factor_precision="single")
 #: How :func:`maxwell_keplinger` solves its load steps: :data:`KEPLINGER_SETTINGS` with
 #: the ramp's default Newton budget (6 cut-backs, 25 iterations).
 MAXWELL_KEPLINGER_SETTINGS = replace(KEPLINGER_SETTINGS, max_iter=25, max_cutbacks=6)

@@ -36,7 +36,8 @@ import numpy as np
 import scipy.sparse as sp
 
 from ..fem.runtime import trim_heap
-from .solver_base import LinearSolver, SuperLUSolver, count_factorisation, whole_matrix
+from .solver_base import (PRECISIONS, LinearSolver, SuperLUSolver, count_factorisation,
+                          whole_matrix)
 from .symmetric import SymmetricUpper, same_memory, same_pattern
 
 __all__ = ["PardisoSolver", "PardisoLUSolver", "get_linear_solver", "nonsymmetric_solver",
@@ -121,6 +122,9 @@ _ORDERINGS = {"minimum-degree": 0, "metis": 2, "parallel-metis": 3}   # PARDISO 
 #: dissection (METIS), smaller ones by minimum degree: the crossover of the factors' fill
 #: on the clamp-zone plates (docs/performance.md, "The ordering of the factors")
 METIS_MIN_UNKNOWNS = 100_000
+#: relative residual beyond which a solve with single-precision factors, refined, is
+#: useless and the matrix is factorised again in double precision (the robust fallback)
+SINGLE_RESIDUAL = 1e-3
 
 
 class PardisoSolver(LinearSolver):
@@ -134,7 +138,8 @@ class PardisoSolver(LinearSolver):
     Parameters
     ----------
     refine
-        Maximum number of iterative-refinement steps; refinement recovers the accuracy
+        Maximum number of iterative-refinement steps (default 2; 1 with single-precision
+        factors, see ``precision``); refinement recovers the accuracy
         lost by pivot perturbation on saddle-point matrices.  A step is taken while the
         relative residual ``||b - K x|| / ||b||`` exceeds ``refine_tol`` (a solve that
         is already there, as on the plates, whose factorisations perturb no pivot, costs
@@ -153,6 +158,24 @@ class PardisoSolver(LinearSolver):
         dissection: half the entries of minimum degree on the 359,283 unknowns of the
         70 x 4 x 36 clamp-zone plate) or ``"parallel-metis"``; the fill per ordering:
         docs/performance.md.
+    precision
+        Precision of the factors: ``"double"`` (default) or ``"single"`` (PARDISO
+        ``iparm(28) = 1``: the matrix is factorised in single precision, in about half
+        the time and with 0.7 times the memory of the factors); :meth:`solve` refines its
+        solution in double precision with the matrix while that lowers the residual, up
+        to ``refine_tol`` and ``refine`` steps (a solve of relative residual ``1e-6`` or
+        so, then ``1e-10``, ``1e-13`` where the condition number is below about ``1e6``;
+        on worse conditioned matrices the refinement stalls higher:
+        :attr:`last_residual`).  One step by default: a Newton iteration needs no more
+        (on the Keplinger ramp one step gave 165 iterations and 20 factorisations, three
+        steps 176 and 21); ``refine=3`` for a solve to about ``1e-13``.  A
+        matrix whose single-precision factorisation perturbed a pivot, or whose refined
+        solution stays above :data:`SINGLE_RESIDUAL`, is factorised again in double
+        precision (the fallback below).  :meth:`resolve` solves with the
+        single-precision factors alone (an approximate correction, as the chord steps use
+        it).  For the Newton solves of a ramp, whose next residual judges each
+        correction: the states converge to the same tolerance.  A stability analysis or a
+        count needs double-precision factors (its shifted solves and its inertia).
 
     Notes
     -----
@@ -181,11 +204,13 @@ class PardisoSolver(LinearSolver):
     _pivoting = {10: 8, 21: 0}       # pivot perturbation 1e-8, 1x1 diagonal pivots
     _fallback = {13: 1, 21: 1}       # after a perturbed pivot: matching, Bunch-Kaufman
 
-    def __init__(self, refine: int = 2, ordering: str = "auto",
-                 refine_tol: float = 1e-13):
+    def __init__(self, refine: int | None = None, ordering: str = "auto",
+                 refine_tol: float = 1e-13, precision: str = "double"):
         if ordering not in (*_ORDERINGS, "auto"):
             raise ValueError(f"ordering must be one of {('auto', *_ORDERINGS)}, "
                              f"got {ordering!r}")
+        if precision not in PRECISIONS:
+            raise ValueError(f"precision must be one of {PRECISIONS}, got {precision!r}")
         self._ps = new_pypardiso_solver(mtype=self._mtype)   # library located once
         p = self._ps
         p.set_iparm(1, 1)    # use the iparm values below
@@ -201,9 +226,18 @@ class PardisoSolver(LinearSolver):
         self._direct = hasattr(p, "_mkl_pardiso")
         if self._direct:
             p.set_iparm(35, 1)
+        #: precision of the factors, ``"double"`` or ``"single"``
+        self.precision = precision
+        self._single = precision == "single"
+        if self._single:
+            if not self._direct:
+                raise ValueError("precision='single' needs the direct PARDISO call, which "
+                                 "this pypardiso's layout does not offer")
+            p.set_iparm(28, 1)
+        self._a32: np.ndarray | None = None   # the single-precision values PARDISO reads
         self._pattern: tuple[np.ndarray, np.ndarray] | None = None
         self._ucache = None
-        self.refine = int(refine)
+        self.refine = int((1 if self._single else 2) if refine is None else refine)
         self.refine_tol = float(refine_tol)
         self.ordering = ordering
         #: the ordering of the last analysis (``ordering``, or what ``"auto"`` chose)
@@ -212,7 +246,11 @@ class PardisoSolver(LinearSolver):
         self._active: PardisoSolver | None = None   # it holds the last factors
         self._last = None
         #: factorisations redone with Bunch-Kaufman pivoting after a perturbed 1x1 pivot
+        #: (or a single-precision solve above :data:`SINGLE_RESIDUAL`)
         self.fallbacks = 0
+        #: relative residual ``||b - K x|| / ||b||`` of the last :meth:`solve` (0 where
+        #: ``refine = 0``: none computed)
+        self.last_residual = 0.0
         self.inertia = None
 
     def _call(self, phase: int, A: sp.csr_matrix, b: np.ndarray) -> np.ndarray:
@@ -232,22 +270,32 @@ class PardisoSolver(LinearSolver):
 
     def _call_direct(self, phase: int, A: sp.csr_matrix, b: np.ndarray) -> np.ndarray:
         ps = self._ps
+        if self._single:
+            # the values in single precision where the phase reads them (the analysis
+            # scales with them), the right-hand side and the solution always
+            if phase in (11, 22) or self._a32 is None or self._a32.size != A.data.size:
+                self._a32 = A.data.astype(np.float32)
+            a = self._a32
+            fp = ctypes.POINTER(ctypes.c_float)
+            b = b.astype(np.float32)
+        else:
+            a, fp = A.data, ctypes.POINTER(ctypes.c_double)
         x = np.zeros_like(b)
         err = ctypes.c_int32(0)
-        i32, f64 = ctypes.POINTER(ctypes.c_int32), ctypes.POINTER(ctypes.c_double)
+        i32 = ctypes.POINTER(ctypes.c_int32)
         ps._mkl_pardiso(ps.pt.ctypes.data_as(ctypes.POINTER(ps._pt_type[0])),
                         ctypes.byref(ctypes.c_int32(1)), ctypes.byref(ctypes.c_int32(1)),
                         ctypes.byref(ctypes.c_int32(ps.mtype)),
                         ctypes.byref(ctypes.c_int32(phase)),
-                        ctypes.byref(ctypes.c_int32(A.shape[0])), A.data.ctypes.data_as(f64),
+                        ctypes.byref(ctypes.c_int32(A.shape[0])), a.ctypes.data_as(fp),
                         A.indptr.ctypes.data_as(i32), A.indices.ctypes.data_as(i32),
                         ps.perm.ctypes.data_as(i32),
                         ctypes.byref(ctypes.c_int32(1 if b.ndim == 1 else b.shape[1])),
                         ps.iparm.ctypes.data_as(i32), ctypes.byref(ctypes.c_int32(0)),
-                        b.ctypes.data_as(f64), x.ctypes.data_as(f64), ctypes.byref(err))
+                        b.ctypes.data_as(fp), x.ctypes.data_as(fp), ctypes.byref(err))
         if err.value != 0:
             raise RuntimeError(f"PARDISO error {err.value} in phase {phase}")
-        return x
+        return x.astype(np.float64) if self._single else x
 
     def _upper(self, K: sp.spmatrix) -> sp.csr_matrix:
         """Upper triangle of ``K`` (that of a :class:`SymmetricUpper` as it is, with int32
@@ -322,21 +370,29 @@ class PardisoSolver(LinearSolver):
         self._call(22, U, b)
         count_factorisation()
         if self._fallback and int(self._ps.iparm[13]) > 0:
-            # a perturbed pivot: this matrix again with Bunch-Kaufman pivoting, which needs
-            # its own analysis (a second PARDISO handle); this handle's factors and
-            # analysis are freed first (not held beside the second's)
-            self._call(-1, U, b)
-            self._pattern = None
-            self._last = None
-            robust = self._robust_solver()
-            x = robust.solve(K, b)
-            self._active, self.inertia = robust, robust.inertia
-            self.fallbacks += 1
-            return x
+            return self._fall_back(U, K, b)
         self.inertia = self._read_inertia(K.shape[0])
         x = self._call(33, U, b)
         self._last = U
-        return np.ascontiguousarray(self._refined(K, b, x))
+        x, self.last_residual = self._refined(K, b, x)
+        if self._single and self._fallback and not self.last_residual <= SINGLE_RESIDUAL:
+            return self._fall_back(U, K, b)   # single precision did not reach it
+        return np.ascontiguousarray(x)
+
+    def _fall_back(self, U: sp.csr_matrix, K: sp.spmatrix, b: np.ndarray) -> np.ndarray:
+        """Factorise ``K`` again with the robust solver (Bunch-Kaufman pivoting and weighted
+        matching, double precision), which needs its own analysis (a second PARDISO
+        handle): this handle's factors and analysis are freed first (not held beside the
+        second's)."""
+        self._call(-1, U, b)
+        self._pattern = None
+        self._last = None
+        robust = self._robust_solver()
+        x = robust.solve(K, b)
+        self._active, self.inertia = robust, robust.inertia
+        self.last_residual = robust.last_residual
+        self.fallbacks += 1
+        return x
 
     def _ordering_for(self, n: int) -> str:
         """The ordering of an analysis of ``n`` unknowns."""
@@ -363,11 +419,13 @@ class PardisoSolver(LinearSolver):
             self._robust = robust
         return self._robust
 
-    def _refined(self, K: sp.csr_matrix, b: np.ndarray, x: np.ndarray) -> np.ndarray:
+    def _refined(self, K: sp.csr_matrix, b: np.ndarray, x: np.ndarray
+                 ) -> tuple[np.ndarray, float]:
         """Up to ``refine`` steps ``x += K^-1 (b - K x)`` with the factors, while the
-        relative residual exceeds ``refine_tol`` and they lower it."""
+        relative residual exceeds ``refine_tol`` and they lower it; the solution and its
+        relative residual (0 without refinement, which computes none)."""
         if self.refine <= 0:
-            return x
+            return x, 0.0
         bn = float(np.linalg.norm(b))
         r = b - K @ x
         rn = float(np.linalg.norm(r))
@@ -381,7 +439,7 @@ class PardisoSolver(LinearSolver):
             if not rtn < rn:
                 break
             x, r, rn = xt, rt, rtn
-        return x
+        return x, (rn / bn if bn > 0 else 0.0)
 
     def discard(self) -> None:
         """Free the numerical factorisation (PARDISO phase 0: a part of the factors'
@@ -476,7 +534,7 @@ class PardisoLUSolver(PardisoSolver):
 
 
 def get_linear_solver(name: str | LinearSolver = "auto", *, symmetric: bool = True,
-                      **options) -> LinearSolver:
+                      precision: str = "double", **options) -> LinearSolver:
     """Return a linear solver by name.
 
     Parameters
@@ -489,6 +547,9 @@ def get_linear_solver(name: str | LinearSolver = "auto", *, symmetric: bool = Tr
     symmetric
         Whether the matrices are symmetric; for ``symmetric=False`` PARDISO is the
         general LU :class:`PardisoLUSolver` (see :func:`nonsymmetric_solver`).
+    precision
+        Precision of PARDISO's factors, ``"double"`` or ``"single"``
+        (:class:`PardisoSolver`); SuperLU factorises in double precision whatever it is.
     **options
         Passed to the solver's constructor.
 
@@ -496,20 +557,22 @@ def get_linear_solver(name: str | LinearSolver = "auto", *, symmetric: bool = Tr
     -------
     LinearSolver
     """
+    if precision not in PRECISIONS:
+        raise ValueError(f"precision must be one of {PRECISIONS}, got {precision!r}")
     if isinstance(name, LinearSolver) or (not isinstance(name, str)
                                           and callable(getattr(name, "solve", None))):
         return name                     # an instance (duck-typed: ``solve(K, b)``)
     if name == "auto":
         name = "pardiso" if pardiso_available() else "superlu"
     if name == "pardiso" and not symmetric and pardiso_available():
-        return PardisoLUSolver(**options)
+        return PardisoLUSolver(precision=precision, **options)
     if name == "superlu":
         return SuperLUSolver(**options)
     if name == "pardiso":
         if not pardiso_available():
             raise ValueError("linear solver 'pardiso' needs pypardiso (pip install "
                              "'skfem-dielectric[fast]')")
-        return PardisoSolver(**options)
+        return PardisoSolver(precision=precision, **options)
     raise ValueError(f"linear_solver must be a linear solver name ('auto', 'superlu', "
                      f"'pardiso') or a solver instance, got {name!r}")
 

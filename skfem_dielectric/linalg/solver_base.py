@@ -62,6 +62,10 @@ def splu(A: sp.spmatrix, **options):
     return spla.splu(sp.csc_matrix(A), **options)
 
 
+#: precisions of a sparse factorisation (PARDISO's; SuperLU's are double)
+PRECISIONS = ("double", "single")
+
+
 class LinearSolver:
     """Interface of a sparse linear solver (documentation base class).
 

@@ -42,7 +42,7 @@ import numpy as np
 
 from ..checks import check_callable, check_choice, check_nonnegative_int, check_vector
 from ..linalg.linear import get_linear_solver
-from ..linalg.solver_base import LinearSolver
+from ..linalg.solver_base import PRECISIONS, LinearSolver
 from ..problem import Problem
 from .newton import NewtonResult, NewtonSettings, check_settings, newton
 
@@ -93,6 +93,15 @@ class RampSettings(NewtonSettings):
         verdict is ``None`` and the ramp goes on, with one ``RuntimeWarning``).  A
         load-controlled Newton cannot follow the path through such a point, so without
         this option the ramp spends its cut-backs trying (see ``docs/fe.md``, breakdown).
+    factor_precision
+        Precision of the factors of a linear solver given by name where it is PARDISO:
+        ``"double"`` (the default) or ``"single"`` (factors in single precision, every
+        solve refined in double with the tangent to the same accuracy, in about half the
+        time of a factorisation; :class:`~skfem_dielectric.linalg.linear.PardisoSolver`).
+        The states converge to the same tolerance; the inertia of a step (its stability
+        verdict) is that of its single-precision factors.  A ramp with a
+        ``state_analysis`` factorises in double precision (the analysis solves with the
+        factors).  SuperLU and a solver instance factorise as they are.
 
     Raises
     ------
@@ -104,10 +113,12 @@ class RampSettings(NewtonSettings):
     predictor: str = "secant"
     stop_on_instability: bool = False
     keep_factors: bool = False
+    factor_precision: str = "double"
 
     def __post_init__(self) -> None:
         super().__post_init__()
         check_choice("predictor", self.predictor, PREDICTORS)
+        check_choice("factor_precision", self.factor_precision, PRECISIONS)
         for name in ("stop_on_instability", "keep_factors"):
             if not isinstance(getattr(self, name), (bool, np.bool_)):
                 raise ValueError(f"{name} must be True or False, "
@@ -738,7 +749,9 @@ def ramp(problem: Problem, loads: Sequence[Any], *, x0: np.ndarray | None = None
     admissible = guards.get("admissible") if admissible is None else admissible
     check_settings("settings", settings, RampSettings)
     t_start = time.perf_counter()
-    solver = get_linear_solver(linear_solver, symmetric=problem.symmetric)
+    solver = get_linear_solver(linear_solver, symmetric=problem.symmetric,
+                               precision=("double" if state_analysis is not None
+                                          else settings.factor_precision))
     try:
         loads = list(loads)
     except TypeError:

@@ -12,6 +12,7 @@ from scipy.optimize import brentq
 
 from skfem_dielectric import PlateOptions, keplinger_plate, keplinger_s
 from skfem_dielectric.gallery import KEPLINGER_SETTINGS
+from skfem_dielectric.linalg.linear import pardiso_available
 
 ALPHAS = [0.05, 0.3, 0.7, 1.0, 1.5]
 
@@ -142,3 +143,52 @@ def test_keplinger_grad_div_keyword_reaches_the_plate():
     # the stabilisation acts only where J != 1 (near the clamp corners), so the centre
     # still follows Eq. (DEuniax) within the 1 % the clamped plate is held to above
     assert abs(st["lam1"] / lam1_uniaxial(st.load[1], s) - 1) < 1e-2
+
+
+@pytest.mark.skipif(not pardiso_available(), reason="needs pypardiso")
+def test_keplinger_single_precision_factors_keep_the_fe_dots(monkeypatch):
+    # the default path factorises in single precision (every solve refined in double);
+    # reference: the same ramp with double-precision factors; both stop at ||r|| <= 1e-9
+    # of the load norm, so the dots agree to that order (measured 1.2e-10 for lam1 on
+    # the 40 x 1 x 20 plate), and so do the inertias of the states' tangents.  A ramp
+    # with a state analysis hands it double-precision factors.
+    import importlib
+
+    from skfem_dielectric.linalg.linear import PardisoSolver
+
+    ramp_module = importlib.import_module("skfem_dielectric.solvers.ramp")
+
+    made = []
+    real = ramp_module.get_linear_solver
+
+    def spy(*args, **kwargs):
+        made.append(real(*args, **kwargs))
+        return made[-1]
+
+    monkeypatch.setattr(ramp_module, "get_linear_solver", spy)
+    kw = dict(D0=[0.5, 1.0, 1.5, 2.0], elements=(8, 1, 4), symmetry="full",
+              preload_steps=3, linear_solver="pardiso")
+    single = keplinger_plate(1.0, **kw)
+    assert KEPLINGER_SETTINGS.factor_precision == "single"
+    assert made[-1].precision == "single" and made[-1].fallbacks == 0
+    double = keplinger_plate(1.0, settings=replace(KEPLINGER_SETTINGS,
+                                                   factor_precision="double"), **kw)
+    assert made[-1].precision == "double"
+    assert single.converged and double.converged
+    for name in ("lam1", "lam3"):
+        np.testing.assert_allclose(single.column(name), double.column(name), rtol=1e-8)
+    pb, d, s = single.problem, PardisoSolver(), PardisoSolver(precision="single")
+    for st in single.steps:
+        K, _ = pb.assemble_upper(st.x, st.load)
+        d.solve(K, np.zeros(K.shape[0]))
+        s.solve(K, np.zeros(K.shape[0]))
+        assert s.inertia == d.inertia and s.fallbacks == 0
+
+    seen = []
+
+    def analysis(problem, x, load, K, solver):
+        seen.append(solver.precision)
+        return {}
+
+    keplinger_plate(1.0, state_analysis=analysis, **{**kw, "D0": [0.5]})
+    assert seen and set(seen) == {"double"}

@@ -258,3 +258,68 @@ def test_a_released_solver_analyses_again_and_solves_as_before():
     s.release()
     s.release()                                 # twice: nothing left to free
     assert s.resolve(b) is None
+
+
+def test_single_precision_factors_solve_to_double_accuracy_with_the_same_inertia():
+    # factors in single precision: a solve refines in double to the default 1e-13 (against
+    # scipy's LU of the double matrix), the inertia is that of the double factors (and of
+    # numpy's eigenvalues), a resolve with the single factors alone is accurate to
+    # single precision times the condition (here below 1e-4) but not to double
+    K, b = saddle(60, 20, 4), np.sin(np.arange(80.0) + 0.3)
+    exact = spla.spsolve(K.tocsc(), b)
+    ev = np.linalg.eigvalsh(K.toarray())
+    single, double = PardisoSolver(precision="single"), PardisoSolver()
+    assert single.precision == "single" and single.refine == 1 and double.refine == 2
+    x1 = single.solve(K, b)                 # one refinement step by default
+    assert np.linalg.norm(K @ x1 - b) <= 1e-9 * np.linalg.norm(b)
+    single.refine = 3
+    x = single.solve(K, b)
+    double.solve(K, b)
+    assert np.linalg.norm(K @ x - b) <= 1e-13 * np.linalg.norm(b)
+    np.testing.assert_allclose(x, exact, rtol=1e-11, atol=1e-13)
+    assert single.inertia == double.inertia == (int((ev > 0).sum()), int((ev < 0).sum()), 0)
+    y = single.resolve(b)
+    err = np.linalg.norm(y - exact) / np.linalg.norm(exact)
+    assert 1e-12 < err < 1e-4
+    # a perturbed pivot, which single precision does not recover from (the solution of
+    # the perturbed factors refined is wrong by orders of magnitude here), falls back to
+    # Bunch-Kaufman in double precision
+    Z = zero_diagonal(40, 1)
+    bz = np.cos(np.arange(40.0))
+    xz = single.solve(Z, bz)
+    assert single.fallbacks == 1 and single._robust.precision == "double"
+    np.testing.assert_allclose(xz, np.linalg.solve(Z.toarray(), bz), rtol=1e-9, atol=1e-9)
+
+
+@pytest.mark.parametrize("bad", ["half", "float32", None])
+def test_a_precision_not_offered_is_refused_by_name(bad):
+    from skfem_dielectric.linalg.linear import get_linear_solver
+    with pytest.raises(ValueError, match="precision"):
+        PardisoSolver(precision=bad)
+    with pytest.raises(ValueError, match="precision"):
+        get_linear_solver("superlu", precision=bad)
+
+
+def test_single_precision_refines_as_far_as_the_condition_allows_then_falls_back():
+    # condition 1e5: single-precision factors refined reach 2e-12 in three steps; 3e7: the
+    # refinement stalls near 1.5e-4 (kept: a Newton iteration judges its correction by the
+    # next residual); 1e9: it is useless (about 1, above SINGLE_RESIDUAL) and the solver
+    # factorises the matrix again in double precision.  Reference: numpy's dense solve
+    from skfem_dielectric.linalg.linear import SINGLE_RESIDUAL
+    rng = np.random.default_rng(5)
+    for top, falls, lo, hi in ((5.0, 0, 0.0, 1e-11), (7.5, 0, 1e-6, 1e-3),
+                               (9.0, 1, 0.0, 1e-7)):
+        Q, _ = np.linalg.qr(rng.standard_normal((30, 30)))
+        d = np.logspace(0, -top, 30) * np.where(np.arange(30) % 3 == 0, -1.0, 1.0)
+        A = Q @ np.diag(d) @ Q.T
+        A = sp.csr_matrix((A + A.T) / 2)
+        b = np.ones(30)
+        s = PardisoSolver(precision="single", refine=3)
+        x = s.solve(A, b)
+        assert s.fallbacks == falls
+        rel = np.linalg.norm(A @ x - b) / np.linalg.norm(b)
+        assert lo <= rel <= hi and rel <= SINGLE_RESIDUAL
+        assert s.last_residual == pytest.approx(rel, rel=1e-6, abs=1e-16)
+        ref = np.linalg.solve(A.toarray(), b)
+        assert np.linalg.norm(x - ref) <= 10.0 ** (top - 7.0) * np.linalg.norm(ref)
+        assert s.inertia == (20, 10, 0)

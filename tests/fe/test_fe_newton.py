@@ -349,6 +349,8 @@ def test_chord_and_predictor_bad_input():
         RampSettings(chord=-0.1)
     with pytest.raises(ValueError, match="predictor"):
         RampSettings(predictor="cubic")
+    with pytest.raises(ValueError, match="factor_precision"):
+        RampSettings(factor_precision="half")
     # a ramp needs its cut-back and predictor rules: plain Newton settings are not enough
     with pytest.raises(ValueError, match="settings must be a RampSettings"):
         ramp(prob, [1.0], settings=NewtonSettings())

@@ -52,7 +52,7 @@ from ..store.files import read_npz, save_points, saved_points, write_npz_atomic
 from .costs import Meter
 from ..data.registry import CLASS_COLUMNS, TABLES
 from ..data.key import UnitKey, mesh_text
-from .units import COUNT_PRELOAD_STEPS, charge_path, unit_problem, unit_ramp
+from .units import COUNT_PRELOAD_STEPS, UNIT_SETTINGS, charge_path, unit_problem, unit_ramp
 
 __all__ = ["COLUMNS", "CLASS_COLUMNS", "CountsPaused", "run_counts"]
 
@@ -114,7 +114,9 @@ def run_counts(key: UnitKey, D0, *, grad_div: float = BUCKLING_GRAD_DIV,
     D0
         The charges (positive); counted in increasing order along one ramp.
     solver
-        Linear solver of the ramp and the counts.
+        Linear solver of the ramp (its factors in the precision of
+        :data:`~validation.clamp_zone.units.UNIT_SETTINGS`, single with PARDISO); the
+        counts factorise each class in double precision.
     skip
         Charges not to count (already counted); the ramp still passes them.
     progress
@@ -197,7 +199,8 @@ def run_counts(key: UnitKey, D0, *, grad_div: float = BUCKLING_GRAD_DIV,
     start = _load_checkpoint(checkpoint, tag)
     if start is not None and progress is not None:
         progress(f"resumed at D0 = {float(start[1][1]):g} from {checkpoint}")
-    ramp_solver = fe.get_linear_solver(solver)
+    # the ramp's factors in the units' precision (the counts' own are double)
+    ramp_solver = fe.get_linear_solver(solver, precision=UNIT_SETTINGS.factor_precision)
 
     def keep(st):
         on_step(st)
