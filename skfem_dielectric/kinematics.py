@@ -52,8 +52,10 @@ def cof3(F: np.ndarray) -> np.ndarray:
 
 
 def inv3(F: np.ndarray) -> np.ndarray:
-    """``F^-1`` of a field of 3x3 matrices (LAPACK, any trailing shape)."""
-    return np.moveaxis(np.linalg.inv(np.moveaxis(F, (0, 1), (-2, -1))), (-2, -1), (0, 1))
+    """``F^-1`` of a field of 3x3 matrices (any trailing shape), the adjugate over the
+    determinant (:func:`det_inv3`; a third of the time of LAPACK's batched inverse on
+    the transposed copy it needs)."""
+    return det_inv3(F)[1]
 
 
 def det2(F: np.ndarray) -> np.ndarray:

@@ -55,9 +55,17 @@ class SymmetricUpper:
         return cls(sp.triu(K, format="csr"))
 
     def diagonal(self) -> np.ndarray:
-        """The diagonal (computed once)."""
+        """The diagonal (computed once; read off the first entry of each row where every
+        row starts with its diagonal entry, once, as in the assembled tangents)."""
         if self._diag is None:
-            self._diag = self.upper.diagonal()
+            U, n = self.upper, self.shape[0]
+            first = U.indptr[:-1]
+            i = np.arange(n)
+            lead = (np.diff(U.indptr) > 0).all() and np.array_equal(U.indices[first], i)
+            if lead:        # a second entry in the same column would be a duplicate
+                more = np.flatnonzero(np.diff(U.indptr) > 1)
+                lead = not np.any(U.indices[first[more] + 1] == more)
+            self._diag = U.data[first].astype(float) if lead else U.diagonal()
         return self._diag
 
     def __matmul__(self, x: np.ndarray) -> np.ndarray:

@@ -243,6 +243,24 @@ def test_symmetric_upper_products_and_whole_matrix():
         S @ np.ones(5)
 
 
+def test_symmetric_upper_diagonal_with_missing_or_repeated_diagonal_entries():
+    # the diagonal read off the rows' first entries must equal scipy's (which sums
+    # duplicates and gives 0 where a row has no diagonal entry); the reference is the
+    # dense matrix's diagonal
+    from skfem_dielectric.linalg.symmetric import SymmetricUpper
+
+    full = sp.csr_matrix(np.triu(np.arange(1.0, 17.0).reshape(4, 4)))
+    gap = sp.csr_matrix(np.triu(np.arange(1.0, 17.0).reshape(4, 4)) - np.diag([0, 6, 0, 0]))
+    cols = [0, 0, 1, 2, 2, 3]           # rows 0, 0, 1, 1, 2, 3: (0, 0) stored twice, 1 + 2
+    dup = sp.csr_matrix((np.array([1.0, 2.0, 3.0, 4.0, 5.0, 6.0]), np.array(cols),
+                         np.array([0, 2, 4, 5, 6])), shape=(4, 4))
+    dup.has_sorted_indices = True
+    for U, diag in ((full, [1.0, 6.0, 11.0, 16.0]), (gap, [1.0, 0.0, 11.0, 16.0]),
+                    (dup, [3.0, 3.0, 5.0, 6.0])):
+        assert np.array_equal(SymmetricUpper(U).diagonal(), diag)
+        assert np.array_equal(diag, U.toarray().diagonal())
+
+
 def test_setup_cache_keeps_the_newest_entries():
     from skfem_dielectric.fem.runtime import SetupCache
 

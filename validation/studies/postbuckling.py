@@ -95,12 +95,15 @@ def _fundamental(alpha, elements, D0, solver, model):
     # each Newton solve starts from the last converged state (no secant): the last
     # correction is then tiny and the fundamental branch stays symmetric through the
     # thickness to round-off past the buckling load, where a secant start leaves a
-    # deflection at the Newton tolerance in the direction that has just gone unstable
+    # deflection at the Newton tolerance in the direction that has just gone unstable;
+    # double-precision factors for the same reason (the chord corrections of single-
+    # precision ones bend the fundamental state by 2e-8 of the thickness)
     res = fe.keplinger_plate(alpha, D0=D0, elements=tuple(elements), symmetry=MODELS[model],
                              options=fe.PlateOptions(grad_div=BUCKLING_GRAD_DIV),
                              linear_solver=solver,
                              settings=replace(fe.gallery.KEPLINGER_SETTINGS, max_cutbacks=6,
-                                              max_iter=25, predictor="none"))
+                                              max_iter=25, predictor="none",
+                                              factor_precision="double"))
     newton = dict(linear_solver=solver,
                   settings=fe.RampSettings(atol=0.0, rtol=1e-9, max_cutbacks=6, max_iter=25))
     return res, newton
