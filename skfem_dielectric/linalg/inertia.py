@@ -66,7 +66,7 @@ def tangent_inertia(K: sp.spmatrix, method: str = "auto") -> tuple[int, int, int
         tol = n * np.finfo(float).eps * max(1.0, float(np.abs(ev).max()))
         return int(np.sum(ev > tol)), int(np.sum(ev < -tol)), int(np.sum(np.abs(ev) <= tol))
     if method == "pardiso":
-        solver = PardisoSolver()
+        solver = PardisoSolver(matching=True)
         solver.solve(K, np.zeros(n))
         return solver.inertia
     return symmetric_lu(K)[0]
@@ -245,7 +245,7 @@ def inertia_factors(K: sp.spmatrix, method: str = "auto", orders: list | None = 
             return counted_inertia(K, method), None
         method = "pardiso" if pardiso_available() else "superlu"
     if method == "pardiso":
-        solver = PardisoSolver()
+        solver = PardisoSolver(matching=True)
         solver.solve(K, np.zeros(K.shape[0]))
         return solver.inertia, solver
     if method == "superlu":

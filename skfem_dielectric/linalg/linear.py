@@ -176,6 +176,16 @@ class PardisoSolver(LinearSolver):
         it).  For the Newton solves of a ramp, whose next residual judges each
         correction: the states converge to the same tolerance.  A stability analysis or a
         count needs double-precision factors (its shifted solves and its inertia).
+    matching
+        Weighted matching in the analysis (``iparm(13) = 1``; default ``False``): an
+        analysis about three times as long (0.87 against 0.29 s on a tangent of the
+        40 x 1 x 20 Keplinger plate), for an inertia that stays exact nearer a singular
+        matrix: the counts of negative eigenvalues
+        (:func:`~skfem_dielectric.linalg.inertia.counted_inertia`,
+        :func:`~skfem_dielectric.linalg.inertia.inertia_factors`, the shifted
+        factorisations of the stability analyses) use it.  Without it the count of a
+        Q2-P0 strip's tangent near its first negative charge flips within a band of
+        4e-8 of the charge (not monotone in it); with it, as with SuperLU's, it does not.
 
     Notes
     -----
@@ -184,17 +194,18 @@ class PardisoSolver(LinearSolver):
     results may differ in the last bits between runs because MKL is multi-threaded.
 
     Pivoting: after the symmetric scaling of the analysis, without weighted matching
-    (``iparm(13) = 0``), the factorisation takes 1x1 diagonal pivots (``iparm(21) = 0``);
-    a matrix whose factorisation had to perturb a pivot (``iparm(14) > 0``) is factorised
-    again at once with weighted matching and Bunch-Kaufman 1x1 and 2x2 pivoting
-    (``iparm(13) = iparm(21) = 1``, which was the only pivoting before) by a second
-    solver with its own analysis (neither can change between an analysis and its
+    unless ``matching`` (``iparm(13)``), the factorisation takes 1x1 diagonal pivots
+    (``iparm(21) = 0``); a matrix whose factorisation had to perturb a pivot
+    (``iparm(14) > 0``) is factorised again at once with weighted matching and
+    Bunch-Kaufman 1x1 and 2x2 pivoting (``iparm(13) = iparm(21) = 1``) by a second solver
+    with its own analysis (neither can change between an analysis and its
     factorisations; the first one's factors and analysis are freed before it), whose
-    factors then serve :meth:`resolve` and the inertia; :attr:`fallbacks` counts them.  On every converged state of the Keplinger ramps
-    (eighth and full plate, up to ``D0 = 6.5``) the 1x1 and Bunch-Kaufman pivots give
-    the same inertia and residuals and no perturbed pivot, and so do the factorisations
-    with and without the matching (40 x 1 x 20, eighth and full plate, ``D0 = 0.5 ...
-    5.5``); the 1x1 pivots factorise in 0.7 times the time, and without the matching the
+    factors then serve :meth:`resolve` and the inertia; :attr:`fallbacks` counts them.
+    On every converged state of the Keplinger ramps (eighth and full plate, up to
+    ``D0 = 6.5``) the 1x1 and Bunch-Kaufman pivots give the same inertia and residuals and
+    no perturbed pivot, and so do the factorisations with and without the matching
+    (40 x 1 x 20, eighth and full plate, ``D0 = 0.5 ... 5.5``); the 1x1 pivots factorise
+    in 0.7 times the time, and without the matching the
     analysis takes a third of the time and a factorisation 0.9 of it (docs/performance.md).
     """
 
@@ -205,7 +216,8 @@ class PardisoSolver(LinearSolver):
     _fallback = {13: 1, 21: 1}       # after a perturbed pivot: matching, Bunch-Kaufman
 
     def __init__(self, refine: int | None = None, ordering: str = "auto",
-                 refine_tol: float = 1e-13, precision: str = "double"):
+                 refine_tol: float = 1e-13, precision: str = "double",
+                 matching: bool = False):
         if ordering not in (*_ORDERINGS, "auto"):
             raise ValueError(f"ordering must be one of {('auto', *_ORDERINGS)}, "
                              f"got {ordering!r}")
@@ -217,7 +229,9 @@ class PardisoSolver(LinearSolver):
         p.set_iparm(2, _ORDERINGS.get(ordering, 0))
         p.set_iparm(8, 0)    # no refinement inside PARDISO (see ``refine``)
         p.set_iparm(11, 1)   # (symmetric) scaling
-        p.set_iparm(13, 0)   # no weighted matching (the fallback below matches)
+        #: weighted matching in the analysis (``iparm(13)``)
+        self.matching = bool(matching)
+        p.set_iparm(13, int(self.matching))   # the fallback below always matches
         for i, v in self._pivoting.items():
             p.set_iparm(i, v)
         # zero-based index arrays: PARDISO reads the upper triangle's own indptr/indices

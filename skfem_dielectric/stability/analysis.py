@@ -59,7 +59,7 @@ def metric_matrix(problem: Problem) -> sp.csr_matrix:
 def _pencil_solve(Ks: sp.spmatrix, use_pardiso: bool, solver: PardisoSolver | None = None):
     """A solve with ``Ks`` factorised: PARDISO (``solver`` keeps its analysis) or SuperLU."""
     if use_pardiso:
-        solver = solver if solver is not None else PardisoSolver()
+        solver = solver if solver is not None else PardisoSolver(matching=True)
         solver.solve(Ks, np.zeros(Ks.shape[0]))
         return solver.resolve
     return splu(Ks, permc_spec="MMD_AT_PLUS_A").solve
@@ -74,7 +74,7 @@ def _below(Ks: sp.spmatrix, n_m: int, use_pardiso: bool, solver: PardisoSolver |
     diagonal)."""
     n = Ks.shape[0]
     if use_pardiso:         # the factors that give the inertia serve the solves
-        ps = solver if solver is not None else PardisoSolver()
+        ps = solver if solver is not None else PardisoSolver(matching=True)
         ps.solve(Ks, np.zeros(n))
         return ps.inertia[1] - n_m, ps.resolve
     if n <= DENSE_LIMIT // 10:

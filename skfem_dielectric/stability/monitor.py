@@ -112,7 +112,7 @@ class StabilityMonitor:
                 md = M.diagonal()
                 d = np.flatnonzero(md > 0)
                 self._metric = (problem, M, d, np.sqrt(md[d]))
-                self._shift = (PardisoSolver() if pardiso_available()
+                self._shift = (PardisoSolver(matching=True) if pardiso_available()
                                and problem.ndofs > DENSE_LIMIT else None)
             _, M, d, sq = self._metric
             prev = self.last

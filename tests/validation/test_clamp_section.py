@@ -8,6 +8,7 @@ import numpy as np
 import pytest
 
 from analytic import critical_D0
+from skfem_dielectric.linalg.linear import pardiso_available
 from skfem_dielectric.materials import ideal_dielectric_response, make_material
 from skfem_dielectric.models.edge_section import (EdgeSection, edge_section_grids,
                                                   graded_spacing, homogeneous_base)
@@ -385,3 +386,18 @@ def test_the_section_takes_the_grad_div_of_its_3d_state():
         with pytest.raises(ValueError, match=r"grad_div must be the 3D state's grad-div "
                                              r"weight 10 .*got " + f"{other!r}"):
             continue_section_base(g1, g2, pb.material, path, grad_div=other)
+
+
+@pytest.mark.skipif(not pardiso_available(), reason="needs pypardiso")
+def test_pardiso_counts_the_strip_as_superlu_does_next_to_its_first_negative_charge():
+    """Within 2.3e-7 above the Q2-P0 strip's first negative charge on 32 elements
+    (k = 0.5) the smallest eigenvalue is tiny: the count of PARDISO with weighted matching
+    (that of ``counted_inertia``) is SuperLU's at every charge (one negative mode), where
+    without the matching it flipped to 0 and back within 4e-8 of the charge."""
+    lam, H, k = 1.5, 1.0, 0.5
+    ref = float(critical_D0(lam, (k / lam) * (H / lam**2)))
+    for e in (-2.3e-7, -2.1e-7, -1.95e-7, -1.9e-7, -1.8e-7):
+        sec = EdgeSection(np.array([0.0, 0.25]), np.linspace(-H / 2, H / 2, 33), MAT,
+                          homogeneous_base(MAT, lam, lam, ref * (1 + e)), fixed="normal",
+                          grad_div=10.0, pressure="P0")
+        assert sec.count(k, method="pardiso") == sec.count(k, method="superlu") == 1, e
