@@ -368,8 +368,7 @@ class PardisoSolver(LinearSolver):
             raise ValueError("matrix is singular: it has an empty row")
         same = self._pattern is not None and same_pattern(self._pattern, U)
         if not same:
-            if self._pattern is not None:
-                self._call(-1, U, b)  # release the old factorisation
+            self._free_analysis()     # the old pattern's analysis and factors
             self.chosen_ordering = self._ordering_for(U.shape[0])
             self._ps.set_iparm(2, _ORDERINGS[self.chosen_ordering])
             self._call(11, U, b)
@@ -384,22 +383,21 @@ class PardisoSolver(LinearSolver):
         self._call(22, U, b)
         count_factorisation()
         if self._fallback and int(self._ps.iparm[13]) > 0:
-            return self._fall_back(U, K, b)
+            return self._fall_back(K, b)
         self.inertia = self._read_inertia(K.shape[0])
         x = self._call(33, U, b)
         self._last = U
         x, self.last_residual = self._refined(K, b, x)
         if self._single and self._fallback and not self.last_residual <= SINGLE_RESIDUAL:
-            return self._fall_back(U, K, b)   # single precision did not reach it
+            return self._fall_back(K, b)   # single precision did not reach it
         return np.ascontiguousarray(x)
 
-    def _fall_back(self, U: sp.csr_matrix, K: sp.spmatrix, b: np.ndarray) -> np.ndarray:
+    def _fall_back(self, K: sp.spmatrix, b: np.ndarray) -> np.ndarray:
         """Factorise ``K`` again with the robust solver (Bunch-Kaufman pivoting and weighted
         matching, double precision), which needs its own analysis (a second PARDISO
         handle): this handle's factors and analysis are freed first (not held beside the
         second's)."""
-        self._call(-1, U, b)
-        self._pattern = None
+        self._free_analysis()
         self._last = None
         robust = self._robust_solver()
         x = robust.solve(K, b)
@@ -478,10 +476,17 @@ class PardisoSolver(LinearSolver):
         self.discard()
         if self._robust is not None:
             self._robust.release()
-        if self._pattern is not None:
-            self._call(-1, sp.identity(1, format="csr"), np.zeros(1))
-            self._pattern = None
+        if self._free_analysis():
             trim_heap()
+
+    def _free_analysis(self) -> bool:
+        """PARDISO phase -1 (the analysis and any factors) where an analysis is held;
+        whether one was."""
+        if self._pattern is None:
+            return False
+        self._call(-1, sp.identity(1, format="csr"), np.zeros(1))
+        self._pattern = None
+        return True
 
     def resolve(self, b: np.ndarray) -> np.ndarray | None:
         """Solve with the last numerical factorisation (PARDISO phase 33), without
@@ -498,9 +503,7 @@ class PardisoSolver(LinearSolver):
 
     def __del__(self):  # pragma: no cover - cleanup
         try:
-            if self._pattern is not None:
-                self._ps.set_phase(-1)
-                self._ps._call_pardiso(sp.identity(1, format="csr"), np.zeros(1))
+            self._free_analysis()
         except Exception:
             pass
 
